@@ -1,0 +1,1 @@
+"""objrecall knowledge base: the features vocabulary, the DuckDB catalog and its Python API."""

@@ -1,0 +1,151 @@
+"""The one errors module of objrecall.
+
+Every error a user can cause is an :class:`ObjrecallError`; the CLI and the HTTP service turn it into one
+clear line (CLI, exit code 1) or a JSON body (HTTP 4xx). Anything else is a bug.
+
+::
+
+    ObjrecallError
+    ├── InvalidFeature            a feature value is missing, malformed or absurd (names field and reason)
+    ├── CatalogError
+    │   ├── ObjectNotFound        no object with that name or alias
+    │   └── CatalogImportError    a CSV row was invalid; nothing was imported (names row, column, reason)
+    ├── DatabaseError
+    │   ├── DatabaseBusy          another process held the database for longer than the busy timeout
+    │   └── MigrationError        the database could not be brought to the schema head
+    ├── QueryRefused              user SQL tried to write, read files, attach, install or load
+    ├── QueryFailed               user SQL was valid for the sandbox but failed (syntax, timeout, ...)
+    ├── DescriptionError          a description could not be parsed at all (empty input, too long)
+    ├── RecallError               recall could not run (empty catalog, unknown metric)
+    ├── FetchError                a page could not be fetched (HTTP status, timeout, robots.txt, size cap)
+    │   ├── RobotsDisallowed
+    │   └── PageTooLarge
+    ├── ExtractionError           a page was fetched but holds no usable product record
+    ├── IngestionError            an ingestion run failed as a whole (the catalog is left as it was)
+    ├── SourcesError              a sources.toml file is malformed
+    └── SimulationError           a grasp trial could not be run
+        └── PhysicsError          the simulation diverged (NaN, MuJoCo warnings): an error, never a result
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "CatalogError",
+    "CatalogImportError",
+    "DatabaseBusy",
+    "DatabaseError",
+    "DescriptionError",
+    "ExtractionError",
+    "FetchError",
+    "IngestionError",
+    "InvalidFeature",
+    "MigrationError",
+    "ObjectNotFound",
+    "ObjrecallError",
+    "PageTooLarge",
+    "PhysicsError",
+    "QueryFailed",
+    "QueryRefused",
+    "RecallError",
+    "RobotsDisallowed",
+    "SimulationError",
+    "SourcesError",
+]
+
+
+class ObjrecallError(Exception):
+    """Base of every error a user can cause; ``str(err)`` is one clear line."""
+
+
+class InvalidFeature(ObjrecallError, ValueError):
+    """A feature value is missing, malformed or absurd."""
+
+    def __init__(self, field: str, value: object, reason: str):
+        self.field = field
+        self.value = value
+        self.reason = reason
+        super().__init__(f"{field}={value!r}: {reason}")
+
+
+class CatalogError(ObjrecallError):
+    pass
+
+
+class ObjectNotFound(CatalogError, LookupError):
+    def __init__(self, name: str):
+        self.name = name
+        super().__init__(f"no object named {name!r} in the catalog")
+
+
+class CatalogImportError(CatalogError):
+    """A canonical CSV could not be imported; ``problems`` lists (row, column, reason)."""
+
+    def __init__(self, path: str, problems: list[tuple[int, str, str]]):
+        self.path = path
+        self.problems = problems
+        first = "; ".join(f"row {r}, column {c}: {why}" for r, c, why in problems[:3])
+        more = f" (and {len(problems) - 3} more)" if len(problems) > 3 else ""
+        super().__init__(f"{path}: nothing imported: {first}{more}")
+
+
+class DatabaseError(ObjrecallError):
+    pass
+
+
+class DatabaseBusy(DatabaseError):
+    pass
+
+
+class MigrationError(DatabaseError):
+    pass
+
+
+class QueryRefused(ObjrecallError):
+    pass
+
+
+class QueryFailed(ObjrecallError):
+    pass
+
+
+class DescriptionError(ObjrecallError, ValueError):
+    pass
+
+
+class RecallError(ObjrecallError):
+    pass
+
+
+class FetchError(ObjrecallError):
+    def __init__(self, url: str, reason: str):
+        self.url = url
+        self.reason = reason
+        super().__init__(f"{url}: {reason}")
+
+
+class RobotsDisallowed(FetchError):
+    pass
+
+
+class PageTooLarge(FetchError):
+    pass
+
+
+class ExtractionError(ObjrecallError):
+    pass
+
+
+class IngestionError(ObjrecallError):
+    pass
+
+
+class SourcesError(ObjrecallError):
+    pass
+
+
+class SimulationError(ObjrecallError):
+    pass
+
+
+class PhysicsError(SimulationError):
+    pass

@@ -1,0 +1,279 @@
+"""The features vocabulary: the one place that defines an object's features, their units and encoding.
+
+Every other part (catalog storage, parser, recall, scrapers, grasp planner) imports its names from here.
+
+Features (units are catalog units):
+
+========== ======================================================= =========================
+feature    meaning                                                 values
+========== ======================================================= =========================
+a_cm       largest extent, cm                                      0 < a <= 500
+b_cm       middle extent, cm (b <= a)                              0 < b <= a
+c_cm       smallest extent, cm (c <= b)                            0 < c <= b
+mass_g     mass, grams                                             0 < m <= 500 000
+shape      shape class (Cutkosky/Feix-style, after the paper [2])  thin compact prism long radial
+texture    surface texture                                         smooth medium rough grippy
+fragility  how easily it breaks                                    fragile medium sturdy
+material   simplified material                                     fabric glass metal paper plastic
+                                                                   rubber wood other
+rigidity   stiffness (the paper's "stiffness": soft -> squeezable) rigid squeezable floppy
+========== ======================================================= =========================
+
+Dimensions given in any order are sorted so that ``a >= b >= c``. Any feature may be unknown (None).
+
+Encoding for distance metrics (the paper's section III): the four numeric features as they are, in catalog
+units, and each categorical feature one-hot, with no normalisation. :data:`VECTOR_COLUMNS` names the
+columns; :func:`encode` returns the vector and a mask of the columns that are known.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import asdict, dataclass, field, fields, replace
+from typing import Any
+
+import numpy as np
+
+from kb.errors import InvalidFeature
+
+__all__ = [
+    "CATEGORIES",
+    "CATEGORY_ALIASES",
+    "CATEGORICAL_FEATURES",
+    "CSV_COLUMNS",
+    "DIMENSIONS",
+    "FEATURES",
+    "FRAGILITIES",
+    "MATERIALS",
+    "MAX_DIM_CM",
+    "MAX_MASS_G",
+    "NUMERIC_FEATURES",
+    "ObjectRecord",
+    "RIGIDITIES",
+    "SHAPES",
+    "TEXTURES",
+    "VECTOR_COLUMNS",
+    "encode",
+    "normalize_category",
+    "normalize_name",
+    "sort_dims",
+    "validate_features",
+]
+
+SHAPES: tuple[str, ...] = ("thin", "compact", "prism", "long", "radial")
+RIGIDITIES: tuple[str, ...] = ("rigid", "squeezable", "floppy")
+MATERIALS: tuple[str, ...] = ("fabric", "glass", "metal", "paper", "plastic", "rubber", "wood", "other")
+TEXTURES: tuple[str, ...] = ("smooth", "medium", "rough", "grippy")
+FRAGILITIES: tuple[str, ...] = ("fragile", "medium", "sturdy")
+
+DIMENSIONS: tuple[str, ...] = ("a_cm", "b_cm", "c_cm")
+NUMERIC_FEATURES: tuple[str, ...] = (*DIMENSIONS, "mass_g")
+CATEGORIES: dict[str, tuple[str, ...]] = {
+    "shape": SHAPES,
+    "texture": TEXTURES,
+    "fragility": FRAGILITIES,
+    "material": MATERIALS,
+    "rigidity": RIGIDITIES,
+}
+CATEGORICAL_FEATURES: tuple[str, ...] = tuple(CATEGORIES)
+FEATURES: tuple[str, ...] = (*NUMERIC_FEATURES, *CATEGORICAL_FEATURES)
+#: The canonical catalog CSV header, in this order.
+CSV_COLUMNS: tuple[str, ...] = ("name", *FEATURES)
+
+#: Values past these are refused as absurd for a household object (5 m, 500 kg).
+MAX_DIM_CM = 500.0
+MAX_MASS_G = 500_000.0
+
+#: Words accepted in catalog files besides the canonical ones (case-insensitive). The parser has its own,
+#: much larger, table of everyday words (recall/lexicon.py); this one is for data files.
+CATEGORY_ALIASES: dict[str, dict[str, str]] = {
+    "rigidity": {"soft": "squeezable", "hard": "rigid", "stiff": "rigid", "flexible": "floppy"},
+    "material": {
+        "metallic": "metal", "steel": "metal", "aluminum": "metal", "aluminium": "metal",
+        "wooden": "wood", "cardboard": "paper", "cloth": "fabric", "textile": "fabric",
+        "ceramic": "other", "stone": "other", "silicone": "rubber", "foam": "other",
+    },
+    "shape": {"flat": "thin", "cylindrical": "prism", "spherical": "radial", "round": "radial"},
+    "texture": {"rubbery": "grippy", "fuzzy": "rough"},
+    "fragility": {"delicate": "fragile", "breakable": "fragile", "robust": "sturdy"},
+}
+
+#: Column names of the encoded feature vector: numeric features, then one-hot columns "feature=value".
+VECTOR_COLUMNS: tuple[str, ...] = (
+    *NUMERIC_FEATURES,
+    *(f"{feat}={val}" for feat, vals in CATEGORIES.items() for val in vals),
+)
+_VECTOR_INDEX = {col: i for i, col in enumerate(VECTOR_COLUMNS)}
+
+
+def normalize_name(name: str) -> str:
+    """Catalog key of an object name: lower case, single spaces, trimmed."""
+    return " ".join(str(name).lower().split())
+
+
+def normalize_category(feature: str, value: Any) -> str | None:
+    """The canonical word for a categorical ``value`` of ``feature``, or None when blank.
+
+    Raises :class:`InvalidFeature` for an unknown feature or word.
+    """
+    if feature not in CATEGORIES:
+        raise InvalidFeature(feature, value, f"not a categorical feature (one of {', '.join(CATEGORIES)})")
+    if value is None:
+        return None
+    word = " ".join(str(value).lower().split())
+    if not word:
+        return None
+    allowed = CATEGORIES[feature]
+    if word in allowed:
+        return word
+    alias = CATEGORY_ALIASES.get(feature, {}).get(word)
+    if alias is not None:
+        return alias
+    raise InvalidFeature(feature, value, f"unknown {feature}; expected one of {', '.join(allowed)}")
+
+
+def _number(feature: str, value: Any) -> float | None:
+    if value is None:
+        return None
+    if isinstance(value, str):
+        text = value.strip()
+        if not text:
+            return None
+        try:
+            value = float(text)
+        except ValueError:
+            raise InvalidFeature(feature, value, "not a number") from None
+    if isinstance(value, bool):
+        raise InvalidFeature(feature, value, "not a number")
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InvalidFeature(feature, value, "not a number") from None
+    if math.isnan(number):
+        return None
+    if math.isinf(number):
+        raise InvalidFeature(feature, value, "must be finite")
+    if number <= 0:
+        raise InvalidFeature(feature, value, "must be greater than zero")
+    limit, unit = (MAX_MASS_G, "g") if feature == "mass_g" else (MAX_DIM_CM, "cm")
+    if number > limit:
+        raise InvalidFeature(feature, value, f"absurd for a household object (over {limit:g} {unit})")
+    return number
+
+
+def sort_dims(*dims: float | None) -> tuple[float | None, float | None, float | None]:
+    """Known dimensions sorted largest first into (a, b, c); unknown ones (None) fill the tail."""
+    known = sorted((d for d in dims if d is not None), reverse=True)
+    if len(known) > 3:
+        raise InvalidFeature("dimensions", dims, "at most three dimensions")
+    padded = known + [None] * (3 - len(known))
+    return padded[0], padded[1], padded[2]
+
+
+def validate_features(values: Mapping[str, Any]) -> dict[str, Any]:
+    """Validated, normalised feature values: numbers as float in catalog units, dims sorted, categories
+    canonical, unknown as None. Keys not in :data:`FEATURES` are ignored. Raises :class:`InvalidFeature`."""
+    out: dict[str, Any] = {}
+    dims = [_number(d, values.get(d)) for d in DIMENSIONS]
+    out["a_cm"], out["b_cm"], out["c_cm"] = sort_dims(*dims)
+    out["mass_g"] = _number("mass_g", values.get("mass_g"))
+    for feat in CATEGORICAL_FEATURES:
+        out[feat] = normalize_category(feat, values.get(feat))
+    return out
+
+
+@dataclass(frozen=True)
+class ObjectRecord:
+    """One catalog object: its name, features (None = unknown), aliases and where its values came from.
+
+    Build one with :meth:`create`, which validates and sorts; the plain constructor trusts its input.
+    """
+
+    name: str
+    a_cm: float | None = None
+    b_cm: float | None = None
+    c_cm: float | None = None
+    mass_g: float | None = None
+    shape: str | None = None
+    texture: str | None = None
+    fragility: str | None = None
+    material: str | None = None
+    rigidity: str | None = None
+    aliases: tuple[str, ...] = ()
+    source: str | None = None
+    extra: dict[str, Any] = field(default_factory=dict, compare=False, hash=False)
+
+    @classmethod
+    def create(
+        cls,
+        name: Any,
+        *,
+        aliases: Iterable[str] = (),
+        source: str | None = None,
+        extra: Mapping[str, Any] | None = None,
+        **features: Any,
+    ) -> ObjectRecord:
+        """Validate ``features`` (see :func:`validate_features`) and build a record; a blank name is refused."""
+        unknown = set(features) - set(FEATURES)
+        if unknown:
+            raise InvalidFeature(sorted(unknown)[0], features[sorted(unknown)[0]], "not a known feature")
+        clean_name = normalize_name(name) if name is not None else ""
+        if not clean_name:
+            raise InvalidFeature("name", name, "missing name")
+        values = validate_features(features)
+        clean_aliases = tuple(dict.fromkeys(a for a in (normalize_name(x) for x in aliases) if a and a != clean_name))
+        return cls(name=clean_name, aliases=clean_aliases, source=source, extra=dict(extra or {}), **values)
+
+    @property
+    def dims_cm(self) -> tuple[float | None, float | None, float | None]:
+        return (self.a_cm, self.b_cm, self.c_cm)
+
+    def features(self) -> dict[str, Any]:
+        """The feature values only, keyed by :data:`FEATURES` (None = unknown)."""
+        return {f: getattr(self, f) for f in FEATURES}
+
+    def known_features(self) -> dict[str, Any]:
+        return {k: v for k, v in self.features().items() if v is not None}
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d["aliases"] = list(self.aliases)
+        return d
+
+    def with_features(self, **changes: Any) -> ObjectRecord:
+        merged = {**self.features(), **changes}
+        return replace(self, **validate_features(merged))
+
+
+def encode(features: Mapping[str, Any] | ObjectRecord) -> tuple[np.ndarray, np.ndarray]:
+    """Encode features as (vector, mask) over :data:`VECTOR_COLUMNS`.
+
+    Numeric features are copied in catalog units; a categorical feature sets its one-hot block (all
+    columns of the block are known once the category is known). Unknown features leave their columns
+    at NaN with mask False. Values must already be valid (see :func:`validate_features`).
+    """
+    if isinstance(features, ObjectRecord):
+        features = features.features()
+    vec = np.full(len(VECTOR_COLUMNS), np.nan)
+    mask = np.zeros(len(VECTOR_COLUMNS), dtype=bool)
+    for feat in NUMERIC_FEATURES:
+        value = features.get(feat)
+        if value is not None:
+            i = _VECTOR_INDEX[feat]
+            vec[i] = float(value)
+            mask[i] = True
+    for feat, vals in CATEGORIES.items():
+        value = features.get(feat)
+        if value is None:
+            continue
+        for val in vals:
+            i = _VECTOR_INDEX[f"{feat}={val}"]
+            vec[i] = 1.0 if val == value else 0.0
+            mask[i] = True
+    return vec, mask
+
+
+def record_fields() -> tuple[str, ...]:
+    """Names of the :class:`ObjectRecord` fields (for serialisers)."""
+    return tuple(f.name for f in fields(ObjectRecord))

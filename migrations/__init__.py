@@ -1,0 +1,1 @@
+"""Alembic migrations of the objrecall catalog (revisions written by hand)."""

@@ -1,0 +1,1 @@
+"""Description parsing and object recall (the paper's Joint Probability distance)."""

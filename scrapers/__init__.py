@@ -1,0 +1,1 @@
+"""Storefront scrapers and the nightly catalog ingestion job."""
