@@ -1,0 +1,42 @@
+"""The record an extractor returns for one product page (plain dataclass, no I/O)."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+__all__ = ["ProductRecord"]
+
+
+@dataclass
+class ProductRecord:
+    """What one page says about one product, normalised to catalog units.
+
+    dims_cm: the product's own dimensions, largest first (1 to 3 values), or None.
+    mass_g: the product's own mass, or None.
+    package_dims_cm / package_mass_g: package or shipping values, one entry per package, kept apart.
+    material / shape: catalog words (kb.features) or None; shape may be inferred from dims (documented).
+    adapter: the extractor that produced the values ("jsonld", "microdata", "shopify", "woocommerce",
+    "spec_table", ...). raw: feature -> the page text each value came from (provenance).
+    warnings: disagreements and doubts (e.g. two sources on the page disagree on the weight).
+    """
+
+    name: str | None
+    url: str
+    canonical_url: str | None = None
+    gtin: str | None = None
+    dims_cm: tuple[float, ...] | None = None
+    mass_g: float | None = None
+    package_dims_cm: list[tuple[float, ...]] = field(default_factory=list)
+    package_mass_g: list[float] = field(default_factory=list)
+    material: str | None = None
+    shape: str | None = None
+    adapter: str | None = None
+    warnings: list[str] = field(default_factory=list)
+    raw: dict[str, str] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d["dims_cm"] = list(self.dims_cm) if self.dims_cm is not None else None
+        d["package_dims_cm"] = [list(p) for p in self.package_dims_cm]
+        return d
