@@ -1,0 +1,552 @@
+"""The knowledge base: a DuckDB catalog file and its Python API.
+
+One writer at a time
+--------------------
+DuckDB lets one process open a database file for writing, and while it does no other process can open the
+file at all, not even read-only. So :class:`KnowledgeBase` never keeps a connection open between calls:
+
+* every call opens a connection, does its work and closes it (:meth:`KnowledgeBase.connect`);
+* opening retries with a short backoff while another process holds the file, for up to ``busy_timeout``
+  seconds (default 30 s), then raises :class:`~kb.errors.DatabaseBusy`;
+* writers (CSV import, the nightly ingestion, grasp results) prepare everything first and hold the write
+  connection only for one short transaction;
+* readers use a *sandboxed* read-only connection (no file or network access, no extensions, locked
+  configuration, a memory cap), which is also what user SQL runs on;
+* inside one process a reader/writer lock keeps read and write connections from overlapping (DuckDB refuses
+  two connections with different settings on one file in one process).
+
+So a reader waits at most one write transaction, and a writer waits at most for the readers' short calls.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import threading
+import time
+from collections.abc import Iterable, Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Any, Literal
+
+import duckdb
+
+from kb import migrate
+from kb.csvio import SkippedRow, read_catalog_csv, write_catalog_csv
+from kb.errors import (
+    DatabaseBusy,
+    DatabaseError,
+    ObjectNotFound,
+    QueryFailed,
+    QueryRefused,
+)
+from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES, ObjectRecord, normalize_name
+
+__all__ = [
+    "DEFAULT_BUSY_TIMEOUT",
+    "ImportReport",
+    "KnowledgeBase",
+    "QueryResult",
+    "SANDBOX_CONFIG",
+    "features_hash",
+]
+
+DEFAULT_BUSY_TIMEOUT = 30.0
+DEFAULT_MAX_ROWS = 10_000
+DEFAULT_SQL_TIMEOUT = 10.0
+
+#: Settings of every read connection, and so of user SQL: read-only, no file or network access, no
+#: extensions, configuration locked so a query cannot undo any of it, and a memory cap.
+SANDBOX_CONFIG: dict[str, Any] = {
+    "enable_external_access": False,
+    "autoinstall_known_extensions": False,
+    "autoload_known_extensions": False,
+    "allow_community_extensions": False,
+    "allow_unsigned_extensions": False,
+    "max_memory": "2GB",
+    "lock_configuration": True,
+}
+
+#: Statement types user SQL may run.
+ALLOWED_STATEMENTS = frozenset({"SELECT", "EXPLAIN"})
+
+_OBJECT_COLUMNS = ("id", "name", *FEATURES, "source")
+
+
+@dataclass
+class QueryResult:
+    """Rows of a user query; ``truncated`` is True when more than ``max_rows`` rows were available."""
+
+    columns: list[str]
+    rows: list[tuple]
+    truncated: bool = False
+
+    def to_dicts(self) -> list[dict[str, Any]]:
+        return [dict(zip(self.columns, row, strict=True)) for row in self.rows]
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"columns": self.columns, "rows": [list(r) for r in self.rows], "truncated": self.truncated}
+
+
+@dataclass
+class ImportReport:
+    """What an import did: objects created, updated, unchanged, and rows skipped (with reasons)."""
+
+    source: str
+    new: list[str] = field(default_factory=list)
+    updated: list[str] = field(default_factory=list)
+    unchanged: int = 0
+    skipped: list[SkippedRow] = field(default_factory=list)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "source": self.source,
+            "new": len(self.new),
+            "updated": len(self.updated),
+            "unchanged": self.unchanged,
+            "skipped": [{"row": s.row, "column": s.column, "reason": s.reason} for s in self.skipped],
+        }
+
+
+def features_hash(record: ObjectRecord) -> str:
+    """A short stable hash of an object's feature values (changes when any catalog value changes)."""
+    text = "|".join(f"{f}={getattr(record, f)!r}" for f in FEATURES)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+class _ReadWriteLock:
+    """Many readers or one writer, inside one process."""
+
+    def __init__(self) -> None:
+        self._cond = threading.Condition()
+        self._readers = 0
+        self._writer = False
+
+    @contextmanager
+    def read(self) -> Iterator[None]:
+        with self._cond:
+            while self._writer:
+                self._cond.wait()
+            self._readers += 1
+        try:
+            yield
+        finally:
+            with self._cond:
+                self._readers -= 1
+                self._cond.notify_all()
+
+    @contextmanager
+    def write(self) -> Iterator[None]:
+        with self._cond:
+            while self._writer or self._readers:
+                self._cond.wait()
+            self._writer = True
+        try:
+            yield
+        finally:
+            with self._cond:
+                self._writer = False
+                self._cond.notify_all()
+
+
+_LOCKS: dict[str, _ReadWriteLock] = {}
+_LOCKS_GUARD = threading.Lock()
+
+
+def _lock_for(path: Path) -> _ReadWriteLock:
+    key = str(path.resolve())
+    with _LOCKS_GUARD:
+        return _LOCKS.setdefault(key, _ReadWriteLock())
+
+
+def _is_lock_conflict(err: Exception) -> bool:
+    text = str(err).lower()
+    return "lock" in text and ("conflict" in text or "could not set" in text)
+
+
+class KnowledgeBase:
+    """The object catalog in one DuckDB file. Open it with :meth:`open`."""
+
+    def __init__(self, path: Path, *, read_only: bool = False, busy_timeout: float = DEFAULT_BUSY_TIMEOUT):
+        self.path = Path(path)
+        self.read_only = read_only
+        self.busy_timeout = busy_timeout
+        self._lock = _lock_for(self.path)
+
+    # ------------------------------------------------------------------ opening
+    @classmethod
+    def open(
+        cls,
+        path: str | Path,
+        *,
+        read_only: bool = False,
+        busy_timeout: float = DEFAULT_BUSY_TIMEOUT,
+        upgrade: bool = True,
+    ) -> KnowledgeBase:
+        """Open the catalog at ``path``.
+
+        A writer (``read_only=False``) creates the file if needed and upgrades it to the schema head
+        (``upgrade=False`` skips that). A reader requires an existing file and never writes to it.
+        """
+        path = Path(path)
+        kb = cls(path, read_only=read_only, busy_timeout=busy_timeout)
+        if read_only:
+            if not path.exists():
+                raise DatabaseError(f"{path}: no catalog there (create it with `objrecall init --db {path}`)")
+        elif upgrade:
+            kb.upgrade()
+        return kb
+
+    def upgrade(self, revision: str = "head") -> None:
+        """Create or upgrade the schema to ``revision`` (Alembic), waiting while another process writes."""
+        if self.read_only:
+            raise DatabaseError(f"{self.path}: opened read-only; cannot migrate")
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        with self._lock.write():
+            self._retry(lambda: migrate.upgrade(self.path, revision))
+
+    def schema_revision(self) -> str | None:
+        with self._lock.read():
+            return self._retry(lambda: migrate.current_revision(self.path))
+
+    def _retry(self, fn):
+        deadline = time.monotonic() + self.busy_timeout
+        delay = 0.01
+        while True:
+            try:
+                return fn()
+            except Exception as err:  # duckdb.IOException, or wrapped by SQLAlchemy / MigrationError
+                if not _is_lock_conflict(err):
+                    raise
+                if time.monotonic() >= deadline:
+                    raise DatabaseBusy(
+                        f"{self.path}: another process has held the database for over {self.busy_timeout:g} s"
+                    ) from None
+                time.sleep(delay)
+                delay = min(delay * 2, 0.25)
+
+    @contextmanager
+    def connect(self, *, write: bool = False) -> Iterator[duckdb.DuckDBPyConnection]:
+        """A short-lived connection: sandboxed read-only by default, read-write with ``write=True``.
+
+        Keep the ``with`` block short: while it is open, other processes cannot write (reader) or cannot
+        open the file at all (writer). Retries while another process holds the file.
+        """
+        if write and self.read_only:
+            raise DatabaseError(f"{self.path}: opened read-only; cannot write")
+        if not write and not self.path.exists():
+            raise DatabaseError(f"{self.path}: no catalog there (create it with `objrecall init --db {self.path}`)")
+        lock = self._lock.write() if write else self._lock.read()
+        with lock:
+            if write:
+                con = self._retry(lambda: duckdb.connect(str(self.path)))
+            else:
+                con = self._retry(lambda: duckdb.connect(str(self.path), read_only=True, config=SANDBOX_CONFIG))
+            try:
+                yield con
+            finally:
+                con.close()
+
+    # ------------------------------------------------------------------ reading objects
+    def _rows_to_records(self, con: duckdb.DuckDBPyConnection, rows: Sequence[tuple]) -> list[ObjectRecord]:
+        ids = [r[0] for r in rows]
+        aliases: dict[int, list[str]] = {}
+        if ids:
+            for alias, oid in con.execute(
+                "SELECT alias, object_id FROM object_aliases WHERE list_contains(?, object_id) ORDER BY alias",
+                [ids],
+            ).fetchall():
+                aliases.setdefault(oid, []).append(alias)
+        out = []
+        for row in rows:
+            values = dict(zip(_OBJECT_COLUMNS, row, strict=True))
+            out.append(
+                ObjectRecord(
+                    name=values["name"],
+                    aliases=tuple(aliases.get(values["id"], ())),
+                    source=values["source"],
+                    **{f: values[f] for f in FEATURES},
+                )
+            )
+        return out
+
+    def list_objects(self, *, limit: int | None = None, offset: int = 0) -> list[ObjectRecord]:
+        """Objects ordered by name, with their aliases."""
+        sql = f"SELECT {', '.join(_OBJECT_COLUMNS)} FROM objects ORDER BY name"
+        params: list[Any] = []
+        if limit is not None:
+            sql += " LIMIT ? OFFSET ?"
+            params = [int(limit), int(offset)]
+        with self.connect() as con:
+            return self._rows_to_records(con, con.execute(sql, params).fetchall())
+
+    def count_objects(self) -> int:
+        with self.connect() as con:
+            return int(con.execute("SELECT count(*) FROM objects").fetchone()[0])
+
+    def get_object(self, name: str) -> ObjectRecord:
+        """The object with this name or alias (case and spacing do not matter)."""
+        key = normalize_name(name)
+        with self.connect() as con:
+            rows = con.execute(
+                f"SELECT {', '.join(_OBJECT_COLUMNS)} FROM objects WHERE name = ? "
+                "OR id = (SELECT object_id FROM object_aliases WHERE alias = ?) ORDER BY name = ? DESC LIMIT 1",
+                [key, key, key],
+            ).fetchall()
+            if not rows:
+                raise ObjectNotFound(name)
+            return self._rows_to_records(con, rows)[0]
+
+    def provenance(self, name: str) -> list[dict[str, Any]]:
+        """Every observed value of the object's features, newest first, with source and raw text."""
+        obj = self.get_object(name)
+        with self.connect() as con:
+            cur = con.execute(
+                "SELECT feature, value_num, value_text, role, source, adapter, fetched_at, raw_text, run_id "
+                "FROM observations WHERE object_id = (SELECT id FROM objects WHERE name = ?) "
+                "ORDER BY fetched_at DESC, id DESC",
+                [obj.name],
+            )
+            cols = [d[0] for d in cur.description]
+            return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+
+    def catalog_version(self) -> tuple[int, int, str]:
+        """(object count, largest id, latest update): changes whenever the catalog's objects change."""
+        with self.connect() as con:
+            n, max_id, latest = con.execute(
+                "SELECT count(*), coalesce(max(id), 0), coalesce(CAST(max(updated_at) AS VARCHAR), '') FROM objects"
+            ).fetchone()
+        return int(n), int(max_id), str(latest)
+
+    def summary(self) -> dict[str, Any]:
+        """Counts for a quick look: objects, per category value, observations, runs, grasp trials."""
+        with self.connect() as con:
+            out: dict[str, Any] = {"objects": con.execute("SELECT count(*) FROM objects").fetchone()[0]}
+            for feat in CATEGORICAL_FEATURES:
+                rows = con.execute(
+                    f"SELECT coalesce({feat}, 'unknown'), count(*) FROM objects GROUP BY 1 ORDER BY 2 DESC, 1"
+                ).fetchall()
+                out[feat] = dict(rows)
+            for table in ("observations", "ingestion_runs", "grasp_validations"):
+                out[table] = con.execute(f"SELECT count(*) FROM {table}").fetchone()[0]
+        return out
+
+    # ------------------------------------------------------------------ writing objects
+    def import_csv(self, path: str | Path, *, skip_invalid: bool = False) -> ImportReport:
+        """Import a canonical CSV in one transaction (upsert by name).
+
+        A file with any bad row imports nothing and raises :class:`~kb.errors.CatalogImportError` naming
+        row, column and reason, unless ``skip_invalid``, which imports the valid rows and lists the rest in
+        the report. Blank cells leave the stored value as it is; re-importing a file changes nothing.
+        """
+        result = read_catalog_csv(path, skip_invalid=skip_invalid)
+        report = self.upsert(result.records, source=f"csv:{Path(path).name}", adapter="csv")
+        report.skipped = result.skipped
+        return report
+
+    def upsert(
+        self,
+        records: Iterable[ObjectRecord],
+        *,
+        source: str,
+        adapter: str,
+        run_id: int | None = None,
+        con: duckdb.DuckDBPyConnection | None = None,
+    ) -> ImportReport:
+        """Insert new objects and update changed ones by name, in one transaction.
+
+        Known values in a record replace stored ones; unknown (None) values leave them. Every new or
+        changed value is kept in ``observations`` with ``source`` and ``adapter``. New aliases are added
+        (an alias that is another object's name or alias is ignored). Pass ``con`` to join a transaction
+        the caller already holds.
+        """
+        records = list(records)
+        report = ImportReport(source=source)
+        if con is None:
+            with self.connect(write=True) as own:
+                own.begin()
+                try:
+                    self._upsert(own, records, report, source, adapter, run_id)
+                    own.commit()
+                except BaseException:
+                    own.rollback()
+                    raise
+        else:
+            self._upsert(con, records, report, source, adapter, run_id)
+        return report
+
+    def _upsert(self, con, records, report, source, adapter, run_id) -> None:
+        existing = {
+            row[1]: dict(zip(_OBJECT_COLUMNS, row, strict=True))
+            for row in con.execute(f"SELECT {', '.join(_OBJECT_COLUMNS)} FROM objects").fetchall()
+        }
+        taken_aliases = {a for (a,) in con.execute("SELECT alias FROM object_aliases").fetchall()}
+        now = datetime.now(UTC).replace(tzinfo=None)
+        inserts, updates, observations, alias_rows = [], [], [], []
+        for rec in records:
+            known = rec.known_features()
+            old = existing.get(rec.name)
+            if old is None:
+                inserts.append([rec.name, *(getattr(rec, f) for f in FEATURES), rec.source, now, now])
+                changed = known
+                report.new.append(rec.name)
+            else:
+                changed = {f: v for f, v in known.items() if old[f] != v}
+                new_source = rec.source if rec.source and rec.source != old["source"] else None
+                if changed or new_source:
+                    merged = {f: (changed[f] if f in changed else old[f]) for f in FEATURES}
+                    updates.append([*(merged[f] for f in FEATURES), new_source or old["source"], now, rec.name])
+                    report.updated.append(rec.name)
+                else:
+                    report.unchanged += 1
+            for feat, value in changed.items():
+                numeric = feat in NUMERIC_FEATURES
+                observations.append(
+                    [rec.name, feat, value if numeric else None, None if numeric else value, "product",
+                     rec.source or source, adapter, now, str(value), run_id]
+                )
+            for alias in rec.aliases:
+                if alias not in taken_aliases and alias not in existing and alias != rec.name:
+                    taken_aliases.add(alias)
+                    alias_rows.append([alias, rec.name])
+        cols = ", ".join(FEATURES)
+        if inserts:
+            con.executemany(
+                f"INSERT INTO objects (name, {cols}, source, created_at, updated_at) "
+                f"VALUES ({', '.join(['?'] * (len(FEATURES) + 4))})",
+                inserts,
+            )
+        if updates:
+            sets = ", ".join(f"{f} = ?" for f in FEATURES)
+            con.executemany(f"UPDATE objects SET {sets}, source = ?, updated_at = ? WHERE name = ?", updates)
+        if observations:
+            con.executemany(
+                "INSERT INTO observations (object_id, feature, value_num, value_text, role, source, adapter, "
+                "fetched_at, raw_text, run_id) SELECT id, ?, ?, ?, ?, ?, ?, ?, ?, ? FROM objects WHERE name = ?",
+                [[*o[1:], o[0]] for o in observations],
+            )
+        if alias_rows:
+            con.executemany(
+                "INSERT INTO object_aliases (alias, object_id) SELECT ?, id FROM objects WHERE name = ?", alias_rows
+            )
+
+    def delete_object(self, name: str) -> None:
+        obj = self.get_object(name)
+        with self.connect(write=True) as con:
+            con.begin()
+            oid = con.execute("SELECT id FROM objects WHERE name = ?", [obj.name]).fetchone()[0]
+            con.execute("DELETE FROM object_aliases WHERE object_id = ?", [oid])
+            con.execute("DELETE FROM observations WHERE object_id = ?", [oid])
+            con.execute("DELETE FROM objects WHERE id = ?", [oid])
+            con.commit()
+
+    def export_csv(self, path: str | Path | None = None) -> str:
+        """The whole catalog as canonical CSV (with aliases and source); written to ``path`` if given."""
+        return write_catalog_csv(self.list_objects(), path)
+
+    # ------------------------------------------------------------------ user SQL
+    def sql(
+        self,
+        query: str,
+        params: Sequence[Any] | None = None,
+        *,
+        max_rows: int = DEFAULT_MAX_ROWS,
+        timeout_s: float = DEFAULT_SQL_TIMEOUT,
+        output: Literal["rows", "arrow", "pandas"] = "rows",
+    ) -> Any:
+        """Run one read-only statement in the sandbox and return its rows.
+
+        Only SELECT (and EXPLAIN) statements run; writes, COPY, ATTACH, INSTALL/LOAD and file or network
+        access raise :class:`~kb.errors.QueryRefused`. At most ``max_rows`` rows come back (``truncated``
+        says when more were there); a statement running longer than ``timeout_s`` is interrupted
+        (:class:`~kb.errors.QueryFailed`). ``output="arrow"`` / ``"pandas"`` return a pyarrow Table /
+        pandas DataFrame instead of a :class:`QueryResult`.
+        """
+        if not isinstance(query, str) or not query.strip():
+            raise QueryFailed("empty query")
+        with self.connect() as con:
+            try:
+                statements = con.extract_statements(query)
+            except duckdb.Error as err:
+                raise QueryFailed(f"SQL error: {_first_line(err)}") from None
+            if len(statements) != 1:
+                raise QueryRefused(f"one statement at a time, got {len(statements)}")
+            kind = statements[0].type.name
+            if kind not in ALLOWED_STATEMENTS:
+                raise QueryRefused(f"refused: {kind} statements are not allowed; the catalog is read-only (SELECT only)")
+            timer = threading.Timer(timeout_s, con.interrupt)
+            timer.start()
+            try:
+                cur = con.execute(query, list(params) if params is not None else None)
+                columns = [d[0] for d in cur.description]
+                rows = cur.fetchmany(max_rows + 1)
+            except duckdb.PermissionException as err:
+                raise QueryRefused(f"refused: {_first_line(err)}") from None
+            except duckdb.InterruptException:
+                raise QueryFailed(f"query interrupted after the {timeout_s:g} s time limit") from None
+            except duckdb.Error as err:
+                if "read-only" in str(err).lower():
+                    raise QueryRefused(f"refused: {_first_line(err)}") from None
+                raise QueryFailed(f"SQL error: {_first_line(err)}") from None
+            finally:
+                timer.cancel()
+        result = QueryResult(columns=columns, rows=rows[:max_rows], truncated=len(rows) > max_rows)
+        if output == "rows":
+            return result
+        import pyarrow as pa
+
+        table = pa.Table.from_pylist(result.to_dicts()) if result.rows else pa.table({c: [] for c in columns})
+        return table if output == "arrow" else table.to_pandas()
+
+    # ------------------------------------------------------------------ grasp validations
+    def record_grasp_results(self, rows: Iterable[dict[str, Any]]) -> int:
+        """Store grasp trial results (dicts keyed by ``grasp_validations`` columns) in one transaction;
+        a row whose (object, grasp type, seed, hand version, features hash) is stored already is replaced."""
+        rows = list(rows)
+        if not rows:
+            return 0
+        cols = [
+            "object_name", "object_id", "features_hash", "grasp_type", "family", "rank", "success", "outcome",
+            "reason", "slip_cm", "rotation_deg", "grip_force_n", "max_contact_force_n", "seed", "simulator",
+            "hand_version", "planner_version", "details",
+        ]
+        values = [[r.get(c) for c in cols] for r in rows]
+        for v in values:
+            v[2] = v[2] or ""
+            v[13] = v[13] or 0
+            v[15] = v[15] or ""
+        with self.connect(write=True) as con:
+            con.begin()
+            con.executemany(
+                "DELETE FROM grasp_validations WHERE object_name = ? AND grasp_type = ? AND seed = ? "
+                "AND hand_version = ? AND features_hash = ?",
+                [[v[0], v[3], v[13], v[15], v[2]] for v in values],
+            )
+            con.executemany(
+                f"INSERT INTO grasp_validations ({', '.join(cols)}) VALUES ({', '.join(['?'] * len(cols))})", values
+            )
+            con.commit()
+        return len(values)
+
+    def grasp_results(self, object_name: str | None = None) -> list[dict[str, Any]]:
+        sql = "SELECT * FROM grasp_validations"
+        params: list[Any] = []
+        if object_name is not None:
+            sql += " WHERE object_name = ?"
+            params.append(normalize_name(object_name))
+        sql += " ORDER BY object_name, rank, grasp_type, seed"
+        with self.connect() as con:
+            cur = con.execute(sql, params)
+            cols = [d[0] for d in cur.description]
+            return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+
+    def ingestion_runs(self, limit: int = 20) -> list[dict[str, Any]]:
+        with self.connect() as con:
+            cur = con.execute("SELECT * FROM ingestion_runs ORDER BY id DESC LIMIT ?", [limit])
+            cols = [d[0] for d in cur.description]
+            return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+
+
+def _first_line(err: Exception) -> str:
+    return str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__
