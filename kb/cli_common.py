@@ -15,7 +15,6 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Annotated, Any
 
-import click
 import typer
 from typer.core import TyperGroup
 
@@ -87,10 +86,16 @@ def emit_lines(items: Iterable[Any]) -> None:
 class ObjrecallGroup(TyperGroup):
     """Root command group: an :class:`ObjrecallError` becomes one ``Error: ...`` line and exit code 1."""
 
-    def invoke(self, ctx: click.Context) -> Any:
+    def invoke(self, ctx: Any) -> Any:
         try:
             return super().invoke(ctx)
         except ObjrecallError as err:
-            raise click.ClickException(str(err)) from None
+            _fail(str(err))
         except (FileNotFoundError, IsADirectoryError, PermissionError) as err:
-            raise click.ClickException(f"{err.filename}: {err.strerror}") from None
+            _fail(f"{err.filename}: {err.strerror}")
+
+
+def _fail(message: str) -> None:
+    """One line on stderr and exit code 1 (no traceback)."""
+    sys.stderr.write(f"Error: {' '.join(message.split())}\n")
+    raise typer.Exit(1)

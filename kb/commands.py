@@ -1,0 +1,196 @@
+"""Knowledge-base commands: ``init``, ``catalog import|export|list|show|summary``, ``sql``.
+
+Each command opens the :class:`~kb.catalog.KnowledgeBase`, calls one method and prints the result (a rich
+table, or one JSON document with ``--json``).
+"""
+
+from __future__ import annotations
+
+import importlib.resources
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from kb.catalog import DEFAULT_MAX_ROWS, DEFAULT_SQL_TIMEOUT, KnowledgeBase
+from kb.cli_common import DbOption, JsonOption, emit, resolve_db
+from kb.features import FEATURES
+
+console = Console()
+catalog_app = typer.Typer(no_args_is_help=True, help="Import, export and browse the object catalog.")
+
+
+def seed_catalog_path() -> Path:
+    """The seed catalog CSV shipped in the package."""
+    return Path(str(importlib.resources.files("kb") / "data" / "seed_catalog.csv"))
+
+
+def install_sql_extras(kb: KnowledgeBase) -> bool:
+    """Install the recall macros (``jp_distance`` ...) when the recall package provides them."""
+    try:
+        from recall.sql import install_macros
+    except ImportError:
+        return False
+    with kb.connect(write=True) as con:
+        install_macros(con)
+    return True
+
+
+def init_db(db: Path, *, seed: bool) -> KnowledgeBase:
+    kb = KnowledgeBase.open(db)
+    install_sql_extras(kb)
+    if seed:
+        kb.import_csv(seed_catalog_path())
+    return kb
+
+
+def _fmt(value: object) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+def init(
+    db: DbOption = None,
+    seed: Annotated[bool, typer.Option("--seed/--no-seed", help="Load the seed catalog (upsert).")] = False,
+    json_out: JsonOption = False,
+) -> None:
+    """Create the catalog database or upgrade it to the latest schema (optionally load the seed catalog)."""
+    path = resolve_db(db)
+    kb = init_db(path, seed=seed)
+    info = {"db": str(path), "revision": kb.schema_revision(), "objects": kb.count_objects()}
+    if json_out:
+        emit(info)
+    else:
+        console.print(f"catalog [bold]{path}[/] at schema {info['revision']}, {info['objects']} objects")
+
+
+@catalog_app.command("import")
+def catalog_import(
+    file: Annotated[Path, typer.Argument(help="Canonical catalog CSV.", exists=True, dir_okay=False)],
+    db: DbOption = None,
+    skip_invalid: Annotated[bool, typer.Option("--skip-invalid", help="Import valid rows, list the rest.")] = False,
+    json_out: JsonOption = False,
+) -> None:
+    """Import a canonical CSV in one transaction (upsert by name); a bad row imports nothing."""
+    kb = KnowledgeBase.open(resolve_db(db))
+    report = kb.import_csv(file, skip_invalid=skip_invalid)
+    if json_out:
+        emit(report.to_dict())
+        return
+    console.print(
+        f"{file}: {len(report.new)} new, {len(report.updated)} updated, {report.unchanged} unchanged, "
+        f"{len(report.skipped)} skipped"
+    )
+    for s in report.skipped:
+        console.print(f"  skipped {s}", style="yellow")
+
+
+@catalog_app.command("export")
+def catalog_export(
+    file: Annotated[Path, typer.Argument(help="Where to write the canonical CSV ('-' for stdout).")],
+    db: DbOption = None,
+    json_out: JsonOption = False,
+) -> None:
+    """Export the catalog as canonical CSV (with aliases and source)."""
+    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    if str(file) == "-":
+        typer.echo(kb.export_csv(), nl=False)
+        return
+    text = kb.export_csv(file)
+    rows = max(text.count("\n") - 1, 0)
+    if json_out:
+        emit({"file": str(file), "objects": rows})
+    else:
+        console.print(f"wrote {rows} objects to {file}")
+
+
+@catalog_app.command("list")
+def catalog_list(
+    db: DbOption = None,
+    limit: Annotated[int | None, typer.Option(help="At most this many objects.")] = None,
+    offset: Annotated[int, typer.Option(help="Skip this many objects first.")] = 0,
+    json_out: JsonOption = False,
+) -> None:
+    """List objects with their features."""
+    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    objects = kb.list_objects(limit=limit, offset=offset)
+    if json_out:
+        emit([o.to_dict() for o in objects])
+        return
+    table = Table("name", *FEATURES, title=f"{len(objects)} objects")
+    for o in objects:
+        table.add_row(o.name, *(_fmt(getattr(o, f)) for f in FEATURES))
+    console.print(table)
+
+
+@catalog_app.command("show")
+def catalog_show(
+    name: Annotated[str, typer.Argument(help="Object name or alias.")],
+    db: DbOption = None,
+    json_out: JsonOption = False,
+) -> None:
+    """Show one object, its aliases and the provenance of its values."""
+    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    obj = kb.get_object(name)
+    prov = kb.provenance(obj.name)
+    if json_out:
+        emit({**obj.to_dict(), "provenance": prov})
+        return
+    table = Table("feature", "value", title=obj.name)
+    for f in FEATURES:
+        table.add_row(f, _fmt(getattr(obj, f)))
+    table.add_row("aliases", ", ".join(obj.aliases) or "-")
+    table.add_row("source", obj.source or "-")
+    console.print(table)
+    if prov:
+        ptable = Table("feature", "value", "role", "source", "adapter", "fetched_at", title="provenance")
+        for p in prov:
+            value = p["value_num"] if p["value_num"] is not None else p["value_text"]
+            ptable.add_row(p["feature"], _fmt(value), p["role"], p["source"], _fmt(p["adapter"]), _fmt(p["fetched_at"]))
+        console.print(ptable)
+
+
+@catalog_app.command("summary")
+def catalog_summary(db: DbOption = None, json_out: JsonOption = False) -> None:
+    """Counts: objects, per category value, observations, ingestion runs, grasp trials."""
+    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    summary = kb.summary()
+    if json_out:
+        emit(summary)
+        return
+    console.print(f"[bold]{summary['objects']}[/] objects, {summary['observations']} observations, "
+                  f"{summary['ingestion_runs']} ingestion runs, {summary['grasp_validations']} grasp trials")
+    for feat in ("shape", "material", "rigidity", "texture", "fragility"):
+        console.print(f"  {feat}: " + ", ".join(f"{k} {v}" for k, v in summary[feat].items()))
+
+
+def sql(
+    query: Annotated[str, typer.Argument(help="One read-only SQL statement (SELECT).")],
+    db: DbOption = None,
+    max_rows: Annotated[int, typer.Option(help="At most this many rows.")] = DEFAULT_MAX_ROWS,
+    timeout: Annotated[float, typer.Option(help="Interrupt the query after this many seconds.")] = DEFAULT_SQL_TIMEOUT,
+    json_out: JsonOption = False,
+) -> None:
+    """Run read-only SQL on the catalog (no file or network access, no extensions)."""
+    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    result = kb.sql(query, max_rows=max_rows, timeout_s=timeout)
+    if json_out:
+        emit({"columns": result.columns, "rows": result.to_dicts(), "truncated": result.truncated})
+        return
+    table = Table(*result.columns)
+    for row in result.rows:
+        table.add_row(*(_fmt(v) for v in row))
+    console.print(table)
+    if result.truncated:
+        console.print(f"(first {max_rows} rows shown)", style="yellow")
+
+
+def register(app: typer.Typer) -> None:
+    app.command("init")(init)
+    app.command("sql")(sql)
+    app.add_typer(catalog_app, name="catalog")
