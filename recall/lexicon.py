@@ -1,0 +1,358 @@
+"""The parser's domain lexicon: every word it knows, the tag it gets, and the feature value it means.
+
+This module is data only, written to be read (``recall/PARSER.md`` prints the same tables with the rules
+that use them). The tagger of :mod:`recall.parser` is an NLTK ``UnigramTagger`` whose model is built from
+these tables (:func:`tag_model`); a ``RegexpTagger`` tags what is not listed (digits, fractions, other
+words). Category values are always canonical words of :mod:`kb.features` (checked by a test).
+
+Tags (the parser's own small tagset, not Penn Treebank):
+
+======= ==========================================================================
+tag     meaning
+======= ==========================================================================
+CD      a number in digits: ``15``, ``7.5``, ``7,5`` (decimal comma), ``1,000``
+NW      a number word: ``one`` ... ``ninety``, ``dozen``, ``couple``
+NMAG    a magnitude word: ``hundred``, ``thousand``
+FRC     a fraction: ``1/2``, ``½``, ``half``, ``quarter(s)``, ``third(s)``
+A       ``a`` / ``an`` (part of "a dozen", "half a liter", "one and a half")
+AND     ``and``
+OF      ``of``
+IN      ``in`` as a preposition ("in diameter"); after a number and not before a dimension noun it is
+        retagged ULEN (inches)
+ULEN    a length unit; UMASS a mass unit; UVOL a volume unit (contents)
+DIM     a dimension word (its role is in :data:`DIMENSION_WORDS`)
+HA/HL/HU/HX  hedges: about / at least / at most / exact (:data:`HEDGES`)
+HS      a trailing hedge: "or so", "or thereabouts"
+RTO     a range connector: ``to``, ``-``, ``or``; BETW ``between``/``from``
+BY      a multiplication sign of "10 x 5 x 2 cm", "three by four"
+BE      a linking word between a dimension noun and its value: is, are, measures, ``:``, ``=``
+MAT/SHP/RIG/TEX/FRA  category words (material, shape, rigidity, texture, fragility)
+MH      a mass hint word (light, heavy)
+FILL    a container-contents word (filled, full, contains)
+NEG     a negation (not, non, isn't, never)
+SEP     sentence punctuation; CM a comma or parenthesis
+W       any other word
+======= ==========================================================================
+"""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+
+# --------------------------------------------------------------------------------------------- numbers
+#: Number words and their values (tag NW). "couple" is 2 ("a couple of centimeters"), "dozen" 12.
+NUMBER_WORDS: dict[str, int] = {
+    "zero": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
+    "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15,
+    "sixteen": 16, "seventeen": 17, "eighteen": 18, "nineteen": 19, "twenty": 20, "thirty": 30,
+    "forty": 40, "fourty": 40, "fifty": 50, "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90,
+    "dozen": 12, "couple": 2,
+}  # fmt: skip
+#: Magnitude words (tag NMAG): they multiply what precedes them ("two hundred", "a thousand").
+MAGNITUDE_WORDS: dict[str, int] = {"hundred": 100, "thousand": 1000}
+#: Fraction words (tag FRC): "half", "a quarter", "three quarters", "seven and quarter".
+FRACTION_WORDS: dict[str, float] = {
+    "half": 0.5, "halves": 0.5, "quarter": 0.25, "quarters": 0.25, "third": 1 / 3, "thirds": 1 / 3,
+}  # fmt: skip
+#: Unicode vulgar fractions (tag FRC), alone ("½") or after digits ("7½").
+UNICODE_FRACTIONS: dict[str, float] = {
+    "½": 1 / 2, "⅓": 1 / 3, "⅔": 2 / 3, "¼": 1 / 4, "¾": 3 / 4, "⅕": 1 / 5, "⅖": 2 / 5, "⅗": 3 / 5,
+    "⅘": 4 / 5, "⅙": 1 / 6, "⅚": 5 / 6, "⅛": 1 / 8, "⅜": 3 / 8, "⅝": 5 / 8, "⅞": 7 / 8,
+}  # fmt: skip
+
+# ----------------------------------------------------------------------------------------------- units
+#: Unit words -> pint unit names. The conversion factors to catalog units are computed once by
+#: :mod:`recall.units` with pint; number words never reach pint.
+LENGTH_UNITS: dict[str, str] = {
+    "mm": "millimeter", "millimeter": "millimeter", "millimeters": "millimeter", "millimetre": "millimeter",
+    "millimetres": "millimeter", "mms": "millimeter",
+    "cm": "centimeter", "cms": "centimeter", "centimeter": "centimeter", "centimeters": "centimeter",
+    "centimetre": "centimeter", "centimetres": "centimeter", "centimter": "centimeter",
+    "centimters": "centimeter", "centimeteres": "centimeter",
+    "m": "meter", "meter": "meter", "meters": "meter", "metre": "meter", "metres": "meter",
+    "in": "inch", "inch": "inch", "inches": "inch", '"': "inch", "''": "inch", "”": "inch", "″": "inch",
+    "ft": "foot", "foot": "foot", "feet": "foot", "'": "foot", "′": "foot", "’": "foot",
+}  # fmt: skip
+MASS_UNITS: dict[str, str] = {
+    "mg": "milligram", "g": "gram", "gm": "gram", "gms": "gram", "gr": "gram", "gram": "gram",
+    "grams": "gram", "gramme": "gram", "grammes": "gram",
+    "kg": "kilogram", "kgs": "kilogram", "kilo": "kilogram", "kilos": "kilogram", "kilogram": "kilogram",
+    "kilograms": "kilogram", "kilogramme": "kilogram", "kilogrammes": "kilogram",
+    "oz": "ounce", "ozs": "ounce", "ounce": "ounce", "ounces": "ounce",
+    "lb": "pound", "lbs": "pound", "pound": "pound", "pounds": "pound",
+}  # fmt: skip
+VOLUME_UNITS: dict[str, str] = {
+    "ml": "milliliter", "mls": "milliliter", "milliliter": "milliliter", "milliliters": "milliliter",
+    "millilitre": "milliliter", "millilitres": "milliliter", "cc": "milliliter",
+    "cl": "centiliter", "dl": "deciliter",
+    "l": "liter", "liter": "liter", "liters": "liter", "litre": "liter", "litres": "liter", "ltr": "liter",
+    "fl oz": "fluid_ounce", "fluid ounce": "fluid_ounce", "fluid ounces": "fluid_ounce",
+    "gallon": "gallon", "gallons": "gallon", "cup": "cup", "cups": "cup",
+}  # fmt: skip
+#: Density assumed for contents (g per ml): "filled with half a liter of water" weighs at least 500 g.
+CONTENTS_DENSITY_G_PER_ML = 1.0
+
+# ------------------------------------------------------------------------------------------ dimensions
+#: Dimension words (tag DIM) -> role. Roles: ``length`` (usually the largest, a), ``width`` (b),
+#: ``thickness`` (usually the smallest, c), ``diameter`` (two equal dims), ``radius`` (doubled to a
+#: diameter), ``side`` (a cube: all three equal), ``size`` (an unlabelled extent).
+DIMENSION_WORDS: dict[str, str] = {
+    "long": "length", "length": "length", "lengthwise": "length", "lengths": "length",
+    "tall": "length", "height": "length", "high": "length", "heigth": "length",
+    "wide": "width", "width": "width", "across": "width", "broad": "width", "breadth": "width",
+    "thick": "thickness", "thickness": "thickness", "deep": "thickness", "depth": "thickness",
+    "diameter": "diameter", "diam": "diameter", "dia": "diameter", "diametre": "diameter",
+    "radius": "radius",
+    "side": "side", "sides": "side", "edge": "side", "edges": "side", "on each side": "side",
+    "each side": "side", "per side": "side", "a side": "side", "on a side": "side", "each way": "side",
+    "on all sides": "side", "all sides": "side", "in every direction": "side",
+    "in size": "size", "big": "size", "large": "size",
+}  # fmt: skip
+#: Of those, the ones that need a number right before them to count (so "a large bottle" states no
+#: dimension): they only form a DIM chunk as "<number> <unit> big".
+WEAK_DIMENSION_WORDS: frozenset[str] = frozenset({"big", "large", "in size"})
+#: Dimension words that are nouns: "in" before one of them is a preposition ("7 in diameter" means a
+#: value with its unit left out), before any other word after a number it is the unit inch ("4 in long").
+DIMENSION_NOUNS: frozenset[str] = frozenset(
+    {"length", "lengths", "height", "heigth", "width", "breadth", "thickness", "depth", "diameter", "diam",
+     "dia", "diametre", "radius", "side", "sides", "edge", "edges", "size", "in size"}
+)  # fmt: skip
+
+# ---------------------------------------------------------------------------------------------- hedges
+#: Hedge words -> qualifier, by tag: HA about, HL at_least, HU at_most, HX exact. "nearly"/"almost" mean
+#: "close to, a little under"; they are read as *about* so that a close value is not ruled out.
+HEDGES: dict[str, str] = {
+    "about": "about", "around": "about", "roughly": "about", "approximately": "about", "approx": "about",
+    "approx.": "about", "ca": "about", "circa": "about", "nearly": "about", "almost": "about",
+    "close to": "about", "some": "about", "maybe": "about", "perhaps": "about", "probably": "about",
+    "~": "about", "≈": "about", "estimated": "about", "guess": "about", "like": "about",
+    "more or less": "about", "give or take": "about", "somewhere around": "about",
+    "more than": "at_least", "over": "at_least", "at least": "at_least", "a bit over": "at_least",
+    "a bit more than": "at_least", "just over": "at_least", "a little over": "at_least",
+    "a little more than": "at_least", "slightly more than": "at_least", "slightly over": "at_least",
+    "above": "at_least", "greater than": "at_least", "no less than": "at_least", "not less than": "at_least",
+    "upwards of": "at_least", "well over": "at_least", "in excess of": "at_least", "minimum": "at_least",
+    "less than": "at_most", "under": "at_most", "at most": "at_most", "just under": "at_most",
+    "a bit under": "at_most", "a bit less than": "at_most", "a little under": "at_most",
+    "a little less than": "at_most", "slightly less than": "at_most", "slightly under": "at_most",
+    "below": "at_most", "up to": "at_most", "no more than": "at_most", "not more than": "at_most",
+    "maximum": "at_most", "well under": "at_most", "smaller than": "at_most", "shorter than": "at_most",
+    "lighter than": "at_most", "longer than": "at_least", "bigger than": "at_least",
+    "heavier than": "at_least", "wider than": "at_least", "thicker than": "at_least",
+    "exactly": "exact", "precisely": "exact", "just": "exact", "measured": "exact",
+}  # fmt: skip
+#: Hedges that follow the quantity (tag HS).
+TRAILING_HEDGES: dict[str, str] = {
+    "or so": "about",
+    "or thereabouts": "about",
+    "ish": "about",
+    "odd": "about",
+}
+HEDGE_TAGS: dict[str, str] = {"about": "HA", "at_least": "HL", "at_most": "HU", "exact": "HX"}
+
+# ------------------------------------------------------------------------------------------ categories
+#: Material words -> :data:`kb.features.MATERIALS`.
+MATERIAL_WORDS: dict[str, str] = {
+    "metal": "metal", "metallic": "metal", "metals": "metal", "steel": "metal", "stainless": "metal",
+    "aluminum": "metal", "aluminium": "metal", "iron": "metal", "tin": "metal", "copper": "metal",
+    "brass": "metal", "bronze": "metal", "chrome": "metal", "silver": "metal", "zinc": "metal",
+    "titanium": "metal", "cast-iron": "metal", "nickel": "metal",
+    "wood": "wood", "wooden": "wood", "woody": "wood", "timber": "wood", "bamboo": "wood", "oak": "wood",
+    "pine": "wood", "plywood": "wood", "beech": "wood", "maple": "wood", "birch": "wood", "balsa": "wood",
+    "mdf": "wood", "cork": "wood", "walnut": "wood", "hardwood": "wood",
+    "paper": "paper", "papery": "paper", "cardboard": "paper", "carton": "paper", "paperboard": "paper",
+    "card stock": "paper", "cardstock": "paper", "corrugated": "paper", "tissue": "paper",
+    "fabric": "fabric", "cloth": "fabric", "cotton": "fabric", "textile": "fabric", "felt": "fabric",
+    "wool": "fabric", "woolen": "fabric", "woollen": "fabric", "polyester": "fabric", "denim": "fabric",
+    "linen": "fabric", "silk": "fabric", "canvas": "fabric", "fleece": "fabric", "knitted": "fabric",
+    "leather": "fabric", "microfiber": "fabric", "microfibre": "fabric", "terry": "fabric",
+    "glass": "glass", "glassy": "glass", "crystal": "glass",
+    "plastic": "plastic", "plastics": "plastic", "polycarbonate": "plastic", "acrylic": "plastic",
+    "pvc": "plastic", "vinyl": "plastic", "polypropylene": "plastic", "polyethylene": "plastic",
+    "nylon": "plastic", "abs": "plastic", "styrofoam": "plastic", "melamine": "plastic",
+    "rubber": "rubber", "silicone": "rubber", "latex": "rubber", "neoprene": "rubber",
+    "ceramic": "other", "ceramics": "other", "porcelain": "other", "stone": "other", "clay": "other",
+    "marble": "other", "terracotta": "other", "granite": "other", "foam": "other", "sponge": "other",
+    "wax": "other", "soap": "other", "stoneware": "other", "earthenware": "other", "concrete": "other",
+    "chalk": "other", "graphite": "other",
+}  # fmt: skip
+#: Shape words -> :data:`kb.features.SHAPES`, with a priority: when several shape words occur, the
+#: highest priority wins (geometric adjectives 3 > object-kind nouns 2 > vague words 1), ties go to the
+#: first. "long" as a shape only counts when it is not part of a dimension ("15 cm long").
+SHAPE_WORDS: dict[str, tuple[str, int]] = {
+    "flat": ("thin", 3), "thin": ("thin", 2), "card": ("thin", 2), "sheet": ("thin", 2),
+    "slim": ("thin", 2), "plate": ("thin", 2), "flattened": ("thin", 3), "sheet-like": ("thin", 3),
+    "slab": ("thin", 2), "wafer": ("thin", 2), "pad": ("thin", 1), "envelope": ("thin", 2),
+    "booklet": ("thin", 2), "notebook": ("thin", 2), "book": ("thin", 1), "tablet": ("thin", 1),
+    "phone": ("thin", 1), "smartphone": ("thin", 1), "wallet": ("thin", 1), "coaster": ("thin", 2),
+    "cube": ("compact", 3), "cubic": ("compact", 3), "cubical": ("compact", 3), "cube-shaped": ("compact", 3),
+    "block": ("compact", 2), "chunky": ("compact", 2), "compact": ("compact", 3), "lump": ("compact", 2),
+    "nugget": ("compact", 2), "squat": ("compact", 2), "stubby": ("compact", 2),
+    "cylindrical": ("prism", 3), "cylinder": ("prism", 3), "prism": ("prism", 3), "prismatic": ("prism", 3),
+    "rectangular": ("prism", 2), "box": ("prism", 1), "boxy": ("prism", 2), "cuboid": ("prism", 3),
+    "can": ("prism", 1), "tin can": ("prism", 2), "bottle": ("prism", 1), "jar": ("prism", 1),
+    "tube": ("prism", 2), "tubular": ("prism", 3), "mug": ("prism", 1), "cup": ("prism", 1),
+    "glass jar": ("prism", 2), "canister": ("prism", 1), "roll": ("prism", 1), "brick": ("prism", 2),
+    "wedge": ("prism", 2), "triangular": ("prism", 3), "hexagonal": ("prism", 3),
+    "long": ("long", 2), "elongated": ("long", 3), "stick": ("long", 2), "rod": ("long", 2),
+    "rod-shaped": ("long", 3), "stick-like": ("long", 3), "pen": ("long", 2), "pencil": ("long", 2),
+    "straw": ("long", 2), "skinny": ("long", 2), "slender": ("long", 3), "handle": ("long", 1),
+    "bar": ("long", 1), "spoon": ("long", 2), "fork": ("long", 2), "knife": ("long", 2),
+    "brush": ("long", 1), "screwdriver": ("long", 2), "wand": ("long", 2), "baton": ("long", 2),
+    "marker": ("long", 2), "remote": ("long", 1), "ruler": ("long", 2), "chopstick": ("long", 2),
+    "round": ("radial", 2), "ball": ("radial", 3), "sphere": ("radial", 3), "spherical": ("radial", 3),
+    "globe": ("radial", 2), "orb": ("radial", 2), "ball-shaped": ("radial", 3), "circular": ("radial", 2),
+    "disc": ("radial", 2), "disk": ("radial", 2), "disc-shaped": ("radial", 3), "ring": ("radial", 2),
+    "dome": ("radial", 2), "egg": ("radial", 2), "oval": ("radial", 1), "orange": ("radial", 1),
+    "apple": ("radial", 1), "lid": ("radial", 1), "cap": ("radial", 1), "knob": ("radial", 1),
+    "coin": ("radial", 2), "puck": ("radial", 2), "doughnut": ("radial", 2), "donut": ("radial", 2),
+}  # fmt: skip
+#: Shape cues used by the dimension rules (see PARSER.md): a single stated extent of a cube or a ball
+#: is all three dimensions; a diameter alone of a cylinder fills b = c, of a disc a = b.
+CUBE_WORDS: frozenset[str] = frozenset({"cube", "cubic", "cubical", "cube-shaped", "dice", "die"})
+SPHERE_WORDS: frozenset[str] = frozenset(
+    {"ball", "sphere", "spherical", "globe", "orb", "ball-shaped", "marble", "orange", "apple", "bead"}
+)
+CYLINDER_WORDS: frozenset[str] = frozenset(
+    {"cylindrical", "cylinder", "can", "tube", "tubular", "bottle", "jar", "mug", "cup", "canister", "rod",
+     "stick", "pen", "pencil", "straw", "roll", "pipe", "candle", "glass", "tumbler", "thermos", "flask",
+     "marker", "baton", "dowel", "vase", "spool"}
+)  # fmt: skip
+DISC_WORDS: frozenset[str] = frozenset(
+    {"disc", "disk", "disc-shaped", "coin", "plate", "lid", "cap", "coaster", "puck", "flat", "frisbee",
+     "saucer", "ring", "wheel", "doughnut", "donut", "cd", "dvd", "button", "record", "pancake"}
+)  # fmt: skip
+
+RIGIDITY_WORDS: dict[str, str] = {
+    "rigid": "rigid", "hard": "rigid", "firm": "rigid", "stiff": "rigid", "solid": "rigid",
+    "inflexible": "rigid", "unbendable": "rigid", "non-flexible": "rigid",
+    "squeezable": "squeezable", "soft": "squeezable", "squishy": "squeezable", "spongy": "squeezable",
+    "compressible": "squeezable", "squashy": "squeezable", "cushy": "squeezable", "springy": "squeezable",
+    "elastic": "squeezable", "stretchy": "squeezable", "pliable": "squeezable", "deformable": "squeezable",
+    "squeezy": "squeezable", "malleable": "squeezable", "bouncy": "squeezable",
+    "floppy": "floppy", "flexible": "floppy", "limp": "floppy", "bendy": "floppy", "bendable": "floppy",
+    "flimsy": "floppy", "droopy": "floppy", "foldable": "floppy", "drapey": "floppy", "saggy": "floppy",
+}  # fmt: skip
+TEXTURE_WORDS: dict[str, str] = {
+    "smooth": "smooth", "glossy": "smooth", "polished": "smooth", "shiny": "smooth", "slick": "smooth",
+    "sleek": "smooth", "silky": "smooth", "slippery": "smooth", "glazed": "smooth", "satin": "smooth",
+    "rough": "rough", "coarse": "rough", "fuzzy": "rough", "furry": "rough", "hairy": "rough",
+    "bumpy": "rough", "grainy": "rough", "gritty": "rough", "scratchy": "rough", "textured": "rough",
+    "unfinished": "rough", "unpolished": "rough", "raw": "rough", "splintery": "rough", "felted": "rough",
+    "grippy": "grippy", "rubbery": "grippy", "tacky": "grippy", "sticky": "grippy", "non-slip": "grippy",
+    "nonslip": "grippy", "knurled": "grippy", "ridged": "grippy", "ribbed": "grippy", "grooved": "grippy",
+    "matte": "medium", "matt": "medium", "semi-smooth": "medium", "satiny": "medium",
+}  # fmt: skip
+FRAGILITY_WORDS: dict[str, str] = {
+    "fragile": "fragile", "delicate": "fragile", "breakable": "fragile", "brittle": "fragile",
+    "shatterable": "fragile", "crushable": "fragile", "easily-broken": "fragile",
+    "sturdy": "sturdy", "robust": "sturdy", "durable": "sturdy", "tough": "sturdy", "strong": "sturdy",
+    "unbreakable": "sturdy", "shatterproof": "sturdy", "shatter-proof": "sturdy", "indestructible": "sturdy",
+    "rugged": "sturdy", "heavy-duty": "sturdy", "resilient": "sturdy",
+}  # fmt: skip
+#: A negated fragility word flips ("not fragile" -> sturdy); other negated category words are dropped.
+NEGATED_FRAGILITY: dict[str, str] = {"fragile": "sturdy", "sturdy": "fragile", "medium": "medium"}
+#: Words that qualify a category feature as *medium* when they precede its word ("medium texture",
+#: "moderately fragile", "somewhat rough" stays rough).
+MEDIUM_WORDS: frozenset[str] = frozenset({"medium", "moderately", "moderate", "average", "normal"})
+
+#: Mass hints (tag MH): a weak signal, not a mass. The recall engine decides whether to use it.
+MASS_HINT_WORDS: dict[str, str] = {
+    "light": "light", "lightweight": "light", "light-weight": "light", "featherweight": "light",
+    "weightless": "light", "feather-light": "light",
+    "heavy": "heavy", "hefty": "heavy", "weighty": "heavy", "heavyweight": "heavy", "dense": "heavy",
+}  # fmt: skip
+#: "light" followed by one of these is a colour, not a weight ("light blue").
+COLOUR_WORDS: frozenset[str] = frozenset(
+    {"blue", "green", "red", "brown", "grey", "gray", "yellow", "pink", "purple", "orange", "colored",
+     "coloured", "wood", "tan", "beige", "tone", "shade", "color", "colour"}
+)  # fmt: skip
+
+#: Contents words (tag FILL): a volume after one of these in the same sentence counts as contents whose
+#: mass (at :data:`CONTENTS_DENSITY_G_PER_ML`) is a lower bound on the object's mass.
+FILL_WORDS: frozenset[str] = frozenset(
+    {"filled", "full", "fill", "contains", "containing", "contain", "holding", "holds", "with"}
+)
+#: Of the FILL words, those that only count when the volume is followed by "of <something>"
+#: ("with 500 ml of water"), since "a bottle with 750 ml capacity" or "holds 1 l" state a capacity.
+WEAK_FILL_WORDS: frozenset[str] = frozenset({"with", "holding"})
+#: Words that mark a volume as a capacity rather than contents.
+CAPACITY_WORDS: frozenset[str] = frozenset({"capacity", "holds", "empty", "can hold", "could hold"})
+
+NEGATIONS: frozenset[str] = frozenset(
+    {"not", "non", "isn't", "isnt", "aren't", "wasn't", "never", "no", "without", "nor", "neither", "hardly"}
+)
+
+# ------------------------------------------------------------------------------------ other small words
+FUNCTION_WORDS: dict[str, str] = {
+    "a": "A", "an": "A", "and": "AND", "&": "AND", "of": "OF", "in": "IN",
+    "to": "RTO", "-": "RTO", "–": "RTO", "—": "RTO", "or": "RTO", "between": "BETW", "from": "BETW",
+    "x": "BY", "×": "BY", "by": "BY", "*": "BY",
+    "is": "BE", "are": "BE", "was": "BE", "be": "BE", "measures": "BE", "measure": "BE",
+    "measuring": "BE", "measured at": "BE", ":": "BE", "=": "BE", "its": "BE",
+    "the": "BE", "has": "BE", "with": "BE", "at": "BE",
+    ".": "SEP", "!": "SEP", "?": "SEP", ";": "SEP", ",": "CM", "(": "CM", ")": "CM",
+}  # fmt: skip
+
+#: Multi-word expressions merged into one token before tagging (longest match first).
+MULTIWORD: tuple[str, ...] = tuple(
+    sorted(
+        {w for table in (HEDGES, TRAILING_HEDGES, DIMENSION_WORDS, VOLUME_UNITS, MATERIAL_WORDS, SHAPE_WORDS,
+                         FUNCTION_WORDS) for w in table if " " in w}
+        | {"can hold", "could hold"},
+        key=lambda w: (-len(w.split()), w),
+    )
+)  # fmt: skip
+
+
+def tag_model() -> dict[str, str]:
+    """The UnigramTagger model: lower-case token -> tag. Later tables win over earlier ones, so the
+    order below is the tie-break for words listed twice (e.g. "in": unit/preposition -> IN, fixed in
+    context by the parser; "long": DIM, reread as a shape outside a dimension; "glass": MAT)."""
+    model: dict[str, str] = {}
+    for table, tag in (
+        (SHAPE_WORDS, "SHP"),
+        (FUNCTION_WORDS, None),
+        (NUMBER_WORDS, "NW"),
+        (MAGNITUDE_WORDS, "NMAG"),
+        (FRACTION_WORDS, "FRC"),
+        (UNICODE_FRACTIONS, "FRC"),
+        (LENGTH_UNITS, "ULEN"),
+        (MASS_UNITS, "UMASS"),
+        (VOLUME_UNITS, "UVOL"),
+        (DIMENSION_WORDS, "DIM"),
+        (MATERIAL_WORDS, "MAT"),
+        (RIGIDITY_WORDS, "RIG"),
+        (TEXTURE_WORDS, "TEX"),
+        (FRAGILITY_WORDS, "FRA"),
+        (MASS_HINT_WORDS, "MH"),
+        (TRAILING_HEDGES, "HS"),
+    ):
+        for word in table:
+            model[word] = tag if tag is not None else FUNCTION_WORDS[word]
+    for word, qualifier in HEDGES.items():
+        model[word] = HEDGE_TAGS[qualifier]
+    for word in FILL_WORDS - {"with", "holding", "holds"}:
+        model[word] = "FILL"
+    for word in NEGATIONS:
+        model[word] = "NEG"
+    model["in"] = "IN"  # "in diameter"; retagged ULEN after a number when no dimension noun follows
+    model["glass"] = "MAT"  # a material more often than a drinking glass
+    model["orange"] = "SHP"  # the fruit; as a colour it states nothing we use
+    model["cup"] = "SHP"  # a container, not the volume unit (a volume only after a number: retagged)
+    model["cups"] = "UVOL"
+    model["can"] = "SHP"
+    model["over"] = "HL"
+    return model
+
+
+#: Read-only views of the tables, for documentation and tests.
+TABLES = MappingProxyType(
+    {
+        "material": MATERIAL_WORDS,
+        "shape": {w: s for w, (s, _p) in SHAPE_WORDS.items()},
+        "rigidity": RIGIDITY_WORDS,
+        "texture": TEXTURE_WORDS,
+        "fragility": FRAGILITY_WORDS,
+    }
+)

@@ -1,0 +1,257 @@
+"""The number grammar of descriptions: digits, decimals, fractions and number words.
+
+People write numbers as ``15``, ``7.5``, ``7,5``, ``1/2``, ``½``, ``7 1/4``, ``fifteen``, ``twenty one``,
+``fifteen and half``, ``one and a half``, ``seven and quarter``, ``three quarters``, ``a dozen``,
+``a couple``, ``a hundred and fifty``. Number-word libraries read "fifteen and half" as 15; this small
+grammar does not.
+
+The parser's chunker groups the tokens of one number into a ``NUM`` chunk; :func:`number_value` reads
+such a token list (lower case) and returns its value, or ``None`` when the words are not one well-formed
+number ("three four", "half twenty"). :func:`parse_number` does the same for a string.
+
+Grammar (informal)::
+
+    number   := [a] whole [and [a] fraction] | [a] whole fraction | [a|one] fraction [a]
+    whole    := DIGITS | words
+    words    := [unit|teen|tens [unit]] [hundred [and] rest] | ... thousand ... | [unit] dozen | couple
+    fraction := half | quarter(s) | third(s) | unit fraction ("three quarters") | 1/4 | ¼
+
+Digits: ``1,000`` (three digits after a comma) is a thousands separator; ``7,5`` (one or two digits) is
+a decimal comma. ``7.5`` and ``.5`` are decimals.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+from recall.lexicon import FRACTION_WORDS, MAGNITUDE_WORDS, NUMBER_WORDS, UNICODE_FRACTIONS
+
+__all__ = ["DIGITS_PATTERN", "digits_value", "is_number_token", "number_value", "parse_number"]
+
+#: Regular expression (no nested quantifiers) for one number written with digits; the parser's
+#: tokenizer uses it as is.
+DIGITS_PATTERN = r"\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?![\d,])|\d+[.,]\d+|\d+|\.\d+"
+
+_THOUSANDS = re.compile(r"\d{1,3}(?:,\d{3})+(?:\.\d+)?")
+_DECIMAL_COMMA = re.compile(r"\d+,\d{1,2}")
+_DECIMAL = re.compile(r"\d*\.\d+|\d+")
+_FRACTION = re.compile(r"(\d+)/(\d+)")
+_HYPHEN_WORDS = re.compile(r"[a-z]+(?:-[a-z]+)+")
+_ARTICLES = frozenset({"a", "an"})
+
+
+def digits_value(token: str) -> float | None:
+    """Value of a token written in digits (``15``, ``7.5``, ``7,5``, ``1,000``, ``3/4``, ``½``)."""
+    if token in UNICODE_FRACTIONS:
+        return UNICODE_FRACTIONS[token]
+    if _THOUSANDS.fullmatch(token):
+        return float(token.replace(",", ""))
+    if _DECIMAL_COMMA.fullmatch(token):
+        return float(token.replace(",", "."))
+    if _DECIMAL.fullmatch(token):
+        return float(token)
+    m = _FRACTION.fullmatch(token)
+    if m:
+        den = int(m.group(2))
+        return int(m.group(1)) / den if den else None
+    return None
+
+
+def _is_fraction_token(token: str) -> bool:
+    return token in FRACTION_WORDS or token in UNICODE_FRACTIONS or _FRACTION.fullmatch(token) is not None
+
+
+def is_number_token(token: str) -> bool:
+    """True for any token that can be part of a number (not counting "a", "and")."""
+    token = token.lower()
+    return (
+        token in NUMBER_WORDS
+        or token in MAGNITUDE_WORDS
+        or token in FRACTION_WORDS
+        or digits_value(token) is not None
+        or _compound_word(token) is not None
+    )
+
+
+def _compound_word(token: str) -> int | None:
+    """``twenty-one`` -> 21 (a tens word, a hyphen and a unit word)."""
+    if not _HYPHEN_WORDS.fullmatch(token):
+        return None
+    parts = token.split("-")
+    if len(parts) != 2:
+        return None
+    tens, unit = NUMBER_WORDS.get(parts[0]), NUMBER_WORDS.get(parts[1])
+    if tens is None or unit is None or tens < 20 or tens % 10 or not 1 <= unit <= 9:
+        return None
+    return tens + unit
+
+
+class _Whole:
+    """Accumulates the whole part of a number written in words and/or digits, refusing ill-formed runs."""
+
+    def __init__(self) -> None:
+        self.total = 0.0  # completed thousands
+        self.group: float | None = None  # the part under a thousand being built
+        self.last = ""  # kind of the last piece: digits, unit, teen, tens, hundred, thousand, dozen
+        self.seen = False
+
+    def add(self, kind: str, value: float) -> bool:
+        g, last = self.group, self.last
+        if kind == "digits":
+            if last in ("digits", "unit", "teen", "tens", "dozen"):
+                return False
+            self.group = (g or 0) + value
+        elif kind == "unit":  # 1..9
+            if last == "tens" or last == "hundred" or last == "" or last == "thousand":
+                self.group = (g or 0) + value
+            else:
+                return False
+        elif kind in ("teen", "tens"):  # 10..19, 20..90
+            if last in ("", "hundred", "thousand"):
+                self.group = (g or 0) + value
+            else:
+                return False
+        elif kind == "hundred":
+            if last in ("hundred", "dozen"):
+                return False
+            self.group = (g if g is not None else 1) * 100
+        elif kind == "thousand":
+            if last == "thousand":
+                return False
+            self.total += (g if g is not None else 1) * 1000
+            self.group = None
+        elif kind == "dozen":  # "a dozen", "two dozen"
+            if last in ("dozen", "hundred", "thousand"):
+                return False
+            self.group = (g if g is not None else 1) * value
+        self.last = kind
+        self.seen = True
+        return True
+
+    @property
+    def value(self) -> float:
+        return self.total + (self.group or 0)
+
+
+def _word_kind(word: str) -> tuple[str, float] | None:
+    if word in MAGNITUDE_WORDS:
+        return ("hundred" if word == "hundred" else "thousand"), float(MAGNITUDE_WORDS[word])
+    if word == "dozen":
+        return "dozen", 12.0
+    if word == "couple":
+        return "unit", 2.0
+    value = NUMBER_WORDS.get(word)
+    if value is None:
+        compound = _compound_word(word)
+        return ("teen", float(compound)) if compound is not None else None  # "twenty-one" acts like 21
+    if value < 10:
+        return "unit", float(value)
+    if value < 20:
+        return "teen", float(value)
+    return "tens", float(value)
+
+
+def number_value(tokens: Sequence[str]) -> float | None:
+    """Value of the number written by ``tokens`` (lower-case words of one NUM chunk), or None.
+
+    >>> number_value(["fifteen", "and", "half"])
+    15.5
+    >>> number_value(["one", "and", "a", "half"])
+    1.5
+    >>> number_value(["7", "1/4"])
+    7.25
+    """
+    toks = [t.lower() for t in tokens if t]
+    while toks and toks[-1] in ("a", "an", "of"):  # "half a (liter)", "a couple of (cm)"
+        toks.pop()
+    if not toks:
+        return None
+    whole = _Whole()
+    fraction = 0.0
+    numerator: float | None = None  # a small number word right before a fraction word ("three quarters")
+    after_and = False
+    had_fraction = False
+    i = 0
+    if toks[0] in _ARTICLES:
+        i = 1
+    while i < len(toks):
+        tok = toks[i]
+        if tok in _ARTICLES:
+            # only "and a half", "and a quarter" (after and) or "one and a half": the article of a fraction
+            if not (after_and and i + 1 < len(toks) and _is_fraction_token(toks[i + 1])):
+                return None
+            i += 1
+            continue
+        if tok == "and":
+            if after_and or not whole.seen or had_fraction:
+                return None
+            after_and = True
+            i += 1
+            continue
+        if _is_fraction_token(tok):
+            if had_fraction and numerator is None:
+                return None
+            f = FRACTION_WORDS.get(tok)
+            if f is None:
+                f = digits_value(tok)
+                if f is None:
+                    return None
+                if numerator is not None:  # "three 1/4" is not a number
+                    return None
+            part = (numerator if numerator is not None else 1.0) * f
+            if numerator is not None and not after_and:
+                # "three quarters": the numerator was counted in the whole part: take it back
+                whole = _Whole()
+            fraction += part
+            numerator = None
+            had_fraction = True
+            i += 1
+            continue
+        if had_fraction:
+            return None  # nothing follows the fraction ("half twenty")
+        kind_value = _word_kind(tok)
+        if kind_value is None:
+            value = digits_value(tok)
+            if value is None:
+                return None
+            kind_value = ("digits", value)
+        kind, value = kind_value
+        if after_and:
+            # after "and": a fraction's numerator ("and three quarters") or the rest after a hundred
+            nxt = toks[i + 1] if i + 1 < len(toks) else ""
+            if kind == "unit" and _is_fraction_token(nxt) and nxt in FRACTION_WORDS:
+                numerator = value
+                i += 1
+                continue
+            if whole.last in ("hundred", "thousand") and kind in ("unit", "teen", "tens"):
+                if not whole.add(kind, value):
+                    return None
+                after_and = False
+                i += 1
+                continue
+            return None
+        nxt = toks[i + 1] if i + 1 < len(toks) else ""
+        if kind == "unit" and nxt in FRACTION_WORDS and not whole.seen:
+            numerator = value  # "three quarters", "one half"
+            whole.add(kind, value)
+            i += 1
+            continue
+        if not whole.add(kind, value):
+            return None
+        i += 1
+    if after_and and not had_fraction:
+        return None
+    if not whole.seen and not had_fraction:
+        return None
+    return whole.value + fraction
+
+
+_SPLIT = re.compile(DIGITS_PATTERN + r"|[^\W\d_]+(?:-[^\W\d_]+)*|[" + "".join(UNICODE_FRACTIONS) + "]")
+
+
+def parse_number(text: str) -> float | None:
+    """Value of ``text`` when all of it is one number ("twenty one and a half", "7½", "1,5"), else None."""
+    if not isinstance(text, str):
+        return None
+    return number_value([t.lower() for t in _SPLIT.findall(text)])

@@ -1,0 +1,806 @@
+"""Natural-language object descriptions to catalog features, offline with NLTK (no nltk_data).
+
+The pipeline (the paper's Fig. 2), built once by :class:`DescriptionParser`:
+
+1. ``nltk.tokenize.RegexpTokenizer`` splits the text (numbers, fractions, words, unit symbols), keeping
+   character spans; multi-word expressions ("more than", "on each side", "fl oz") are merged.
+2. ``nltk.tag.UnigramTagger`` tags each token from the domain lexicon (:mod:`recall.lexicon`), with a
+   ``RegexpTagger`` for the rest (digits, fractions, other words); a linear pass fixes tags that depend
+   on their neighbours ("in" inch or preposition, "x" a multiplication sign or a word, ...).
+3. A cascaded ``nltk.chunk.RegexpParser`` (:data:`GRAMMAR`) builds NUM, UNIT, HEDGE, RANGE, QUANT,
+   MULTI and DIM chunks, one sentence at a time (sentences are capped at
+   :data:`MAX_SEGMENT_TOKENS` tokens, which bounds the regular expressions' work: no catastrophic
+   backtracking on long or hostile input).
+4. The chunks are read into features: numbers by :mod:`recall.numbers`, units by :mod:`recall.units`
+   (pint, once), dimensions assigned to a >= b >= c by the rules in ``recall/PARSER.md``.
+
+:func:`parse` never raises on a ``str`` (nonsense gives an empty result); it raises
+:class:`kb.errors.DescriptionError` only for a non-string or a text over :data:`MAX_TEXT_CHARS`.
+"""
+
+from __future__ import annotations
+
+import functools
+import threading
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from nltk.chunk import RegexpParser
+from nltk.tag import RegexpTagger, UnigramTagger
+from nltk.tokenize import RegexpTokenizer
+from nltk.tree import Tree
+
+from kb.errors import DescriptionError
+from kb.features import FEATURES, MAX_DIM_CM, MAX_MASS_G
+from recall import lexicon as lx
+from recall.numbers import DIGITS_PATTERN, number_value
+from recall.units import Unit, unit_table
+
+__all__ = [
+    "GRAMMAR",
+    "MAX_SEGMENT_TOKENS",
+    "MAX_TEXT_CHARS",
+    "QUALIFIERS",
+    "DescriptionParser",
+    "FeatureEvidence",
+    "ParsedDescription",
+    "parse",
+]
+
+#: Longest accepted description (characters); longer input raises DescriptionError.
+MAX_TEXT_CHARS = 1_000_000
+#: A sentence longer than this many tokens is chunked in pieces of this size.
+MAX_SEGMENT_TOKENS = 48
+QUALIFIERS: tuple[str, ...] = ("about", "exact", "at_least", "at_most", "range")
+
+_FRACTION_CHARS = "".join(lx.UNICODE_FRACTIONS)
+#: Tokens: numbers in digits, unicode fractions, words (with inner apostrophes and hyphens), unit
+#: symbols and the punctuation the grammar uses. Unmatched characters are skipped. No nested quantifiers.
+TOKEN_PATTERN = (
+    DIGITS_PATTERN
+    + r"|[" + _FRACTION_CHARS + r"]"
+    + r"|[^\W\d_]+(?:['’-][^\W\d_]+)*"
+    + r"|''|[\"”″'′’]"
+    + r"|[×~≈*=:;,.!?()&–—-]"
+)  # fmt: skip
+
+#: The cascaded chunk grammar (one stage per label, applied in this order).
+GRAMMAR = r"""
+NUM:
+  {<A>?<CD|NW|NMAG>+<AND><A>?<NW>?<FRC>}
+  {<A>?<CD|NW>*<NMAG><AND><NW>+}
+  {<A>?<CD|NW|NMAG>*<FRC>+}
+  {<A>?<CD|NW|NMAG>+}
+UNIT:
+  {<ULEN|UMASS|UVOL>}
+HEDGE:
+  {<HA|HL|HU|HX>+}
+RANGE:
+  {<BETW><NUM><UNIT>?<AND|RTO><NUM>}
+  {<NUM><UNIT>?<RTO><NUM>}
+QUANT:
+  {<HEDGE>?<NUM|RANGE><OF>?<A>?<UNIT><HS>?}
+  {<HEDGE>?<NUM|RANGE><HS>?}
+MULTI:
+  {<QUANT><BY><QUANT><BY><QUANT><IN>?<DIM>?}
+  {<QUANT><BY><QUANT><IN>?<DIM>?}
+DIM:
+  {<QUANT><IN|OF>?<DIM>}
+  {<DIM><BE|OF|IN|W|CM>?<BE|OF|IN|W>?<BE|OF|IN|W>?<QUANT>}
+"""
+
+_NUMBER_TAGS = frozenset({"CD", "NW", "NMAG", "FRC"})
+_UNIT_TAGS = frozenset({"ULEN", "UMASS", "UVOL"})
+_CATEGORY_TAGS = {"MAT": "material", "SHP": "shape", "RIG": "rigidity", "TEX": "texture", "FRA": "fragility"}
+#: Tags worth chunking a sentence for; a sentence without any is left flat.
+_INTERESTING = _NUMBER_TAGS | _UNIT_TAGS | {"DIM", "MAT", "SHP", "RIG", "TEX", "FRA", "MH"}
+_ABBREVIATIONS = frozenset(
+    {"in", "ft", "oz", "lb", "lbs", "approx", "ca", "cm", "mm", "dia", "diam", "no", "vs", "e", "g", "i",
+     "kg", "ml", "fl", "m", "l", "gm", "gms", "dl", "cl", "st", "mr", "dr"}
+)  # fmt: skip
+_SYMBOL_UNITS = frozenset({'"', "''", "”", "″", "'", "′", "’"})
+
+
+# ------------------------------------------------------------------------------------------ the result
+@dataclass(frozen=True)
+class FeatureEvidence:
+    """One stated feature: its value in catalog units (cm, g) or canonical category word, how it was
+    qualified, and the words (character span) it came from."""
+
+    feature: str
+    value: float | str
+    qualifier: str  # "about" | "exact" | "at_least" | "at_most" | "range"
+    low: float | None
+    high: float | None
+    words: str
+    start: int
+    end: int
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "value": self.value,
+            "qualifier": self.qualifier,
+            "low": self.low,
+            "high": self.high,
+            "words": self.words,
+            "start": self.start,
+            "end": self.end,
+        }
+
+
+@dataclass(frozen=True)
+class ParsedDescription:
+    """What a description states. ``features`` holds only the stated features: it is the per-feature
+    mask the recall uses. ``mass_hint`` ("light"/"heavy") is a weak hint, never a mass: the recall
+    engine decides whether and how to use it."""
+
+    text: str
+    features: dict[str, FeatureEvidence]
+    mass_hint: str | None
+    tree: Tree = field(compare=False, repr=False)
+
+    def values(self) -> dict[str, float | str]:
+        """Feature -> value, for the stated features only."""
+        return {f: ev.value for f, ev in self.features.items()}
+
+    def is_empty(self) -> bool:
+        return not self.features and self.mass_hint is None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-able: every feature of :data:`kb.features.FEATURES` (null when not stated), then
+        ``qualifiers``, ``evidence`` (per stated feature) and ``mass_hint``."""
+        out: dict[str, Any] = {f: (self.features[f].value if f in self.features else None) for f in FEATURES}
+        out["mass_hint"] = self.mass_hint
+        out["qualifiers"] = {f: ev.qualifier for f, ev in self.features.items()}
+        out["evidence"] = {f: ev.to_dict() for f, ev in self.features.items()}
+        out["text"] = self.text
+        return out
+
+
+# ------------------------------------------------------------------------------------ internal records
+@dataclass
+class _Token:
+    word: str  # surface text
+    low: str  # lower-case lookup form (merged words joined by one space)
+    start: int
+    end: int
+    tag: str = "W"
+
+
+@dataclass
+class _Quantity:
+    value: float
+    low: float | None
+    high: float | None
+    qualifier: str
+    unit: Unit | None
+    start: int
+    end: int
+    pos: int  # token index in the text (for unit inheritance)
+
+
+@dataclass
+class _DimStatement:
+    role: str
+    quantities: list[_Quantity]
+    start: int
+    end: int
+
+
+@dataclass
+class _Reading:
+    """Everything read from the chunks, in text order, before the features are resolved."""
+
+    dims: list[_DimStatement] = field(default_factory=list)
+    multis: list[_DimStatement] = field(default_factory=list)
+    sizes: list[_DimStatement] = field(default_factory=list)
+    masses: list[tuple[_Quantity, bool]] = field(default_factory=list)  # (quantity, is contents)
+    contents: list[_Quantity] = field(default_factory=list)
+    length_units: list[tuple[int, Unit]] = field(default_factory=list)  # (token index, unit)
+    categories: dict[str, list[tuple[int, int, str, _Token]]] = field(default_factory=dict)
+    mass_hints: list[str] = field(default_factory=list)
+    cue_words: set[str] = field(default_factory=set)
+    in_dim_chunk: set[int] = field(default_factory=set)
+
+
+# ------------------------------------------------------------------------------------------ the parser
+class DescriptionParser:
+    """The tokenizer, tagger, chunker and unit table, built once; :meth:`parse` is thread-safe."""
+
+    def __init__(self) -> None:
+        self._tokenizer = RegexpTokenizer(TOKEN_PATTERN)
+        fallback = RegexpTagger(
+            [
+                (r"^(?:" + DIGITS_PATTERN + r")$", "CD"),
+                (r"^[" + _FRACTION_CHARS + r"]$", "FRC"),
+                (r"^(?:twenty|thirty|forty|fourty|fifty|sixty|seventy|eighty|ninety)-"
+                 r"(?:one|two|three|four|five|six|seven|eight|nine)$", "NW"),
+                (r".*", "W"),
+            ]
+        )  # fmt: skip
+        self._model = lx.tag_model()
+        self._tagger = UnigramTagger(model=self._model, backoff=fallback)
+        self._chunker = RegexpParser(GRAMMAR)
+        self._units = unit_table()
+        mwe: dict[tuple[str, ...], str] = {}
+        for phrase in lx.MULTIWORD:
+            mwe[tuple(phrase.split())] = phrase
+        self._mwe = mwe
+        self._mwe_first = {k[0] for k in mwe}
+        self._mwe_max = max((len(k) for k in mwe), default=1)
+        self._lock = threading.Lock()
+
+    # -- public
+    def parse(self, text: str) -> ParsedDescription:
+        """Parse one description (see the module docstring)."""
+        if not isinstance(text, str):
+            raise DescriptionError(f"a description must be text, not {type(text).__name__}")
+        if len(text) > MAX_TEXT_CHARS:
+            raise DescriptionError(
+                f"description too long: {len(text):,} characters (at most {MAX_TEXT_CHARS:,})"
+            )
+        tokens = self._tag(self._tokens(text))
+        reading = _Reading()
+        children: list[Any] = []
+        pos = 0
+        for segment in self._segments(tokens):
+            tree = self._chunk(segment)
+            children.extend(tree)
+            self._read(tree, segment, pos, reading)
+            pos += len(segment)
+        features, hint = _resolve(reading, tokens, text)
+        return ParsedDescription(text=text, features=features, mass_hint=hint, tree=Tree("S", children))
+
+    # -- 1. tokens
+    def _tokens(self, text: str) -> list[_Token]:
+        raw: list[_Token] = []
+        for start, end in self._tokenizer.span_tokenize(text):
+            word = text[start:end]
+            low = word.lower().replace("’", "'")
+            if "-" in low and len(low) > 1 and low not in self._model and _split_hyphen(low):
+                # "5-cm-long" parts, "non-fragile" -> non fragile; number compounds stay whole
+                offset = start
+                for part in word.split("-"):
+                    if part:
+                        raw.append(_Token(part, part.lower(), offset, offset + len(part)))
+                    offset += len(part) + 1
+                continue
+            raw.append(_Token(word, low, start, end))
+        # merge multi-word expressions, longest first
+        out: list[_Token] = []
+        i = 0
+        n = len(raw)
+        while i < n:
+            tok = raw[i]
+            if tok.low in self._mwe_first:
+                for size in range(min(self._mwe_max, n - i), 1, -1):
+                    key = tuple(t.low for t in raw[i : i + size])
+                    phrase = self._mwe.get(key)
+                    if phrase is not None:
+                        last = raw[i + size - 1]
+                        out.append(_Token(text[tok.start : last.end], phrase, tok.start, last.end))
+                        i += size
+                        break
+                else:
+                    out.append(tok)
+                    i += 1
+            else:
+                out.append(tok)
+                i += 1
+        return out
+
+    # -- 2. tags
+    def _tag(self, tokens: list[_Token]) -> list[_Token]:
+        tagged = self._tagger.tag([t.low for t in tokens])
+        for tok, (_w, tag) in zip(tokens, tagged, strict=True):
+            tok.tag = tag or "W"
+        return _fix_tags(tokens)
+
+    # -- sentences
+    def _segments(self, tokens: list[_Token]) -> Iterator[list[_Token]]:
+        seg: list[_Token] = []
+        for i, tok in enumerate(tokens):
+            seg.append(tok)
+            end_here = tok.tag == "SEP"
+            if end_here and tok.low == "." and i > 0 and tokens[i - 1].low in _ABBREVIATIONS:
+                nxt = tokens[i + 1] if i + 1 < len(tokens) else None
+                if nxt is not None and not nxt.word[:1].isupper():
+                    end_here = False  # "approx. 5 cm", "3 in. long"
+            if end_here or len(seg) >= MAX_SEGMENT_TOKENS:
+                yield seg
+                seg = []
+        if seg:
+            yield seg
+
+    # -- 3. chunks
+    def _chunk(self, segment: list[_Token]) -> Tree:
+        pairs = [(t.word, t.tag) for t in segment]
+        if not any(t.tag in _INTERESTING for t in segment):
+            return Tree("S", pairs)
+        try:
+            return self._chunker.parse(pairs)
+        except (TimeoutError, ValueError, RecursionError):  # nltk.redos backstop; never expected
+            return Tree("S", pairs)
+
+    # -- 4. reading
+    def _read(self, tree: Tree, segment: list[_Token], base: int, reading: _Reading) -> None:
+        fill = _fill_context(segment)
+        k = 0
+        for child in tree:
+            if isinstance(child, Tree):
+                n = len(child.leaves())
+                toks = segment[k : k + n]
+                self._read_chunk(child, toks, base + k, reading, fill, segment, k)
+                k += n
+            else:
+                k += 1
+        _read_categories(segment, base, reading)
+
+    def _read_chunk(
+        self,
+        chunk: Tree,
+        toks: list[_Token],
+        pos: int,
+        reading: _Reading,
+        fill: int | None,
+        segment: list[_Token],
+        k: int,
+    ) -> None:
+        label = chunk.label()
+        if label == "QUANT":
+            q = self._quantity(chunk, toks, pos)
+            if q is not None:
+                self._free_quantity(q, toks, reading, fill, segment, k)
+            return
+        if label not in ("DIM", "MULTI"):
+            return
+        quants: list[_Quantity] = []
+        role = "size"
+        dim_word: _Token | None = None
+        dim_first = False
+        j = 0
+        for sub in chunk:
+            if isinstance(sub, Tree):
+                n = len(sub.leaves())
+                if sub.label() == "QUANT":
+                    q = self._quantity(sub, toks[j : j + n], pos + j)
+                    if q is not None:
+                        quants.append(q)
+                j += n
+            else:
+                tok = toks[j]
+                if tok.tag == "DIM":
+                    dim_word = tok
+                    dim_first = not quants
+                    role = lx.DIMENSION_WORDS.get(tok.low, "size")
+                j += 1
+        if not quants:
+            return
+        if any(q.unit is not None and q.unit.kind != "length" for q in quants):
+            for q in quants:  # "tall, about 300 g": not a dimension
+                if q.unit is not None:
+                    self._free_quantity(q, toks, reading, fill, segment, k)
+            return
+        if dim_word is not None and dim_word.low in lx.WEAK_DIMENSION_WORDS:
+            if dim_first or quants[0].unit is None:
+                return  # "a large bottle, 2": no dimension
+            role = "size"
+        for i in range(pos, pos + len(toks)):
+            reading.in_dim_chunk.add(i)
+        for q in quants:
+            if q.unit is not None:
+                reading.length_units.append((q.pos, q.unit))
+        stmt = _DimStatement(role, quants, toks[0].start, toks[-1].end)
+        if label == "MULTI":
+            reading.multis.append(stmt)
+        else:
+            reading.dims.append(stmt)
+
+    def _free_quantity(
+        self,
+        q: _Quantity,
+        toks: list[_Token],
+        reading: _Reading,
+        fill: int | None,
+        segment: list[_Token],
+        k: int,
+    ) -> None:
+        """A quantity outside any dimension chunk: a mass, contents, or an unlabelled length."""
+        if q.unit is None:
+            return
+        contents = fill is not None and fill < k
+        if q.unit.kind == "mass":
+            reading.masses.append((q, contents))
+        elif q.unit.kind == "volume":
+            if contents:
+                reading.contents.append(q)
+        elif q.unit.kind == "length":
+            reading.length_units.append((q.pos, q.unit))
+            reading.sizes.append(_DimStatement("size", [q], q.start, q.end))
+
+    def _quantity(self, chunk: Tree, toks: list[_Token], pos: int) -> _Quantity | None:
+        """Read a QUANT chunk: hedge, number or range, unit."""
+        qualifier = "exact"
+        numbers: list[float] = []
+        unit: Unit | None = None
+        j = 0
+        for sub in chunk:
+            if isinstance(sub, Tree):
+                n = len(sub.leaves())
+                part = toks[j : j + n]
+                label = sub.label()
+                if label == "HEDGE":
+                    qualifier = _hedge_qualifier(part)
+                elif label == "NUM":
+                    value = _num(part)
+                    if value is None:
+                        return None
+                    numbers.append(value)
+                elif label == "RANGE":
+                    r = 0
+                    for rsub in sub:
+                        if isinstance(rsub, Tree):
+                            rn = len(rsub.leaves())
+                            if rsub.label() == "NUM":
+                                value = _num(part[r : r + rn])
+                                if value is None:
+                                    return None
+                                numbers.append(value)
+                            elif rsub.label() == "UNIT":
+                                unit = self._units.get(part[r].low)
+                            r += rn
+                        else:
+                            r += 1
+                elif label == "UNIT":
+                    unit = self._units.get(part[0].low)
+                j += n
+            else:
+                if toks[j].tag == "HS":
+                    qualifier = "about"
+                j += 1
+        if not numbers:
+            return None
+        start, end = toks[0].start, toks[-1].end
+        if len(numbers) >= 2:
+            lo, hi = sorted(numbers[:2])
+            if lo <= 0:
+                return None
+            return _Quantity((lo + hi) / 2, lo, hi, "range", unit, start, end, pos)
+        value = numbers[0]
+        if value <= 0:
+            return None
+        low = value if qualifier == "at_least" else None
+        high = value if qualifier == "at_most" else None
+        return _Quantity(value, low, high, qualifier, unit, start, end, pos)
+
+
+# ---------------------------------------------------------------------------------------- tag context
+def _split_hyphen(low: str) -> bool:
+    parts = low.split("-")
+    if len(parts) == 2 and parts[0] in lx.NUMBER_WORDS and parts[1] in lx.NUMBER_WORDS:
+        return False  # "twenty-one"
+    return True
+
+
+def _fix_tags(tokens: list[_Token]) -> list[_Token]:
+    """Tags that depend on the neighbours; one linear pass (two for dropped hyphens)."""
+    out: list[_Token] = []
+    n = len(tokens)
+    for i, tok in enumerate(tokens):
+        prev = out[-1] if out else None
+        nxt = tokens[i + 1] if i + 1 < n else None
+        prev_num = prev is not None and prev.tag in _NUMBER_TAGS
+        tag = tok.tag
+        if tag == "RTO" and tok.low in ("-", "–", "—"):
+            nxt_unit = nxt is not None and nxt.tag in (_UNIT_TAGS | {"DIM", "HS"} | {"IN"})
+            if (prev_num and nxt_unit) or (
+                prev is not None and prev.tag in _UNIT_TAGS and nxt is not None and nxt.tag == "DIM"
+            ):
+                continue  # "5-cm-long", "10-ish": the hyphen joins, it is not a range
+        if tag == "IN" and prev_num:
+            if nxt is None or nxt.low not in lx.DIMENSION_NOUNS:
+                tag = "ULEN"  # "4 in long", "3 in." ; "7 in diameter" stays a preposition
+        elif tok.low in _SYMBOL_UNITS:
+            tag = "ULEN" if prev_num else "CM"
+        elif tag in _UNIT_TAGS and not prev_num:
+            before_a = out[-2] if len(out) >= 2 else None
+            if prev is not None and prev.tag == "A" and len(tok.low) > 2:
+                if before_a is None or before_a.tag not in _NUMBER_TAGS:
+                    prev.tag = "NW"  # "a liter of water", "about a foot long": "a" is one; not "half a liter"
+            elif not (prev is not None and prev.tag == "A"):
+                tag = "W"  # "cm" with no number, "m" in "I m", a "cup" of coffee
+        elif tag in ("BY", "RTO"):
+            nxt_num = nxt is not None and (nxt.tag in _NUMBER_TAGS or nxt.tag in ("A", "HA", "HL", "HU"))
+            prev_ok = prev is not None and (prev.tag in _NUMBER_TAGS or prev.tag in _UNIT_TAGS)
+            if not (nxt_num and prev_ok):
+                tag = "W"
+        elif tag == "BETW":
+            if nxt is None or nxt.tag not in _NUMBER_TAGS:
+                tag = "W"
+        elif tag == "MH" and tok.low == "light" and nxt is not None and nxt.low in lx.COLOUR_WORDS:
+            tag = "W"
+        elif tag == "FRC" and tok.low in ("quarter", "quarters", "third", "thirds"):
+            if not (prev_num or (prev is not None and prev.tag in ("A", "AND"))):
+                tag = "W"  # "the top quarter", "third" as an ordinal
+        tok.tag = tag
+        out.append(tok)
+    return out
+
+
+def _fill_context(segment: list[_Token]) -> int | None:
+    """Index in the segment of a contents word ("filled", "full", "contains"), or None; a capacity word
+    ("capacity", "empty", "can hold") anywhere in the sentence cancels it."""
+    found: int | None = None
+    for i, tok in enumerate(segment):
+        if tok.low in lx.CAPACITY_WORDS:
+            return None
+        if found is None and tok.low in lx.FILL_WORDS:
+            if tok.low in lx.WEAK_FILL_WORDS:
+                # "with 500 ml of water": only with "of" after the unit
+                if not any(
+                    t.low == "of" and segment[j - 1].tag in _UNIT_TAGS
+                    for j, t in enumerate(segment[i + 1 :], start=i + 1)
+                ):
+                    continue
+            found = i
+    return found
+
+
+# --------------------------------------------------------------------------------------- small readers
+def _num(toks: Sequence[_Token]) -> float | None:
+    words = [t.low for t in toks]
+    if len(words) == 1 and words[0] in ("a", "an"):
+        return 1.0
+    return number_value(words)
+
+
+def _hedge_qualifier(toks: Sequence[_Token]) -> str:
+    quals = [lx.HEDGES.get(t.low, "about") for t in toks]
+    for q in ("at_least", "at_most", "about"):
+        if q in quals:
+            return q
+    return "exact"
+
+
+def _negated(segment: list[_Token], i: int) -> bool:
+    for j in range(i - 1, max(-1, i - 4), -1):
+        tag = segment[j].tag
+        if tag in ("CM", "SEP", "AND"):
+            return False
+        if tag == "NEG":
+            return True
+    return False
+
+
+def _read_categories(segment: list[_Token], base: int, reading: _Reading) -> None:
+    for i, tok in enumerate(segment):
+        pos = base + i
+        reading.cue_words.add(tok.low)
+        tag = tok.tag
+        if tag == "MH":
+            hint = lx.MASS_HINT_WORDS[tok.low]
+            if _negated(segment, i):
+                hint = "heavy" if hint == "light" else "light"
+            reading.mass_hints.append(hint)
+            continue
+        if tag == "DIM" and tok.low in ("long", "elongated") and pos not in reading.in_dim_chunk:
+            feature, value, rank = "shape", "long", 2
+        elif tag in _CATEGORY_TAGS:
+            feature = _CATEGORY_TAGS[tag]
+            if feature == "shape":
+                value, rank = lx.SHAPE_WORDS[tok.low]
+            else:
+                table = lx.TABLES[feature]
+                value = table[tok.low]
+                rank = 1
+                if feature == "material" and i >= 2 and segment[i - 1].low in ("of", "from"):
+                    if segment[i - 2].low in ("made", "out", "built", "constructed", "consists"):
+                        rank = 2  # "made of plastic" beats a material in a name
+                if feature in ("texture", "fragility") and i >= 1 and segment[i - 1].low in lx.MEDIUM_WORDS:
+                    value = "medium"
+        elif tok.low in lx.MEDIUM_WORDS and i + 1 < len(segment):
+            nxt = segment[i + 1].low
+            if nxt in ("texture", "surface", "roughness", "finish"):
+                feature, value, rank = "texture", "medium", 1
+            elif nxt in ("fragility", "fragile", "strength"):
+                feature, value, rank = "fragility", "medium", 1
+            else:
+                continue
+        else:
+            continue
+        if _negated(segment, i):
+            if feature == "fragility":
+                value = lx.NEGATED_FRAGILITY[value]
+            else:
+                continue
+        reading.categories.setdefault(feature, []).append((rank, pos, value, tok))
+
+
+# ------------------------------------------------------------------------------------------ resolution
+def _resolve(
+    reading: _Reading, tokens: list[_Token], text: str
+) -> tuple[dict[str, FeatureEvidence], str | None]:
+    features: dict[str, FeatureEvidence] = {}
+    _resolve_dims(reading, text, features)
+    _resolve_mass(reading, text, features)
+    for feature, cands in reading.categories.items():
+        best = max(cands, key=lambda c: (c[0], -c[1]))
+        _rank, _pos, value, tok = best
+        features[feature] = FeatureEvidence(feature, value, "exact", None, None, tok.word, tok.start, tok.end)
+    hint = reading.mass_hints[0] if reading.mass_hints else None
+    ordered = {f: features[f] for f in FEATURES if f in features}
+    return ordered, hint
+
+
+def _unit_for(q: _Quantity, reading: _Reading) -> Unit | None:
+    """The quantity's own unit, else the nearest length unit before it, else after it, else cm."""
+    if q.unit is not None:
+        return q.unit
+    before = [u for p, u in reading.length_units if p < q.pos]
+    if before:
+        return before[-1]
+    after = [u for p, u in reading.length_units if p > q.pos]
+    if after:
+        return after[0]
+    return unit_table()["cm"]
+
+
+@dataclass
+class _Dim:
+    value: float
+    low: float | None
+    high: float | None
+    qualifier: str
+    start: int
+    end: int
+
+
+def _to_cm(q: _Quantity, reading: _Reading, stmt: _DimStatement, scale: float = 1.0) -> _Dim | None:
+    unit = _unit_for(q, reading)
+    if unit is None or unit.kind != "length":
+        return None
+    f = unit.factor * scale
+    value = q.value * f
+    if not 0 < value <= MAX_DIM_CM:
+        return None
+    return _Dim(
+        value,
+        None if q.low is None else q.low * f,
+        None if q.high is None else q.high * f,
+        q.qualifier,
+        stmt.start,
+        stmt.end,
+    )
+
+
+def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvidence]) -> None:
+    cues = reading.cue_words
+    cube = bool(cues & lx.CUBE_WORDS)
+    sphere = bool(cues & lx.SPHERE_WORDS)
+    cylinder = bool(cues & lx.CYLINDER_WORDS)
+    disc = bool(cues & lx.DISC_WORDS)
+    slots: dict[str, _Dim] = {}
+
+    def put(names: Sequence[str], dims: Sequence[_Dim]) -> None:
+        ordered = sorted(dims, key=lambda d: -d.value)
+        for name, dim in zip(names, ordered, strict=False):
+            slots[name] = dim
+
+    if reading.multis:
+        stmt = reading.multis[0]
+        dims = [d for q in stmt.quantities if (d := _to_cm(q, reading, stmt)) is not None]
+        if len(dims) == 2:
+            thick = _first(reading, "thickness")
+            if thick is not None:
+                dims.append(thick)
+        put(("a_cm", "b_cm", "c_cm"), dims[:3])
+    else:
+        by_role: dict[str, _Dim] = {}
+        for stmt in reading.dims:
+            if stmt.role in by_role or (stmt.role == "diameter" and "radius" in by_role):
+                continue
+            if stmt.role == "radius" and "diameter" in by_role:
+                continue
+            dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)
+            if dim is not None:
+                by_role["diameter" if stmt.role == "radius" else stmt.role] = dim
+        length, width, thick = by_role.get("length"), by_role.get("width"), by_role.get("thickness")
+        diameter, side = by_role.get("diameter"), by_role.get("side")
+        labeled = [(d, r) for d, r in ((length, 0), (width, 1), (thick, 2)) if d is not None]
+        if side is not None:
+            put(("a_cm", "b_cm", "c_cm"), [side, side, side])
+        elif diameter is not None:
+            others = [d for d in (length, thick) if d is not None] or ([width] if width is not None else [])
+            if others:
+                put(("a_cm", "b_cm", "c_cm"), [diameter, diameter, others[0]])
+            elif sphere:
+                put(("a_cm", "b_cm", "c_cm"), [diameter, diameter, diameter])
+            elif cylinder and not disc:
+                put(("b_cm", "c_cm"), [diameter, diameter])
+            else:
+                put(("a_cm", "b_cm"), [diameter, diameter])
+        elif labeled:
+            if len(labeled) == 1 and (cube or sphere):
+                d = labeled[0][0]
+                put(("a_cm", "b_cm", "c_cm"), [d, d, d])
+            else:
+                names = ("a_cm", "b_cm", "c_cm")
+                ranks = sorted(r for _d, r in labeled)
+                if len(labeled) == 3:
+                    ranks = [0, 1, 2]
+                put([names[r] for r in ranks], [d for d, _r in labeled])
+        elif reading.sizes:
+            sizes = [d for stmt in reading.sizes[:3] if (d := _to_cm(stmt.quantities[0], reading, stmt))]
+            if len(sizes) == 1 and (cube or sphere):
+                put(("a_cm", "b_cm", "c_cm"), sizes * 3)
+            else:
+                put(("a_cm", "b_cm", "c_cm"), sizes)
+    for name, dim in slots.items():
+        features[name] = FeatureEvidence(
+            name, round(dim.value, 4), dim.qualifier, _r(dim.low), _r(dim.high), text[dim.start : dim.end],
+            dim.start, dim.end,
+        )  # fmt: skip
+
+
+def _first(reading: _Reading, role: str) -> _Dim | None:
+    for stmt in reading.dims:
+        if stmt.role == role:
+            return _to_cm(stmt.quantities[0], reading, stmt)
+    return None
+
+
+def _r(value: float | None) -> float | None:
+    return None if value is None else round(value, 4)
+
+
+def _resolve_mass(reading: _Reading, text: str, features: dict[str, FeatureEvidence]) -> None:
+    for q, in_contents in reading.masses:
+        assert q.unit is not None
+        grams = q.value * q.unit.factor
+        if not 0 < grams <= MAX_MASS_G:
+            continue
+        qualifier = "at_least" if in_contents and q.qualifier != "range" else q.qualifier
+        f = q.unit.factor
+        low = grams if qualifier == "at_least" else (None if q.low is None else q.low * f)
+        high = None if q.high is None or qualifier == "at_least" else q.high * f
+        features["mass_g"] = FeatureEvidence(
+            "mass_g", round(grams, 4), qualifier, _r(low), _r(high), text[q.start : q.end], q.start, q.end
+        )
+        return
+    for q in reading.contents:
+        assert q.unit is not None
+        grams = q.value * q.unit.factor * lx.CONTENTS_DENSITY_G_PER_ML
+        if not 0 < grams <= MAX_MASS_G:
+            continue
+        features["mass_g"] = FeatureEvidence(
+            "mass_g",
+            round(grams, 4),
+            "at_least",
+            round(grams, 4),
+            None,
+            text[q.start : q.end],
+            q.start,
+            q.end,
+        )
+        return
+
+
+# ------------------------------------------------------------------------------------------ module API
+@functools.cache
+def _default_parser() -> DescriptionParser:
+    return DescriptionParser()
+
+
+_build_lock = threading.Lock()
+
+
+def default_parser() -> DescriptionParser:
+    """The module-level parser, built on first use."""
+    with _build_lock:
+        return _default_parser()
+
+
+def parse(text: str) -> ParsedDescription:
+    """Parse a description with the module-level :class:`DescriptionParser` (built on first use)."""
+    return default_parser().parse(text)
