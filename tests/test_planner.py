@@ -1,0 +1,215 @@
+"""Grasp planner: the paper's examples, the published rules, forces, unknown features, and properties."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from kb.errors import InvalidFeature
+from kb.features import FRAGILITIES, MATERIALS, RIGIDITIES, SHAPES, TEXTURES, ObjectRecord
+from sim.friction import MATERIAL_FRICTION, TEXTURE_FACTOR, friction_coefficient
+from sim.grasps import GRASP_TYPES, GraspPlan
+from sim.planner import (
+    GRAVITY,
+    HAND_MAX_APERTURE_CM,
+    SAFETY_FACTOR,
+    best_grasp,
+    plan_grasps,
+    required_grip_force,
+    resolve_features,
+)
+
+TV_REMOTE = dict(a_cm=16, b_cm=3.5, c_cm=2, mass_g=110, shape="long", material="plastic", texture="medium")
+TENNIS_BALL = dict(
+    a_cm=6.4, b_cm=6.4, c_cm=6.4, mass_g=56, shape="radial", texture="rough", fragility="medium",
+    material="fabric", rigidity="squeezable",
+)  # fmt: skip
+ORANGE = dict(a_cm=7, b_cm=7, c_cm=7, mass_g=150, shape="radial", rigidity="squeezable")
+
+
+def test_paper_tv_remote_gets_a_precision_prismatic_grasp():
+    plan = best_grasp(TV_REMOTE)
+    assert plan.family == "precision"
+    assert plan.grasp_type in ("thumb_4_finger", "thumb_3_finger")
+    assert plan.grasped_dim == "c"
+
+
+@pytest.mark.parametrize("features", [TENNIS_BALL, ORANGE], ids=["tennis ball", "orange"])
+def test_paper_balls_get_a_power_circular_grasp(features):
+    assert best_grasp(features).grasp_type == "power_sphere"
+
+
+@pytest.mark.parametrize(
+    ("features", "family", "types"),
+    [
+        (dict(a_cm=21.5, b_cm=7.2, c_cm=7.2, mass_g=660, shape="prism", material="metal"), "power",
+         {"heavy_wrap_large_diameter"}),
+        (dict(a_cm=33, b_cm=13, c_cm=3.3, mass_g=665, shape="long", material="metal"), "power",
+         {"heavy_wrap_small_diameter"}),
+        (dict(a_cm=5.5, b_cm=2.3, c_cm=0.2, mass_g=7, shape="thin", material="metal"), "intermediate",
+         {"lateral_pinch"}),
+        (dict(a_cm=1.6, b_cm=1.6, c_cm=1.6, mass_g=5, shape="radial", material="glass"), "precision",
+         {"tripod", "precision_sphere"}),
+        (dict(a_cm=4.3, b_cm=4.3, c_cm=4.3, mass_g=46, shape="radial"), "precision", {"precision_sphere"}),
+        (dict(a_cm=7.2, b_cm=7.2, c_cm=2, mass_g=60, shape="compact", material="wood"), "precision",
+         {"precision_disk"}),
+        (dict(a_cm=3, b_cm=3, c_cm=3, mass_g=12, shape="compact"), "precision", {"tripod"}),
+        (dict(a_cm=19, b_cm=0.75, c_cm=0.75, mass_g=6, shape="long", material="wood"), "precision",
+         {"thumb_2_finger", "tripod"}),
+        (dict(a_cm=20, b_cm=4, c_cm=3.5, mass_g=150, shape="long"), "power", {"medium_wrap"}),
+        (dict(a_cm=75, b_cm=40, c_cm=0.5, mass_g=200, shape="thin", material="fabric", rigidity="floppy"),
+         "power", {"medium_wrap"}),
+    ],
+    ids=["water bottle", "hammer", "key", "marble", "golf ball", "wood disk", "small cube", "pencil", "banana",
+         "towel"],
+)  # fmt: skip
+def test_rules_choose_family_and_type(features, family, types):
+    plan = best_grasp(features)
+    assert plan.family == family
+    assert plan.grasp_type in types
+
+
+def test_plans_are_ranked_distinct_and_explained():
+    plans = plan_grasps(TV_REMOTE)
+    assert len(plans) >= 3
+    assert [p.score for p in plans] == sorted((p.score for p in plans), reverse=True)
+    assert len({p.grasp_type for p in plans}) == len(plans)
+    for p in plans:
+        assert isinstance(p, GraspPlan)
+        assert GRASP_TYPES[p.grasp_type] == p.family
+        assert p.rationale and all(isinstance(r, str) and r for r in p.rationale)
+    assert any("Feix" in r for r in plans[0].rationale)
+    assert plan_grasps(TV_REMOTE, top=2) == plans[:2]
+
+
+def test_alternatives_include_another_family():
+    families = {p.family for p in plan_grasps(TV_REMOTE)}
+    assert len(families) >= 2
+
+
+def test_grip_force_follows_the_two_sided_friction_bound():
+    mu = friction_coefficient("plastic", "medium")
+    force = required_grip_force(400, mu, "sturdy")
+    assert force == pytest.approx(0.4 * GRAVITY * SAFETY_FACTOR["sturdy"] / (2 * mu), rel=1e-3)
+    # slipperier needs more; heavier needs more; fragile gets less and is capped
+    assert required_grip_force(400, 0.3) > required_grip_force(400, 0.9)
+    assert required_grip_force(800, mu) > required_grip_force(400, mu)
+    assert required_grip_force(400, mu, "fragile") < required_grip_force(400, mu, "sturdy")
+    assert required_grip_force(3000, 0.3, "fragile") <= 12.0
+
+
+def test_plan_force_uses_material_and_texture_friction():
+    smooth_glass = best_grasp(
+        dict(a_cm=12, b_cm=7, c_cm=7, mass_g=300, shape="prism", material="glass", texture="smooth")
+    )
+    grippy_rubber = best_grasp(
+        dict(a_cm=12, b_cm=7, c_cm=7, mass_g=300, shape="prism", material="rubber", texture="grippy")
+    )
+    assert smooth_glass.grip_force_n > grippy_rubber.grip_force_n
+    assert smooth_glass.params["friction"] == friction_coefficient("glass", "smooth")
+
+
+def test_friction_table_covers_the_vocabulary():
+    assert set(MATERIAL_FRICTION) == set(MATERIALS)
+    assert set(TEXTURE_FACTOR) == set(TEXTURES)
+    assert friction_coefficient(None, None) > 0
+    with pytest.raises(KeyError):
+        friction_coefficient("unobtainium", None)
+
+
+def test_aperture_covers_the_grasped_width_and_is_capped_by_the_hand():
+    for features in (TV_REMOTE, TENNIS_BALL, dict(a_cm=30, b_cm=11.5, c_cm=11.5, mass_g=900, shape="prism")):
+        for p in plan_grasps(features):
+            assert p.aperture_cm <= HAND_MAX_APERTURE_CM
+            assert p.aperture_cm >= min(p.params["width_cm"], HAND_MAX_APERTURE_CM)
+
+
+def test_object_wider_than_the_hand_is_flagged_two_handed():
+    plans = plan_grasps(dict(a_cm=24.3, b_cm=24.3, c_cm=24.3, mass_g=600, shape="radial", material="rubber"))
+    assert plans, "the best one-hand option is still listed"
+    assert all(not p.params["feasible"] and p.params["two_hands"] for p in plans)
+    assert any("two hands" in r for r in plans[0].rationale)
+    assert plans[0].score < best_grasp(TENNIS_BALL).score
+
+
+def test_unknown_features_get_documented_defaults():
+    plans = plan_grasps({})
+    assert plans
+    text = " ".join(plans[0].rationale)
+    assert "size unknown" in text and "mass unknown" in text
+    resolved = resolve_features({"a_cm": 10, "shape": "radial"})
+    assert resolved.b_cm == resolved.c_cm == 10
+    assert any("one size known" in n for n in resolved.assumptions)
+    assert resolve_features({"a_cm": 20, "b_cm": 4, "c_cm": 3}).shape == "long"
+
+
+def test_object_record_and_features_dict_plan_alike():
+    record = ObjectRecord.create("tv remote", **TV_REMOTE)
+    assert plan_grasps(record) == plan_grasps(TV_REMOTE)
+
+
+def test_invalid_features_are_refused_with_the_field_named():
+    with pytest.raises(InvalidFeature, match="mass_g"):
+        plan_grasps({"mass_g": -3})
+    with pytest.raises(InvalidFeature, match="shape"):
+        plan_grasps({"shape": "blob"})
+
+
+def test_heavy_slippery_object_plans_more_force_than_precision_fingers_give():
+    plans = plan_grasps(
+        dict(a_cm=10, b_cm=4, c_cm=4, mass_g=2000, shape="prism", material="metal", texture="smooth")
+    )
+    assert plans[0].family == "power"
+    precision = [p for p in plans if p.family == "precision"]
+    assert all(not p.params["force_within_capacity"] for p in precision)
+
+
+maybe = lambda s: st.none() | s  # noqa: E731
+
+features_strategy = st.fixed_dictionaries(
+    {
+        "a_cm": maybe(st.floats(0.05, 200)),
+        "b_cm": maybe(st.floats(0.05, 200)),
+        "c_cm": maybe(st.floats(0.05, 200)),
+        "mass_g": maybe(st.floats(0.1, 100_000)),
+        "shape": maybe(st.sampled_from(SHAPES)),
+        "texture": maybe(st.sampled_from(TEXTURES)),
+        "fragility": maybe(st.sampled_from(FRAGILITIES)),
+        "material": maybe(st.sampled_from(MATERIALS)),
+        "rigidity": maybe(st.sampled_from(RIGIDITIES)),
+    }
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(features_strategy)
+def test_any_valid_features_get_valid_ranked_plans(features):
+    plans = plan_grasps(features)
+    assert plans
+    assert [p.score for p in plans] == sorted((p.score for p in plans), reverse=True)
+    for p in plans:
+        assert GRASP_TYPES[p.grasp_type] == p.family
+        assert p.grasped_dim == "c"
+        assert 0 < p.aperture_cm <= HAND_MAX_APERTURE_CM
+        assert p.grip_force_n > 0
+    assert plans == plan_grasps(features)  # deterministic
+
+
+@settings(max_examples=200, deadline=None)
+@given(features_strategy, st.floats(500, 100_000))
+def test_heavy_objects_always_get_power_grasps(features, mass):
+    """Feix et al. 2014: heavy objects are held with power grasps."""
+    assert best_grasp({**features, "mass_g": mass}).family == "power"
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.floats(0.3, 3.0), st.floats(0.3, 3.0), st.floats(0.3, 3.0), st.floats(0.5, 20),
+    maybe(st.sampled_from(SHAPES)), maybe(st.sampled_from(MATERIALS)),
+)  # fmt: skip
+def test_small_light_rigid_objects_are_never_power_grasped(a, b, c, mass, shape, material):
+    plan = best_grasp(
+        dict(a_cm=a, b_cm=b, c_cm=c, mass_g=mass, shape=shape, material=material, rigidity="rigid")
+    )
+    assert plan.family in ("precision", "intermediate")
