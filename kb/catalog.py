@@ -410,26 +410,22 @@ class KnowledgeBase:
                 if alias not in taken_aliases and alias not in existing and alias != rec.name:
                     taken_aliases.add(alias)
                     alias_rows.append([alias, rec.name])
-        cols = ", ".join(FEATURES)
-        if inserts:
-            con.executemany(
-                f"INSERT INTO objects (name, {cols}, source, created_at, updated_at) "
-                f"VALUES ({', '.join(['?'] * (len(FEATURES) + 4))})",
-                inserts,
-            )
-        if updates:
-            sets = ", ".join(f"{f} = ?" for f in FEATURES)
-            con.executemany(f"UPDATE objects SET {sets}, source = ?, updated_at = ? WHERE name = ?", updates)
-        if observations:
-            con.executemany(
-                "INSERT INTO observations (object_id, feature, value_num, value_text, role, source, adapter, "
-                "fetched_at, raw_text, run_id) SELECT id, ?, ?, ?, ?, ?, ?, ?, ?, ? FROM objects WHERE name = ?",
-                [[*o[1:], o[0]] for o in observations],
-            )
-        if alias_rows:
-            con.executemany(
-                "INSERT INTO object_aliases (alias, object_id) SELECT ?, id FROM objects WHERE name = ?", alias_rows
-            )
+        _bulk(con, "new_objects", ["name", *FEATURES, "source", "created_at", "updated_at"], inserts,
+              f"INSERT INTO objects (name, {', '.join(FEATURES)}, source, created_at, updated_at) "
+              f"SELECT name, {', '.join(FEATURES)}, source, created_at, updated_at FROM new_objects")
+        sets = ", ".join(f"{f} = u.{f}" for f in FEATURES)
+        _bulk(con, "changed_objects", [*FEATURES, "source", "updated_at", "name"], updates,
+              f"UPDATE objects SET {sets}, source = u.source, updated_at = u.updated_at "
+              "FROM changed_objects u WHERE objects.name = u.name")
+        obs_cols = ["name", "feature", "value_num", "value_text", "role", "source", "adapter", "fetched_at",
+                    "raw_text", "run_id"]
+        _bulk(con, "new_observations", obs_cols, observations,
+              "INSERT INTO observations (object_id, feature, value_num, value_text, role, source, adapter, "
+              "fetched_at, raw_text, run_id) SELECT o.id, i.feature, i.value_num, i.value_text, i.role, i.source, "
+              "i.adapter, i.fetched_at, i.raw_text, i.run_id FROM new_observations i JOIN objects o ON o.name = i.name")
+        _bulk(con, "new_aliases", ["alias", "name"], alias_rows,
+              "INSERT INTO object_aliases (alias, object_id) SELECT a.alias, o.id FROM new_aliases a "
+              "JOIN objects o ON o.name = a.name")
 
     def delete_object(self, name: str) -> None:
         obj = self.get_object(name)
@@ -546,6 +542,36 @@ class KnowledgeBase:
             cur = con.execute("SELECT * FROM ingestion_runs ORDER BY id DESC LIMIT ?", [limit])
             cols = [d[0] for d in cur.description]
             return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+
+
+_ARROW_TYPES = {
+    **{f: "float64" for f in NUMERIC_FEATURES},
+    "value_num": "float64",
+    "run_id": "int64",
+    "created_at": "timestamp",
+    "updated_at": "timestamp",
+    "fetched_at": "timestamp",
+}
+
+
+def _bulk(con: duckdb.DuckDBPyConnection, view: str, columns: list[str], rows: list[list[Any]], sql: str) -> None:
+    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (one set-based statement per batch,
+    not one statement per row)."""
+    if not rows:
+        return
+    import pyarrow as pa
+
+    fields = []
+    for c in columns:
+        kind = _ARROW_TYPES.get(c, "string")
+        fields.append(pa.field(c, pa.timestamp("us") if kind == "timestamp" else getattr(pa, kind)()))
+    table = pa.Table.from_arrays([pa.array([r[i] for r in rows], type=f.type) for i, f in enumerate(fields)],
+                                 schema=pa.schema(fields))
+    con.register(view, table)
+    try:
+        con.execute(sql)
+    finally:
+        con.unregister(view)
 
 
 def _first_line(err: Exception) -> str:
