@@ -1,0 +1,71 @@
+"""Extractors ("adapters"): each reads one kind of product data from a :class:`~scrapers.page.Page`.
+
+An adapter is a function ``(page) -> list[Observation]`` registered with :func:`adapter` and a priority
+number; :data:`ADAPTERS` is kept in priority order (structured data first, free text last). Adding a store format is
+one small module here that registers one function, imported in :mod:`scrapers.extract`.
+
+An adapter never raises on a bad page: it returns what it found (maybe nothing) and reports doubts in
+``Observation.note`` or as ``feature="warning"`` observations. :func:`scrapers.extract.extract_page` runs
+every adapter and fuses their observations (see ``scrapers/EXTRACTION.md``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+__all__ = ["ADAPTERS", "Adapter", "Observation", "adapter"]
+
+#: Features an observation can carry.
+OBSERVED = ("name", "gtin", "canonical_url", "dims", "mass", "material", "shape", "warning")
+
+
+@dataclass
+class Observation:
+    """One value a page states.
+
+    feature: one of :data:`OBSERVED`; value: dims as a tuple of cm (in the page's order), mass in g,
+    words for the rest. package: a package or shipping value. rank: how direct the statement is within
+    its adapter (0 explicit structured field, 1 labelled spec row, 2 weaker: a range bound, a title).
+    order: position on the page. group: observations of one package share a group. raw: the page text
+    the value came from. note: a doubt, reported as a warning when this value is used.
+    """
+
+    feature: str
+    value: Any
+    package: bool = False
+    rank: int = 1
+    order: int = 0
+    group: int | None = None
+    raw: str = ""
+    note: str | None = None
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class Adapter:
+    name: str
+    func: Callable[..., list[Observation]]
+    priority: int
+    description: str = ""
+
+
+#: Registered adapters, in priority order.
+ADAPTERS: list[Adapter] = []
+
+
+def adapter(
+    name: str, priority: int
+) -> Callable[[Callable[..., list[Observation]]], Callable[..., list[Observation]]]:
+    """Register ``func`` as the adapter ``name``; a lower ``priority`` number is tried and trusted first."""
+
+    def register(func: Callable[..., list[Observation]]) -> Callable[..., list[Observation]]:
+        if any(a.name == name for a in ADAPTERS):
+            raise ValueError(f"adapter {name!r} registered twice")
+        doc = (func.__doc__ or "").strip().splitlines()
+        ADAPTERS.append(Adapter(name, func, priority, doc[0] if doc else ""))
+        ADAPTERS.sort(key=lambda a: a.priority)
+        return func
+
+    return register

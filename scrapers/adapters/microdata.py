@@ -1,0 +1,71 @@
+"""schema.org Product in microdata (``itemscope itemtype=".../Product"`` with ``itemprop`` children).
+
+The first Product item that is not itself a property of another item is the page's product; it is
+turned into the same dict shape as JSON-LD and read by :func:`scrapers.adapters.jsonld.read_product`.
+Nested items (``weight`` as a QuantitativeValue, ``additionalProperty`` PropertyValues) are kept;
+nested Products (``isSimilarTo``) are other products and are ignored by the reader.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from scrapers.adapters import Observation, adapter
+from scrapers.adapters.jsonld import PRODUCT_TYPES, read_product
+from scrapers.page import Page
+
+__all__ = ["item_dict"]
+
+_LIST_PROPS = {"additionalProperty"}
+
+
+def _owner(el):
+    parent = el.getparent()
+    while parent is not None:
+        if parent.get("itemscope") is not None:
+            return parent
+        parent = parent.getparent()
+    return None
+
+
+def _value(el) -> Any:
+    if el.get("itemscope") is not None:
+        return item_dict(el)
+    for attr in ("content", "value"):
+        if el.get(attr) is not None:
+            return el.get(attr)
+    if el.tag in ("a", "link"):
+        return el.get("href")
+    if el.tag in ("img", "source"):
+        return el.get("src")
+    if el.tag == "time" and el.get("datetime"):
+        return el.get("datetime")
+    return " ".join(el.text_content().split())
+
+
+def item_dict(item) -> dict:
+    """A microdata item as a JSON-LD-shaped dict (``@type`` plus its properties)."""
+    d: dict[str, Any] = {"@type": (item.get("itemtype") or "").strip().rsplit("/", 1)[-1]}
+    for el in item.iterdescendants():
+        if not isinstance(el.tag, str) or el.get("itemprop") is None or _owner(el) is not item:
+            continue
+        value = _value(el)
+        for name in el.get("itemprop").split():
+            if name in _LIST_PROPS:
+                d.setdefault(name, []).append(value)
+            else:
+                d.setdefault(name, value)
+    return d
+
+
+@adapter("microdata", priority=20)
+def microdata(page: Page) -> list[Observation]:
+    """schema.org Product in microdata."""
+    tree = page.tree
+    if tree is None:
+        return []
+    for item in tree.xpath("//*[@itemscope][@itemtype]"):
+        itemtype = (item.get("itemtype") or "").strip().rsplit("/", 1)[-1].lower()
+        if itemtype in PRODUCT_TYPES and item.get("itemprop") is None:
+            return read_product(item_dict(item), 1, page.decimal_comma)
+    return []

@@ -1,0 +1,290 @@
+"""Spec tables, definition lists, detail bullets and label/value lines, in many languages.
+
+Real stores write a measurement as a label and a value: in a table row (``<th>Gewicht</th><td>4,7 kg</td>``),
+a definition list, a bullet (``Product Dimensions : 9.25 x 3 x 14.85 inches; 10.56 Ounces``), on two
+lines (``Altura:`` / ``61 cm``), several on one line (``Altura: 61 cm Largura: 158 cm``) or with the
+unit in the label (``Výška [mm]: 516``, ``Габариты (ВхШхГ), см: 184х54х60``). This module turns the
+page's visible text lines (:attr:`scrapers.page.Page.lines`) into (label, value) pairs, keeps those whose
+label :func:`scrapers.labels.classify_label` recognises, and reads their values. Separate length, width,
+height... fields become one dimensions observation (see :func:`observations_from_pairs`).
+
+The ``embedded_json`` adapter does the same for label/value data that pages ship as JSON inside scripts
+(collapsed tabs rendered by JavaScript): ``{"title": "Overall Weight", "value": "8", "unit_string": "lb."}``
+and ``"Width: 12\\""`` strings.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+from kb.features import MAX_DIM_CM, MAX_MASS_G
+from scrapers.adapters import Observation, adapter
+from scrapers.labels import AXES, LabelInfo, classify_label
+from scrapers.normalize import material_from_text
+from scrapers.page import Line, Page
+from scrapers.quantities import clean_text, parse_dims, parse_length, parse_length_range, parse_mass
+
+__all__ = ["Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
+
+#: Separate axis fields further apart than this many lines are not one product's dimensions.
+AXIS_GROUP_GAP = 8
+_SEPARATOR = re.compile(r"\s*(?::|\s[—–]\s|=)\s*")
+_DIGIT = re.compile(r"\d")
+_MAX_LABEL_WORDS = 6
+_CODE = re.compile(r"[{}<>;]|\":|:\s*\"")  # JSON, CSS or markup inside a string is not a spec line
+
+
+@dataclass(frozen=True)
+class Pair:
+    """A label and its value text as the page shows them, with the line context."""
+
+    label: str
+    value: str
+    info: LabelInfo
+    package: bool = False
+    order: int = 0
+    group: int | None = None
+
+
+def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
+    """Recognised ``label: value`` pairs within one line (several per line allowed), or a label followed
+    directly by a number (``Gewicht 4,7 kg``)."""
+    text = clean_text(text)
+    seps = list(_SEPARATOR.finditer(text))
+    found: list[tuple[str, str, LabelInfo, int, int]] = []  # label, info, label_start, value_start
+    prev_end = 0
+    starts: list[int] = []
+    for sep in seps:
+        region = text[prev_end : sep.start()]
+        words = list(re.finditer(r"\S+", region))
+        label_start = sep.start()
+        hit = None
+        for n in range(min(_MAX_LABEL_WORDS, len(words)), 0, -1):
+            cand_start = prev_end + words[-n].start()
+            info = classify_label(text[cand_start : sep.start()])
+            if info is not None:
+                hit = (text[cand_start : sep.start()], info)
+                label_start = cand_start
+                break
+        if hit is None and words:
+            label_start = prev_end + words[-1].start()
+        starts.append(label_start)
+        if hit is not None:
+            found.append((hit[0], "", hit[1], label_start, sep.end()))
+        prev_end = sep.end()
+    out: list[tuple[str, str, LabelInfo]] = []
+    for label, _, info, _label_start, value_start in found:
+        nxt = [s for s in starts if s >= value_start]
+        end = nxt[0] if nxt else len(text)
+        value = text[value_start:end].strip(" ;,|")
+        if _DIGIT.search(value):
+            out.append((label, value, info))
+    if not seps:
+        m = _DIGIT.search(text)
+        if m and m.start() > 0:
+            label = text[: m.start()]
+            info = classify_label(label)
+            if info is not None:
+                out.append((label.strip(), text[m.start() :], info))
+    return out
+
+
+def pairs_from_lines(lines: list[Line]) -> list[Pair]:
+    """Label/value pairs from visible text lines: a label line followed by a value line, or pairs within
+    one line."""
+    pairs: list[Pair] = []
+    i, n = 0, len(lines)
+    while i < n:
+        line = lines[i]
+        text = line.text
+        if len(text) <= 80:
+            info = classify_label(text)
+            if info is not None and i + 1 < n:
+                nxt = lines[i + 1]
+                if _DIGIT.search(nxt.text) and classify_label(nxt.text) is None:
+                    pairs.append(
+                        Pair(text, nxt.text, info, line.package or nxt.package, line.index, nxt.group)
+                    )
+                    i += 2
+                    continue
+        if _DIGIT.search(text) and len(text) <= 600:
+            for label, value, info in split_inline(text):
+                pairs.append(Pair(label, value, info, line.package, line.index, line.group))
+        i += 1
+    return pairs
+
+
+def _plausible_mass(value: str, unit: str | None, dc: bool | None) -> tuple[float | None, str | None]:
+    mass = parse_mass(value, unit, dc)
+    if mass is not None and mass > MAX_MASS_G and dc is not True:
+        retry = parse_mass(value, unit, True)
+        if retry is not None and retry <= MAX_MASS_G:
+            return retry, f"read {value.strip()!r} with a decimal comma (the other reading is absurd)"
+    return mass, None
+
+
+def observations_from_pairs(
+    pairs: Iterable[Pair], decimal_comma: bool | None, rank: int = 1
+) -> list[Observation]:
+    """Observations read from recognised pairs. Combined values (``A x B x C``, with a mass after ``;``)
+    give one dims observation; single-axis fields in a row (length, width, height, depth, diameter,
+    thickness; a new row starts when an axis repeats, the package context changes or the fields are
+    more than :data:`AXIS_GROUP_GAP` lines apart) give one dims observation per row of two or more."""
+    obs: list[Observation] = []
+    axes: list[tuple[str, float, Pair, int, str | None]] = []
+    for pair in pairs:
+        info = pair.info
+        raw = f"{pair.label}: {pair.value}"[:200]
+        package = pair.package or info.package
+        if info.kind in ("dimensions", "size"):
+            dims = parse_dims(pair.value, info.unit, decimal_comma)
+            rest = pair.value
+            if dims:
+                d = dims[0]
+                note = None
+                if max(d.values_cm) > MAX_DIM_CM and decimal_comma is not True:
+                    again = parse_dims(pair.value, info.unit, True)
+                    if again and max(again[0].values_cm) <= MAX_DIM_CM:
+                        d, note = again[0], "read with a decimal comma (the other reading is absurd)"
+                obs.append(Observation("dims", d.values_cm, package, rank, pair.order, pair.group, raw, note))
+                rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
+            if info.kind == "dimensions":
+                mass, note = _plausible_mass(rest, None, decimal_comma)
+                if mass is not None:
+                    obs.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
+        elif info.kind == "weight":
+            mass, note = _plausible_mass(pair.value, info.unit, decimal_comma)
+            if mass is not None:
+                obs.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
+            elif parse_length_range(pair.value, info.unit or "kg", decimal_comma) is not None:
+                obs.append(
+                    Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
+                )
+        elif info.kind in AXES:
+            length = parse_length(pair.value, info.unit, decimal_comma)
+            note = None
+            if length is None:
+                rng = parse_length_range(pair.value, info.unit, decimal_comma)
+                if rng is None:
+                    continue
+                length = rng[0]
+                note = f"{info.kind} given as a range ({raw}); took the lower bound"
+            axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
+    obs.extend(_group_axes(axes))
+    return obs
+
+
+def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterator[Observation]:
+    row: list[tuple[str, float, Pair, int, str | None]] = []
+
+    def flush() -> Iterator[Observation]:
+        if len(row) >= 2:
+            first = row[0][2]
+            raw = "; ".join(f"{p.label}: {p.value}" for _, _, p, _, _ in row)[:300]
+            notes = "; ".join(n for *_, n in row if n) or None
+            package = any(p.package or p.info.package for _, _, p, _, _ in row)
+            yield Observation(
+                "dims",
+                tuple(v for _, v, *_ in row),
+                package,
+                max(r for *_, r, _ in row),
+                first.order,
+                first.group,
+                raw,
+                notes,
+            )
+
+    for item in axes:
+        kind, _, pair, _, _ = item
+        if row:
+            last = row[-1][2]
+            package_changed = (last.package or last.info.package) != (pair.package or pair.info.package)
+            if kind in {k for k, *_ in row} or package_changed or pair.order - last.order > AXIS_GROUP_GAP:
+                yield from flush()
+                row = []
+        row.append(item)
+    yield from flush()
+
+
+_MATERIAL_LABEL = re.compile(
+    r"(?:primary |main |frame |body |product |top )?(?:material|materials|materiał(?: wykonania)?|matériau|"
+    r"matériaux|matière|werkstoff|materiale|materiali|materiais|material principal|материал|материал корпуса|"
+    r"材質|材质|素材)",
+    re.IGNORECASE,
+)
+
+
+def material_observations(lines: list[Line]) -> list[Observation]:
+    """``Material: Plástico`` lines (label and value on one line or two), first known material first."""
+    obs = []
+    for i, line in enumerate(lines):
+        text = clean_text(line.text)
+        label, _, value = text.partition(":")
+        if not value.strip():
+            if i + 1 >= len(lines) or len(text) > 40:
+                continue
+            value = lines[i + 1].text
+        if _MATERIAL_LABEL.fullmatch(label.strip().rstrip(":").strip()):
+            material = material_from_text(value[:120])
+            if material:
+                obs.append(Observation("material", material, order=line.index, raw=f"{label}: {value}"[:200]))
+    return obs
+
+
+@adapter("spec_table", priority=50)
+def spec_table(page: Page) -> list[Observation]:
+    """Spec tables, definition lists, detail bullets and label/value lines of the visible page."""
+    obs = observations_from_pairs(pairs_from_lines(page.lines), page.decimal_comma)
+    return obs + material_observations(page.lines)
+
+
+_LABEL_KEYS = ("title", "name", "label", "key", "attributeName", "attribute", "displayName", "property")
+_UNIT_KEYS = ("unit_string", "unit", "unitText", "unitCode", "units", "uom")
+_MAX_NODES = 200_000
+
+
+def _json_pairs(data: Any) -> list[Pair]:
+    pairs: list[Pair] = []
+    stack = [data]
+    seen = 0
+    order = 0
+    while stack and seen < _MAX_NODES:
+        node = stack.pop()
+        seen += 1
+        order += 1
+        if isinstance(node, dict):
+            label = next((node[k] for k in _LABEL_KEYS if isinstance(node.get(k), str)), None)
+            value = node.get("value")
+            if label and isinstance(value, (str, int, float)) and not isinstance(value, bool):
+                info = classify_label(label)
+                if info is not None:
+                    unit = next((node[k] for k in _UNIT_KEYS if isinstance(node.get(k), str)), "")
+                    pairs.append(Pair(label, f"{value} {unit}".strip(), info, order=order))
+            stack.extend(reversed(list(node.values())))
+        elif isinstance(node, list):
+            stack.extend(reversed(node))
+        elif (
+            isinstance(node, str)
+            and 3 < len(node) < 200
+            and ":" in node
+            and _DIGIT.search(node)
+            and not _CODE.search(node)
+        ):
+            for label, value, info in split_inline(node):
+                pairs.append(Pair(label, value, info, order=order))
+    return pairs
+
+
+@adapter("embedded_json", priority=60)
+def embedded_json(page: Page) -> list[Observation]:
+    """Label/value data shipped as JSON inside the page's scripts (tabs rendered by JavaScript)."""
+    obs: list[Observation] = []
+    for payload in page.script_payloads:
+        pairs = _json_pairs(payload)
+        if pairs:
+            # JSON order is not visual order: group axes only among neighbouring entries.
+            obs.extend(observations_from_pairs(pairs, page.decimal_comma, rank=1))
+    return obs

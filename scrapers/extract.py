@@ -1,0 +1,239 @@
+"""Extract one product record from one page: run every adapter, then fuse what they observed.
+
+Entry points: :func:`extract_page` (a body as fetched), :func:`extract_file` (a saved page: ``.html`` or
+``.json``). Both return a :class:`~scrapers.records.ProductRecord` in catalog units or raise
+:class:`~kb.errors.ExtractionError` with the reason; nothing else escapes, whatever the input.
+
+Fusion (documented in ``scrapers/EXTRACTION.md``): for the product's dimensions and for its mass
+separately, observations that agree (within :data:`AGREE_TOLERANCE`, a shorter dimension list agreeing
+with part of a longer one) form a cluster; the cluster holding the highest-priority observation
+(adapter order in :data:`ADAPTERS`, then the observation's rank, then page order) wins, its most complete
+member is the value, and every other cluster becomes a warning. Package values are kept apart, as
+listed by the highest-priority adapter that states any. Values outside ``kb.features`` limits are
+refused with a warning.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from kb.errors import ExtractionError
+
+# Importing an adapter module registers its adapters (in priority order, whatever the import order).
+from scrapers.adapters import ADAPTERS, Observation, jsonld, microdata, shopify, spec_table, text, woocommerce  # noqa: F401
+from scrapers.normalize import (
+    check_dims,
+    check_mass,
+    material_from_text,
+    shape_from_dims,
+    shape_from_name,
+    sort_desc,
+)
+from scrapers.page import Page
+from scrapers.records import ProductRecord
+
+__all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "extract_page", "fuse"]
+
+#: Two values agree when they differ by at most this fraction (rounding of converted units).
+AGREE_TOLERANCE = 0.02
+#: Larger saved pages are refused (the fetcher caps downloads the same way).
+MAX_PAGE_BYTES = 50 * 1024 * 1024
+
+
+def extract_page(body: str | bytes, url: str, content_type: str | None = None) -> ProductRecord:
+    """The product record of one page. Raises :class:`ExtractionError` (with the reason) when the page
+    holds no product dimensions or mass; never raises anything else."""
+    try:
+        if body is None or not isinstance(body, (str, bytes, bytearray, memoryview)):
+            raise ExtractionError(f"{url}: no page body")
+        if len(body) > MAX_PAGE_BYTES:
+            raise ExtractionError(f"{url}: page too large ({len(body)} bytes)")
+        page = Page(body, str(url or ""), content_type)
+        if not page.text.strip():
+            raise ExtractionError(f"{url}: empty page")
+        if not page.is_json and page.tree is None:
+            raise ExtractionError(f"{url}: not an HTML page")
+        if page.is_json and page.json is None:
+            raise ExtractionError(f"{url}: malformed JSON")
+        observations: list[Observation] = []
+        for adp in ADAPTERS:
+            try:
+                found = adp.func(page)
+            except Exception as err:  # noqa: BLE001 - one broken adapter must not lose the others' values
+                observations.append(
+                    Observation("warning", f"adapter {adp.name} failed: {type(err).__name__}: {err}")
+                )
+                continue
+            for o in found:
+                o.source = adp.name
+            observations.extend(found)
+        return fuse(observations, str(url or ""))
+    except ExtractionError:
+        raise
+    except Exception as err:  # noqa: BLE001 - the contract: ExtractionError or a record, never a crash
+        raise ExtractionError(f"{url}: could not read the page ({type(err).__name__}: {err})") from None
+
+
+def extract_file(path: str | Path) -> ProductRecord:
+    """The product record of a saved page (HTML, or JSON when the name ends in ``.json``)."""
+    path = Path(path)
+    try:
+        if path.stat().st_size > MAX_PAGE_BYTES:
+            raise ExtractionError(f"{path}: page too large ({path.stat().st_size} bytes)")
+        body = path.read_bytes()
+    except OSError as err:
+        raise ExtractionError(f"{path}: cannot read the file ({err.strerror or err})") from None
+    content_type = "application/json" if path.suffix.lower() == ".json" else "text/html"
+    return extract_page(body, path.resolve().as_uri(), content_type)
+
+
+def _priority(o: Observation) -> tuple[int, int, int]:
+    index = next((i for i, a in enumerate(ADAPTERS) if a.name == o.source), len(ADAPTERS))
+    return (index, o.rank, o.order)
+
+
+def _close(x: float, y: float) -> bool:
+    return abs(x - y) <= AGREE_TOLERANCE * max(abs(x), abs(y))
+
+
+def _dims_agree(a: tuple[float, ...], b: tuple[float, ...]) -> bool:
+    short, long_ = (a, b) if len(a) <= len(b) else (b, a)
+    remaining = list(long_)
+    for v in short:
+        hit = next((i for i, w in enumerate(remaining) if _close(v, w)), None)
+        if hit is None:
+            return False
+        remaining.pop(hit)
+    return True
+
+
+def _fmt(value) -> str:
+    if isinstance(value, tuple):
+        return " x ".join(f"{v:g}" for v in value) + " cm"
+    return f"{value:g} g"
+
+
+def _choose(cands: list[Observation], agree, feature: str, warnings: list[str]) -> Observation | None:
+    """The winning observation among valid candidates (see the module doc); others become warnings."""
+    if not cands:
+        return None
+    clusters: list[list[Observation]] = []
+    for o in sorted(cands, key=_priority):
+        for cluster in clusters:
+            if agree(cluster[0].value, o.value):
+                cluster.append(o)
+                break
+        else:
+            clusters.append([o])
+    best = clusters[0]
+    if feature == "dims":
+        chosen = sorted(best, key=lambda o: (-len(o.value), _priority(o)))[0]
+    else:
+        chosen = best[0]
+    for other in clusters[1:]:
+        o = other[0]
+        warnings.append(
+            f"{feature}: {o.source} also states {_fmt(o.value)} ({o.raw[:80]!r}); kept {_fmt(chosen.value)} "
+            f"from {chosen.source} ({chosen.raw[:80]!r})"
+        )
+    return chosen
+
+
+def _collapse_repeats(values: list) -> list:
+    """[A, B, A, B] -> [A, B]: the same package list rendered twice (desktop and mobile layouts). A run
+    of identical single packages ([A, A]) is kept: stores list identical packages one by one."""
+    n = len(values)
+    for size in range(2, n // 2 + 1):
+        if n % size == 0 and values[:size] * (n // size) == values:
+            return values[:size]
+    return values
+
+
+def fuse(observations: list[Observation], url: str) -> ProductRecord:
+    """One record from all adapters' observations (the rule is in the module doc)."""
+    warnings: list[str] = []
+    raw: dict[str, str] = {}
+    for o in observations:
+        if o.feature == "warning":
+            warnings.append(str(o.value))
+
+    def valid(feature: str, package: bool) -> list[Observation]:
+        out = []
+        for o in observations:
+            if o.feature != feature or o.package != package:
+                continue
+            if feature == "dims":
+                o.value = sort_desc(o.value)
+                reason = check_dims(o.value)
+            else:
+                reason = check_mass(o.value)
+            if reason:
+                warnings.append(
+                    f"{'package ' if package else ''}{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})"
+                )
+            else:
+                out.append(o)
+        return out
+
+    dims_obs = _choose(valid("dims", False), _dims_agree, "dims", warnings)
+    mass_obs = _choose(valid("mass", False), _close, "mass", warnings)
+
+    package_dims: list[tuple[float, ...]] = []
+    package_mass: list[float] = []
+    for feature, target in (("dims", package_dims), ("mass", package_mass)):
+        cands = valid(feature, True)
+        if cands:
+            best_source = min(cands, key=_priority).source
+            chosen = sorted((o for o in cands if o.source == best_source), key=lambda o: o.order)
+            target.extend(_collapse_repeats([o.value for o in chosen]))
+            raw[f"package_{feature}"] = " | ".join(o.raw for o in chosen)[:500]
+
+    names = sorted((o for o in observations if o.feature == "name"), key=lambda o: (o.rank, _priority(o)))
+    name = names[0].value if names else None
+    gtins = sorted((o for o in observations if o.feature == "gtin"), key=_priority)
+    urls = sorted(
+        (o for o in observations if o.feature == "canonical_url"), key=lambda o: (o.rank, _priority(o))
+    )
+
+    material = None
+    for o in sorted((o for o in observations if o.feature == "material"), key=_priority):
+        material = material_from_text(o.value)
+        if material:
+            raw["material"] = o.raw
+            break
+
+    if dims_obs is None and mass_obs is None and not package_dims and not package_mass:
+        what = f" for {name!r}" if name else ""
+        reasons = "; ".join(warnings[:3])
+        raise ExtractionError(
+            f"{url}: no product dimensions or mass found{what}" + (f" ({reasons})" if reasons else "")
+        )
+
+    for o in (dims_obs, mass_obs):
+        if o is not None:
+            raw["dims" if o.feature == "dims" else "mass"] = o.raw
+            if o.note:
+                warnings.append(f"{o.feature}: {o.note}")
+    dims = tuple(round(v, 4) for v in dims_obs.value) if dims_obs else None
+    shape = shape_from_name(name) or shape_from_dims(dims)
+    used = dims_obs or mass_obs
+    adapter = (
+        used.source
+        if used
+        else min((o for o in observations if o.feature in ("dims", "mass")), key=_priority).source
+    )
+    return ProductRecord(
+        name=name,
+        url=url,
+        canonical_url=urls[0].value if urls else None,
+        gtin=gtins[0].value if gtins else None,
+        dims_cm=dims,
+        mass_g=round(mass_obs.value, 4) if mass_obs else None,
+        package_dims_cm=[tuple(round(v, 4) for v in p) for p in package_dims],
+        package_mass_g=[round(m, 4) for m in package_mass],
+        material=material,
+        shape=shape,
+        adapter=adapter,
+        warnings=list(dict.fromkeys(warnings)),
+        raw=raw,
+    )

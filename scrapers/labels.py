@@ -1,0 +1,265 @@
+"""The multilingual label vocabulary of spec tables: which label names which measurement.
+
+:func:`classify_label` reads a label as stores write it (``Item Dimensions LxWxH``, ``Artikelgewicht``,
+``Masse der Verpackung (LxBxH)``, ``Hmotnosť [kg]``, ``Вес без упаковки (нетто), кг``, ``重量``) and
+returns what it measures, whether it is about the package, and a unit the label states.
+
+The rule is a whitelist, for precision: after removing a unit in brackets or after a comma and an
+order hint (``L x W x H``, ``ВхШхГ``), every word of the label must be a measurement word, a package
+word, a negation, or a harmless qualifier (``item``, ``product``, ``overall``, ``net``, ``de``, ...).
+So ``Schlauchlänge`` (hose length), ``Peso suportado`` (supported load), ``Max Height``, ``Chain Length``
+and ``Durchmesser Stiftspitze`` (tip diameter) are not the product's measurements. A package word
+(``Verpackung``, ``embalagem``, ``shipping``, ``упаковка``, ``包裝``...) marks a package value unless a
+negation (``without``, ``ohne``, ``sin``, ``без``...) precedes it: ``Вес без упаковки`` is the product.
+
+Languages: en, de, fr, es, it, pt, nl, pl, cs, sk, ru/kk, sv, zh (traditional and simplified), ja, ko.
+"""
+
+from __future__ import annotations
+
+import re
+import unicodedata
+from dataclasses import dataclass
+
+from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
+
+__all__ = ["AXES", "KINDS", "LabelInfo", "classify_label"]
+
+#: Single-axis kinds (one length each); "dimensions" is a combined A x B x C value, "size" too but never
+#: a mass (``Size: 10 Ounce (Pack of 1)`` is a net content), "weight" is a mass.
+AXES: tuple[str, ...] = ("length", "width", "height", "depth", "diameter", "thickness")
+KINDS: tuple[str, ...] = (*AXES, "dimensions", "size", "weight")
+
+
+def _fold(text: str) -> str:
+    decomposed = unicodedata.normalize("NFKD", text.lower())
+    return "".join(ch for ch in decomposed if not unicodedata.combining(ch))
+
+
+def _words(kind: str, text: str) -> dict[str, str]:
+    return {_fold(w): kind for w in text.split()}
+
+
+_KIND_WORDS: dict[str, str] = {
+    **_words(
+        "length",
+        "length len long länge laenge longueur longitud largo lunghezza comprimento długość dlugosc dĺžka "
+        "délka длина довжина lengte längd",
+    ),
+    **_words(
+        "width",
+        "width wide breite largeur ancho anchura larghezza largura szerokość šírka šířka ширина ширина "
+        "breedte bredd",
+    ),
+    **_words(
+        "height",
+        "height high tall höhe hoehe hauteur alto altura altezza wysokość výška высота висота hoogte höjd",
+    ),
+    **_words(
+        "depth",
+        "depth deep tiefe profondeur profundidad fondo profondità profundidade głębokość hĺbka hloubka "
+        "глубина глибина diepte djup",
+    ),
+    **_words(
+        "diameter",
+        "diameter dia durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр",
+    ),
+    **_words(
+        "thickness",
+        "thickness thick dicke stärke épaisseur grosor espesor spessore espessura grubość hrúbka tloušťka "
+        "толщина товщина dikte",
+    ),
+    **_words(
+        "dimensions",
+        "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
+        "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
+        "afmetingen mått",
+    ),
+    **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
+    **_words(
+        "weight",
+        "weight weighs mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt",
+    ),
+}
+_PACKAGE_WORDS = {
+    _fold(w)
+    for w in (
+        "package packages packaging packed shipping shipment box carton parcel gross verpackung verpackt "
+        "versand paket karton brutto emballage emballé colis embalaje embalado paquete envío caja imballo "
+        "imballaggio confezione spedizione pacco embalagem pacote caixa opakowanie opakowaniu balenie "
+        "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking"
+    ).split()
+}
+_NEGATIONS = {
+    _fold(w) for w in "without ohne sans sin senza sem без bez zonder excl exkl excluding not".split()
+}
+_QUALIFIERS = {
+    _fold(w)
+    for w in (
+        "item product article artikel produkt produit producto produto prodotto articolo artigo overall "
+        "total totale gesamt body unit assembled device net netto nett neto нетто устройства товара "
+        "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
+        "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
+        "ungefähr aprox environ общий общая общие nominal real actual main"
+        " l b h w d t"
+    ).split()
+}
+# German compounds: <prefix><kind word>, e.g. Artikelgewicht, Verpackungsgewicht, Produktabmessungen.
+_COMPOUND_PREFIXES = {
+    "artikel": False,
+    "produkt": False,
+    "netto": False,
+    "gesamt": False,
+    "korpus": False,
+    "aussen": False,
+    "außen": False,
+    "geräte": False,
+    "gerate": False,
+    "eigen": False,
+    "leer": False,
+    "verpackungs": True,
+    "verpackung": True,
+    "versand": True,
+    "paket": True,
+    "brutto": True,
+    "karton": True,
+}
+_GERMAN_KIND_SUFFIXES = sorted(
+    (
+        _fold(w)
+        for w in "gewicht abmessungen abmessung maße masse höhe breite länge tiefe durchmesser stärke "
+        "dicke größe".split()
+    ),
+    key=len,
+    reverse=True,
+)
+# Labels of languages written without spaces, matched whole (after removing spaces and punctuation).
+_CJK_LABELS: dict[str, tuple[str, bool]] = {
+    "尺寸": ("dimensions", False),
+    "商品尺寸": ("dimensions", False),
+    "產品尺寸": ("dimensions", False),
+    "产品尺寸": ("dimensions", False),
+    "商品大小": ("dimensions", False),
+    "規格尺寸": ("dimensions", False),
+    "外觀尺寸": ("dimensions", False),
+    "外观尺寸": ("dimensions", False),
+    "本體尺寸": ("dimensions", False),
+    "包裝尺寸": ("dimensions", True),
+    "包装尺寸": ("dimensions", True),
+    "外箱尺寸": ("dimensions", True),
+    "重量": ("weight", False),
+    "淨重": ("weight", False),
+    "净重": ("weight", False),
+    "商品重量": ("weight", False),
+    "產品重量": ("weight", False),
+    "产品重量": ("weight", False),
+    "本體重量": ("weight", False),
+    "毛重": ("weight", True),
+    "包裝重量": ("weight", True),
+    "包装重量": ("weight", True),
+    "長": ("length", False),
+    "长": ("length", False),
+    "長度": ("length", False),
+    "长度": ("length", False),
+    "寬": ("width", False),
+    "宽": ("width", False),
+    "寬度": ("width", False),
+    "宽度": ("width", False),
+    "高": ("height", False),
+    "高度": ("height", False),
+    "深": ("depth", False),
+    "深度": ("depth", False),
+    "直徑": ("diameter", False),
+    "直径": ("diameter", False),
+    "厚度": ("thickness", False),
+    "サイズ": ("dimensions", False),
+    "寸法": ("dimensions", False),
+    "本体サイズ": ("dimensions", False),
+    "外形寸法": ("dimensions", False),
+    "梱包サイズ": ("dimensions", True),
+    "重さ": ("weight", False),
+    "本体重量": ("weight", False),
+    "크기": ("dimensions", False),
+    "무게": ("weight", False),
+    "중량": ("weight", False),
+}
+_ORDER_HINT = re.compile(r"\b[a-zа-я](?:\s*[x×хX*/]\s*[a-zа-я]\b){1,2}", re.IGNORECASE)
+_ORDER_WORD = re.compile(r"[a-zа-я](?:[xх][a-zа-я]){1,2}")
+_BRACKETS = re.compile(r"[\[(（][^\])）]{0,30}[\])）]")
+_MAX_WORDS = 8
+
+
+@dataclass(frozen=True)
+class LabelInfo:
+    """What a label measures: ``kind`` (one of :data:`KINDS`), ``package`` (a package or shipping value),
+    ``unit`` (a unit the label states, e.g. ``mm`` from ``Výška [mm]``, else None)."""
+
+    kind: str
+    package: bool = False
+    unit: str | None = None
+
+
+def classify_label(label: object) -> LabelInfo | None:
+    """The measurement ``label`` names, or None when it names none (or something else, like a load)."""
+    try:
+        return _classify(label)
+    except Exception:  # noqa: BLE001 - a label we cannot read is simply not a measurement label
+        return None
+
+
+def _classify(label: object) -> LabelInfo | None:
+    text = clean_text(label)
+    if not text or len(text) > 80:
+        return None
+    unit = unit_hint(text)
+    text = text.rstrip(" :：-–—=").strip()
+    text = _BRACKETS.sub(" ", text)
+    text = _ORDER_HINT.sub(" ", text)
+    folded = _fold(text)
+    squashed = re.sub(r"[\W_]+", "", folded)
+    if squashed in _CJK_LABELS:
+        kind, package = _CJK_LABELS[squashed]
+        return LabelInfo(kind, package, unit)
+    words = [w for w in re.split(r"[\W_]+", folded) if w]
+    if not words or len(words) > _MAX_WORDS:
+        return None
+    kinds: list[str] = []
+    package = False
+    negated = False
+    for word in words:
+        if word in _KIND_WORDS:
+            kinds.append(_KIND_WORDS[word])
+        elif word in _PACKAGE_WORDS:
+            package = package or not negated
+        elif word in _NEGATIONS:
+            negated = True
+        elif word in _QUALIFIERS or length_unit(word) is not None or mass_unit(word) is not None:
+            continue
+        elif _ORDER_WORD.fullmatch(word):
+            continue  # "LxWxH", "ВхШхГ" written as one word
+        else:
+            compound = _split_compound(word)
+            if compound is None:
+                return None
+            kind, is_package = compound
+            kinds.append(kind)
+            package = package or (is_package and not negated)
+    if not kinds:
+        return None
+    # "Item Package Dimensions", "Product size": the most specific kind wins; weight beats dimensions
+    # only when no axis or dimension word is present.
+    for kind in (*AXES, "dimensions", "size", "weight"):
+        if kind in kinds:
+            if kind in ("dimensions", "size") and "weight" in kinds:
+                return LabelInfo("dimensions", package, unit)  # "Weight & Dimensions"
+            return LabelInfo(kind, package, unit)
+    return None
+
+
+def _split_compound(word: str) -> tuple[str, bool] | None:
+    for suffix in _GERMAN_KIND_SUFFIXES:
+        if word.endswith(suffix) and len(word) > len(suffix):
+            prefix = word[: -len(suffix)].rstrip("-")
+            if prefix in _COMPOUND_PREFIXES:
+                return _KIND_WORDS[suffix], _COMPOUND_PREFIXES[prefix]
+    return None

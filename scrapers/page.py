@@ -1,0 +1,257 @@
+"""One fetched page, decoded and parsed once, shared by every extractor.
+
+:class:`Page` holds the decoded text, the lxml tree (built lazily), the page language and its decimal-mark
+convention, the JSON-LD blocks and JSON payloads, and the visible text as :class:`Line` s in document
+order, each with its context: inside a package section or not (``id``/``class`` names like
+``packaging``, ``verpackung``, ``shipping``) and its parent element (to group a package's fields).
+
+Containers of other products are not read at all: elements whose ``id``/``class`` names a carousel,
+slider, comparison, recommendation or "customers also viewed" block (see :data:`FOREIGN_CONTAINER`).
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+from scrapers.quantities import decimal_comma_for
+
+__all__ = ["FOREIGN_CONTAINER", "PACKAGE_CONTAINER", "Line", "Page", "decode_body"]
+
+#: id/class words of blocks that show other products (their sizes must not leak into this product).
+FOREIGN_CONTAINER = re.compile(
+    r"(?:carousel|swiper|slick|slider|similar|tovsimilar|compar(?:ison|e-table|ison-table)|comparison_table|"
+    r"recommend|related|also[-_]?(?:viewed|bought|like)|upsell|up-sell|cross[-_]?sell|sponsor|recently|"
+    r"sims[-_]|_sims|fbt|bought[-_]together|reco[-_]|[-_]reco\b|advert|banner)",
+    re.IGNORECASE,
+)
+#: id/class words of blocks that describe the package rather than the product.
+PACKAGE_CONTAINER = re.compile(
+    r"(?:packag|verpack|shipping|versand|embala|emballa|imball|colis|упаков)", re.IGNORECASE
+)
+_DROP_TAGS = frozenset(
+    {"script", "style", "noscript", "template", "svg", "head", "iframe", "select", "option"}
+)
+_NEVER_DROP = frozenset({"html", "body", "main"})
+_META_CHARSET = re.compile(rb"""<meta[^>]{0,200}?charset\s*=\s*["']?\s*([a-zA-Z0-9_.:-]+)""", re.IGNORECASE)
+_LD_JSON = re.compile(
+    r"<script\b[^>]*\btype\s*=\s*[\"']?application/ld\+json[\"']?[^>]*>(.*?)</script\s*>",
+    re.IGNORECASE | re.DOTALL,
+)
+_SCRIPT = re.compile(r"<script\b([^>]*)>(.*?)</script\s*>", re.IGNORECASE | re.DOTALL)
+_WS = re.compile(r"\s+")
+
+
+def decode_body(body: str | bytes, content_type: str | None = None) -> str:
+    """Page bytes as text: a BOM, then UTF-8 if the bytes are valid UTF-8, then the charset of the
+    Content-Type header or a ``<meta charset>``, then cp1252 (which decodes anything)."""
+    if isinstance(body, str):
+        return body
+    if not isinstance(body, (bytes, bytearray, memoryview)):
+        return str(body)
+    data = bytes(body)
+    for bom, codec in ((b"\xef\xbb\xbf", "utf-8"), (b"\xff\xfe", "utf-16-le"), (b"\xfe\xff", "utf-16-be")):
+        if data.startswith(bom):
+            return data[len(bom) :].decode(codec, errors="replace")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        pass
+    declared = None
+    if content_type:
+        m = re.search(r"charset\s*=\s*[\"']?([\w.:-]+)", content_type, re.IGNORECASE)
+        declared = m.group(1) if m else None
+    if declared is None:
+        m = _META_CHARSET.search(data[:8192])
+        declared = m.group(1).decode("ascii", "replace") if m else None
+    for codec in (declared, "cp1252"):
+        if codec:
+            try:
+                return data.decode(codec, errors="replace")
+            except LookupError:
+                continue
+    return data.decode("latin-1")
+
+
+@dataclass(frozen=True)
+class Line:
+    """One visible text node: its text (spaces collapsed), whether a package block holds it, and the
+    identity of its parent element (lines with the same ``group`` sit in the same element)."""
+
+    text: str
+    package: bool
+    group: int
+    index: int
+
+
+class Page:
+    """A decoded page with its parsed views, each computed on first use."""
+
+    def __init__(self, body: str | bytes, url: str, content_type: str | None = None):
+        self.url = url
+        self.content_type = (content_type or "").lower()
+        self.text = decode_body(body, content_type)
+
+    @property
+    def is_json(self) -> bool:
+        head = self.text.lstrip()[:1]
+        return "json" in self.content_type or (head in ("{", "[") and "<html" not in self.text[:2000].lower())
+
+    @cached_property
+    def json(self) -> Any:
+        """The page parsed as JSON (for JSON endpoints), or None."""
+        try:
+            return json.loads(self.text)
+        except (ValueError, RecursionError):
+            return None
+
+    @cached_property
+    def tree(self):
+        """The lxml HTML tree, or None when the text is not HTML at all."""
+        import lxml.html
+
+        text = re.sub(r"^\s*<\?xml[^>]*\?>", "", self.text)
+        if not text.strip():
+            return None
+        try:
+            return lxml.html.document_fromstring(text)
+        except Exception:  # noqa: BLE001 - lxml raises several types on garbage; garbage has no tree
+            return None
+
+    @cached_property
+    def lang(self) -> str | None:
+        tree = self.tree
+        if tree is not None:
+            lang = tree.get("lang") or tree.get("xml:lang")
+            if lang and lang.strip():
+                return lang.strip()
+            for content in tree.xpath(
+                "//meta[@property='og:locale' or @http-equiv='content-language']/@content"
+            ):
+                if content.strip():
+                    return content.strip()
+        return None
+
+    @cached_property
+    def decimal_comma(self) -> bool | None:
+        return decimal_comma_for(self.lang, self.url)
+
+    @cached_property
+    def jsonld_blocks(self) -> list[tuple[Any, str | None]]:
+        """Each ``application/ld+json`` block parsed on its own: (data, None) or (None, reason)."""
+        blocks = []
+        for m in _LD_JSON.finditer(self.text):
+            blocks.append(_loads_lenient(m.group(1)))
+        return blocks
+
+    @cached_property
+    def script_payloads(self) -> list[Any]:
+        """JSON objects embedded in other scripts (``wf.extend({...})``, ``window.__STATE__ = {...}``,
+        ``<script type="application/json">``): the first object literal of each script that parses."""
+        payloads = []
+        decoder = json.JSONDecoder()
+        for m in _SCRIPT.finditer(self.text):
+            attrs, body = m.group(1), m.group(2)
+            if "ld+json" in attrs.lower() or len(body) < 20:
+                continue
+            start = body.find("{")
+            if start < 0:
+                continue
+            try:
+                obj, _ = decoder.raw_decode(body, start)
+            except (ValueError, RecursionError):
+                continue
+            payloads.append(obj)
+        return payloads
+
+    @cached_property
+    def title(self) -> str | None:
+        tree = self.tree
+        if tree is None:
+            return None
+        for xp in (
+            "//meta[@property='og:title']/@content",
+            "//*[@id='productTitle' or @id='title' or @itemprop='name'][1]",
+            "//h1[contains(@class, 'title') or contains(@class, 'name')]",
+            "//title",
+            "//h1",
+        ):
+            for hit in tree.xpath(xp):
+                text = hit if isinstance(hit, str) else hit.text_content()
+                text = _WS.sub(" ", text).strip()
+                if text:
+                    return text
+        return None
+
+    @cached_property
+    def canonical_url(self) -> str | None:
+        tree = self.tree
+        if tree is None:
+            return None
+        for href in tree.xpath("//link[@rel='canonical']/@href | //meta[@property='og:url']/@content"):
+            if href.strip():
+                return href.strip()
+        return None
+
+    @cached_property
+    def lines(self) -> list[Line]:
+        """Visible text nodes in document order, outside scripts and other products' containers."""
+        from lxml import etree
+
+        tree = self.tree
+        if tree is None:
+            return []
+        lines: list[Line] = []
+        stack: list[bool] = []  # package context of each open element
+        walker = etree.iterwalk(tree, events=("start", "end"))
+        for event, el in walker:
+            tag = el.tag if isinstance(el.tag, str) else ""
+            if event == "start":
+                names = f"{el.get('id') or ''} {el.get('class') or ''}"
+                foreign = tag not in _NEVER_DROP and names.strip() and FOREIGN_CONTAINER.search(names)
+                if tag in _DROP_TAGS or not tag or foreign:
+                    walker.skip_subtree()
+                    stack.append(stack[-1] if stack else False)
+                    # an element skipped at "start" still gets its "end" event (for its tail)
+                    continue
+                package = (stack[-1] if stack else False) or bool(
+                    names.strip() and PACKAGE_CONTAINER.search(names)
+                )
+                stack.append(package)
+                if el.text:
+                    _add_line(lines, el.text, package, id(el))
+            else:
+                if stack:
+                    stack.pop()
+                if el.tail:
+                    parent = el.getparent()
+                    _add_line(lines, el.tail, stack[-1] if stack else False, id(parent))
+        return lines
+
+
+def _add_line(lines: list[Line], text: str, package: bool, group: int) -> None:
+    text = _WS.sub(" ", text).strip()
+    if text:
+        lines.append(Line(text, package, group, len(lines)))
+
+
+def _loads_lenient(text: str) -> tuple[Any, str | None]:
+    """JSON-LD text parsed, tolerating HTML comments, CDATA wrappers and trailing commas."""
+    cleaned = text.strip()
+    cleaned = re.sub(r"^\s*(?:<!--|//\s*<!\[CDATA\[|<!\[CDATA\[)", "", cleaned)
+    cleaned = re.sub(r"(?:-->|//\s*\]\]>|\]\]>)\s*$", "", cleaned).strip()
+    if not cleaned:
+        return None, "empty JSON-LD block"
+    try:
+        return json.loads(cleaned), None
+    except (ValueError, RecursionError):
+        pass
+    relaxed = re.sub(r",\s*([}\]])", r"\1", cleaned)
+    relaxed = re.sub(r"[\x00-\x1f]", " ", relaxed)
+    try:
+        return json.loads(relaxed), None
+    except (ValueError, RecursionError) as err:
+        return None, f"malformed JSON-LD block ({str(err)[:80]})"

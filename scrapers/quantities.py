@@ -1,0 +1,505 @@
+"""Numbers and physical quantities as storefront pages write them, converted to catalog units (cm, g).
+
+Handles what real pages do: decimal commas and thousands separators (``4,7 kg``, ``61,800 kg``,
+``1,643,215``), invisible marks (U+200E, U+200F, zero-width spaces, NBSP), full-width characters
+(``：``, ``１``), the times signs ``x``, ``×``, ``*``, ``✕`` and Cyrillic ``х``, inch marks ``"``, ``''``
+and ``″``, a unit after every term (``19 cm x 17 cm x 2 cm``) or only after the last, letter suffixes
+(``23L x 13,8W x 30H centímetros``), unit words in many languages and the UN/CEFACT codes used by
+schema.org (CMT MMT MTR INH FOT GRM KGM LBR ONZ).
+
+Every public function takes any text and never raises: a text without a quantity gives None or [].
+
+Decimal commas: a comma followed by other than exactly three digits is a decimal comma (``4,7``); with
+both ``.`` and ``,`` the last one is the decimal mark; ``1,643,215`` is grouped. A single comma followed
+by exactly three digits (``61,800``) is ambiguous: it is read as a decimal comma when the page's
+language writes decimal commas (``decimal_comma=True``, see :func:`decimal_comma_for`), else as a
+thousands separator. A single dot followed by exactly three digits (``1.200``) is read as a thousands
+separator only in a decimal-comma language and when the integer part is not 0.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import unicodedata
+from dataclasses import dataclass
+
+__all__ = [
+    "LENGTH_UNITS",
+    "MASS_UNITS",
+    "Dims",
+    "clean_text",
+    "decimal_comma_for",
+    "length_unit",
+    "mass_unit",
+    "parse_dims",
+    "parse_length",
+    "parse_mass",
+    "parse_number",
+    "unit_hint",
+]
+
+# Invisible formatting characters pages sprinkle into values (LRM/RLM, embeddings, isolates, zero widths).
+_INVISIBLE = dict.fromkeys(
+    map(
+        ord,
+        "\u200b\u200c\u200d\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069\ufeff\u00ad",
+    ),
+    None,
+)
+_SPACES = re.compile(r"[\s\u00a0\u2000-\u200a\u202f\u205f\u3000]+")
+
+#: Length units -> centimetres per unit. Keys are lower case, accents kept (matching strips them too).
+LENGTH_UNITS: dict[str, float] = {}
+#: Mass units -> grams per unit.
+MASS_UNITS: dict[str, float] = {}
+
+
+def _add(table: dict[str, float], factor: float, *names: str) -> None:
+    for name in names:
+        table[name] = factor
+        table[_strip_accents(name)] = factor
+
+
+def _strip_accents(text: str) -> str:
+    decomposed = unicodedata.normalize("NFKD", text)
+    return "".join(ch for ch in decomposed if not unicodedata.combining(ch))
+
+
+_add(
+    LENGTH_UNITS,
+    0.1,
+    "mm",
+    "mmt",
+    "millimeter",
+    "millimeters",
+    "millimetre",
+    "millimetres",
+    "milímetro",
+    "milímetros",
+    "millimètre",
+    "millimètres",
+    "millimetri",
+    "millimetro",
+    "milimetr",
+    "milimetrów",
+    "мм",
+    "毫米",
+    "公釐",
+)
+_add(
+    LENGTH_UNITS,
+    1.0,
+    "cm",
+    "cmt",
+    "centimeter",
+    "centimeters",
+    "centimetre",
+    "centimetres",
+    "zentimeter",
+    "centímetro",
+    "centímetros",
+    "centimètre",
+    "centimètres",
+    "centimetri",
+    "centimetro",
+    "centymetr",
+    "centymetrów",
+    "см",
+    "公分",
+    "厘米",
+    "釐米",
+)
+_add(
+    LENGTH_UNITS,
+    100.0,
+    "m",
+    "mtr",
+    "meter",
+    "meters",
+    "metre",
+    "metres",
+    "metro",
+    "metros",
+    "mètre",
+    "mètres",
+    "metri",
+    "м",
+    "米",
+    "公尺",
+)
+_add(
+    LENGTH_UNITS,
+    2.54,
+    "in",
+    "inh",
+    "inch",
+    "inches",
+    '"',
+    "''",
+    "″",
+    "zoll",
+    "pulgada",
+    "pulgadas",
+    "pouce",
+    "pouces",
+    "pollice",
+    "pollici",
+    "polegada",
+    "polegadas",
+    "дюйм",
+    "дюйма",
+    "дюймов",
+    "吋",
+    "英寸",
+)
+_add(LENGTH_UNITS, 30.48, "ft", "fot", "foot", "feet", "fuß", "pies", "pieds", "piedi", "pés", "'", "′")
+
+_add(MASS_UNITS, 0.001, "mg", "mgm", "milligram", "milligrams", "milligramm", "мг")
+_add(
+    MASS_UNITS,
+    1.0,
+    "g",
+    "grm",
+    "gr",
+    "gram",
+    "grams",
+    "gramm",
+    "gramme",
+    "grammes",
+    "gramo",
+    "gramos",
+    "grammo",
+    "grammi",
+    "grama",
+    "gramas",
+    "gramów",
+    "г",
+    "гр",
+    "克",
+    "公克",
+)
+_add(
+    MASS_UNITS,
+    1000.0,
+    "kg",
+    "kgm",
+    "kgs",
+    "kilo",
+    "kilos",
+    "kilogram",
+    "kilograms",
+    "kilogramm",
+    "kilogramme",
+    "kilogrammes",
+    "kilogramo",
+    "kilogramos",
+    "chilogrammo",
+    "chilogrammi",
+    "quilograma",
+    "quilogramas",
+    "quilo",
+    "quilos",
+    "kilogramów",
+    "кг",
+    "公斤",
+    "千克",
+)
+_add(
+    MASS_UNITS,
+    453.59237,
+    "lb",
+    "lbs",
+    "lbr",
+    "pound",
+    "pounds",
+    "pfund",
+    "libra",
+    "libras",
+    "livre",
+    "livres",
+    "фунт",
+)
+_add(
+    MASS_UNITS,
+    28.349523125,
+    "oz",
+    "onz",
+    "ounce",
+    "ounces",
+    "unze",
+    "unzen",
+    "onza",
+    "onzas",
+    "once",
+    "onces",
+    "oncia",
+    "oncie",
+)
+
+_NUMBER = r"\d+(?:[.,]\d+)*"
+# Unit tokens: words (any script), CJK unit characters, inch and foot marks. "lb." ends with a dot.
+_UNIT = r"(?:''|[\"″′']|(?![xX]\b)[^\W\d_]+\.?)"
+_TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
+
+_DIMS_RE = re.compile(
+    rf"(?P<n1>{_NUMBER})\s*(?P<u1>{_UNIT})?\s*(?P<l1>\b(?![xX]\b)[a-zA-Z]\b)?"
+    rf"{_TIMES}(?P<n2>{_NUMBER})\s*(?P<u2>{_UNIT})?\s*(?P<l2>\b(?![xX]\b)[a-zA-Z]\b)?"
+    rf"(?:{_TIMES}(?P<n3>{_NUMBER})\s*(?P<u3>{_UNIT})?)?"
+)
+_QUANTITY_RE = re.compile(rf"(?P<n>{_NUMBER})\s*(?P<u>{_UNIT})?")
+_TIMES_SIGN = re.compile(r"(\d\s*)([^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)")
+_VOLUME_UNITS = frozenset(
+    "l ml cl dl liter liters litre litres litro litros litri литр л мл 公升 毫升 升".split()
+)
+_RANGE_RE = re.compile(rf"{_NUMBER}\s*(?:{_UNIT})?\s*(?:-|–|—|~|to|bis|a|à)\s*{_NUMBER}")
+
+#: Languages whose pages write decimal commas (the language part of an html lang / locale tag).
+DECIMAL_COMMA_LANGUAGES = frozenset(
+    "de fr es it pt nl pl cs sk sl hr sr bs ru uk be kk bg ro hu da sv nb nn no fi et lv lt tr el id vi".split()
+)
+# Country-code domains of decimal-comma countries (used when the page does not declare its language).
+_DECIMAL_COMMA_TLDS = frozenset(
+    "de at ch fr be es it pt br nl pl cz sk si hr rs ru ua by kz bg ro hu dk se no fi ee lv lt tr gr id vn ar cl co".split()
+)
+
+
+def decimal_comma_for(lang: str | None = None, url: str | None = None) -> bool | None:
+    """True when a page in ``lang`` (or, failing that, on ``url``'s country domain) writes decimal commas;
+    False for other known languages; None when neither says."""
+    if lang:
+        code = re.split(r"[-_]", lang.strip().lower())[0]
+        if code:
+            return code in DECIMAL_COMMA_LANGUAGES
+    if url:
+        m = re.match(r"[a-z][a-z0-9+.-]*://([^/:?#]+)", url.strip().lower())
+        if m:
+            tld = m.group(1).rsplit(".", 1)[-1]
+            if tld in _DECIMAL_COMMA_TLDS:
+                return True
+            if tld in {"com", "uk", "us", "au", "ca", "nz", "ie", "in", "tw", "cn", "jp", "kr", "hk", "sg"}:
+                return False
+    return None
+
+
+def clean_text(text: object) -> str:
+    """Text with invisible marks removed, full-width forms folded (NFKC), spaces collapsed and every
+    times sign between numbers written as `` x ``."""
+    if text is None:
+        return ""
+    if not isinstance(text, str):
+        text = str(text)
+    text = unicodedata.normalize("NFKC", text.translate(_INVISIBLE))
+    text = _SPACES.sub(" ", text).strip()
+    # Cyrillic х/Х and other times signs after a number (and maybe a unit or letter) and before a number.
+    text = _TIMES_SIGN.sub(_times, text)
+    return _SPACES.sub(" ", text).strip()
+
+
+def _times(m: re.Match) -> str:
+    between = m.group(2) or ""
+    if between and len(between) > 1 and length_unit(between) is None:
+        return m.group(0)  # "max 5": a word, not a unit or an L/W/H letter, before the sign
+    return f"{m.group(1)}{between}{m.group(3)} x "
+
+
+def parse_number(text: str, decimal_comma: bool | None = None) -> float | None:
+    """The number written in ``text`` (one number, separators as described in the module doc), or None."""
+    if not isinstance(text, str):
+        return None
+    s = text.strip().replace(" ", "")
+    if not re.fullmatch(_NUMBER, s):
+        return None
+    commas, dots = s.count(","), s.count(".")
+    if commas and dots:
+        dec = "," if s.rfind(",") > s.rfind(".") else "."
+        grp = "." if dec == "," else ","
+        s = s.replace(grp, "")
+        if s.count(dec) > 1:
+            return None
+        s = s.replace(dec, ".")
+    elif commas:
+        parts = s.split(",")
+        if commas > 1:
+            if not all(len(p) == 3 for p in parts[1:]):
+                return None
+            s = "".join(parts)
+        elif len(parts[1]) == 3 and not decimal_comma and parts[0] not in ("0", ""):
+            s = "".join(parts)
+        else:
+            s = ".".join(parts)
+    elif dots > 1:
+        parts = s.split(".")
+        if not all(len(p) == 3 for p in parts[1:]):
+            return None
+        s = "".join(parts)
+    elif dots == 1:
+        whole, frac = s.split(".")
+        if decimal_comma and len(frac) == 3 and whole not in ("0", ""):
+            s = whole + frac
+    try:
+        value = float(s)
+    except ValueError:
+        return None
+    return value if math.isfinite(value) else None
+
+
+def _unit_key(unit: str | None) -> str:
+    if not unit:
+        return ""
+    u = unit.strip().lower()
+    if u not in ("''", '"', "'", "″", "′"):
+        u = u.rstrip(".")
+    return u
+
+
+def length_unit(unit: str | None) -> float | None:
+    """Centimetres per ``unit`` (a unit word, symbol or UN/CEFACT code), or None if not a length unit."""
+    key = _unit_key(unit)
+    return LENGTH_UNITS.get(key, LENGTH_UNITS.get(_strip_accents(key)))
+
+
+def mass_unit(unit: str | None) -> float | None:
+    """Grams per ``unit`` (a unit word, symbol or UN/CEFACT code), or None if not a mass unit."""
+    key = _unit_key(unit)
+    return MASS_UNITS.get(key, MASS_UNITS.get(_strip_accents(key)))
+
+
+def unit_hint(label: str) -> str | None:
+    """A unit stated in a label: ``Výška [mm]``, ``Grubość (w mm)``, ``Габариты, см``, ``Weight (kg)``,
+    ``Width in cm``. Returns the unit token or None."""
+    text = clean_text(label).lower()
+    for pattern in (
+        r"[\[(]\s*(?:w|in|en|em|in\s+)?\s*([^\W\d_]+\.?|''|\")\s*[\])]",
+        r",\s*([^\W\d_]+)\s*:?\s*$",
+        r"\b(?:in|en|em)\s+([^\W\d_]+)\s*:?\s*$",
+    ):
+        for m in re.finditer(pattern, text):
+            unit = m.group(1)
+            if length_unit(unit) is not None or mass_unit(unit) is not None:
+                return unit
+    return None
+
+
+@dataclass(frozen=True)
+class Dims:
+    """Dimensions found in a text, in the order written, converted to cm (``ranged``: a value was a range)."""
+
+    values_cm: tuple[float, ...]
+    text: str
+
+
+def _find_unit(tokens: list[str | None], convert, default: str | None) -> list[float | None]:
+    factors = [convert(u) if u else None for u in tokens]
+    last = next((f for f in reversed(factors) if f is not None), None)
+    if last is None and default:
+        last = convert(default)
+    return [f if f is not None else last for f in factors]
+
+
+def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool | None = None) -> list[Dims]:
+    """Every ``A x B [x C]`` group in ``text`` with a length unit (after each term, after the last term,
+    or ``default_unit`` from the label), converted to cm. Groups without a length unit are skipped."""
+    try:
+        return _parse_dims(text, default_unit, decimal_comma)
+    except Exception:  # noqa: BLE001 - the contract is "never raises on any text"
+        return []
+
+
+def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
+    s = clean_text(text)
+    found: list[Dims] = []
+    for m in _DIMS_RE.finditer(s):
+        nums = [m.group("n1"), m.group("n2"), m.group("n3")]
+        units = [m.group("u1"), m.group("u2"), m.group("u3")]
+        n = 3 if nums[2] is not None else 2
+        nums, units = nums[:n], units[:n]
+        # A one-letter "unit" like the L/W/H suffix of "23L" is a letter, not a unit; a trailing unit
+        # may follow a suffix letter ("30H centímetros"): look past it.
+        if n == 3 and units[2] and len(units[2]) == 1 and length_unit(units[2]) is None:
+            units[2] = None
+        tail = s[m.end() :]
+        if units[-1] is None or length_unit(units[-1]) is None:
+            t = re.match(rf"\s*(?:\b[a-zA-Z]\b\s*)?({_UNIT})", tail)
+            if t and length_unit(t.group(1)) is not None:
+                units[-1] = t.group(1)
+        clean_units = [u if u and length_unit(u) is not None else None for u in units]
+        factors = _find_unit(clean_units, length_unit, default_unit)
+        if any(f is None for f in factors):
+            continue
+        values = [parse_number(x, decimal_comma) for x in nums]
+        if any(v is None or v <= 0 for v in values):
+            continue
+        found.append(Dims(tuple(round(v * f, 6) for v, f in zip(values, factors, strict=True)), m.group(0)))
+    return found
+
+
+def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: bool | None) -> float | None:
+    s = clean_text(text)
+    if _RANGE_RE.search(s):
+        return None
+    for m in _QUANTITY_RE.finditer(s):
+        unit = m.group("u")
+        factor = convert(unit) if unit else None
+        if factor is None and unit and default_unit and len(unit.rstrip(".")) > 0:
+            # a word after the number that is not our unit ("6 Liter"): only a label unit can save it
+            if convert(default_unit) is None:
+                continue
+            other = length_unit(unit) or mass_unit(unit)
+            if other is not None or _unit_key(unit) in _VOLUME_UNITS:
+                continue
+        if factor is None and default_unit:
+            factor = convert(default_unit)
+        if factor is None:
+            continue
+        value = parse_number(m.group("n"), decimal_comma)
+        if value is None or value <= 0:
+            continue
+        return round(value * factor, 6)
+    return None
+
+
+def parse_length(
+    text: str, default_unit: str | None = None, decimal_comma: bool | None = None
+) -> float | None:
+    """The first length in ``text`` in cm (``"67,7 cm"`` -> 67.7), or None; a range (``15.5 - 116.5"``) is
+    not one length."""
+    try:
+        return _parse_single(text, length_unit, default_unit, decimal_comma)
+    except Exception:  # noqa: BLE001
+        return None
+
+
+def parse_mass(text: str, default_unit: str | None = None, decimal_comma: bool | None = None) -> float | None:
+    """The first mass in ``text`` in grams (``"Gewicht 4,7 kg"`` -> 4700.0), or None; ranges are refused."""
+    try:
+        return _parse_single(text, mass_unit, default_unit, decimal_comma)
+    except Exception:  # noqa: BLE001
+        return None
+
+
+_RANGE_PARTS = re.compile(
+    rf"(?P<a>{_NUMBER})\s*(?P<ua>{_UNIT})?\s*(?:-|–|—|~|to|bis|a|à)\s*(?P<b>{_NUMBER})\s*(?P<ub>{_UNIT})?"
+)
+
+
+def parse_length_range(
+    text: str, default_unit: str | None = None, decimal_comma: bool | None = None
+) -> tuple[float, float] | None:
+    """A range written as ``15.5" - 116.5"`` or ``0.5 - 5 mm`` as (low, high) in the unit's catalog unit
+    (cm for lengths; for a mass unit, grams), or None."""
+    try:
+        s = clean_text(text)
+        m = _RANGE_PARTS.search(s)
+        if not m:
+            return None
+        unit = m.group("ub") or m.group("ua") or default_unit
+        factor = length_unit(unit) or mass_unit(unit) if unit else None
+        if factor is None:
+            return None
+        a, b = parse_number(m.group("a"), decimal_comma), parse_number(m.group("b"), decimal_comma)
+        if a is None or b is None or a <= 0 or b < a:
+            return None
+        return round(a * factor, 6), round(b * factor, 6)
+    except Exception:  # noqa: BLE001
+        return None
