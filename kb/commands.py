@@ -192,5 +192,20 @@ def sql(
 
 def register(app: typer.Typer) -> None:
     app.command("init")(init)
+    app.command("demo")(demo)
     app.command("sql")(sql)
     app.add_typer(catalog_app, name="catalog")
+
+
+def demo(
+    db: DbOption = None,
+    out: Annotated[Path, typer.Option("--out", help="Where to write the report.")] = Path("reports/demo"),
+    workers: Annotated[int, typer.Option(help="Simulation worker processes.")] = 2,
+    json_out: JsonOption = False,
+) -> None:
+    """The main job, offline: seed catalog -> ingest the demo storefront -> recall -> validate grasps -> report."""
+    from kb.mainjob import run_demo
+
+    result = run_demo(resolve_db(db), out, workers=workers)
+    if json_out:
+        emit(result.to_dict())
