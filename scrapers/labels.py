@@ -20,6 +20,7 @@ from __future__ import annotations
 import re
 import unicodedata
 from dataclasses import dataclass
+from functools import lru_cache
 
 from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
 
@@ -201,6 +202,16 @@ class LabelInfo:
 
 def classify_label(label: object) -> LabelInfo | None:
     """The measurement ``label`` names, or None when it names none (or something else, like a load)."""
+    if isinstance(label, str):
+        return _classify_cached(label) if len(label) <= 200 else None
+    try:
+        return _classify(label)
+    except Exception:  # noqa: BLE001
+        return None
+
+
+@lru_cache(maxsize=16384)
+def _classify_cached(label: str) -> LabelInfo | None:
     try:
         return _classify(label)
     except Exception:  # noqa: BLE001 - a label we cannot read is simply not a measurement label

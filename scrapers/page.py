@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 import re
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 from typing import Any
 
 from scrapers.quantities import decimal_comma_for
@@ -210,16 +210,13 @@ class Page:
         for event, el in walker:
             tag = el.tag if isinstance(el.tag, str) else ""
             if event == "start":
-                names = f"{el.get('id') or ''} {el.get('class') or ''}"
-                foreign = tag not in _NEVER_DROP and names.strip() and FOREIGN_CONTAINER.search(names)
-                if tag in _DROP_TAGS or not tag or foreign:
+                foreign, own_package = _container_kind(el.get("id"), el.get("class"))
+                if tag in _DROP_TAGS or not tag or (foreign and tag not in _NEVER_DROP):
                     walker.skip_subtree()
                     stack.append(stack[-1] if stack else False)
                     # an element skipped at "start" still gets its "end" event (for its tail)
                     continue
-                package = (stack[-1] if stack else False) or bool(
-                    names.strip() and PACKAGE_CONTAINER.search(names)
-                )
+                package = (stack[-1] if stack else False) or own_package
                 stack.append(package)
                 if el.text:
                     _add_line(lines, el.text, package, id(el))
@@ -230,6 +227,16 @@ class Page:
                     parent = el.getparent()
                     _add_line(lines, el.tail, stack[-1] if stack else False, id(parent))
         return lines
+
+
+@lru_cache(maxsize=8192)
+def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]:
+    """(holds other products, holds package values) for an element's id and class (cached: pages repeat
+    the same class strings thousands of times)."""
+    names = f"{ident or ''} {classes or ''}".strip()
+    if not names:
+        return False, False
+    return bool(FOREIGN_CONTAINER.search(names)), bool(PACKAGE_CONTAINER.search(names))
 
 
 def _add_line(lines: list[Line], text: str, package: bool, group: int) -> None:

@@ -38,7 +38,7 @@ def _row_info(row_class: str, label: str) -> LabelInfo | None:
 def woocommerce(page: Page) -> list[Observation]:
     """WooCommerce attributes table (weight, L × W × H) and variations JSON."""
     tree = page.tree
-    if tree is None or "woocommerce" not in page.text[:2_000_000].lower():
+    if tree is None or ("woocommerce" not in page.text and "shop_attributes" not in page.text):
         return []
     pairs: list[Pair] = []
     for t, table in enumerate(tree.xpath(_TABLES)):
