@@ -1,0 +1,424 @@
+"""The grasp validation worker: objects x candidate grasps x seeds, in parallel, stored, resumable.
+
+:func:`validate` plans the ``top`` grasps of every requested object (sim/planner.py), skips the trials
+already stored in the knowledge base for the same (object, grasp type, seed, hand version, features
+hash), runs the rest through an :class:`~sim.executors.Executor` and stores every result in the
+``grasp_validations`` table. Results are written in batches (every ``flush_every`` results or
+``flush_seconds``), each through a short write connection: the database is never held while simulating,
+and a run that is interrupted keeps what it finished, so running it again resumes.
+
+The trial function runs in the worker processes. By default it is ``sim.trial:run_trial`` (MuJoCo is
+imported there, not here); any picklable module-level callable ``fn(obj, plan, *, seed) -> result``
+can be injected instead, where ``result`` is a TrialResult-like object (``to_dict()``) or a dict.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import importlib
+import json
+import re
+import time
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from kb.catalog import KnowledgeBase, features_hash
+from kb.errors import ObjrecallError, SimulationError
+from kb.features import ObjectRecord
+from sim.executors import Executor, make_executor
+from sim.grasps import GraspPlan
+from sim.planner import PLANNER_VERSION, plan_grasps
+
+__all__ = [
+    "DEFAULT_TOP",
+    "DEFAULT_TRIAL",
+    "TrialTask",
+    "ValidationSummary",
+    "current_hand_version",
+    "image_name",
+    "run_task",
+    "validate",
+]
+
+#: Candidate grasps validated per object.
+DEFAULT_TOP = 3
+#: The trial function, as "module:function", resolved inside each worker process.
+DEFAULT_TRIAL = "sim.trial:run_trial"
+DEFAULT_RENDER = "sim.render:render_trial"
+#: Rendered image size (pixels) for reports.
+IMAGE_SIZE = (480, 360)
+
+Trial = Callable[..., Any] | str
+
+
+def _resolve(fn: Trial) -> Callable[..., Any]:
+    if callable(fn):
+        return fn
+    module, _, name = str(fn).partition(":")
+    return getattr(importlib.import_module(module), name)
+
+
+def current_hand_version() -> str:
+    """The simulated hand's version string (stored with every result; a new hand re-runs the trials)."""
+    try:
+        hand = importlib.import_module("sim.hand")
+    except ModuleNotFoundError:
+        return ""
+    for attr in ("HAND_VERSION", "VERSION", "__version__"):
+        if hasattr(hand, attr):
+            return str(getattr(hand, attr))
+    return ""
+
+
+def image_name(object_name: str, grasp_type: str) -> str:
+    """A safe file name for an object's grasp image (names may hold any text from scraped pages)."""
+    slug = re.sub(r"[^a-z0-9]+", "-", object_name.lower()).strip("-")[:40] or "object"
+    digest = hashlib.sha1(f"{object_name}\x00{grasp_type}".encode()).hexdigest()[:10]
+    return f"{slug}-{grasp_type}-{digest}.png"
+
+
+@dataclass(frozen=True)
+class TrialTask:
+    """One unit of work for a worker process: a trial, a render, or both."""
+
+    obj: ObjectRecord
+    plan: GraspPlan
+    rank: int
+    seed: int
+    features_hash: str
+    object_id: int | None = None
+    trial: Trial | None = DEFAULT_TRIAL  # None: render only (the trial is stored already)
+    render: Trial | None = None
+    image_path: str | None = None
+    hand_version: str = ""
+
+
+def _result_dict(result: Any) -> dict[str, Any]:
+    if isinstance(result, dict):
+        return dict(result)
+    if hasattr(result, "to_dict"):
+        return dict(result.to_dict())
+    if dataclasses.is_dataclass(result) and not isinstance(result, type):
+        return dataclasses.asdict(result)
+    raise SimulationError(f"trial returned {type(result).__name__}, not a result record")
+
+
+def _num(value: Any) -> float | None:
+    try:
+        out = float(value)
+    except (TypeError, ValueError):
+        return None
+    return None if out != out else out  # NaN -> None
+
+
+def run_task(task: TrialTask) -> dict[str, Any]:
+    """Run one task (in a worker process) and return its ``grasp_validations`` row.
+
+    A :class:`SimulationError` from the trial is a result (outcome ``error``) and is stored; any other
+    exception is a bug or a missing dependency: the row gets ``store = False`` so a rerun tries again.
+    """
+    row: dict[str, Any] = {
+        "object_name": task.obj.name,
+        "object_id": task.object_id,
+        "features_hash": task.features_hash,
+        "grasp_type": task.plan.grasp_type,
+        "family": task.plan.family,
+        "rank": task.rank,
+        "seed": task.seed,
+        "planner_version": PLANNER_VERSION,
+        "hand_version": task.hand_version,
+        "store": task.trial is not None,
+    }
+    details: dict[str, Any] = {"plan": task.plan.to_dict()}
+    if task.trial is not None:
+        start = time.perf_counter()
+        try:
+            res = _result_dict(_resolve(task.trial)(task.obj, task.plan, seed=task.seed))
+        except SimulationError as err:
+            res = {"outcome": "error", "success": False, "reason": str(err)}
+        except Exception as err:  # noqa: BLE001 - reported, not stored
+            res = {"outcome": "error", "success": False, "reason": f"{type(err).__name__}: {err}"}
+            row["store"] = False
+        outcome = res.get("outcome") or ("success" if res.get("success") else "failure")
+        row.update(
+            outcome=outcome,
+            success=bool(res.get("success")) and outcome == "success",
+            reason=res.get("reason"),
+            slip_cm=_num(res.get("slip_cm")),
+            rotation_deg=_num(res.get("rotation_deg")),
+            grip_force_n=_num(res.get("grip_force_n", task.plan.grip_force_n)),
+            max_contact_force_n=_num(res.get("max_contact_force_n")),
+            simulator=res.get("simulator"),
+        )
+        if res.get("hand_version") and str(res["hand_version"]) != task.hand_version:
+            details["trial_hand_version"] = str(res["hand_version"])  # the key keeps the planned version
+        for key in ("lifted", "perturbation", "sim_time_s", "wall_time_s"):
+            if key in res:
+                details[key] = res[key]
+        details.setdefault("wall_time_s", round(time.perf_counter() - start, 4))
+    if task.render is not None and task.image_path:
+        try:
+            png = _resolve(task.render)(
+                task.obj, task.plan, seed=task.seed, width=IMAGE_SIZE[0], height=IMAGE_SIZE[1]
+            )
+            path = Path(task.image_path)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_bytes(png)
+            details["image"] = path.name
+        except Exception as err:  # noqa: BLE001 - a report without one image is still a report
+            details["image_error"] = f"{type(err).__name__}: {err}"
+    row["details"] = json.dumps(details, default=str)
+    return row
+
+
+@dataclass
+class ValidationSummary:
+    """What a validation run did. ``results`` holds every requested trial's row (run now or stored
+    before), with the object's shape and material, ordered by object, rank and seed."""
+
+    objects: int = 0
+    trials: int = 0
+    skipped: int = 0
+    ran: int = 0
+    succeeded: int = 0
+    failed: int = 0
+    errors: int = 0
+    not_stored: int = 0
+    wall_time_s: float = 0.0
+    hand_version: str = ""
+    workers: int = 1
+    executor: str = ""
+    report: Path | None = None
+    results: list[dict[str, Any]] = field(default_factory=list)
+
+    def to_dict(self, *, with_results: bool = True) -> dict[str, Any]:
+        d = dataclasses.asdict(self)
+        d["report"] = str(self.report) if self.report else None
+        if not with_results:
+            d.pop("results")
+        return d
+
+
+def _objects(kb: KnowledgeBase, names: Sequence[str] | str | None) -> list[ObjectRecord]:
+    if names is None or names == "all" or (not isinstance(names, str) and len(names) == 0):
+        return kb.list_objects()
+    if isinstance(names, str):
+        names = [names]
+    seen: dict[str, ObjectRecord] = {}
+    for name in names:
+        rec = kb.get_object(name)
+        seen.setdefault(rec.name, rec)
+    return list(seen.values())
+
+
+def _object_ids(kb: KnowledgeBase) -> dict[str, int]:
+    with kb.connect() as con:
+        return {name: oid for oid, name in con.execute("SELECT id, name FROM objects").fetchall()}
+
+
+def _stored(kb: KnowledgeBase, names: Iterable[str]) -> dict[tuple, dict[str, Any]]:
+    """Stored rows keyed by (object, grasp type, seed, hand version, features hash)."""
+    names = list(names)
+    if not names:
+        return {}
+    with kb.connect() as con:
+        cur = con.execute("SELECT * FROM grasp_validations WHERE list_contains(?, object_name)", [names])
+        cols = [d[0] for d in cur.description]
+        rows = [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+    return {
+        (r["object_name"], r["grasp_type"], r["seed"], r["hand_version"], r["features_hash"]): r for r in rows
+    }
+
+
+def _progress(enabled: bool, total: int):
+    from contextlib import nullcontext
+
+    if not enabled or total == 0:
+        return nullcontext(None)
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+    return Progress(
+        TextColumn("[bold]grasp trials"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("{task.fields[last]}"),
+        TimeRemainingColumn(),
+        console=Console(stderr=True),
+        transient=False,
+    )
+
+
+def validate(
+    kb: KnowledgeBase,
+    names: Sequence[str] | str | None = None,
+    *,
+    top: int = DEFAULT_TOP,
+    seeds: Iterable[int] = (0,),
+    workers: int | None = None,
+    executor: Executor | str = "local",
+    address: str | None = None,
+    report_dir: str | Path | None = None,
+    progress: bool = True,
+    limit: int | None = None,
+    trial: Trial = DEFAULT_TRIAL,
+    render: Trial | None = DEFAULT_RENDER,
+    hand_version: str | None = None,
+    flush_every: int = 25,
+    flush_seconds: float = 5.0,
+    clock: Callable[[], float] = time.monotonic,
+) -> ValidationSummary:
+    """Validate the ``top`` planned grasps of ``names`` (None, ``"all"`` or [] = every object) for each
+    seed, store the results and optionally write an HTML report to ``report_dir``.
+
+    ``executor`` is an :class:`Executor` or a name (``local``, ``serial``, ``ray``; ``workers`` and
+    ``address`` configure it). ``limit`` stops after that many new trials (the rest resume later).
+    ``render`` renders the best plan of each object into the report (only with ``report_dir``).
+    Raises ObjectNotFound for an unknown name.
+    """
+    t0 = clock()
+    seeds = list(dict.fromkeys(int(s) for s in seeds))
+    if top < 1:
+        raise ObjrecallError(f"top must be at least 1, not {top}")
+    objects = _objects(kb, names)
+    hand = current_hand_version() if hand_version is None else hand_version
+    ids = _object_ids(kb)
+    stored = _stored(kb, [o.name for o in objects])
+    report_path = Path(report_dir) if report_dir is not None else None
+    image_dir = report_path / "images" if report_path is not None else None
+
+    tasks: list[TrialTask] = []
+    wanted: list[tuple] = []
+    meta: dict[str, dict[str, Any]] = {}
+    skipped = 0
+    for obj in objects:
+        fh = features_hash(obj)
+        meta[obj.name] = {"shape": obj.shape, "material": obj.material}
+        for rank, plan in enumerate(plan_grasps(obj, top=top)):
+            for seed in seeds:
+                key = (obj.name, plan.grasp_type, seed, hand, fh)
+                wanted.append(key)
+                want_image = image_dir is not None and render is not None and rank == 0 and seed == seeds[0]
+                image_path = str(image_dir / image_name(obj.name, plan.grasp_type)) if want_image else None
+                if key in stored:
+                    skipped += 1
+                    if image_path and not Path(image_path).exists():
+                        tasks.append(
+                            TrialTask(
+                                obj, plan, rank, seed, fh, ids.get(obj.name), None, render, image_path, hand
+                            )
+                        )
+                    continue
+                tasks.append(
+                    TrialTask(
+                        obj,
+                        plan,
+                        rank,
+                        seed,
+                        fh,
+                        ids.get(obj.name),
+                        trial,
+                        render if image_path else None,
+                        image_path,
+                        hand,
+                    )
+                )
+    trial_tasks = [t for t in tasks if t.trial is not None]
+    if limit is not None:
+        keep = {id(t) for t in trial_tasks[: max(0, int(limit))]}
+        tasks = [t for t in tasks if t.trial is None or id(t) in keep]
+        trial_tasks = [t for t in trial_tasks if id(t) in keep]
+
+    if isinstance(executor, str):
+        executor_name = executor
+        ex: Executor = make_executor(executor, workers=workers, address=address)
+        owns = True
+    else:
+        executor_name = type(executor).__name__
+        ex, owns = executor, False
+
+    summary = ValidationSummary(
+        objects=len(objects),
+        trials=len(wanted),
+        skipped=skipped,
+        hand_version=hand,
+        workers=getattr(ex, "workers", 1),
+        executor=executor_name,
+    )
+    buffer: list[dict[str, Any]] = []
+    new_rows: dict[tuple, dict[str, Any]] = {}
+    images: dict[tuple, dict[str, Any]] = {}
+    last_flush = clock()
+
+    def flush() -> None:
+        nonlocal last_flush
+        rows = [r for r in buffer if r.get("store")]
+        if rows:
+            kb.record_grasp_results([{k: v for k, v in r.items() if k != "store"} for r in rows])
+        buffer.clear()
+        last_flush = clock()
+
+    try:
+        with _progress(progress, len(tasks)) as bar:
+            job = bar.add_task("trials", total=len(tasks), last="") if bar is not None else None
+            for row in ex.map(run_task, tasks):
+                key = (
+                    row["object_name"],
+                    row["grasp_type"],
+                    row["seed"],
+                    row["hand_version"],
+                    row["features_hash"],
+                )
+                if "outcome" not in row:  # render-only task
+                    images[key] = json.loads(row["details"])
+                else:
+                    summary.ran += 1
+                    outcome = row["outcome"]
+                    summary.succeeded += outcome == "success"
+                    summary.failed += outcome == "failure"
+                    summary.errors += outcome == "error"
+                    summary.not_stored += not row["store"]
+                    new_rows[key] = row
+                    buffer.append(row)
+                if bar is not None:
+                    bar.update(job, advance=1, last=f"{row['object_name'][:30]} {row['grasp_type']}")
+                if len(buffer) >= flush_every or (buffer and clock() - last_flush >= flush_seconds):
+                    flush()
+    finally:
+        flush()
+        if owns:
+            ex.close()
+
+    results: list[dict[str, Any]] = []
+    for key in wanted:
+        row = new_rows.get(key) or stored.get(key)
+        if row is None:
+            continue  # not run (limit) or not stored
+        row = {k: v for k, v in row.items() if k != "store"}
+        if key in images:
+            details = _details(row)
+            details.update({k: v for k, v in images[key].items() if k in ("image", "image_error")})
+            row["details"] = json.dumps(details, default=str)
+        row.update(meta.get(row["object_name"], {}))
+        results.append(row)
+    summary.results = results
+    if report_path is not None:
+        from sim.report import write_report
+
+        summary.report = write_report(results, report_path)
+    summary.wall_time_s = round(clock() - t0, 3)
+    return summary
+
+
+def _details(row: dict[str, Any]) -> dict[str, Any]:
+    raw = row.get("details")
+    if isinstance(raw, dict):
+        return dict(raw)
+    try:
+        out = json.loads(raw) if raw else {}
+    except (TypeError, ValueError):
+        return {}
+    return out if isinstance(out, dict) else {}
