@@ -23,6 +23,7 @@ ULEN    a length unit; UMASS a mass unit; UVOL a volume unit (contents)
 DIM     a dimension word (its role is in :data:`DIMENSION_WORDS`)
 HA/HL/HU/HX  hedges: about / at least / at most / exact (:data:`HEDGES`)
 HS      a trailing hedge: "or so", "or thereabouts"
+UAND    ``and`` joining a unit to a fraction: "an inch and a half" (set in context)
 RTO     a range connector: ``to``, ``-``, ``or``; BETW ``between``/``from``
 BY      a multiplication sign of "10 x 5 x 2 cm", "three by four"
 BE      a linking word between a dimension noun and its value: is, are, measures, ``:``, ``=``
@@ -94,13 +95,14 @@ CONTENTS_DENSITY_G_PER_ML = 1.0
 
 # ------------------------------------------------------------------------------------------ dimensions
 #: Dimension words (tag DIM) -> role. Roles: ``length`` (usually the largest, a), ``width`` (b),
-#: ``thickness`` (usually the smallest, c), ``diameter`` (two equal dims), ``radius`` (doubled to a
-#: diameter), ``side`` (a cube: all three equal), ``size`` (an unlabelled extent).
+#: ``depth`` (b, or c when alone with a width), ``thickness`` (usually the smallest, c), ``diameter``
+#: (two equal dims), ``radius`` (doubled to a diameter), ``across`` (a diameter for a round thing, else
+#: a width), ``side`` (a cube: all three equal), ``size`` (an unlabelled extent).
 DIMENSION_WORDS: dict[str, str] = {
     "long": "length", "length": "length", "lengthwise": "length", "lengths": "length",
     "tall": "length", "height": "length", "high": "length", "heigth": "length",
-    "wide": "width", "width": "width", "across": "width", "broad": "width", "breadth": "width",
-    "thick": "thickness", "thickness": "thickness", "deep": "thickness", "depth": "thickness",
+    "wide": "width", "width": "width", "across": "across", "broad": "width", "breadth": "width",
+    "thick": "thickness", "thickness": "thickness", "deep": "depth", "depth": "depth",
     "diameter": "diameter", "diam": "diameter", "dia": "diameter", "diametre": "diameter",
     "radius": "radius",
     "side": "side", "sides": "side", "edge": "side", "edges": "side", "on each side": "side",
@@ -165,7 +167,7 @@ MATERIAL_WORDS: dict[str, str] = {
     "fabric": "fabric", "cloth": "fabric", "cotton": "fabric", "textile": "fabric", "felt": "fabric",
     "wool": "fabric", "woolen": "fabric", "woollen": "fabric", "polyester": "fabric", "denim": "fabric",
     "linen": "fabric", "silk": "fabric", "canvas": "fabric", "fleece": "fabric", "knitted": "fabric",
-    "leather": "fabric", "microfiber": "fabric", "microfibre": "fabric", "terry": "fabric",
+    "microfiber": "fabric", "microfibre": "fabric", "terry": "fabric",
     "glass": "glass", "glassy": "glass", "crystal": "glass",
     "plastic": "plastic", "plastics": "plastic", "polycarbonate": "plastic", "acrylic": "plastic",
     "pvc": "plastic", "vinyl": "plastic", "polypropylene": "plastic", "polyethylene": "plastic",
@@ -174,19 +176,19 @@ MATERIAL_WORDS: dict[str, str] = {
     "ceramic": "other", "ceramics": "other", "porcelain": "other", "stone": "other", "clay": "other",
     "marble": "other", "terracotta": "other", "granite": "other", "foam": "other", "sponge": "other",
     "wax": "other", "soap": "other", "stoneware": "other", "earthenware": "other", "concrete": "other",
-    "chalk": "other", "graphite": "other",
+    "chalk": "other", "graphite": "other", "leather": "other", "leathery": "other",
 }  # fmt: skip
 #: Shape words -> :data:`kb.features.SHAPES`, with a priority: when several shape words occur, the
 #: highest priority wins (geometric adjectives 3 > object-kind nouns 2 > vague words 1), ties go to the
 #: first. "long" as a shape only counts when it is not part of a dimension ("15 cm long").
 SHAPE_WORDS: dict[str, tuple[str, int]] = {
-    "flat": ("thin", 3), "thin": ("thin", 2), "card": ("thin", 2), "sheet": ("thin", 2),
+    "flat": ("thin", 3), "thin": ("thin", 1), "card": ("thin", 2), "sheet": ("thin", 2),
     "slim": ("thin", 2), "plate": ("thin", 2), "flattened": ("thin", 3), "sheet-like": ("thin", 3),
     "slab": ("thin", 2), "wafer": ("thin", 2), "pad": ("thin", 1), "envelope": ("thin", 2),
     "booklet": ("thin", 2), "notebook": ("thin", 2), "book": ("thin", 1), "tablet": ("thin", 1),
     "phone": ("thin", 1), "smartphone": ("thin", 1), "wallet": ("thin", 1), "coaster": ("thin", 2),
     "cube": ("compact", 3), "cubic": ("compact", 3), "cubical": ("compact", 3), "cube-shaped": ("compact", 3),
-    "block": ("compact", 2), "chunky": ("compact", 2), "compact": ("compact", 3), "lump": ("compact", 2),
+    "block": ("prism", 2), "chunky": ("compact", 2), "compact": ("compact", 3), "lump": ("compact", 2),
     "nugget": ("compact", 2), "squat": ("compact", 2), "stubby": ("compact", 2),
     "cylindrical": ("prism", 3), "cylinder": ("prism", 3), "prism": ("prism", 3), "prismatic": ("prism", 3),
     "rectangular": ("prism", 2), "box": ("prism", 1), "boxy": ("prism", 2), "cuboid": ("prism", 3),
@@ -196,16 +198,15 @@ SHAPE_WORDS: dict[str, tuple[str, int]] = {
     "wedge": ("prism", 2), "triangular": ("prism", 3), "hexagonal": ("prism", 3),
     "long": ("long", 2), "elongated": ("long", 3), "stick": ("long", 2), "rod": ("long", 2),
     "rod-shaped": ("long", 3), "stick-like": ("long", 3), "pen": ("long", 2), "pencil": ("long", 2),
-    "straw": ("long", 2), "skinny": ("long", 2), "slender": ("long", 3), "handle": ("long", 1),
-    "bar": ("long", 1), "spoon": ("long", 2), "fork": ("long", 2), "knife": ("long", 2),
+    "straw": ("long", 2), "skinny": ("long", 2), "slender": ("long", 3), "bar": ("long", 1), "spoon": ("long", 2), "fork": ("long", 2), "knife": ("long", 2),
     "brush": ("long", 1), "screwdriver": ("long", 2), "wand": ("long", 2), "baton": ("long", 2),
     "marker": ("long", 2), "remote": ("long", 1), "ruler": ("long", 2), "chopstick": ("long", 2),
     "round": ("radial", 2), "ball": ("radial", 3), "sphere": ("radial", 3), "spherical": ("radial", 3),
     "globe": ("radial", 2), "orb": ("radial", 2), "ball-shaped": ("radial", 3), "circular": ("radial", 2),
-    "disc": ("radial", 2), "disk": ("radial", 2), "disc-shaped": ("radial", 3), "ring": ("radial", 2),
+    "disc": ("compact", 2), "disk": ("compact", 2), "disc-shaped": ("compact", 3),
     "dome": ("radial", 2), "egg": ("radial", 2), "oval": ("radial", 1), "orange": ("radial", 1),
-    "apple": ("radial", 1), "lid": ("radial", 1), "cap": ("radial", 1), "knob": ("radial", 1),
-    "coin": ("radial", 2), "puck": ("radial", 2), "doughnut": ("radial", 2), "donut": ("radial", 2),
+    "apple": ("radial", 1), "cap": ("compact", 1), "knob": ("radial", 1),
+    "coin": ("thin", 2), "puck": ("radial", 2), "doughnut": ("radial", 2), "donut": ("radial", 2),
 }  # fmt: skip
 #: Shape cues used by the dimension rules (see PARSER.md): a single stated extent of a cube or a ball
 #: is all three dimensions; a diameter alone of a cylinder fills b = c, of a disc a = b.
@@ -215,12 +216,20 @@ SPHERE_WORDS: frozenset[str] = frozenset(
 )
 CYLINDER_WORDS: frozenset[str] = frozenset(
     {"cylindrical", "cylinder", "can", "tube", "tubular", "bottle", "jar", "mug", "cup", "canister", "rod",
-     "stick", "pen", "pencil", "straw", "roll", "pipe", "candle", "glass", "tumbler", "thermos", "flask",
+     "stick", "pen", "pencil", "straw", "roll", "pipe", "candle", "tumbler", "thermos", "flask",
      "marker", "baton", "dowel", "vase", "spool"}
 )  # fmt: skip
 DISC_WORDS: frozenset[str] = frozenset(
     {"disc", "disk", "disc-shaped", "coin", "plate", "lid", "cap", "coaster", "puck", "flat", "frisbee",
      "saucer", "ring", "wheel", "doughnut", "donut", "cd", "dvd", "button", "record", "pancake"}
+)  # fmt: skip
+
+#: Words that make a width of a round object its diameter, besides the sphere/cylinder/disc words.
+ROUND_WORDS: frozenset[str] = frozenset({"round", "circular", "cylindrical", "rounded", "tealight"})
+#: "can" is a container (a cylinder cue) only after one of these words or before "of".
+CAN_PRECEDERS: frozenset[str] = frozenset(
+    {"a", "the", "tin", "soda", "food", "metal", "aluminum", "aluminium", "beer", "tuna", "soup", "paint",
+     "small", "large", "short", "tall", "empty", "steel", "drink", "coke", "pop", "flat", "squat"}
 )  # fmt: skip
 
 RIGIDITY_WORDS: dict[str, str] = {
@@ -294,12 +303,15 @@ FUNCTION_WORDS: dict[str, str] = {
     ".": "SEP", "!": "SEP", "?": "SEP", ";": "SEP", ",": "CM", "(": "CM", ")": "CM",
 }  # fmt: skip
 
+#: Compound nouns whose first word is not what the object is made of (merged, tagged W).
+COMPOUND_NOUNS: frozenset[str] = frozenset({"paper clip", "paper clips", "glass cleaner"})
+
 #: Multi-word expressions merged into one token before tagging (longest match first).
 MULTIWORD: tuple[str, ...] = tuple(
     sorted(
         {w for table in (HEDGES, TRAILING_HEDGES, DIMENSION_WORDS, VOLUME_UNITS, MATERIAL_WORDS, SHAPE_WORDS,
                          FUNCTION_WORDS) for w in table if " " in w}
-        | {"can hold", "could hold"},
+        | {"can hold", "could hold"} | COMPOUND_NOUNS,
         key=lambda w: (-len(w.split()), w),
     )
 )  # fmt: skip

@@ -80,6 +80,7 @@ RANGE:
   {<BETW><NUM><UNIT>?<AND|RTO><NUM>}
   {<NUM><UNIT>?<RTO><NUM>}
 QUANT:
+  {<HEDGE>?<NUM><OF>?<A>?<UNIT><UAND><NUM><HS>?}
   {<HEDGE>?<NUM|RANGE><OF>?<A>?<UNIT><HS>?}
   {<HEDGE>?<NUM|RANGE><HS>?}
 MULTI:
@@ -422,6 +423,7 @@ class DescriptionParser:
     def _quantity(self, chunk: Tree, toks: list[_Token], pos: int) -> _Quantity | None:
         """Read a QUANT chunk: hedge, number or range, unit."""
         qualifier = "exact"
+        plus = False
         numbers: list[float] = []
         unit: Unit | None = None
         j = 0
@@ -436,7 +438,10 @@ class DescriptionParser:
                     value = _num(part)
                     if value is None:
                         return None
-                    numbers.append(value)
+                    if plus and numbers:
+                        numbers[-1] += value  # "an inch and a half"
+                    else:
+                        numbers.append(value)
                 elif label == "RANGE":
                     r = 0
                     for rsub in sub:
@@ -458,6 +463,7 @@ class DescriptionParser:
             else:
                 if toks[j].tag == "HS":
                     qualifier = "about"
+                plus = toks[j].tag == "UAND"
                 j += 1
         if not numbers:
             return None
@@ -506,7 +512,7 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
         elif tag in _UNIT_TAGS and not prev_num:
             before_a = out[-2] if len(out) >= 2 else None
             if prev is not None and prev.tag == "A" and len(tok.low) > 2:
-                if before_a is None or before_a.tag not in _NUMBER_TAGS:
+                if before_a is None or (before_a.tag not in _NUMBER_TAGS and before_a.tag != "OF"):
                     prev.tag = "NW"  # "a liter of water", "about a foot long": "a" is one; not "half a liter"
             elif not (prev is not None and prev.tag == "A"):
                 tag = "W"  # "cm" with no number, "m" in "I m", a "cup" of coffee
@@ -518,6 +524,17 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
         elif tag == "BETW":
             if nxt is None or nxt.tag not in _NUMBER_TAGS:
                 tag = "W"
+        elif tag == "AND" and prev is not None and prev.tag in _UNIT_TAGS and nxt is not None:
+            after = tokens[i + 2] if i + 2 < n else None
+            if nxt.low in lx.FRACTION_WORDS or (
+                nxt.tag == "A" and after is not None and after.low in lx.FRACTION_WORDS
+            ):
+                tag = "UAND"  # "an inch and a half", "a pound and a quarter"
+        elif tok.low == "can" and tag == "SHP":
+            if not (
+                (prev is not None and prev.low in lx.CAN_PRECEDERS) or (nxt is not None and nxt.low == "of")
+            ):
+                tag = "W"  # "it can hold": a verb
         elif tag == "MH" and tok.low == "light" and nxt is not None and nxt.low in lx.COLOUR_WORDS:
             tag = "W"
         elif tag == "FRC" and tok.low in ("quarter", "quarters", "third", "thirds"):
@@ -576,7 +593,8 @@ def _negated(segment: list[_Token], i: int) -> bool:
 def _read_categories(segment: list[_Token], base: int, reading: _Reading) -> None:
     for i, tok in enumerate(segment):
         pos = base + i
-        reading.cue_words.add(tok.low)
+        if not (tok.low == "can" and tok.tag != "SHP"):
+            reading.cue_words.add(tok.low)
         tag = tok.tag
         if tag == "MH":
             hint = lx.MASS_HINT_WORDS[tok.low]
@@ -675,79 +693,87 @@ def _to_cm(q: _Quantity, reading: _Reading, stmt: _DimStatement, scale: float = 
 
 
 def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvidence]) -> None:
+    """Assign the stated extents to a >= b >= c (rules in recall/PARSER.md, "Dimensions")."""
     cues = reading.cue_words
     cube = bool(cues & lx.CUBE_WORDS)
     sphere = bool(cues & lx.SPHERE_WORDS)
     cylinder = bool(cues & lx.CYLINDER_WORDS)
     disc = bool(cues & lx.DISC_WORDS)
+    round_cue = sphere or cylinder or bool(cues & (lx.ROUND_WORDS | (lx.DISC_WORDS - {"flat", "cap"})))
     slots: dict[str, _Dim] = {}
+    abc = ("a_cm", "b_cm", "c_cm")
 
     def put(names: Sequence[str], dims: Sequence[_Dim]) -> None:
         ordered = sorted(dims, key=lambda d: -d.value)
         for name, dim in zip(names, ordered, strict=False):
             slots[name] = dim
 
+    by_role: dict[str, _Dim] = {}
+    for stmt in reading.dims:
+        role = stmt.role
+        if role == "radius":
+            role = "diameter"
+        elif role == "across":
+            role = "diameter" if round_cue else "width"
+        if role in by_role:
+            continue
+        dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)
+        if dim is not None:
+            by_role[role] = dim
+    three = "length" in by_role and ("thickness" in by_role or "depth" in by_role)
+    if round_cue and "diameter" not in by_role and "width" in by_role and not three:
+        by_role["diameter"] = by_role.pop("width")  # "a mug 8 cm wide": the width of a round thing
     if reading.multis:
         stmt = reading.multis[0]
         dims = [d for q in stmt.quantities if (d := _to_cm(q, reading, stmt)) is not None]
         if len(dims) == 2:
-            thick = _first(reading, "thickness")
-            if thick is not None:
-                dims.append(thick)
-        put(("a_cm", "b_cm", "c_cm"), dims[:3])
+            extra = by_role.get("thickness") or by_role.get("depth")
+            if extra is not None:
+                dims.append(extra)
+        put(abc, dims[:3])
+    elif "side" in by_role:
+        side = by_role["side"]
+        put(abc, [side, side, side])
+    elif "diameter" in by_role:
+        diameter = by_role["diameter"]
+        other = next((by_role[r] for r in ("length", "thickness", "depth", "width") if r in by_role), None)
+        if other is not None:
+            put(abc, [diameter, diameter, other])
+        elif sphere:
+            put(abc, [diameter, diameter, diameter])
+        elif cylinder and not disc:
+            put(("b_cm", "c_cm"), [diameter, diameter])
+        else:
+            put(("a_cm", "b_cm"), [diameter, diameter])
     else:
-        by_role: dict[str, _Dim] = {}
-        for stmt in reading.dims:
-            if stmt.role in by_role or (stmt.role == "diameter" and "radius" in by_role):
-                continue
-            if stmt.role == "radius" and "diameter" in by_role:
-                continue
-            dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)
-            if dim is not None:
-                by_role["diameter" if stmt.role == "radius" else stmt.role] = dim
-        length, width, thick = by_role.get("length"), by_role.get("width"), by_role.get("thickness")
-        diameter, side = by_role.get("diameter"), by_role.get("side")
-        labeled = [(d, r) for d, r in ((length, 0), (width, 1), (thick, 2)) if d is not None]
-        if side is not None:
-            put(("a_cm", "b_cm", "c_cm"), [side, side, side])
-        elif diameter is not None:
-            others = [d for d in (length, thick) if d is not None] or ([width] if width is not None else [])
-            if others:
-                put(("a_cm", "b_cm", "c_cm"), [diameter, diameter, others[0]])
-            elif sphere:
-                put(("a_cm", "b_cm", "c_cm"), [diameter, diameter, diameter])
-            elif cylinder and not disc:
-                put(("b_cm", "c_cm"), [diameter, diameter])
+        linear = [(by_role[r], r) for r in ("length", "width", "depth", "thickness") if r in by_role]
+        linear.sort(key=lambda dr: dr[0].start)
+        if len(linear) == 1 and (cube or sphere):
+            d = linear[0][0]
+            put(abc, [d, d, d])
+        elif len(linear) >= 3:
+            put(abc, [d for d, _r in linear[:3]])
+        elif len(linear) == 2:
+            roles = {r for _d, r in linear}
+            if "thickness" in roles:
+                names = ("a_cm", "c_cm") if "length" in roles else ("b_cm", "c_cm")
             else:
-                put(("a_cm", "b_cm"), [diameter, diameter])
-        elif labeled:
-            if len(labeled) == 1 and (cube or sphere):
-                d = labeled[0][0]
-                put(("a_cm", "b_cm", "c_cm"), [d, d, d])
-            else:
-                names = ("a_cm", "b_cm", "c_cm")
-                ranks = sorted(r for _d, r in labeled)
-                if len(labeled) == 3:
-                    ranks = [0, 1, 2]
-                put([names[r] for r in ranks], [d for d, _r in labeled])
+                names = ("a_cm", "b_cm")
+            put(names, [d for d, _r in linear])
+        elif len(linear) == 1:
+            d, role = linear[0]
+            put([{"length": "a_cm", "width": "b_cm", "depth": "b_cm", "thickness": "c_cm"}[role]], [d])
         elif reading.sizes:
             sizes = [d for stmt in reading.sizes[:3] if (d := _to_cm(stmt.quantities[0], reading, stmt))]
             if len(sizes) == 1 and (cube or sphere):
-                put(("a_cm", "b_cm", "c_cm"), sizes * 3)
+                put(abc, sizes * 3)
             else:
-                put(("a_cm", "b_cm", "c_cm"), sizes)
+                put(abc, sizes)
     for name, dim in slots.items():
         features[name] = FeatureEvidence(
             name, round(dim.value, 4), dim.qualifier, _r(dim.low), _r(dim.high), text[dim.start : dim.end],
             dim.start, dim.end,
         )  # fmt: skip
-
-
-def _first(reading: _Reading, role: str) -> _Dim | None:
-    for stmt in reading.dims:
-        if stmt.role == role:
-            return _to_cm(stmt.quantities[0], reading, stmt)
-    return None
 
 
 def _r(value: float | None) -> float | None:
