@@ -1,0 +1,82 @@
+"""Offscreen pictures of a grasp trial (PNG bytes), for the validation reports.
+
+MuJoCo renders with OpenGL. Without a display, choose a headless backend *before mujoco is imported*:
+``MUJOCO_GL=egl`` (Debian packages libegl1 libegl-mesa0 libgl1-mesa-dri: Mesa's software rasteriser
+behind EGL, no GPU needed) or ``MUJOCO_GL=osmesa`` (libosmesa6). Importing this module first sets
+``MUJOCO_GL=egl`` when no backend is chosen and there is no X display.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+import sys
+
+if "MUJOCO_GL" not in os.environ and sys.platform.startswith("linux") and not os.environ.get("DISPLAY"):
+    os.environ["MUJOCO_GL"] = "egl"
+
+import mujoco  # noqa: E402
+import numpy as np  # noqa: E402
+
+from kb.errors import SimulationError  # noqa: E402
+from kb.features import ObjectRecord  # noqa: E402
+from sim.grasps import GraspPlan  # noqa: E402
+from sim.trial import TrialWorld, build_world, run_trial  # noqa: E402
+
+__all__ = ["encode_png", "render_trial", "render_world"]
+
+GL_HINT = (
+    "offscreen rendering needs an OpenGL backend: set MUJOCO_GL=egl (apt install libegl1 libegl-mesa0 "
+    "libgl1-mesa-dri) or MUJOCO_GL=osmesa (apt install libosmesa6) before Python starts"
+)
+
+
+def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> np.ndarray:
+    """An RGB image (height x width x 3, uint8) of the world's current state, looking at the object
+    from the front-left and slightly above, framed to show the hand around it."""
+    model, data = world.model, world.data
+    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
+    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+    cam = mujoco.MjvCamera()
+    cam.type = mujoco.mjtCamera.mjCAMERA_FREE
+    obj_pos = data.xpos[world.object_body]
+    palm_pos = data.xpos[world.palm_body]
+    cam.lookat[:] = 0.6 * obj_pos + 0.4 * palm_pos
+    size = max(world.obj.dims_cm) * 0.01
+    cam.distance = max(0.35, 2.2 * size)
+    cam.azimuth = -125.0
+    cam.elevation = -20.0
+    try:
+        renderer = mujoco.Renderer(model, height=height, width=width)
+    except Exception as exc:
+        raise SimulationError(f"could not start MuJoCo's renderer ({exc}); {GL_HINT}") from exc
+    try:
+        renderer.update_scene(data, camera=cam)
+        return renderer.render().copy()
+    except Exception as exc:
+        raise SimulationError(f"MuJoCo rendering failed ({exc}); {GL_HINT}") from exc
+    finally:
+        renderer.close()
+
+
+def encode_png(image: np.ndarray) -> bytes:
+    """PNG bytes of an RGB uint8 image (matplotlib's writer: no extra dependency)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.image
+
+    buf = io.BytesIO()
+    matplotlib.image.imsave(buf, image, format="png")
+    return buf.getvalue()
+
+
+def render_trial(
+    obj: ObjectRecord, plan: GraspPlan, *, seed: int = 0, width: int = 480, height: int = 360
+) -> bytes:
+    """PNG of ``plan`` on ``obj`` at the end of the hold phase (the object lifted in the hand), or at the
+    moment the trial stopped if the grasp failed before. Same seed, same picture as :func:`run_trial`'s
+    trial. Raises :class:`SimulationError` (with a hint about ``MUJOCO_GL``) if rendering is unavailable."""
+    world = build_world(obj, plan, seed=seed)
+    run_trial(obj, plan, seed=seed, stop_after="hold", world=world)
+    return encode_png(render_world(world, width=width, height=height))

@@ -1,0 +1,489 @@
+"""One grasp trial in MuJoCo: pre-shape, approach, close to the planned force, lift, hold, perturb.
+
+Protocol (constants below; sim/PHYSICS.md explains them):
+
+1. Build a world for this object and plan: a table (top at z = 0), the object resting on it with the
+   grasped dimension along world y (the hand's opposition axis), the hand above it (``top``) or beside it
+   (``side``), pre-shaped to the plan's aperture. If the pre-shaped hand, at its grasp pose, already
+   overlaps the object by more than :data:`PENETRATION_TOL_M`, the trial is a failure: the hand would
+   start inside the object.
+2. Settle, then approach 6 cm along the approach direction to the grasp pose.
+3. Close: digit targets ramp to beyond contact; each actuator's force limit is the torque for its share
+   of the planned grip force (sim/hand.py: grasp_targets).
+4. Lift the wrist 10 cm; hold; then push the object with a force of its own weight (m g) along +x, -x,
+   +y, -y, +z, -z in turn (as DexGraspBench does; gravity stays on).
+5. Success when, from the end of closing to the end of the perturbations, the object moved less than
+   5 cm and turned less than 15 degrees relative to the palm, and it was lifted.
+
+A diverged simulation (NaN or Inf in the state, or any MuJoCo warning counter) is an ``error`` outcome
+(:class:`kb.errors.PhysicsError` inside), never a success. The seed only adds small noise to the wrist's
+start (sigma 1 mm) and the pre-shape (sigma 0.01 rad); the same seed gives the same result.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import mujoco
+import numpy as np
+
+from kb.errors import PhysicsError, SimulationError
+from kb.features import ObjectRecord
+from sim import hand as H
+from sim.grasps import GRASP_TYPES, GraspPlan
+from sim.objects import ObjectModel, add_object, add_table, object_model
+
+__all__ = [
+    "LIFT_M",
+    "MAX_ROTATION_DEG",
+    "MAX_SLIP_CM",
+    "PERTURBATION_DIRECTIONS",
+    "TrialResult",
+    "TrialWorld",
+    "build_world",
+    "check_physics",
+    "run_trial",
+]
+
+GRAVITY = 9.81
+#: Success thresholds, relative to the palm (the issue's; DexGraspBench uses similar ones).
+MAX_SLIP_CM = 5.0
+MAX_ROTATION_DEG = 15.0
+#: Lift height and the fraction of it the object must follow to count as lifted.
+LIFT_M = 0.10
+LIFTED_FRACTION = 0.5
+#: The hand starts this far back along the approach direction.
+APPROACH_M = 0.06
+#: Gap between the palm face and the object in power grasps, and above it in precision grasps (m).
+PALM_CLEARANCE_CM = 0.4
+PRECISION_PALM_CLEARANCE_CM = 1.0
+#: Deeper overlap than this at the pre-grasp pose means the hand starts inside the object.
+PENETRATION_TOL_M = 0.002
+#: Phase durations (s). Closing ramps for CLOSE_RAMP_S then settles; each perturbation lasts PUSH_S.
+SETTLE_S = 0.04
+APPROACH_S = 0.3
+CLOSE_RAMP_S = 0.25
+CLOSE_HOLD_S = 0.15
+LIFT_S = 0.5
+HOLD_S = 0.3
+PUSH_S = 0.2
+#: Steps between control updates and measurements (10 ms at the 2 ms step).
+CONTROL_EVERY = 5
+PERTURBATION_DIRECTIONS: dict[str, tuple[float, float, float]] = {
+    "+x": (1.0, 0.0, 0.0),
+    "-x": (-1.0, 0.0, 0.0),
+    "+y": (0.0, 1.0, 0.0),
+    "-y": (0.0, -1.0, 0.0),
+    "+z": (0.0, 0.0, 1.0),
+    "-z": (0.0, 0.0, -1.0),
+}
+SIMULATOR = f"mujoco {mujoco.__version__}"
+
+
+@dataclass
+class TrialResult:
+    """The outcome of one trial. Lengths in cm, angles in degrees, forces in N, times in s.
+
+    ``outcome`` is 'success', 'failure' (the physics ran and the grasp did not hold) or 'error' (the
+    simulation diverged or could not run; never counted as either). ``slip_cm`` and ``rotation_deg`` are
+    the object's largest displacement and turn relative to the palm from the end of closing on;
+    ``grip_force_n`` the mean total normal force between hand and object during the hold;
+    ``perturbation`` maps each direction pushed to the displacement (relative to the palm) it caused.
+    """
+
+    object_name: str
+    grasp_type: str
+    family: str
+    seed: int
+    outcome: str
+    success: bool
+    reason: str
+    slip_cm: float = 0.0
+    rotation_deg: float = 0.0
+    grip_force_n: float = 0.0
+    max_contact_force_n: float = 0.0
+    lifted: bool = False
+    perturbation: dict[str, float] = field(default_factory=dict)
+    sim_time_s: float = 0.0
+    wall_time_s: float = 0.0
+    simulator: str = SIMULATOR
+    hand_version: str = H.HAND_VERSION
+
+    def to_dict(self) -> dict[str, Any]:
+        return asdict(self)
+
+
+# ---------------------------------------------------------------------------------------------------------
+# The world
+# ---------------------------------------------------------------------------------------------------------
+@dataclass
+class TrialWorld:
+    """A compiled world for one (object, plan) and the indices the trial reads."""
+
+    model: mujoco.MjModel
+    data: mujoco.MjData
+    obj: ObjectModel
+    plan: GraspPlan
+    targets: H.GraspTargets
+    approach_dir: np.ndarray
+    object_body: int
+    palm_body: int
+    hand_geoms: np.ndarray
+    object_geom: int
+    wrist_act: np.ndarray
+    digit_act: np.ndarray
+    wrist_qpos: np.ndarray
+
+    def palm_pose(self) -> tuple[np.ndarray, np.ndarray]:
+        return self.data.xpos[self.palm_body].copy(), self.data.xmat[self.palm_body].reshape(3, 3).copy()
+
+    def object_in_palm(self) -> tuple[np.ndarray, np.ndarray]:
+        """Object position and orientation matrix in the palm frame."""
+        p, r = self.palm_pose()
+        po = self.data.xpos[self.object_body]
+        ro = self.data.xmat[self.object_body].reshape(3, 3)
+        return r.T @ (po - p), r.T @ ro
+
+    def hand_contacts(self) -> list[tuple[int, float, float]]:
+        """(contact index, normal force N, distance m) of every hand-object contact."""
+        d = self.data
+        n = d.ncon
+        if n == 0:
+            return []
+        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
+        mask = ((g1 == self.object_geom) & np.isin(g2, self.hand_geoms)) | (
+            (g2 == self.object_geom) & np.isin(g1, self.hand_geoms)
+        )
+        out = []
+        buf = np.zeros(6)
+        for i in np.flatnonzero(mask):
+            mujoco.mj_contactForce(self.model, d, int(i), buf)
+            out.append((int(i), float(buf[0]), float(d.contact.dist[i])))
+        return out
+
+
+def _placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
+    """World axis of each catalog dimension: the grasped one along y (the opposition axis); of the other
+    two, for a top approach the larger along x and the smaller up (lying on its broad side); for a side
+    approach the larger up (standing, like a bottle) and the smaller along x, towards the palm."""
+    rest = sorted((d for d in "abc" if d != plan.grasped_dim), key=obj.extent_cm, reverse=True)
+    if plan.approach == "top":
+        return {plan.grasped_dim: 1, rest[0]: 0, rest[1]: 2}
+    return {plan.grasped_dim: 1, rest[0]: 2, rest[1]: 0}
+
+
+def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
+    """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
+    if plan.grasp_type not in GRASP_TYPES:
+        raise SimulationError(f"unknown grasp type {plan.grasp_type!r}")
+    if plan.approach not in H.APPROACH_QUAT:
+        raise SimulationError(f"unknown approach {plan.approach!r}: expected top or side")
+    model_obj = obj if isinstance(obj, ObjectModel) else object_model(obj)
+    rng = np.random.default_rng(seed)
+    axes = _placement(model_obj, plan)
+    ext = np.zeros(3)
+    for dim, ax in axes.items():
+        ext[ax] = model_obj.extent_cm(dim)
+    width = ext[1]
+    targets = H.grasp_targets(plan, width)
+    family = GRASP_TYPES[plan.grasp_type]
+
+    # Where the object's centre sits in the hand frame (cm).
+    depth = ext[2] if plan.approach == "top" else ext[0]  # extent along the approach axis
+    palm_face = -H.PALM_HALF_CM[2]
+    if family == "power":
+        x_c = 0.0
+        z_c = palm_face - PALM_CLEARANCE_CM - depth / 2.0
+    else:
+        x_c = float(np.mean([H.FINGER_BY_NAME[f].x_cm for f in targets.fingers]))
+        # Pads meet the object's sides at its centre (no gravity torque about the pinch axis) when they
+        # reach that far, else 3 cm below its near face.
+        grip_depth = min(depth / 2.0, 3.0)
+        z_c = min(
+            targets.contact_z_cm - depth / 2.0 + grip_depth,
+            palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,
+        )
+    center_h = np.array([x_c, targets.center_y_cm, z_c]) * H.CM
+
+    obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
+    rot = np.zeros(9)
+    mujoco.mju_quat2Mat(rot, np.array(H.APPROACH_QUAT[plan.approach]))
+    rot = rot.reshape(3, 3)
+    palm_pos = obj_pos - rot @ center_h
+    if plan.approach == "side":
+        # Keep the palm's lower edge above the table: the fingers spread vertically from its centre.
+        palm_pos[2] = max(palm_pos[2], (H.PALM_HALF_CM[0] + 0.3) * H.CM)
+    approach_dir = np.array([0.0, 0.0, 1.0]) if plan.approach == "top" else np.array([1.0, 0.0, 0.0])
+
+    spec = mujoco.MjSpec()
+    spec.modelname = "grasp_trial"
+    H.configure_options(spec)
+    spec.worldbody.add_light(pos=[0.3, -0.3, 0.8], dir=[-0.3, 0.3, -0.8], diffuse=[0.7, 0.7, 0.7])
+    add_table(spec)
+    add_object(spec, model_obj, axes, obj_pos)
+    H.add_hand(spec, approach=plan.approach, mount_m=palm_pos, torque_limits=targets.torque_limits)
+    try:
+        model = spec.compile()
+    except Exception as exc:
+        raise SimulationError(f"could not compile the trial model: {exc}") from exc
+    data = mujoco.MjData(model)
+
+    wrist_act = np.array([model.actuator(n).id for n in H.WRIST_ACTUATOR_NAMES])
+    digit_act = np.array([model.actuator(n).id for n in H.ACTUATOR_NAMES])
+    wrist_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.WRIST_JOINT_NAMES])
+    digit_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.JOINT_NAMES])
+    hand_bodies = {model.body(n).id for n in ("palm",)} | {
+        i for i in range(model.nbody) if i not in (0, model.body("object").id)
+    }
+    hand_geoms = np.array([g for g in range(model.ngeom) if model.geom_bodyid[g] in hand_bodies])
+
+    noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
+    open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
+    data.qpos[digit_qpos] = open_q
+    data.qpos[wrist_qpos] = noise
+    data.ctrl[digit_act] = open_q
+    data.ctrl[wrist_act] = noise
+    world = TrialWorld(
+        model=model,
+        data=data,
+        obj=model_obj,
+        plan=plan,
+        targets=targets,
+        approach_dir=approach_dir,
+        object_body=model.body("object").id,
+        palm_body=model.body("palm").id,
+        hand_geoms=hand_geoms,
+        object_geom=model.geom("object_geom").id,
+        wrist_act=wrist_act,
+        digit_act=digit_act,
+        wrist_qpos=wrist_qpos,
+    )
+    return world
+
+
+def check_physics(model: mujoco.MjModel, data: mujoco.MjData, where: str = "") -> None:
+    """Raise :class:`PhysicsError` if the state holds NaN/Inf or any MuJoCo warning fired (after
+    dm_control's ``Physics.check_invalid_state``)."""
+    for arr, name in ((data.qpos, "qpos"), (data.qvel, "qvel"), (data.qacc, "qacc")):
+        if not np.all(np.isfinite(arr)):
+            raise PhysicsError(f"simulation diverged{where}: non-finite {name} at t={data.time:.3f} s")
+    for i in range(int(mujoco.mjtWarning.mjNWARNING)):
+        if data.warning[i].number > 0:
+            name = mujoco.mjtWarning(i).name
+            raise PhysicsError(f"simulation diverged{where}: MuJoCo warning {name} at t={data.time:.3f} s")
+
+
+def _smooth(u: float) -> float:
+    u = min(max(u, 0.0), 1.0)
+    return u * u * (3.0 - 2.0 * u)
+
+
+class _Runner:
+    """Steps a TrialWorld through the protocol, measuring as it goes."""
+
+    def __init__(self, world: TrialWorld):
+        self.w = world
+        self.m, self.d = world.model, world.data
+        self.ref_pos: np.ndarray | None = None
+        self.ref_rot: np.ndarray | None = None
+        self.slip = 0.0
+        self.turn = 0.0
+        self.max_force = 0.0
+        self.hold_forces: list[float] = []
+        self.wrist_base = self.d.ctrl[world.wrist_act].copy()
+
+    def _step(self, n_steps: int, where: str) -> None:
+        mujoco.mj_step(self.m, self.d, nstep=n_steps)
+        check_physics(self.m, self.d, where)
+
+    def _measure(self, record_force: bool = False) -> float:
+        contacts = self.w.hand_contacts()
+        total = sum(f for _, f, _ in contacts)
+        if contacts:
+            self.max_force = max(self.max_force, max(f for _, f, _ in contacts))
+        if record_force:
+            self.hold_forces.append(total)
+        if self.ref_pos is not None:
+            pos, rot = self.w.object_in_palm()
+            self.slip = max(self.slip, float(np.linalg.norm(pos - self.ref_pos)) / H.CM)
+            rel = self.ref_rot.T @ rot
+            cos = min(1.0, max(-1.0, (np.trace(rel) - 1.0) / 2.0))
+            self.turn = max(self.turn, math.degrees(math.acos(cos)))
+        return total
+
+    def _phase(self, duration: float, where: str, control=None, record_force: bool = False) -> None:
+        chunks = max(1, int(round(duration / (self.m.opt.timestep * CONTROL_EVERY))))
+        for k in range(chunks):
+            if control is not None:
+                control((k + 1) / chunks)
+            self._step(CONTROL_EVERY, where)
+            self._measure(record_force)
+
+    def failed(self) -> bool:
+        return self.slip >= MAX_SLIP_CM or self.turn >= MAX_ROTATION_DEG
+
+    def start_penetration_m(self) -> float:
+        """Deepest hand-object overlap with the pre-shaped hand placed at its grasp pose."""
+        d, w = self.d, self.w
+        saved = d.qpos[w.wrist_qpos].copy()
+        mujoco.mj_forward(self.m, d)
+        depth = max([0.0] + [-dist for _, _, dist in w.hand_contacts()])
+        d.qpos[w.wrist_qpos] = saved + APPROACH_M * w.approach_dir
+        mujoco.mj_forward(self.m, d)
+        return depth
+
+    def approach(self) -> None:
+        w, d = self.w, self.d
+        start = self.wrist_base + APPROACH_M * w.approach_dir
+        d.ctrl[w.wrist_act] = start
+        self._phase(SETTLE_S, " while settling")
+        self._phase(
+            APPROACH_S,
+            " during the approach",
+            lambda u: d.ctrl.__setitem__(w.wrist_act, start - APPROACH_M * _smooth(u) * w.approach_dir),
+        )
+
+    def close(self) -> None:
+        w, d = self.w, self.d
+        open_q = d.ctrl[w.digit_act].copy()
+        close_q = w.targets.close
+        self._phase(
+            CLOSE_RAMP_S,
+            " while closing",
+            lambda u: d.ctrl.__setitem__(w.digit_act, open_q + _smooth(u) * (close_q - open_q)),
+        )
+        self._phase(CLOSE_HOLD_S, " while closing")
+        self._latch()
+        self.ref_pos, self.ref_rot = self.w.object_in_palm()
+        self.obj_z0 = float(d.xpos[w.object_body][2])
+
+    def _latch(self) -> None:
+        """Hold the closed posture as a stiff spring that keeps squeezing with the planned force.
+
+        While closing, each used digit presses at its force limit (pure force control). Holding that way
+        is unstable along the opposition axis: a push towards one side finds both sides saturated and
+        the whole pinch drifts. So, like a robot hand switching to an impedance hold on contact, each
+        target becomes the current angle plus the offset that gives the same torque (tau / kp), and the
+        force limit rises to the digit's strongest: the squeeze stays as planned, and a push is resisted
+        by the stiffness kp up to the digit's strength. Friction still only scales with the squeeze, so
+        a heavy, slippery object slides out of a light pinch as it should.
+        """
+        m, d, w = self.m, self.d, self.w
+        strongest = H.max_torques()
+        for k, name in enumerate(H.ACTUATOR_NAMES):
+            if name != "thumb_rot" and w.targets.torque_limits[name] <= H.UNUSED_TORQUE_NM:
+                continue
+            a = w.digit_act[k]
+            q = d.qpos[m.jnt_qposadr[m.actuator_trnid[a, 0]]]
+            kp = m.actuator_gainprm[a, 0]
+            d.ctrl[a] = q + d.actuator_force[a] / kp
+            m.actuator_forcerange[a] = (-strongest[name], strongest[name])
+
+    def lift(self) -> float:
+        w, d = self.w, self.d
+        base = self.wrist_base.copy()
+        up = np.array([0.0, 0.0, LIFT_M])
+        self._phase(
+            LIFT_S, " during the lift", lambda u: d.ctrl.__setitem__(w.wrist_act, base + _smooth(u) * up)
+        )
+        return (float(d.xpos[w.object_body][2]) - self.obj_z0) / H.CM
+
+    def hold(self) -> None:
+        self._phase(HOLD_S, " during the hold", record_force=True)
+
+    def perturb(self, direction: str) -> float:
+        w, d = self.w, self.d
+        before, _ = w.object_in_palm()
+        force = w.obj.weight_n * np.array(PERTURBATION_DIRECTIONS[direction])
+        d.xfrc_applied[w.object_body, :3] = force
+        worst = 0.0
+        chunks = max(1, int(round(PUSH_S / (self.m.opt.timestep * CONTROL_EVERY))))
+        for _ in range(chunks):
+            self._step(CONTROL_EVERY, f" while pushing {direction}")
+            self._measure()
+            pos, _ = w.object_in_palm()
+            worst = max(worst, float(np.linalg.norm(pos - before)) / H.CM)
+        d.xfrc_applied[w.object_body, :3] = 0.0
+        return worst
+
+
+def run_trial(
+    obj: ObjectRecord,
+    plan: GraspPlan,
+    *,
+    seed: int = 0,
+    stop_after: str | None = None,
+    world: TrialWorld | None = None,
+) -> TrialResult:
+    """Run one grasp trial of ``plan`` on ``obj`` (see the module docstring for the protocol).
+
+    Returns a :class:`TrialResult`; a diverged simulation gives ``outcome='error'``. Raises
+    :class:`SimulationError` only when the trial cannot be set up (an object without usable features).
+    ``stop_after='hold'`` ends the trial after the hold (for rendering, with ``world`` given).
+    """
+    t0 = time.perf_counter()
+    if world is None:
+        world = build_world(obj, plan, seed=seed)
+    runner = _Runner(world)
+    result = TrialResult(
+        object_name=obj.name,
+        grasp_type=plan.grasp_type,
+        family=plan.family,
+        seed=int(seed),
+        outcome="failure",
+        success=False,
+        reason="",
+    )
+
+    def finish(outcome: str, reason: str) -> TrialResult:
+        result.outcome, result.success, result.reason = outcome, outcome == "success", reason
+        result.slip_cm = round(runner.slip, 3)
+        result.rotation_deg = round(runner.turn, 2)
+        result.max_contact_force_n = round(runner.max_force, 3)
+        if runner.hold_forces:
+            result.grip_force_n = round(float(np.mean(runner.hold_forces)), 3)
+        result.sim_time_s = round(float(world.data.time), 4)
+        result.wall_time_s = round(time.perf_counter() - t0, 4)
+        return result
+
+    try:
+        depth = runner.start_penetration_m()
+        if depth > PENETRATION_TOL_M:
+            return finish(
+                "failure", f"hand starts inside the object ({depth * 1000:.1f} mm deep at the grasp pose)"
+            )
+        runner.approach()
+        runner.close()
+        if not world.hand_contacts():
+            return finish("failure", "no contact after closing: the digits missed the object")
+        rose = runner.lift()
+        result.lifted = rose >= LIFTED_FRACTION * LIFT_M / H.CM
+        if not result.lifted:
+            return finish("failure", f"not lifted: the object rose {rose:.1f} cm of {LIFT_M / H.CM:.0f}")
+        if runner.failed():
+            return finish("failure", _slip_reason(runner, "the lift"))
+        runner.hold()
+        if runner.failed():
+            return finish("failure", _slip_reason(runner, "the hold"))
+        if stop_after == "hold":
+            return finish("success", "stopped after the hold")
+        for direction in PERTURBATION_DIRECTIONS:
+            result.perturbation[direction] = round(runner.perturb(direction), 3)
+            if runner.failed():
+                return finish("failure", _slip_reason(runner, f"the {direction} push"))
+    except PhysicsError as exc:
+        return finish("error", str(exc))
+    return finish(
+        "success",
+        f"held: moved {runner.slip:.2f} cm and turned {runner.turn:.1f} deg relative to the palm "
+        f"under pushes of its weight ({world.obj.weight_n:.2f} N)",
+    )
+
+
+def _slip_reason(runner: _Runner, phase: str) -> str:
+    if runner.slip >= MAX_SLIP_CM:
+        return f"slipped {runner.slip:.1f} cm (limit {MAX_SLIP_CM:g}) relative to the palm during {phase}"
+    return f"turned {runner.turn:.1f} deg (limit {MAX_ROTATION_DEG:g}) relative to the palm during {phase}"
