@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import re
+from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 
-from kb.cli_common import JsonOption, emit
+from kb.cli_common import DbOption, JsonOption, emit, resolve_db
 
 #: Fields ``objrecall extract`` prints, in this order.
 EXTRACT_FIELDS = (
@@ -19,6 +20,8 @@ EXTRACT_FIELDS = (
 def register(app: typer.Typer) -> None:
     """Add this package's commands to the root app."""
     app.command("extract")(extract_command)
+    app.command("ingest")(ingest_command)
+    app.command("demo-store")(demo_store_command)
 
 
 def _fetch(url: str):
@@ -76,3 +79,124 @@ def extract_command(
             typer.echo(f"{key:16} {_fmt(key, data[key])}")
     for warning in data["warnings"]:
         typer.echo(f"warning          {warning}")
+
+
+# ---------------------------------------------------------------------------------------------- ingest, demo-store
+def ingest_command(
+    sources: Annotated[
+        Path, typer.Option("--sources", help="The sources file (TOML) listing the stores to read.")
+    ],
+    db: DbOption = None,
+    base_url: Annotated[
+        str | None,
+        typer.Option("--base-url", help="Use this base URL for every store (e.g. a demo store's port)."),
+    ] = None,
+    delay: Annotated[
+        float | None, typer.Option("--delay", help="Seconds between requests to one host, for every store.")
+    ] = None,
+    json_out: JsonOption = False,
+) -> None:
+    """Fetch the stores' product pages, extract, validate and add them to the catalog with provenance
+    (one short write transaction; a second run over unchanged pages changes nothing)."""
+    import sys
+
+    import requests
+
+    from kb.catalog import KnowledgeBase
+    from scrapers.ingest import run_ingestion
+    from scrapers.sources import load_sources
+
+    plan = load_sources(sources, base_url=base_url, delay_s=delay)
+    kb = KnowledgeBase.open(resolve_db(db))
+    with requests.Session() as session, _progress(enabled=not json_out and sys.stderr.isatty()) as progress:
+        report = run_ingestion(kb, plan, session=session, progress=progress)
+    if json_out:
+        emit(report)
+        return
+    _print_ingest_summary(report)
+
+
+class _progress:
+    """A rich progress bar on stderr (a no-op when disabled), used as the ``progress`` callback."""
+
+    def __init__(self, *, enabled: bool):
+        self.enabled = enabled
+        self.bar = None
+
+    def __enter__(self):
+        if not self.enabled:
+            return None
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+        self.bar = Progress(
+            TextColumn("ingest"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TimeElapsedColumn(),
+            TextColumn("{task.description}"),
+            console=Console(stderr=True),
+            transient=True,
+        )
+        self.bar.__enter__()
+        self.task = self.bar.add_task("", total=None)
+        return self
+
+    def __call__(self, done: int, total: int, url: str) -> None:
+        self.bar.update(self.task, completed=done, total=total, description=url[-60:])
+
+    def __exit__(self, *exc) -> None:
+        if self.bar is not None:
+            self.bar.__exit__(*exc)
+
+
+def _print_ingest_summary(report) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    table = Table(title=f"ingestion run {report.run_id} ({report.status})", show_header=True)
+    table.add_column("count")
+    table.add_column("value", justify="right")
+    rows = [
+        ("pages", report.pages),
+        ("fetched", report.fetched),
+        ("not modified", report.not_modified),
+        ("extracted", report.extracted),
+        ("rejected", report.rejected),
+        *((f"  {reason}", n) for reason, n in report.rejected_reasons.items()),
+        ("new objects", report.new),
+        ("updated objects", report.updated),
+        ("observations added", report.observations_added),
+        ("duration", f"{report.duration_s:.1f} s"),
+        ("write transaction", f"{report.write_s * 1000:.0f} ms"),
+        ("pages/s", f"{report.pages_per_s:.1f}"),
+    ]
+    for key, value in rows:
+        table.add_row(key, str(value))
+    console = Console()
+    console.print(table)
+    if report.new_objects:
+        console.print("new: " + ", ".join(report.new_objects), soft_wrap=True)
+    if report.updated_objects:
+        console.print("updated: " + ", ".join(report.updated_objects), soft_wrap=True)
+    for err in report.errors[:10]:
+        console.print(f"error: {err['url']}: {err['reason']}", soft_wrap=True)
+
+
+def demo_store_command(
+    port: Annotated[int, typer.Option("--port", help="Port on 127.0.0.1 (0 picks a free one).")] = 8765,
+    host: Annotated[str, typer.Option("--host", help="Address to bind.")] = "127.0.0.1",
+    crawl_delay: Annotated[
+        float, typer.Option("--crawl-delay", help="Crawl-delay robots.txt asks for (s).")
+    ] = 0.25,
+    slow_s: Annotated[float, typer.Option("--slow-s", help="How long the slow page takes (s).")] = 3.0,
+) -> None:
+    """Serve the demo storefront (product pages in every supported format, plus broken pages) until Ctrl-C."""
+    from scrapers.demo_store import DemoStore
+
+    store = DemoStore(host, port, crawl_delay=crawl_delay, slow_s=slow_s).start()
+    typer.echo(
+        f"demo store: {store.base_url}/ (sitemap {store.base_url}/sitemap.xml); Ctrl-C stops", err=True
+    )
+    typer.echo(store.base_url)
+    store.serve_forever()

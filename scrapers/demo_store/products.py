@@ -58,10 +58,13 @@ class DemoProduct:
     in_seed: bool = False
     description: str = ""
     updated: str = "Mon, 02 Nov 2026 08:00:00 GMT"
+    route: str | None = None  # a path of its own instead of the format's usual one
     extra: dict = field(default_factory=dict, compare=False, hash=False)
 
     @property
     def path(self) -> str:
+        if self.route is not None:
+            return self.route
         prefix = {
             "shopify": "/products/",
             "woocommerce": "/shop/product/",
@@ -235,6 +238,7 @@ FLAKY_PRODUCT = P(
     "g",
     "glass",
     "borosilicate glass",
+    route=FLAKY_PATH,
 )
 
 

@@ -141,6 +141,7 @@ class DemoStore:
         self._flaky_served: set[str] = set()
         self._cache: dict[str, tuple[bytes, str]] = {}
         self._server: _Server | None = None
+        self._port: int | None = None
         self._thread: threading.Thread | None = None
 
     # ------------------------------------------------------------------ lifecycle
@@ -150,6 +151,7 @@ class DemoStore:
         server = _Server((self.host, self.requested_port), _Handler)
         server.store = self
         self._server = server
+        self._port = server.server_address[1]
         self._thread = threading.Thread(target=server.serve_forever, name="demo-store", daemon=True)
         self._thread.start()
         return self
@@ -179,9 +181,9 @@ class DemoStore:
 
     @property
     def port(self) -> int:
-        if self._server is None:
-            raise RuntimeError("the demo store is not running")
-        return self._server.server_address[1]
+        if self._port is None:
+            raise RuntimeError("the demo store has not been started")
+        return self._port
 
     @property
     def base_url(self) -> str:
