@@ -1,0 +1,108 @@
+"""Saved product pages with their true values (``labels.jsonl``), and the rule that judges an extraction.
+
+The folder is ``$OBJRECALL_STOREFRONT_PAGES`` or ``../shared/storefront-pages`` beside the repository;
+each line of its ``labels.jsonl`` names a ``file`` and gives ``dims_cm`` (largest first), ``mass_g`` and
+package values (null when the page states none).
+
+A page counts as right (:func:`judge`) when every non-null true value is matched within
+:data:`TOLERANCE` (dimensions: same count, each within tolerance after sorting) and every null true value
+is either null in the record or accompanied by a warning.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from scrapers.records import ProductRecord
+
+__all__ = ["ENV_PAGES", "TOLERANCE", "LabelledPage", "Verdict", "default_pages_dir", "judge", "load_labels"]
+
+ENV_PAGES = "OBJRECALL_STOREFRONT_PAGES"
+TOLERANCE = 0.01
+
+
+def default_pages_dir() -> Path:
+    env = os.environ.get(ENV_PAGES)
+    if env:
+        return Path(env)
+    return Path(__file__).resolve().parents[2] / "shared" / "storefront-pages"
+
+
+@dataclass(frozen=True)
+class LabelledPage:
+    path: Path
+    url: str
+    truth: dict[str, Any]
+
+
+def load_labels(folder: Path | None = None) -> list[LabelledPage]:
+    """The labelled pages of ``folder`` (default :func:`default_pages_dir`); [] when it is absent."""
+    folder = Path(folder) if folder is not None else default_pages_dir()
+    labels = folder / "labels.jsonl"
+    if not labels.is_file():
+        return []
+    pages = []
+    for line in labels.read_text(encoding="utf-8").splitlines():
+        if line.strip():
+            truth = json.loads(line)
+            pages.append(LabelledPage(folder / truth["file"], truth.get("url") or "", truth))
+    return pages
+
+
+@dataclass
+class Verdict:
+    right: bool
+    problems: list[str] = field(default_factory=list)
+
+
+def _close(a: float, b: float) -> bool:
+    return abs(a - b) <= TOLERANCE * max(abs(a), abs(b))
+
+
+def _dims_match(got, want) -> bool:
+    if got is None or len(got) != len(want):
+        return False
+    return all(
+        _close(g, w) for g, w in zip(sorted(got, reverse=True), sorted(want, reverse=True), strict=True)
+    )
+
+
+def judge(record: ProductRecord, truth: dict[str, Any]) -> Verdict:
+    """Whether ``record`` gets the product's own dimensions and mass right (see the module doc)."""
+    problems = []
+    want_dims, want_mass = truth.get("dims_cm"), truth.get("mass_g")
+    if want_dims is not None and not _dims_match(record.dims_cm, want_dims):
+        problems.append(f"dims {record.dims_cm} != {want_dims}")
+    if want_dims is None and record.dims_cm is not None and not record.warnings:
+        problems.append(f"dims {record.dims_cm} where the page states none")
+    if want_mass is not None and (record.mass_g is None or not _close(record.mass_g, want_mass)):
+        problems.append(f"mass {record.mass_g} != {want_mass}")
+    if want_mass is None and record.mass_g is not None and not record.warnings:
+        problems.append(f"mass {record.mass_g} where the page states none")
+    return Verdict(not problems, problems)
+
+
+def package_matches(record: ProductRecord, truth: dict[str, Any]) -> bool:
+    """Whether the package values match the labelled ones (a single package may be labelled unlisted)."""
+    want_dims, want_mass = truth.get("package_dims_cm"), truth.get("package_mass_g")
+    if want_dims and not isinstance(want_dims[0], list):
+        want_dims = [want_dims]
+    if want_mass is not None and not isinstance(want_mass, list):
+        want_mass = [want_mass]
+    if not want_dims:
+        dims_ok = not record.package_dims_cm
+    else:
+        dims_ok = len(record.package_dims_cm) == len(want_dims) and all(
+            _dims_match(g, w) for g, w in zip(record.package_dims_cm, want_dims, strict=True)
+        )
+    if not want_mass:
+        mass_ok = not record.package_mass_g
+    else:
+        mass_ok = len(record.package_mass_g) == len(want_mass) and all(
+            _close(g, w) for g, w in zip(record.package_mass_g, want_mass, strict=True)
+        )
+    return dims_ok and mass_ok

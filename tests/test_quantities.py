@@ -1,0 +1,202 @@
+"""Numbers and quantities as pages write them (scrapers/quantities.py)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from scrapers.quantities import (
+    clean_text,
+    decimal_comma_for,
+    length_unit,
+    mass_unit,
+    parse_dims,
+    parse_length,
+    parse_length_range,
+    parse_mass,
+    parse_number,
+    unit_hint,
+)
+
+
+def approx(values, expected):
+    assert len(values) == len(expected)
+    for v, e in zip(values, expected, strict=True):
+        assert v == pytest.approx(e, rel=1e-6)
+
+
+@pytest.mark.parametrize(
+    ("text", "decimal_comma", "expected"),
+    [
+        ("4,7", None, 4.7),
+        ("4,7", True, 4.7),
+        ("61,800", True, 61.8),  # decimal comma with three decimals (pt page)
+        ("61,800", False, 61800.0),
+        ("1,643,215", None, 1643215.0),
+        ("1.234,5", None, 1234.5),
+        ("1,234.5", None, 1234.5),
+        ("0.42", True, 0.42),  # a German Amazon page writes "0.42 Pfund"
+        ("5.182", True, 5182.0),
+        ("5.182", False, 5.182),
+        ("0,290", True, 0.29),
+        ("12", None, 12.0),
+    ],
+)
+def test_parse_number_separators(text, decimal_comma, expected):
+    assert parse_number(text, decimal_comma) == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("text", ["", "abc", "1,2,3", "1.2.3", "--", "1,2.3,4"])
+def test_parse_number_refuses_non_numbers(text):
+    assert parse_number(text) is None
+
+
+@pytest.mark.parametrize(
+    ("text", "unit", "dc", "expected"),
+    [
+        ("9.25 x 3 x 14.85 inches; 10.56 Ounces", None, False, (23.495, 7.62, 37.719)),
+        ("\u200e13,8 x 23 x 30 cm; 1,6 kilogramos", None, True, (13.8, 23.0, 30.0)),
+        ("23L x 13,8W x 30H centímetros", None, True, (23.0, 13.8, 30.0)),
+        ("19 cm x 17 cm x 2 cm", None, None, (19.0, 17.0, 2.0)),
+        ("184х54х60", "см", True, (184.0, 54.0, 60.0)),  # Cyrillic х, unit in the label
+        ("37.5*26*13.5cm", None, False, (37.5, 26.0, 13.5)),
+        ("12'' W x 12'' D", None, None, (30.48, 30.48)),
+        ('12" × 4"', None, None, (30.48, 10.16)),
+        ("41 x 57 x 187 Millimeter", None, True, (4.1, 5.7, 18.7)),
+        ("235x100 cm", None, None, (235.0, 100.0)),
+        ("2 x 3 x 4 m", None, None, (200.0, 300.0, 400.0)),
+        ("10 x 20 x 30 MMT", None, None, (1.0, 2.0, 3.0)),
+        ("1 x 2 x 3 FOT", None, None, (30.48, 60.96, 91.44)),
+    ],
+)
+def test_parse_dims_real_page_shapes(text, unit, dc, expected):
+    found = parse_dims(text, unit, dc)
+    assert found, text
+    approx(found[0].values_cm, expected)
+
+
+@pytest.mark.parametrize("text", ["1 x Cable 5,5 metros", "Box2 max 5 x 6", "12 x Paños", "3 x 4"])
+def test_parse_dims_needs_a_length_unit(text):
+    assert parse_dims(text) == []
+
+
+@pytest.mark.parametrize(
+    ("text", "unit", "dc", "grams"),
+    [
+        ("Gewicht 4,7 kg", None, True, 4700.0),
+        ("61,800 kg", None, True, 61800.0),
+        ("0.42 Pfund", None, True, 190.508795),
+        ("10.56 Ounces", None, False, 299.370964),
+        ("1.2kg", None, False, 1200.0),
+        ("9,7", "kg", True, 9700.0),
+        ("8 lb.", None, None, 3628.73896),
+        ("850 GRM", None, None, 850.0),
+        ("1.25 KGM", None, None, 1250.0),
+        ("2 LBR", None, None, 907.18474),
+        ("3 ONZ", None, None, 85.048569),
+        ("56", "кг", True, 56000.0),
+        ("1,6 Kilogramos", None, True, 1600.0),
+        ("190.51 Gramm", None, True, 190.51),
+    ],
+)
+def test_parse_mass(text, unit, dc, grams):
+    assert parse_mass(text, unit, dc) == pytest.approx(grams, rel=1e-6)
+
+
+@pytest.mark.parametrize("text", ["1.01 - 7.2 lbs", "6 Liter", "200 ml", "61 cm", "no number", "6公升"])
+def test_parse_mass_refuses_ranges_volumes_and_lengths(text):
+    assert parse_mass(text, None, None) is None
+
+
+def test_volume_is_not_read_as_the_label_unit():
+    assert parse_mass("6 Liter", "kg") is None
+
+
+def test_lengths_and_ranges():
+    assert parse_length("67,7 cm", None, True) == pytest.approx(67.7)
+    assert parse_length("36", "mm") == pytest.approx(3.6)
+    assert parse_length('15.5" - 116.5"') is None
+    assert parse_length_range('15.5" - 116.5"') == pytest.approx((39.37, 295.91))
+    assert parse_length_range("0.5 - 5 mm") == pytest.approx((0.05, 0.5))
+
+
+def test_unit_hints_in_labels():
+    assert unit_hint("Výška [mm]:") == "mm"
+    assert unit_hint("Grubość (w mm)") == "mm"
+    assert unit_hint("Габариты устройства (ВхШхГ), см:") == "см"
+    assert unit_hint("Width in cm") == "cm"
+    assert unit_hint("Weight") is None
+
+
+def test_clean_text_removes_marks_and_normalises_times_signs():
+    assert clean_text("\u200e13,8\u00a0×\u200f23") == "13,8 x 23"
+    assert clean_text("重量：1.2kg") == "重量:1.2kg"
+    assert clean_text("184х54х60") == "184 x 54 x 60"
+    assert clean_text("Box max 5") == "Box max 5"
+
+
+def test_decimal_comma_from_language_or_domain():
+    assert decimal_comma_for("pt-BR") is True
+    assert decimal_comma_for("en-GB") is False
+    assert decimal_comma_for(None, "https://www.mobly.com.br/x") is True
+    assert decimal_comma_for("", "https://shop.example.com/x") is False
+    assert decimal_comma_for(None, None) is None
+
+
+def test_unit_codes():
+    for code, factor in {"CMT": 1.0, "MMT": 0.1, "MTR": 100.0, "INH": 2.54, "FOT": 30.48}.items():
+        assert length_unit(code) == pytest.approx(factor)
+    for code, factor in {"GRM": 1.0, "KGM": 1000.0, "LBR": 453.59237, "ONZ": 28.349523125}.items():
+        assert mass_unit(code) == pytest.approx(factor)
+
+
+# --- properties ---------------------------------------------------------------------------------------
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(max_size=200), st.sampled_from([None, True, False]), st.sampled_from([None, "cm", "kg", "mm"]))
+def test_parsers_never_raise(text, dc, unit):
+    clean_text(text)
+    parse_number(text, dc)
+    parse_dims(text, unit, dc)
+    parse_length(text, unit, dc)
+    parse_length_range(text, unit, dc)
+    parse_mass(text, unit, dc)
+    unit_hint(text)
+
+
+_LENGTH_UNITS = st.sampled_from([("mm", 0.1), ("cm", 1.0), ("m", 100.0), ("inches", 2.54), ('"', 2.54)])
+_MASS_UNITS = st.sampled_from([("g", 1.0), ("kg", 1000.0), ("lb", 453.59237), ("Ounces", 28.349523125)])
+_VALUES = st.floats(min_value=0.01, max_value=999.0, allow_nan=False).map(lambda v: round(v, 2))
+
+
+def _write(value: float, decimal_comma: bool) -> str:
+    text = f"{value:.2f}".rstrip("0").rstrip(".")
+    return text.replace(".", ",") if decimal_comma else text
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.lists(_VALUES, min_size=2, max_size=3),
+    _LENGTH_UNITS,
+    st.booleans(),
+    st.sampled_from([" x ", "×", "*", " х "]),
+)
+def test_dims_round_trip(values, unit, decimal_comma, sign):
+    name, factor = unit
+    text = sign.join(_write(v, decimal_comma) for v in values) + f" {name}"
+    found = parse_dims(text, None, decimal_comma)
+    assert found, text
+    for got, v in zip(found[0].values_cm, values, strict=True):
+        assert math.isclose(got, v * factor, rel_tol=1e-6), text
+
+
+@settings(max_examples=200, deadline=None)
+@given(_VALUES, _MASS_UNITS, st.booleans(), st.sampled_from(["", " ", "\u200e", "\u00a0"]))
+def test_mass_round_trip(value, unit, decimal_comma, gap):
+    name, factor = unit
+    text = f"{gap}{_write(value, decimal_comma)}{gap or ' '}{name}"
+    assert parse_mass(text, None, decimal_comma) == pytest.approx(value * factor, rel=1e-6), text
