@@ -57,6 +57,8 @@ def extract_page(body: str | bytes, url: str, content_type: str | None = None) -
             raise ExtractionError(f"{url}: malformed JSON")
         observations: list[Observation] = []
         for adp in ADAPTERS:
+            if adp.fallback and _has_dims_and_mass(observations):
+                continue
             try:
                 found = adp.func(page)
             except Exception as err:  # noqa: BLE001 - one broken adapter must not lose the others' values
@@ -72,6 +74,11 @@ def extract_page(body: str | bytes, url: str, content_type: str | None = None) -
         raise
     except Exception as err:  # noqa: BLE001 - the contract: ExtractionError or a record, never a crash
         raise ExtractionError(f"{url}: could not read the page ({type(err).__name__}: {err})") from None
+
+
+def _has_dims_and_mass(observations: list[Observation]) -> bool:
+    found = {o.feature for o in observations if not o.package and o.feature in ("dims", "mass")}
+    return len(found) == 2
 
 
 def extract_file(path: str | Path) -> ProductRecord:

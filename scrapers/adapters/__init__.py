@@ -49,6 +49,8 @@ class Adapter:
     func: Callable[..., list[Observation]]
     priority: int
     description: str = ""
+    #: A fallback runs only while the product's dimensions or mass are still unknown (it is slow or weak).
+    fallback: bool = False
 
 
 #: Registered adapters, in priority order.
@@ -56,15 +58,16 @@ ADAPTERS: list[Adapter] = []
 
 
 def adapter(
-    name: str, priority: int
+    name: str, priority: int, *, fallback: bool = False
 ) -> Callable[[Callable[..., list[Observation]]], Callable[..., list[Observation]]]:
-    """Register ``func`` as the adapter ``name``; a lower ``priority`` number is tried and trusted first."""
+    """Register ``func`` as the adapter ``name``; a lower ``priority`` number is tried and trusted first.
+    A ``fallback`` adapter is skipped once higher-priority adapters found both dimensions and mass."""
 
     def register(func: Callable[..., list[Observation]]) -> Callable[..., list[Observation]]:
         if any(a.name == name for a in ADAPTERS):
             raise ValueError(f"adapter {name!r} registered twice")
         doc = (func.__doc__ or "").strip().splitlines()
-        ADAPTERS.append(Adapter(name, func, priority, doc[0] if doc else ""))
+        ADAPTERS.append(Adapter(name, func, priority, doc[0] if doc else "", fallback))
         ADAPTERS.sort(key=lambda a: a.priority)
         return func
 

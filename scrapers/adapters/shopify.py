@@ -81,6 +81,8 @@ def shopify(page: Page) -> list[Observation]:
     if page.is_json:
         product = _shopify_product(page.json)
         return read_shopify_product(product, page.decimal_comma) if product else []
+    if '"variants"' not in page.text:
+        return []
     for payload in page.script_payloads:
         product = _shopify_product(payload)
         if product is not None:

@@ -278,7 +278,7 @@ def _json_pairs(data: Any) -> list[Pair]:
     return pairs
 
 
-@adapter("embedded_json", priority=60)
+@adapter("embedded_json", priority=60, fallback=True)
 def embedded_json(page: Page) -> list[Observation]:
     """Label/value data shipped as JSON inside the page's scripts (tabs rendered by JavaScript)."""
     obs: list[Observation] = []
