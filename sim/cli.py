@@ -1,9 +1,276 @@
-"""`objrecall` commands of the sim package (registered by kb/cli.py)."""
+"""`objrecall grasp ...` commands: plan grasps for a description or a catalog CSV, validate them in MuJoCo.
+
+- ``objrecall grasp plan "DESCRIPTION" [--json] [--simulate]``: recall the object, plan its grasps,
+  optionally simulate the best one.
+- ``objrecall grasp plan --catalog C.csv --json``: JSON Lines, one object per CSV row, in order.
+- ``objrecall grasp validate [NAMES... | --all] [--workers N] [--report DIR] [--executor local|ray]``.
+
+MuJoCo, matplotlib and Ray are imported inside the command bodies (``objrecall --help`` stays fast).
+"""
 
 from __future__ import annotations
 
+import csv
+from pathlib import Path
+from typing import Annotated, Any
+
 import typer
+
+from kb.cli_common import DbOption, JsonOption, emit, emit_lines, resolve_db
+from kb.errors import CatalogError, DatabaseError, InvalidFeature, ObjectNotFound, ObjrecallError, RecallError
+
+grasp_app = typer.Typer(no_args_is_help=True, help="Plan grasps for objects and validate them in MuJoCo.")
+
+
+def plan_dict(plan: Any) -> dict[str, Any]:
+    """A plan as JSON-ready data."""
+    d = plan.to_dict()
+    d["rationale"] = list(plan.rationale)
+    return d
+
+
+def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
+    """Plans for every row of a catalog CSV, in order: one dict per row with ``name``, the best plan's
+    ``grasp_type`` and ``family`` (and its details), and the ranked ``alternatives``.
+
+    Read leniently: only ``name`` is required; missing columns and blank cells are unknown features,
+    extra columns are ignored. A row with an invalid value gets ``error`` (naming column and reason)
+    instead of a plan, so the output still has one line per row.
+    """
+    from kb.features import FEATURES, ObjectRecord
+    from sim.planner import plan_grasps
+
+    with Path(path).open(newline="", encoding="utf-8-sig") as fh:
+        reader = csv.DictReader(fh)
+        header = [h.strip().lower() for h in (reader.fieldnames or [])]
+        if "name" not in header:
+            raise CatalogError(f"{path}: no 'name' column in the header")
+        out: list[dict[str, Any]] = []
+        for lineno, raw in enumerate(reader, start=2):
+            row = {(k or "").strip().lower(): (v or "").strip() for k, v in raw.items() if k is not None}
+            name = row.get("name", "")
+            try:
+                obj = ObjectRecord.create(name, **{f: row.get(f) or None for f in FEATURES})
+            except InvalidFeature as err:
+                out.append({"name": name, "row": lineno, "error": str(err)})
+                continue
+            plans = plan_grasps(obj, top=top)
+            best = plans[0]
+            out.append(
+                {
+                    "name": obj.name,
+                    "grasp_type": best.grasp_type,
+                    "family": best.family,
+                    "grasped_dim": best.grasped_dim,
+                    "aperture_cm": best.aperture_cm,
+                    "approach": best.approach,
+                    "grip_force_n": best.grip_force_n,
+                    "score": best.score,
+                    "rationale": list(best.rationale),
+                    "alternatives": [
+                        {"grasp_type": p.grasp_type, "family": p.family, "score": p.score} for p in plans[1:]
+                    ],
+                }
+            )
+    return out
+
+
+def _recall(db: Path, description: str) -> tuple[Any, dict[str, Any]]:
+    """The object a description refers to, and how it was found.
+
+    An exact catalog name or alias wins; otherwise the recall engine (recall/engine.py) picks the closest
+    catalog object; with no catalog at all, the features parsed from the description are planned for.
+    """
+    from kb.catalog import KnowledgeBase
+    from kb.features import FEATURES, ObjectRecord
+
+    if db.exists():
+        kb = KnowledgeBase.open(db, read_only=True)
+        try:
+            return kb.get_object(description), {"method": "name"}
+        except ObjectNotFound:
+            pass
+        from recall.engine import Recaller
+
+        result = Recaller.from_db(db).recall_text(description, top=3)
+        best = result.best
+        if best is None:
+            raise RecallError(f"could not recall an object from {description!r}: no usable features or names")
+        info = {
+            "method": "recall",
+            "confidence": round(result.confidence, 4),
+            "open_set": result.open_set,
+            "distance": best.distance,
+            "alternatives": [m.name for m in result.matches[1:]],
+        }
+        return kb.get_object(best.name), info
+    from recall.parser import parse
+
+    parsed = parse(description)
+    values = {k: v for k, v in parsed.to_dict().items() if k in FEATURES and v is not None}
+    if not values:
+        raise RecallError(
+            f"no catalog at {db} and no features in {description!r}: create one with `objrecall init --seed`"
+        )
+    return ObjectRecord.create("described object", **values), {"method": "parsed", "db": str(db)}
+
+
+def plan(
+    description: Annotated[
+        str | None, typer.Argument(help="What the object is: a description or a catalog name.")
+    ] = None,
+    catalog: Annotated[
+        Path | None,
+        typer.Option(
+            "--catalog", help="Plan for every row of this catalog CSV (JSON Lines).", dir_okay=False
+        ),
+    ] = None,
+    top: Annotated[int, typer.Option("--top", min=1, max=15, help="How many ranked plans to give.")] = 3,
+    simulate: Annotated[
+        bool, typer.Option("--simulate", help="Check the best plan in MuJoCo (one trial).")
+    ] = False,
+    seed: Annotated[int, typer.Option("--seed", help="Trial seed (with --simulate).")] = 0,
+    db: DbOption = None,
+    json_out: JsonOption = False,
+) -> None:
+    """Plan how a five-fingered hand should grasp an object: ranked grasps with their rationale."""
+    from rich.console import Console
+    from rich.markup import escape
+
+    console = Console()
+    if catalog is not None:
+        if description is not None:
+            raise ObjrecallError("give a DESCRIPTION or --catalog, not both")
+        rows = catalog_plans(catalog, top=top)
+        if json_out:
+            emit_lines(rows)
+            return
+        from rich.table import Table
+
+        table = Table("name", "grasp type", "family", "aperture cm", "force N", "alternatives")
+        for r in rows:
+            if "error" in r:
+                table.add_row(r["name"], "[red]error[/]", "", "", "", r["error"])
+            else:
+                alts = ", ".join(a["grasp_type"] for a in r["alternatives"])
+                table.add_row(
+                    r["name"],
+                    r["grasp_type"],
+                    r["family"],
+                    f"{r['aperture_cm']:g}",
+                    f"{r['grip_force_n']:g}",
+                    alts,
+                )
+        console.print(table)
+        return
+    if description is None or not description.strip():
+        raise ObjrecallError("give a DESCRIPTION of the object (or --catalog FILE.csv)")
+    from sim.planner import plan_grasps
+
+    obj, how = _recall(resolve_db(db), description.strip())
+    plans = plan_grasps(obj, top=top)
+    out: dict[str, Any] = {
+        "description": description,
+        "object": obj.name,
+        "recalled": how,
+        "features": obj.features(),
+        "plans": [plan_dict(p) for p in plans],
+    }
+    if simulate:
+        from sim.trial import run_trial
+
+        out["trial"] = run_trial(obj, plans[0], seed=seed).to_dict()
+    if json_out:
+        emit(out)
+        return
+    conf = f", confidence {how['confidence']:.2f}" if "confidence" in how else ""
+    console.print(f"[bold]{escape(obj.name)}[/] ({how['method']}{conf})", highlight=False)
+    for i, p in enumerate(plans, start=1):
+        console.print(
+            f"{i}. [bold]{p.grasp_type}[/] ({p.family}), across {p.grasped_dim} with {p.aperture_cm:g} cm aperture, "
+            f"{p.approach} approach, {p.grip_force_n:g} N, score {p.score:g}"
+        )
+        for line in p.rationale:
+            console.print(f"     - {line}", markup=False, highlight=False)
+    if simulate:
+        t = out["trial"]
+        console.print(
+            f"trial: [bold]{t.get('outcome')}[/] {t.get('reason') or ''} slip {t.get('slip_cm')} cm"
+        )
+
+
+def validate(
+    names: Annotated[list[str] | None, typer.Argument(help="Catalog object names or aliases.")] = None,
+    all_objects: Annotated[bool, typer.Option("--all", help="Validate every catalog object.")] = False,
+    workers: Annotated[
+        int | None, typer.Option("--workers", min=1, help="Parallel workers [default: all cores].")
+    ] = None,
+    report: Annotated[
+        Path | None,
+        typer.Option("--report", help="Write an HTML report (with JSON/CSV) here.", file_okay=False),
+    ] = None,
+    executor: Annotated[str, typer.Option("--executor", help="local (processes), serial or ray.")] = "local",
+    address: Annotated[
+        str | None, typer.Option("--address", help="Ray cluster address (with --executor ray).")
+    ] = None,
+    seed: Annotated[list[int] | None, typer.Option("--seed", help="Trial seed; repeat for several.")] = None,
+    top: Annotated[int, typer.Option("--top", min=1, max=15, help="Candidate grasps per object.")] = 3,
+    limit: Annotated[
+        int | None, typer.Option("--limit", min=0, help="Stop after this many new trials.")
+    ] = None,
+    progress: Annotated[bool, typer.Option("--progress/--no-progress", help="Show a progress bar.")] = True,
+    db: DbOption = None,
+    json_out: JsonOption = False,
+) -> None:
+    """Simulate the planned grasps of catalog objects, store every result, resume where it stopped."""
+    from kb.catalog import KnowledgeBase
+    from sim.executors import EXECUTORS
+    from sim.worker import validate as run_validation
+
+    if executor not in EXECUTORS:
+        raise ObjrecallError(f"--executor {executor!r}: expected one of {', '.join(EXECUTORS)}")
+    if address and executor != "ray":
+        raise ObjrecallError("--address is for --executor ray")
+    if names and all_objects:
+        raise ObjrecallError("give object NAMES or --all, not both")
+    if not names and not all_objects:
+        raise ObjrecallError("name the objects to validate, or pass --all")
+    path = resolve_db(db)
+    if not path.exists():
+        raise DatabaseError(f"{path}: no catalog there (create it with `objrecall init --seed --db {path}`)")
+    kb = KnowledgeBase.open(path)
+    summary = run_validation(
+        kb,
+        None if all_objects else list(names or []),
+        top=top,
+        seeds=seed or [0],
+        workers=workers,
+        executor=executor,
+        address=address,
+        report_dir=report,
+        progress=progress and not json_out,
+        limit=limit,
+    )
+    if json_out:
+        emit(summary.to_dict())
+        return
+    from rich.console import Console
+
+    console = Console()
+    console.print(
+        f"{summary.objects} objects, {summary.trials} trials: {summary.skipped} already stored, {summary.ran} run "
+        f"({summary.succeeded} success, {summary.failed} failure, {summary.errors} error) "
+        f"on {summary.workers} {summary.executor} worker(s) in {summary.wall_time_s:.1f} s",
+        highlight=False,
+    )
+    if summary.not_stored:
+        console.print(f"[yellow]{summary.not_stored} trials raised unexpected errors and were not stored[/]")
+    if summary.report:
+        console.print(f"report: {summary.report}", highlight=False)
 
 
 def register(app: typer.Typer) -> None:
     """Add this package's commands to the root app."""
+    grasp_app.command("plan")(plan)
+    grasp_app.command("validate")(validate)
+    app.add_typer(grasp_app, name="grasp")

@@ -1,0 +1,154 @@
+"""`objrecall grasp plan` and `objrecall grasp validate` through the CLI runner (real DuckDB, real MuJoCo)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from typer.testing import CliRunner
+
+from kb.catalog import KnowledgeBase
+from kb.cli import app
+
+runner = CliRunner()
+
+CSV = """name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity
+tv remote,16,3.5,2,110,long,medium,medium,plastic,rigid
+tennis ball,6.4,6.4,6.4,56,radial,rough,medium,fabric,squeezable
+small cube,5,5,5,100,compact,medium,sturdy,wood,rigid
+"""
+
+
+@pytest.fixture
+def db(tmp_path):
+    csv = tmp_path / "objects.csv"
+    csv.write_text(CSV)
+    path = tmp_path / "kb.duckdb"
+    KnowledgeBase.open(path).import_csv(csv)
+    return path
+
+
+def invoke(*args):
+    return runner.invoke(app, list(args), catch_exceptions=False)
+
+
+def test_plan_catalog_json_lines_one_per_row_in_order(tmp_path):
+    csv = tmp_path / "c.csv"
+    csv.write_text(
+        "name,a_cm,b_cm,c_cm,mass_g,shape,human_grasp\n"
+        "tv remote,16,3.5,2,110,long,thumb_4_finger\n"
+        "orange,7,7,7,150,radial,power_sphere\n"
+        "mystery,,,,,,\n"
+        "broken,-1,2,2,5,long,\n"
+        "tv remote,16,3.5,2,110,long,thumb_4_finger\n"
+    )
+    result = invoke("grasp", "plan", "--catalog", str(csv), "--json")
+    assert result.exit_code == 0, result.output
+    lines = [json.loads(line) for line in result.output.splitlines()]
+    assert [x["name"] for x in lines] == ["tv remote", "orange", "mystery", "broken", "tv remote"]
+    assert lines[0]["family"] == "precision" and lines[0]["grasp_type"] in (
+        "thumb_4_finger",
+        "thumb_3_finger",
+    )
+    assert lines[1]["grasp_type"] == "power_sphere" and lines[1]["family"] == "power"
+    assert lines[0]["alternatives"] and all(
+        {"grasp_type", "family", "score"} <= set(a) for a in lines[0]["alternatives"]
+    )
+    assert "grasp_type" in lines[2]  # unknown features still get a plan
+    assert "a_cm" in lines[3]["error"] and lines[3]["row"] == 5
+
+
+def test_plan_catalog_without_name_column_is_one_error_line(tmp_path):
+    csv = tmp_path / "c.csv"
+    csv.write_text("a_cm,b_cm\n1,2\n")
+    result = runner.invoke(app, ["grasp", "plan", "--catalog", str(csv), "--json"])
+    assert result.exit_code == 1
+    assert "Error:" in result.output and "name" in result.output and "Traceback" not in result.output
+
+
+def test_plan_by_catalog_name(db):
+    result = invoke("grasp", "plan", "TV Remote", "--db", str(db), "--json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert data["object"] == "tv remote" and data["recalled"]["method"] == "name"
+    assert data["plans"][0]["family"] == "precision" and len(data["plans"]) == 3
+    human = invoke("grasp", "plan", "tv remote", "--db", str(db))
+    assert "thumb_" in human.output and "Feix" in human.output
+
+
+def test_plan_recalls_the_described_object(db):
+    result = invoke(
+        "grasp", "plan", "a fuzzy fabric ball about 6.5 cm across, 55 grams", "--db", str(db), "--json"
+    )
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert data["object"] == "tennis ball" and data["recalled"]["method"] == "recall"
+    assert data["plans"][0]["grasp_type"] == "power_sphere"
+
+
+def test_plan_without_a_catalog_plans_for_the_parsed_features(tmp_path):
+    text = "a plastic thing 16 cm long, 3.5 cm wide and 2 cm thick"
+    result = invoke("grasp", "plan", text, "--db", str(tmp_path / "none.duckdb"), "--json")
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert data["recalled"]["method"] == "parsed" and data["features"]["a_cm"] == 16
+    assert data["plans"][0]["family"] == "precision"
+
+
+def test_plan_simulate_runs_one_real_trial(db):
+    result = invoke("grasp", "plan", "small cube", "--db", str(db), "--simulate", "--json")
+    assert result.exit_code == 0, result.output
+    trial = json.loads(result.output)["trial"]
+    assert trial["outcome"] in ("success", "failure", "error")
+    assert trial["simulator"].startswith("mujoco")
+
+
+def test_plan_needs_a_description_or_catalog():
+    result = runner.invoke(app, ["grasp", "plan"])
+    assert result.exit_code == 1 and "Error:" in result.output
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        ([], "--all"),
+        (["tv remote", "--all"], "not both"),
+        (["--all", "--executor", "pigeon"], "--executor"),
+        (["--all", "--address", "ray://x:1"], "--address"),
+        (["no such object"], "no object named"),
+    ],
+)
+def test_validate_errors_are_one_line(db, args, message):
+    result = runner.invoke(app, ["grasp", "validate", *args, "--db", str(db)])
+    assert result.exit_code == 1
+    assert "Error:" in result.output and message in result.output and "Traceback" not in result.output
+
+
+def test_validate_missing_database(tmp_path):
+    result = runner.invoke(app, ["grasp", "validate", "--all", "--db", str(tmp_path / "none.duckdb")])
+    assert result.exit_code == 1 and "objrecall init" in result.output
+
+
+def test_validate_end_to_end_with_real_physics_report_and_resume(db, tmp_path):
+    """Real MuJoCo trials in two worker processes, stored, reported with renders; a rerun does nothing."""
+    report = tmp_path / "report"
+    args = ["grasp", "validate", "tennis ball", "small cube", "--top", "2", "--workers", "2", "--db", str(db)]
+    result = invoke(*args, "--report", str(report), "--json")
+    assert result.exit_code == 0, result.output
+    summary = json.loads(result.output)
+    assert summary["trials"] == 4 and summary["ran"] == 4 and summary["not_stored"] == 0
+    assert summary["succeeded"] + summary["failed"] + summary["errors"] == 4
+    stored = KnowledgeBase.open(db, read_only=True).grasp_results()
+    assert len(stored) == 4
+    from sim.hand import HAND_VERSION
+
+    assert all(r["simulator"].startswith("mujoco") and r["hand_version"] == HAND_VERSION for r in stored)
+    assert (report / "index.html").is_file() and (report / "results.csv").is_file()
+    images = sorted((report / "images").glob("*.png"))
+    assert len(images) == 2, "one render of the best plan per object"
+    assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in images)
+    page = (report / "index.html").read_text()
+    assert all(f"images/{p.name}" in page for p in images)
+
+    again = json.loads(invoke(*args, "--json").output)
+    assert again["ran"] == 0 and again["skipped"] == 4
