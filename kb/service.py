@@ -1,0 +1,861 @@
+"""The knowledge service: the catalog, the parser, recall and the grasp planner over HTTP (FastAPI).
+
+``objrecall serve [--host 127.0.0.1] [--port 8000] [--db PATH]`` runs :func:`create_app` on uvicorn. The
+endpoints, authentication and deployment are described in ``kb/SERVICE.md``; the OpenAPI document is at
+``/openapi.json`` (browsable at ``/docs``) and a small web page at ``/``.
+
+Design notes
+------------
+* **One writer at a time.** The service never keeps a database connection open: every request opens a
+  short sandboxed read connection through :class:`~kb.catalog.KnowledgeBase` (which retries while the nightly
+  ingestion holds the file), so a read waits at most one write transaction and never fails because of it.
+  Recall works on an in-memory snapshot of the catalog, re-checked at most every ``snapshot_ttl`` seconds.
+* **Errors.** Every :class:`~kb.errors.ObjrecallError` becomes a JSON body ``{"error": <class>, "detail":
+  <one line>}`` with a 4xx/5xx status from :data:`ERROR_STATUS` (404 not found, 400 bad input, 503 busy,
+  504 timeout); a request the schema refuses gets 422. A 500 is a bug.
+* **Limits.** Request bodies over ``max_body_bytes`` get 413, requests running over ``request_timeout``
+  get 504, lists are paged (``limit`` at most :data:`MAX_PAGE`), user SQL runs in the sandbox of
+  :meth:`KnowledgeBase.sql <kb.catalog.KnowledgeBase.sql>` with capped row count and time.
+* **Writes** (``PUT /objects/{name}``, ``POST /ingestion/runs``) need ``Authorization: Bearer <token>``;
+  the token comes from configuration (:data:`ENV_TOKEN`, or a file named by :data:`ENV_TOKEN_FILE`). With no
+  token configured, writes are disabled (403). Reads are open; the default host is loopback.
+
+Like the CLI, this module is part of the service face and imports the recall, scrapers and sim packages
+(lazily, inside the endpoints).
+"""
+
+import asyncio
+import hmac
+import json
+import os
+import secrets
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from collections.abc import Iterator
+from contextlib import asynccontextmanager, contextmanager
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import typer
+
+from kb.cli_common import DbOption, resolve_db, to_jsonable
+from kb.errors import (
+    CatalogError,
+    CatalogImportError,
+    DatabaseBusy,
+    DatabaseError,
+    DescriptionError,
+    InvalidFeature,
+    ObjectNotFound,
+    ObjrecallError,
+    QueryFailed,
+    QueryRefused,
+    RecallError,
+)
+
+__all__ = [
+    "ENV_SOURCES",
+    "ENV_TOKEN",
+    "ENV_TOKEN_FILE",
+    "ERROR_STATUS",
+    "MAX_PAGE",
+    "ServiceSettings",
+    "create_app",
+    "free_port",
+    "load_token",
+    "register",
+    "serve_subprocess",
+]
+
+ENV_TOKEN = "OBJRECALL_API_TOKEN"
+ENV_TOKEN_FILE = "OBJRECALL_API_TOKEN_FILE"
+ENV_SOURCES = "OBJRECALL_SOURCES"
+
+#: Largest page of any list endpoint.
+MAX_PAGE = 500
+DEFAULT_PAGE = 50
+#: Caps of the SQL endpoint (a request may ask for less, never more).
+SQL_MAX_ROWS = 5_000
+SQL_MAX_TIMEOUT_S = 10.0
+MAX_TEXT_CHARS = 5_000
+MAX_TOP = 50
+
+#: HTTP status of each error class (the most specific class listed wins).
+ERROR_STATUS: dict[type[ObjrecallError], int] = {
+    ObjectNotFound: 404,
+    CatalogImportError: 400,
+    CatalogError: 400,
+    InvalidFeature: 400,
+    QueryRefused: 400,
+    QueryFailed: 400,
+    DescriptionError: 400,
+    RecallError: 400,
+    DatabaseBusy: 503,
+    DatabaseError: 503,
+    ObjrecallError: 400,
+}
+
+
+class RequestTimeout(ObjrecallError):
+    """The request ran past the service's time limit (HTTP 504)."""
+
+
+def _status_for(err: ObjrecallError) -> int:
+    if isinstance(err, RequestTimeout):
+        return 504
+    for cls in type(err).__mro__:
+        if cls in ERROR_STATUS:
+            return ERROR_STATUS[cls]
+    return 400
+
+
+# ----------------------------------------------------------------------------------------- settings
+@dataclass
+class ServiceSettings:
+    """How the service runs; the defaults are the ones ``objrecall serve`` uses."""
+
+    db: Path
+    token: str | None = None
+    sources: Path | None = None
+    max_body_bytes: int = 64 * 1024
+    request_timeout: float = 30.0
+    sql_max_rows: int = SQL_MAX_ROWS
+    sql_max_timeout: float = SQL_MAX_TIMEOUT_S
+    snapshot_ttl: float = 1.0
+    busy_timeout: float = 30.0
+    ingest_command: list[str] = field(default_factory=list)
+
+
+def load_token(environ: dict[str, str] | None = None) -> str | None:
+    """The write token from ``$OBJRECALL_API_TOKEN``, else from the file ``$OBJRECALL_API_TOKEN_FILE``
+    (a docker secret, say); None when neither is set (writes disabled). Blank tokens count as none."""
+    env = os.environ if environ is None else environ
+    token = (env.get(ENV_TOKEN) or "").strip()
+    if token:
+        return token
+    path = (env.get(ENV_TOKEN_FILE) or "").strip()
+    if path:
+        try:
+            token = Path(path).read_text(encoding="utf-8").strip()
+        except OSError as err:
+            raise ObjrecallError(f"{path}: cannot read the API token file ({err.strerror})") from None
+        return token or None
+    return None
+
+
+def objrecall_command() -> list[str]:
+    """How to run ``objrecall`` from here: the console script beside this interpreter, else ``-m kb.cli``."""
+    script = Path(sys.executable).parent / "objrecall"
+    if script.exists():
+        return [str(script)]
+    found = shutil.which("objrecall")
+    return [found] if found else [sys.executable, "-m", "kb.cli"]
+
+
+# ------------------------------------------------------------------------------------ ingestion jobs
+@dataclass
+class IngestionJob:
+    """An ``objrecall ingest`` child process started by ``POST /ingestion/runs``."""
+
+    id: str
+    command: list[str]
+    started_at: str
+    process: "subprocess.Popen | None" = None
+    log_path: Path | None = None
+    returncode: int | None = None
+    finished_at: str | None = None
+
+    @property
+    def status(self) -> str:
+        if self.returncode is None:
+            return "running"
+        return "succeeded" if self.returncode == 0 else "failed"
+
+    def to_dict(self) -> dict[str, Any]:
+        log = ""
+        if self.log_path is not None and self.log_path.exists():
+            log = self.log_path.read_text(encoding="utf-8", errors="replace")[-4000:]
+        return {
+            "id": self.id,
+            "status": self.status,
+            "command": self.command,
+            "started_at": self.started_at,
+            "finished_at": self.finished_at,
+            "returncode": self.returncode,
+            "log_tail": log,
+        }
+
+
+class IngestionJobs:
+    """At most one ingestion child process at a time; finished jobs are kept for status queries."""
+
+    def __init__(self, log_dir: Path):
+        self.log_dir = log_dir
+        self.jobs: dict[str, IngestionJob] = {}
+        self._lock = threading.Lock()
+
+    def running(self) -> IngestionJob | None:
+        return next((j for j in self.jobs.values() if j.returncode is None), None)
+
+    def start(self, command: list[str]) -> IngestionJob:
+        with self._lock:
+            busy = self.running()
+            if busy is not None:
+                raise IngestionBusy(
+                    f"ingestion job {busy.id} is still running; try again when it has finished"
+                )
+            job_id = secrets.token_hex(6)
+            self.log_dir.mkdir(parents=True, exist_ok=True)
+            log_path = self.log_dir / f"ingest-{job_id}.log"
+            job = IngestionJob(id=job_id, command=command, started_at=_now(), log_path=log_path)
+            with log_path.open("wb") as log:
+                job.process = subprocess.Popen(
+                    command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL
+                )
+            self.jobs[job_id] = job
+        threading.Thread(target=self._reap, args=(job,), daemon=True).start()
+        return job
+
+    def _reap(self, job: IngestionJob) -> None:
+        assert job.process is not None
+        rc = job.process.wait()
+        job.finished_at = _now()
+        job.returncode = rc
+
+    def get(self, job_id: str) -> IngestionJob:
+        job = self.jobs.get(job_id)
+        if job is None:
+            raise JobNotFound(f"no ingestion job {job_id!r} started by this service")
+        return job
+
+
+class IngestionBusy(ObjrecallError):
+    """An ingestion job started by the service is still running (HTTP 409)."""
+
+
+class JobNotFound(ObjrecallError):
+    """No ingestion job with that id (HTTP 404)."""
+
+
+class WritesDisabled(ObjrecallError):
+    """No API token is configured, so writes are off (HTTP 403)."""
+
+
+ERROR_STATUS.update({IngestionBusy: 409, JobNotFound: 404, WritesDisabled: 403})
+
+
+def _now() -> str:
+    return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+# -------------------------------------------------------------------------------------- middlewares
+def _json_bytes(status: int, error: str, detail: str) -> tuple[list[tuple[bytes, bytes]], bytes]:
+    body = json.dumps({"error": error, "detail": detail}).encode()
+    headers = [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]
+    return headers, body
+
+
+async def _send_error(send, status: int, error: str, detail: str) -> None:
+    headers, body = _json_bytes(status, error, detail)
+    await send({"type": "http.response.start", "status": status, "headers": headers})
+    await send({"type": "http.response.body", "body": body})
+
+
+class LimitsMiddleware:
+    """Pure ASGI middleware: refuse bodies over ``max_body_bytes`` (413) and answer 504 when the app has not
+    started its response within ``timeout`` seconds (the worker thread finishes in the background; user
+    SQL has its own, shorter, interrupting timeout)."""
+
+    def __init__(self, app, *, max_body_bytes: int, timeout: float):
+        self.app = app
+        self.max_body_bytes = max_body_bytes
+        self.timeout = timeout
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        declared = dict(scope.get("headers") or []).get(b"content-length")
+        too_big = f"request body too large: at most {self.max_body_bytes} bytes"
+        if declared is not None:
+            try:
+                if int(declared) > self.max_body_bytes:
+                    await _send_error(send, 413, "PayloadTooLarge", too_big)
+                    return
+            except ValueError:
+                await _send_error(send, 400, "BadRequest", "invalid Content-Length header")
+                return
+        # read the whole (small) body first, so a chunked upload cannot exceed the limit either
+        chunks: list[bytes] = []
+        size = 0
+        more = True
+        while more:
+            message = await receive()
+            if message["type"] == "http.disconnect":
+                return
+            chunk = message.get("body", b"")
+            size += len(chunk)
+            if size > self.max_body_bytes:
+                await _send_error(send, 413, "PayloadTooLarge", too_big)
+                return
+            chunks.append(chunk)
+            more = message.get("more_body", False)
+        body = b"".join(chunks)
+        replayed = False
+
+        async def replay():
+            nonlocal replayed
+            if not replayed:
+                replayed = True
+                return {"type": "http.request", "body": body, "more_body": False}
+            return await receive()
+
+        started = False
+
+        async def tracking_send(message):
+            nonlocal started
+            if message["type"] == "http.response.start":
+                started = True
+            await send(message)
+
+        try:
+            await asyncio.wait_for(self.app(scope, replay, tracking_send), timeout=self.timeout)
+        except TimeoutError:
+            if not started:
+                await _send_error(
+                    send, 504, "RequestTimeout", f"the request took longer than the {self.timeout:g} s limit"
+                )
+
+
+# --------------------------------------------------------------------------------------- the app
+def create_app(
+    db_path: str | Path,
+    *,
+    token: str | None = None,
+    sources: str | Path | None = None,
+    max_body_bytes: int = 64 * 1024,
+    request_timeout: float = 30.0,
+    snapshot_ttl: float = 1.0,
+    busy_timeout: float = 30.0,
+    ingest_command: list[str] | None = None,
+    warm: bool = False,
+):
+    """The FastAPI application serving the catalog at ``db_path``.
+
+    ``token`` enables writes (None: read from the environment, see :func:`load_token`; "" disables them).
+    ``sources`` is the sources file ``POST /ingestion/runs`` ingests (default ``$OBJRECALL_SOURCES``).
+    ``ingest_command`` replaces the command prefix that runs ``objrecall`` (tests, containers).
+    ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
+    (the first parse builds the grammar, which takes seconds), so the first requests are not slow.
+    """
+    from fastapi import Depends, FastAPI, Query, Request
+    from fastapi.exceptions import RequestValidationError
+    from fastapi.responses import FileResponse, JSONResponse
+    from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
+    from fastapi.staticfiles import StaticFiles
+    from pydantic import BaseModel, ConfigDict, Field
+    from starlette.exceptions import HTTPException as StarletteHTTPException
+
+    from kb.catalog import KnowledgeBase
+    from kb.features import CATEGORIES, FEATURES, ObjectRecord
+
+    if token is None:
+        token = load_token()
+    if sources is None and os.environ.get(ENV_SOURCES):
+        sources = os.environ[ENV_SOURCES]
+    settings = ServiceSettings(
+        db=Path(db_path),
+        token=token or None,
+        sources=Path(sources) if sources else None,
+        max_body_bytes=max_body_bytes,
+        request_timeout=request_timeout,
+        snapshot_ttl=snapshot_ttl,
+        busy_timeout=busy_timeout,
+        ingest_command=list(ingest_command) if ingest_command else objrecall_command(),
+    )
+    try:
+        from recall.metrics import METRICS
+    except ImportError:  # pragma: no cover - the recall package is part of the project
+        METRICS = ("jp",)
+    MetricName = Literal[tuple(METRICS)]  # type: ignore[valid-type]
+
+    @asynccontextmanager
+    async def lifespan(app):
+        if warm:
+            threading.Thread(target=_warm_up, name="objrecall-warm-up", daemon=True).start()
+        yield
+
+    def _warm_up() -> None:
+        try:
+            from recall.parser import parse
+
+            parse("a smooth plastic cup about 10 cm tall, 200 g")
+            recaller()
+        except Exception:  # noqa: BLE001 - warming is best effort; the real request reports any error
+            pass
+
+    app = FastAPI(
+        lifespan=lifespan,
+        title="objrecall knowledge service",
+        version=_package_version(),
+        description="Recall household objects from descriptions, browse the catalog, plan grasps. "
+        "Reads are open; writes need `Authorization: Bearer <token>`. See kb/SERVICE.md.",
+    )
+    app.state.settings = settings
+    app.state.jobs = IngestionJobs(Path(tempfile.mkdtemp(prefix="objrecall-ingest-logs-")))
+    recall_cache: dict[str, Any] = {"snapshot": None, "recaller": None, "checked": 0.0}
+    recall_lock = threading.Lock()
+
+    def knowledge_base() -> KnowledgeBase:
+        return KnowledgeBase.open(settings.db, read_only=True, busy_timeout=settings.busy_timeout)
+
+    def recaller():
+        """The recall engine over a snapshot of the catalog, re-checked at most every snapshot_ttl s."""
+        from recall.engine import Recaller
+        from recall.snapshot import load_snapshot
+
+        with recall_lock:
+            now = time.monotonic()
+            if recall_cache["recaller"] is not None and now - recall_cache["checked"] < settings.snapshot_ttl:
+                return recall_cache["recaller"]
+        if not settings.db.exists():
+            raise DatabaseError(f"{settings.db}: no catalog there (create it with `objrecall init`)")
+        snap = load_snapshot(settings.db)
+        with recall_lock:
+            if snap is not recall_cache["snapshot"]:
+                recall_cache["recaller"] = Recaller(snap)
+                recall_cache["snapshot"] = snap
+            recall_cache["checked"] = time.monotonic()
+            return recall_cache["recaller"]
+
+    # -- errors as JSON
+    @app.exception_handler(ObjrecallError)
+    async def objrecall_error(request: Request, err: ObjrecallError):
+        headers = {"Retry-After": "5"} if isinstance(err, DatabaseBusy) else None
+        return JSONResponse(
+            {"error": type(err).__name__, "detail": " ".join(str(err).split())},
+            status_code=_status_for(err),
+            headers=headers,
+        )
+
+    @app.exception_handler(StarletteHTTPException)
+    async def http_error(request: Request, err: StarletteHTTPException):
+        names = {401: "Unauthorized", 403: "Forbidden", 404: "NotFound", 405: "MethodNotAllowed"}
+        return JSONResponse(
+            {"error": names.get(err.status_code, "HTTPError"), "detail": str(err.detail)},
+            status_code=err.status_code,
+            headers=getattr(err, "headers", None),
+        )
+
+    @app.exception_handler(RequestValidationError)
+    async def validation_error(request: Request, err: RequestValidationError):
+        problems = []
+        for e in err.errors():
+            where = ".".join(str(p) for p in e.get("loc", ()) if p != "body") or "body"
+            problems.append(f"{where}: {e.get('msg', 'invalid')}")
+        return JSONResponse(
+            {"error": "ValidationError", "detail": "; ".join(problems) or "invalid request"}, status_code=422
+        )
+
+    @app.exception_handler(Exception)
+    async def unexpected(request: Request, err: Exception):  # a bug: say so without leaking internals
+        return JSONResponse(
+            {"error": "InternalError", "detail": f"internal error ({type(err).__name__}); please report it"},
+            status_code=500,
+        )
+
+    # -- auth
+    bearer = HTTPBearer(auto_error=False, description="The API token configured on the server.")
+
+    def require_token(creds: Annotated[HTTPAuthorizationCredentials | None, Depends(bearer)]) -> None:
+        from fastapi import HTTPException
+
+        if settings.token is None:
+            raise WritesDisabled(
+                f"writes are disabled: no API token is configured on the server (set {ENV_TOKEN} "
+                f"or {ENV_TOKEN_FILE})"
+            )
+        if creds is None or creds.scheme.lower() != "bearer":
+            raise HTTPException(
+                401, "this endpoint needs 'Authorization: Bearer <token>'", {"WWW-Authenticate": "Bearer"}
+            )
+        if not hmac.compare_digest(creds.credentials.encode(), settings.token.encode()):
+            raise HTTPException(401, "invalid API token", {"WWW-Authenticate": "Bearer"})
+
+    # -- models
+    class Page(BaseModel):
+        total: int
+        limit: int
+        offset: int
+        items: list[dict[str, Any]]
+
+    class TextIn(BaseModel):
+        model_config = ConfigDict(extra="forbid")
+        text: str = Field(min_length=1, max_length=MAX_TEXT_CHARS, description="A description of an object.")
+
+    class RecallIn(TextIn):
+        top: int = Field(5, ge=1, le=MAX_TOP, description="How many ranked matches.")
+        metric: MetricName = Field("jp", description="Distance metric (jp: the paper's Joint Probability).")
+        features_only: bool = Field(False, description="Ignore object names in the text (features only).")
+
+    class PlanIn(BaseModel):
+        model_config = ConfigDict(extra="forbid")
+        text: str | None = Field(None, min_length=1, max_length=MAX_TEXT_CHARS, description="A description.")
+        name: str | None = Field(None, min_length=1, max_length=200, description="A catalog name or alias.")
+        top: int = Field(3, ge=1, le=15, description="How many ranked grasp plans.")
+
+    class SqlIn(BaseModel):
+        model_config = ConfigDict(extra="forbid")
+        query: str = Field(min_length=1, max_length=20_000, description="One read-only SELECT statement.")
+        max_rows: int = Field(1000, ge=1, le=settings.sql_max_rows)
+        timeout_s: float = Field(5.0, gt=0, le=settings.sql_max_timeout)
+
+    class ObjectIn(BaseModel):
+        """Feature values of an object (catalog units); omitted or null values stay as stored."""
+
+        model_config = ConfigDict(extra="forbid")
+        a_cm: float | None = Field(None, description="Largest extent, cm.")
+        b_cm: float | None = Field(None, description="Middle extent, cm.")
+        c_cm: float | None = Field(None, description="Smallest extent, cm.")
+        mass_g: float | None = Field(None, description="Mass, g.")
+        shape: str | None = Field(
+            None, max_length=40, description=f"One of {', '.join(CATEGORIES['shape'])}."
+        )
+        texture: str | None = Field(
+            None, max_length=40, description=f"One of {', '.join(CATEGORIES['texture'])}."
+        )
+        fragility: str | None = Field(
+            None, max_length=40, description=f"One of {', '.join(CATEGORIES['fragility'])}."
+        )
+        material: str | None = Field(
+            None, max_length=40, description=f"One of {', '.join(CATEGORIES['material'])}."
+        )
+        rigidity: str | None = Field(
+            None, max_length=40, description=f"One of {', '.join(CATEGORIES['rigidity'])}."
+        )
+        aliases: list[Annotated[str, Field(max_length=200)]] = Field(default_factory=list, max_length=50)
+        source: str | None = Field(None, max_length=500, description="Where the values come from.")
+
+    limit_q = Annotated[int, Query(ge=1, le=MAX_PAGE, description=f"Page size (at most {MAX_PAGE}).")]
+    offset_q = Annotated[int, Query(ge=0, le=10_000_000, description="Items to skip.")]
+
+    # -- reads
+    @app.get("/health", tags=["service"])
+    def health() -> dict[str, Any]:
+        """Liveness: the process answers; ``catalog`` says whether the database file exists."""
+        return {"status": "ok", "catalog": settings.db.exists()}
+
+    @app.get("/version", tags=["service"])
+    def version() -> dict[str, Any]:
+        """Versions of the service, the schema and the catalog contents."""
+        kb = knowledge_base()
+        count, max_id, updated = kb.catalog_version()
+        try:
+            from sim.planner import PLANNER_VERSION
+        except ImportError:  # pragma: no cover
+            PLANNER_VERSION = None
+        with kb.connect() as con:
+            row = con.execute("SELECT max(version_num) FROM alembic_version").fetchone()
+        return {
+            "objrecall": _package_version(),
+            "schema_revision": row[0] if row else None,
+            "catalog": {"objects": count, "max_id": max_id, "updated_at": updated},
+            "planner_version": PLANNER_VERSION,
+            "writes_enabled": settings.token is not None,
+        }
+
+    @app.get("/objects", tags=["catalog"], response_model=Page)
+    def list_objects(limit: limit_q = DEFAULT_PAGE, offset: offset_q = 0) -> dict[str, Any]:
+        """Catalog objects ordered by name, one page at a time (``total`` counts them all)."""
+        kb = knowledge_base()
+        items = [r.to_dict() for r in kb.list_objects(limit=limit, offset=offset)]
+        for item in items:
+            item.pop("extra", None)
+        return {"total": kb.count_objects(), "limit": limit, "offset": offset, "items": to_jsonable(items)}
+
+    @app.get("/objects/{name}", tags=["catalog"])
+    def get_object(name: str) -> dict[str, Any]:
+        """One object by name or alias, with the provenance of its values (newest first)."""
+        kb = knowledge_base()
+        record = kb.get_object(name).to_dict()
+        record.pop("extra", None)
+        record["provenance"] = kb.provenance(record["name"])
+        return to_jsonable(record)
+
+    @app.post("/parse", tags=["recall"])
+    def parse_text(body: TextIn) -> dict[str, Any]:
+        """The features a description states, with the words each came from."""
+        from recall.parser import parse
+
+        return to_jsonable(parse(body.text).to_dict())
+
+    @app.post("/recall", tags=["recall"])
+    def recall(body: RecallIn) -> dict[str, Any]:
+        """Ranked catalog objects for a description, each with per-feature contributions (lower = closer),
+        a calibrated confidence and the open-set flag."""
+        result = recaller().recall_text(
+            body.text, top=body.top, metric=body.metric, features_only=body.features_only
+        )
+        return to_jsonable(result.to_dict())
+
+    @app.post("/grasp/plan", tags=["grasp"])
+    def grasp_plan(body: PlanIn) -> dict[str, Any]:
+        """Ranked grasp plans for a catalog object (``name``) or the best match of a description (``text``)."""
+        from sim.planner import plan_grasps
+
+        if (body.text is None) == (body.name is None):
+            raise ObjrecallError("give exactly one of 'text' (a description) or 'name' (a catalog object)")
+        if body.name is not None:
+            obj = knowledge_base().get_object(body.name)
+            how: dict[str, Any] = {"method": "name"}
+        else:
+            result = recaller().recall_text(body.text, top=1)
+            if not result.matches:
+                raise RecallError("the description states no feature and names no catalog object")
+            best = result.matches[0]
+            obj = ObjectRecord.create(best.name, **{f: best.features.get(f) for f in FEATURES})
+            how = {"method": "recall", "confidence": result.confidence, "open_set": result.open_set}
+        plans = plan_grasps(obj, top=body.top)
+        return to_jsonable(
+            {
+                "object": obj.name,
+                "recalled": how,
+                "features": obj.features(),
+                "plans": [p.to_dict() for p in plans],
+            }
+        )
+
+    @app.get("/grasp/validations", tags=["grasp"], response_model=Page)
+    def grasp_validations(
+        object: Annotated[str | None, Query(max_length=200, description="Only this object.")] = None,
+        limit: limit_q = DEFAULT_PAGE,
+        offset: offset_q = 0,
+    ) -> dict[str, Any]:
+        """Stored MuJoCo grasp trials (``objrecall grasp validate``), optionally for one object."""
+        rows = knowledge_base().grasp_results(object)
+        return {
+            "total": len(rows),
+            "limit": limit,
+            "offset": offset,
+            "items": to_jsonable(rows[offset : offset + limit]),
+        }
+
+    @app.post("/sql", tags=["catalog"])
+    def run_sql(body: SqlIn) -> dict[str, Any]:
+        """One read-only SELECT in the sandbox: no writes, files, network, ATTACH or extensions; at most
+        ``max_rows`` rows (``truncated`` says when there were more) and ``timeout_s`` seconds (504)."""
+        started = time.monotonic()
+        try:
+            result = knowledge_base().sql(body.query, max_rows=body.max_rows, timeout_s=body.timeout_s)
+        except QueryFailed as err:
+            if "time limit" in str(err) or time.monotonic() - started >= body.timeout_s:
+                raise RequestTimeout(str(err)) from None
+            raise
+        return to_jsonable(
+            {"columns": result.columns, "rows": result.to_dicts(), "truncated": result.truncated}
+        )
+
+    @app.get("/ingestion/runs", tags=["ingestion"])
+    def ingestion_runs(limit: Annotated[int, Query(ge=1, le=200)] = 20) -> dict[str, Any]:
+        """Recent ingestion runs recorded in the catalog (newest first), and any job this service started."""
+        runs = knowledge_base().ingestion_runs(limit=limit)
+        jobs = [j.to_dict() for j in app.state.jobs.jobs.values()]
+        return to_jsonable({"runs": runs, "jobs": jobs})
+
+    @app.get("/ingestion/jobs/{job_id}", tags=["ingestion"])
+    def ingestion_job(job_id: str) -> dict[str, Any]:
+        """Status and log tail of an ingestion job started by ``POST /ingestion/runs``."""
+        return app.state.jobs.get(job_id).to_dict()
+
+    # -- writes
+    @app.post("/ingestion/runs", tags=["ingestion"], status_code=202, dependencies=[Depends(require_token)])
+    def start_ingestion() -> dict[str, Any]:
+        """Start ``objrecall ingest --sources <configured file> --db <catalog>`` as a child process; 202 with
+        the job handle (poll ``/ingestion/jobs/{id}``). 409 while a job started here still runs."""
+        if settings.sources is None:
+            raise ObjrecallError(
+                f"no sources file configured on the server (start it with --sources FILE or set {ENV_SOURCES})"
+            )
+        command = [
+            *settings.ingest_command,
+            "ingest",
+            "--sources",
+            str(settings.sources),
+            "--db",
+            str(settings.db),
+        ]
+        job = app.state.jobs.start(command)
+        return {"id": job.id, "status": job.status, "status_url": f"/ingestion/jobs/{job.id}"}
+
+    @app.put("/objects/{name}", tags=["catalog"], dependencies=[Depends(require_token)])
+    def put_object(name: str, body: ObjectIn) -> JSONResponse:
+        """Insert or edit an object: given values replace stored ones (validated like the CSV import),
+        and every change is kept in its provenance with source ``api``. 201 when the object is new."""
+        values = body.model_dump()
+        aliases = values.pop("aliases")
+        source = values.pop("source") or "api"
+        record = ObjectRecord.create(name, aliases=aliases, source=source, **values)
+        kb = KnowledgeBase.open(settings.db, busy_timeout=settings.busy_timeout, upgrade=False)
+        if not settings.db.exists():
+            raise DatabaseError(f"{settings.db}: no catalog there (create it with `objrecall init`)")
+        report = kb.upsert([record], source=source, adapter="api")
+        stored = kb.get_object(record.name).to_dict()
+        stored.pop("extra", None)
+        stored["provenance"] = kb.provenance(record.name)
+        with recall_lock:
+            recall_cache["checked"] = 0.0
+        return JSONResponse(to_jsonable(stored), status_code=201 if report.new else 200)
+
+    # -- the web page
+    static = Path(__file__).parent / "static"
+    app.mount("/static", StaticFiles(directory=static), name="static")
+
+    @app.get("/", include_in_schema=False)
+    def index() -> FileResponse:
+        return FileResponse(static / "index.html", headers={"Cache-Control": "no-cache"})
+
+    @app.middleware("http")
+    async def security_headers(request: Request, call_next):
+        response = await call_next(request)
+        response.headers.setdefault("X-Content-Type-Options", "nosniff")
+        if request.url.path == "/" or request.url.path.startswith("/static"):
+            response.headers.setdefault(
+                "Content-Security-Policy",
+                "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data:; "
+                "connect-src 'self'; frame-ancestors 'none'; base-uri 'none'; form-action 'self'",
+            )
+        return response
+
+    return LimitsWrapped(app, settings)
+
+
+class LimitsWrapped:
+    """The FastAPI app behind :class:`LimitsMiddleware`; ``.app`` is the FastAPI instance (OpenAPI, state)."""
+
+    def __init__(self, app, settings: ServiceSettings):
+        self.app = app
+        self.settings = settings
+        self._asgi = LimitsMiddleware(
+            app, max_body_bytes=settings.max_body_bytes, timeout=settings.request_timeout
+        )
+
+    async def __call__(self, scope, receive, send):
+        await self._asgi(scope, receive, send)
+
+    def openapi(self) -> dict[str, Any]:
+        return self.app.openapi()
+
+    @property
+    def state(self):
+        return self.app.state
+
+
+def _package_version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("objrecall")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
+        return "0+unknown"
+
+
+# ------------------------------------------------------------------------------------- running it
+def free_port(host: str = "127.0.0.1") -> int:
+    """A TCP port free on ``host`` right now."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind((host, 0))
+        return s.getsockname()[1]
+
+
+@contextmanager
+def serve_subprocess(
+    db: str | Path,
+    *,
+    port: int | None = None,
+    env: dict[str, str] | None = None,
+    extra_args: list[str] | None = None,
+    startup_timeout: float = 60.0,
+) -> Iterator[str]:
+    """Run ``objrecall serve --db DB`` on 127.0.0.1 in a child process and yield its base URL once
+    ``/health`` answers (for tests, benchmarks and demos); the child is stopped on exit."""
+    import httpx
+
+    port = port or free_port()
+    command = [*objrecall_command(), "serve", "--host", "127.0.0.1", "--port", str(port), "--db", str(db)]
+    log = tempfile.TemporaryFile()
+    proc = subprocess.Popen(
+        [*command, *(extra_args or [])],
+        env=env,
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        stdin=subprocess.DEVNULL,
+    )
+    base = f"http://127.0.0.1:{port}"
+    try:
+        deadline = time.monotonic() + startup_timeout
+        while True:
+            if proc.poll() is not None:
+                log.seek(0)
+                raise RuntimeError(
+                    f"objrecall serve exited with {proc.returncode}: {log.read().decode()[-2000:]}"
+                )
+            try:
+                if httpx.get(f"{base}/health", timeout=1.0).status_code == 200:
+                    break
+            except httpx.HTTPError:
+                pass
+            if time.monotonic() > deadline:
+                raise RuntimeError(f"objrecall serve did not answer on {base} within {startup_timeout:g} s")
+            time.sleep(0.1)
+        yield base
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+        log.close()
+
+
+def serve(
+    host: Annotated[
+        str, typer.Option("--host", help="Interface to listen on (0.0.0.0 exposes it).")
+    ] = "127.0.0.1",
+    port: Annotated[int, typer.Option("--port", min=1, max=65535, help="TCP port.")] = 8000,
+    db: DbOption = None,
+    sources: Annotated[
+        Path | None,
+        typer.Option(
+            "--sources", help=f"Sources file that POST /ingestion/runs ingests (env {ENV_SOURCES})."
+        ),
+    ] = None,
+    request_timeout: Annotated[
+        float, typer.Option("--request-timeout", min=1.0, help="Answer 504 after this many seconds.")
+    ] = 30.0,
+    log_level: Annotated[str, typer.Option("--log-level", help="uvicorn log level.")] = "info",
+) -> None:
+    """Serve the catalog over HTTP: the JSON API (OpenAPI at /docs) and the web page at /.
+
+    Reads are open; writes need the bearer token from $OBJRECALL_API_TOKEN or the file named by
+    $OBJRECALL_API_TOKEN_FILE (without one, writes are disabled).
+    """
+    import uvicorn
+
+    path = resolve_db(db)
+    app = create_app(path, sources=sources, request_timeout=request_timeout, warm=True)
+    if app.settings.token is None:
+        sys.stderr.write("objrecall serve: no API token configured; writes are disabled\n")
+    uvicorn.run(app, host=host, port=port, log_level=log_level, access_log=log_level == "debug")
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``objrecall serve``."""
+    app.command("serve")(serve)

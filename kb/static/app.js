@@ -1,0 +1,195 @@
+// objrecall web page: browse the catalog, recall an object from a description, show its grasp.
+// Every catalog string (names come from scraped pages) goes into the DOM through textContent, never
+// innerHTML, so a product called "<script>..." is shown as text.
+"use strict";
+
+const PAGE = 25;
+let offset = 0;
+let total = 0;
+let pending = 0;
+
+function el(tag, text, cls) {
+  const node = document.createElement(tag);
+  if (text !== undefined && text !== null) node.textContent = String(text);
+  if (cls) node.className = cls;
+  return node;
+}
+
+function fmt(value) {
+  if (value === null || value === undefined) return "?";
+  if (typeof value === "number") return Number.isInteger(value) ? String(value) : value.toFixed(2);
+  return String(value);
+}
+
+function busy(delta) {
+  pending += delta;
+  document.body.dataset.state = pending > 0 ? "loading" : "idle";
+}
+
+async function api(path, body) {
+  const init = body === undefined ? {} : {
+    method: "POST",
+    headers: { "Content-Type": "application/json" },
+    body: JSON.stringify(body),
+  };
+  busy(1);
+  try {
+    const response = await fetch(path, init);
+    let data = null;
+    try { data = await response.json(); } catch (e) { data = null; }
+    if (!response.ok) {
+      const detail = data && data.detail ? data.detail : response.statusText;
+      throw new Error(`${response.status}: ${detail}`);
+    }
+    return data;
+  } finally {
+    busy(-1);
+  }
+}
+
+function setStatus(id, text, isError) {
+  const node = document.getElementById(id);
+  node.textContent = text || "";
+  node.classList.toggle("error", Boolean(isError));
+}
+
+// ------------------------------------------------------------------------------------------ catalog
+async function loadCatalog() {
+  const body = document.querySelector("#catalog tbody");
+  try {
+    const page = await api(`/objects?limit=${PAGE}&offset=${offset}`);
+    total = page.total;
+    body.replaceChildren();
+    for (const obj of page.items) {
+      const row = el("tr");
+      row.dataset.name = obj.name;
+      row.append(el("td", obj.name, "name"));
+      for (const f of ["a_cm", "b_cm", "c_cm", "mass_g"]) row.append(el("td", fmt(obj[f]), "num"));
+      for (const f of ["shape", "material", "texture", "fragility", "rigidity"]) row.append(el("td", fmt(obj[f])));
+      body.append(row);
+    }
+    const last = Math.min(offset + PAGE, total);
+    document.getElementById("page-info").textContent =
+      total ? `${offset + 1}-${last} of ${total} objects` : "the catalog is empty";
+    document.getElementById("prev").disabled = offset === 0;
+    document.getElementById("next").disabled = offset + PAGE >= total;
+    setStatus("catalog-status", "");
+  } catch (err) {
+    setStatus("catalog-status", `Could not load the catalog: ${err.message}`, true);
+  }
+}
+
+// ------------------------------------------------------------------------------------------- recall
+function contributionCell(contributions) {
+  const cell = el("td");
+  const entries = Object.entries(contributions || {}).sort((a, b) => b[1] - a[1]);
+  if (!entries.length) cell.textContent = "(named in the description)";
+  for (const [feature, value] of entries) {
+    const item = el("span", `${feature} ${fmt(value)}`, "contrib");
+    item.dataset.feature = feature;
+    const bar = el("span", null, "bar");
+    bar.style.width = `${Math.min(Math.max(value, 0), 10) * 0.6}rem`;
+    item.append(bar);
+    cell.append(item);
+  }
+  return cell;
+}
+
+function showGrasp(plan) {
+  const box = document.getElementById("grasp");
+  box.replaceChildren();
+  if (!plan || !plan.plans || !plan.plans.length) {
+    box.append(el("p", "no grasp plan"));
+    return;
+  }
+  const best = plan.plans[0];
+  const head = el("p");
+  head.id = "grasp-type";
+  head.dataset.grasp = best.grasp_type;
+  head.append(el("strong", best.grasp_type));
+  head.append(document.createTextNode(
+    ` (${best.family}) for ${plan.object}: across ${best.grasped_dim}, aperture ${fmt(best.aperture_cm)} cm, ` +
+    `${best.approach} approach, grip force ${fmt(best.grip_force_n)} N`));
+  box.append(head);
+  const list = el("ul");
+  for (const line of best.rationale || []) list.append(el("li", line));
+  box.append(list);
+  if (plan.plans.length > 1) {
+    box.append(el("p", "Alternatives: " + plan.plans.slice(1).map((p) => p.grasp_type).join(", "), "meta"));
+  }
+}
+
+async function runRecall(text) {
+  const result = document.getElementById("recall-result");
+  const top = Number(document.getElementById("top").value) || 5;
+  const metric = document.getElementById("metric").value;
+  const featuresOnly = document.getElementById("features-only").checked;
+  setStatus("recall-status", "Recalling...");
+  try {
+    const answer = await api("/recall", { text, top, metric, features_only: featuresOnly });
+    const body = document.querySelector("#matches tbody");
+    body.replaceChildren();
+    answer.matches.forEach((m, i) => {
+      const row = el("tr");
+      row.dataset.name = m.name;
+      row.append(el("td", i + 1, "num"));
+      const name = el("td", m.name, "name");
+      if (m.matched_by_name) name.append(el("span", "named", "named"));
+      row.append(name);
+      row.append(el("td", fmt(m.distance), "num"));
+      row.append(contributionCell(m.contributions));
+      body.append(row);
+    });
+    const summary = document.getElementById("recall-summary");
+    if (!answer.matches.length) {
+      summary.textContent = "The description states no feature the catalog knows and names no object.";
+      document.getElementById("grasp").replaceChildren();
+    } else {
+      summary.replaceChildren();
+      const best = el("strong", answer.matches[0].name);
+      best.id = "top-match";
+      summary.append("Best match: ", best,
+        ` (confidence ${(answer.confidence * 100).toFixed(0)} %` +
+        (answer.open_set ? "; not a close match: probably not in the catalog" : "") + ")");
+      const plan = await api("/grasp/plan", { name: answer.matches[0].name });
+      showGrasp(plan);
+    }
+    result.hidden = false;
+    setStatus("recall-status", "");
+  } catch (err) {
+    setStatus("recall-status", `Recall failed: ${err.message}`, true);
+  }
+}
+
+// -------------------------------------------------------------------------------------------- start
+async function showVersion() {
+  try {
+    const v = await api("/version");
+    document.getElementById("version").textContent =
+      `objrecall ${v.objrecall}, ${v.catalog.objects} objects in the catalog`;
+  } catch (err) {
+    setStatus("catalog-status", `The service is not ready: ${err.message}`, true);
+  }
+}
+
+document.addEventListener("DOMContentLoaded", () => {
+  document.getElementById("prev").addEventListener("click", () => { offset = Math.max(0, offset - PAGE); loadCatalog(); });
+  document.getElementById("next").addEventListener("click", () => { offset += PAGE; loadCatalog(); });
+  document.getElementById("recall-form").addEventListener("submit", (event) => {
+    event.preventDefault();
+    const text = document.getElementById("q").value.trim();
+    if (!text) { setStatus("recall-status", "Type a description first.", true); return; }
+    const url = new URL(window.location.href);
+    url.searchParams.set("q", text);
+    window.history.replaceState(null, "", url);
+    runRecall(text);
+  });
+  const params = new URLSearchParams(window.location.search);
+  const tasks = [showVersion(), loadCatalog()];
+  const q = params.get("q");
+  if (q) {
+    document.getElementById("q").value = q;
+    tasks.push(runRecall(q));
+  }
+  Promise.all(tasks).finally(() => { document.body.dataset.ready = "true"; });
+});
