@@ -32,7 +32,6 @@ from typing import Any, Literal
 
 import duckdb
 
-from kb import migrate
 from kb.csvio import SkippedRow, read_catalog_csv, write_catalog_csv
 from kb.errors import (
     DatabaseBusy,
@@ -202,11 +201,15 @@ class KnowledgeBase:
         """Create or upgrade the schema to ``revision`` (Alembic), waiting while another process writes."""
         if self.read_only:
             raise DatabaseError(f"{self.path}: opened read-only; cannot migrate")
+        from kb import migrate  # Alembic and SQLAlchemy load only when a writer migrates
+
         self.path.parent.mkdir(parents=True, exist_ok=True)
         with self._lock.write():
             self._retry(lambda: migrate.upgrade(self.path, revision))
 
     def schema_revision(self) -> str | None:
+        from kb import migrate
+
         with self._lock.read():
             return self._retry(lambda: migrate.current_revision(self.path))
 
