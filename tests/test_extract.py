@@ -262,3 +262,32 @@ def test_cli_extract_text_and_errors():
     assert result.exit_code == 1
     assert "no product dimensions or mass" in result.output
     assert "Traceback" not in result.output
+
+
+def test_cli_extract_url_over_loopback_http():
+    """A URL is fetched with the polite fetcher (robots.txt 404 = allowed) from a real local server."""
+    import functools
+    import http.server
+    import threading
+
+    from kb.cli import app
+
+    class QuietHandler(http.server.SimpleHTTPRequestHandler):
+        def log_message(self, *args):  # keep the command's output clean
+            pass
+
+    handler = functools.partial(QuietHandler, directory=str(PAGES))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        url = f"http://127.0.0.1:{server.server_address[1]}/agem_sk.html"
+        result = CliRunner().invoke(app, ["extract", url, "--json"])
+    finally:
+        server.shutdown()
+        server.server_close()
+    assert result.exit_code == 0, result.output
+    data = json.loads(result.output)
+    assert data["dims_cm"] == [65.0, 51.6, 20.3]
+    assert data["mass_g"] == 9700.0
+    assert data["url"] == url
