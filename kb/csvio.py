@@ -55,6 +55,7 @@ def read_catalog_csv(path: str | Path, *, skip_invalid: bool = False) -> CsvRead
 
 
 def parse_catalog_csv(text: str, *, label: str = "<csv>", skip_invalid: bool = False) -> CsvReadResult:
+    """Like :func:`read_catalog_csv` for CSV text already in memory (``label`` names it in errors)."""
     reader = csv.DictReader(io.StringIO(text))
     header = [h.strip() for h in (reader.fieldnames or [])]
     if not header:
