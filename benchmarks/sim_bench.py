@@ -71,6 +71,74 @@ def bench_workers(workers: tuple[int, ...] = (1, 2), *, limit: int | None = None
     return out
 
 
+def best_plans(limit: int | None = None) -> list[tuple[Any, Any]]:
+    """(record, best plan) for the seed catalog's objects, in catalog order."""
+    from sim.planner import best_grasp
+
+    records = seed_records()[:limit] if limit else seed_records()
+    return [(r, best_grasp(r)) for r in records]
+
+
+def bench_raw_steps(pairs: list[tuple[Any, Any]], steps: int = 1000) -> dict[str, Any]:
+    """Baseline: MuJoCo alone stepping the same trial worlds (hand pre-shaped over the object, no control
+    or measurement in Python), ``steps`` steps each."""
+    import mujoco
+
+    from sim.trial import build_world
+
+    total_steps, wall = 0, 0.0
+    for record, plan in pairs:
+        world = build_world(record, plan, seed=0)
+        start = time.perf_counter()
+        mujoco.mj_step(world.model, world.data, nstep=steps)
+        wall += time.perf_counter() - start
+        total_steps += steps
+        dt = world.model.opt.timestep
+    return {
+        "steps": total_steps,
+        "wall_s": round(wall, 3),
+        "us_per_step": round(1e6 * wall / total_steps, 1),
+        "sim_to_wall": round(total_steps * dt / wall, 1),
+    }
+
+
+def bench_trials(quick: bool = False, *, limit: int | None = None) -> dict[str, Any]:
+    """Full trials (pre-shape .. perturbations) of the seed catalog's best grasps, serially on one core:
+    trials per second and simulated-to-wall ratio, against the raw-stepping baseline of the same worlds."""
+    from sim.trial import run_trial
+
+    pairs = best_plans(limit or (20 if quick else None))
+    raw = bench_raw_steps(pairs[: min(len(pairs), 20)])
+    start = time.perf_counter()
+    results = [run_trial(record, plan, seed=0) for record, plan in pairs]
+    wall = time.perf_counter() - start
+    sim_time = sum(r.sim_time_s for r in results)
+    steps = sim_time / 0.002
+    outcomes = {k: sum(r.outcome == k for r in results) for k in ("success", "failure", "error")}
+    out = {
+        "trials": len(results),
+        "wall_s": round(wall, 2),
+        "trials_per_s_one_core": round(len(results) / wall, 2),
+        "mean_trial_wall_s": round(wall / len(results), 3),
+        "max_trial_wall_s": round(max(r.wall_time_s for r in results), 3),
+        "sim_to_wall": round(sim_time / wall, 2),
+        "us_per_step_in_trials": round(1e6 * wall / steps, 1),
+        "baseline_raw": raw,
+        "overhead_vs_raw_steps": round((wall / steps) / (raw["wall_s"] / raw["steps"]), 2),
+        **outcomes,
+    }
+    print(
+        f"one core: {out['trials']} full trials in {out['wall_s']} s = {out['trials_per_s_one_core']} trials/s "
+        f"(mean {out['mean_trial_wall_s']} s, max {out['max_trial_wall_s']} s per trial); simulated/wall "
+        f"{out['sim_to_wall']}; {out['us_per_step_in_trials']} us per step in trials vs "
+        f"{raw['us_per_step']} us raw mj_step (x{out['overhead_vs_raw_steps']}, baseline sim/wall "
+        f"{raw['sim_to_wall']}); {outcomes['success']} success, {outcomes['failure']} failure, "
+        f"{outcomes['error']} error",
+        flush=True,
+    )
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="20 objects instead of the whole seed catalog")

@@ -134,6 +134,9 @@ THUMB_MAX_FORCE_N = 30.0
 #: Torque limit of an unused finger (N m): enough to hold its pose (gravity is compensated), too weak to
 #: take part in the grasp.
 UNUSED_TORQUE_NM = 0.05
+#: While closing, each used digit presses with at least this force (N): the closing speed is the torque
+#: over the joint damping, and a 1 N grip would take a second to close. The hold then returns to the plan.
+CLOSING_FORCE_FLOOR_N = 2.0
 #: Lever arm from a joint to where the digit presses, as a fraction of the digit's length beyond the
 #: joint: finger pads press near the tip in precision grasps, mid-finger in wraps.
 LEVER_FRACTION = {"power": 0.6, "intermediate": 0.8, "precision": 0.85}
@@ -414,14 +417,17 @@ class GraspTargets:
     """Joint targets (radians, in :data:`ACTUATOR_NAMES` order) and force limits for one grasp.
 
     ``open``: the pre-shape (hand opened to the plan's aperture around ``center_y_cm``). ``close``: where
-    the digits are driven to; they stop on the object and press with ``torque_limits`` (N m), set from
-    the plan's grip force. ``center_y_cm`` and ``contact_z_cm``: where (hand frame, y) the object's centre
+    the digits are driven to; they stop on the object and press at ``closing_limits`` (N m). Then the
+    trial holds the ``squeezing`` joints with ``torque_limits``: the torques that give the plan's grip
+    force. ``center_y_cm`` and ``contact_z_cm``: where (hand frame, y) the object's centre
     belongs and at which height (hand frame, z) the digits first meet a ``width_cm`` wide object.
     """
 
     open: np.ndarray
     close: np.ndarray
     torque_limits: dict[str, float]
+    closing_limits: dict[str, float]
+    squeezing: tuple[str, ...]
     fingers: tuple[str, ...]
     center_y_cm: float
     contact_z_cm: float
@@ -434,19 +440,21 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     ``width_cm`` defaults to the plan's aperture less the planner's margin. Closing is force-limited
     position control: each used digit's target lies beyond contact (power: fully flexed; precision: the
     tips crossing the object's centre line), and its actuator's force limit is the torque that presses
-    with its share of the planned grip force. The thumb presses with half of ``grip_force_n`` and the
-    fingers share the other half (forces balance across the object); each digit is capped at its
-    strongest (:data:`FINGER_MAX_FORCE_N`, :data:`THUMB_MAX_FORCE_N`). Unused fingers stay straight and,
-    in precision grasps, above the object.
+    with its share of the planned grip force. The plan's ``grip_force_n`` is the squeeze: the normal
+    force on each side of the opposition axis (the planner's F = m g SF / (2 mu) for a two-sided grip).
+    The thumb presses with all of it and the fingers share it, so forces balance across the object;
+    the squeeze is capped by the weaker side's strength (:data:`FINGER_MAX_FORCE_N` per finger,
+    :data:`THUMB_MAX_FORCE_N`). While closing, a floor of :data:`CLOSING_FORCE_FLOOR_N` keeps light
+    grips from closing too slowly (speed is torque over damping). Unused fingers stay straight and, in
+    precision grasps, above the object.
     """
     if plan.grasp_type not in GRASP_TYPES:
         raise ValueError(f"unknown grasp type {plan.grasp_type!r}")
     family = GRASP_TYPES[plan.grasp_type]
     aperture = max(float(plan.aperture_cm), 0.5)
     width = float(width_cm) if width_cm is not None else max(0.5, aperture - 1.5)
-    aperture = max(aperture, width + 1.0)
     fingers = active_fingers(plan.grasp_type)
-    side = min(max(plan.grip_force_n, 0.5) / 2.0, THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(fingers))
+    side = min(max(plan.grip_force_n, 0.1), THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(fingers))
     per_finger = side / len(fingers)
     lever = LEVER_FRACTION[family]
     limits = dict.fromkeys(ACTUATOR_NAMES, UNUSED_TORQUE_NM)
@@ -455,6 +463,12 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     for f in fingers:
         limits[f"{f}_mcp"] = per_finger * lever * _digit_length_cm(f, "mcp") * CM
         limits[f"{f}_pip"] = per_finger * lever * _digit_length_cm(f, "pip") * CM
+    squeezing = ("thumb_flex", *(f"{f}_{j}" for f in fingers for j in ("mcp", "pip")))
+    closing = dict(limits)
+    for name in squeezing:
+        digit, joint = name.split("_", 1)
+        floor = CLOSING_FORCE_FLOOR_N * lever * _digit_length_cm(digit, joint) * CM
+        closing[name] = max(limits[name], floor)
 
     open_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
     close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
@@ -522,6 +536,8 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
         open=np.array([open_q[n] for n in ACTUATOR_NAMES]),
         close=np.array([close_q[n] for n in ACTUATOR_NAMES]),
         torque_limits=limits,
+        closing_limits=closing,
+        squeezing=squeezing,
         fingers=fingers,
         center_y_cm=center,
         contact_z_cm=contact_z,

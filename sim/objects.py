@@ -23,8 +23,8 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
-from kb.errors import SimulationError
-from kb.features import ObjectRecord
+from kb.errors import InvalidFeature, SimulationError
+from kb.features import ObjectRecord, validate_features
 from sim.friction import friction_coefficient
 from sim.hand import HAND_BIT, OBJECT_BIT, TABLE_BIT
 
@@ -108,8 +108,9 @@ def object_model(obj: ObjectRecord) -> ObjectModel:
     from sim.planner import resolve_features
 
     try:
+        validate_features(obj.features())  # records built without create() are checked here
         o = resolve_features(obj)
-    except Exception as exc:  # invalid features: name them, as every bad input should
+    except InvalidFeature as exc:
         raise SimulationError(f"cannot build {obj.name!r} for simulation: {exc}") from exc
     a, b, c = o.a_cm, o.b_cm, o.c_cm
     kind, axis = "box", None

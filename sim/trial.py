@@ -70,8 +70,8 @@ CLOSE_HOLD_S = 0.15
 LIFT_S = 0.5
 HOLD_S = 0.3
 PUSH_S = 0.2
-#: Steps between control updates and measurements (10 ms at the 2 ms step).
-CONTROL_EVERY = 5
+#: Steps between control updates and measurements (20 ms at the 2 ms step).
+CONTROL_EVERY = 10
 PERTURBATION_DIRECTIONS: dict[str, tuple[float, float, float]] = {
     "+x": (1.0, 0.0, 0.0),
     "-x": (-1.0, 0.0, 0.0),
@@ -90,7 +90,9 @@ class TrialResult:
     ``outcome`` is 'success', 'failure' (the physics ran and the grasp did not hold) or 'error' (the
     simulation diverged or could not run; never counted as either). ``slip_cm`` and ``rotation_deg`` are
     the object's largest displacement and turn relative to the palm from the end of closing on;
-    ``grip_force_n`` the mean total normal force between hand and object during the hold;
+    ``grip_force_n`` the measured squeeze: half the total normal force between hand and object (both
+    sides of the opposition axis push), averaged over the hold, comparable to the plan's grip force;
+    ``max_contact_force_n`` the largest normal force of a single contact over the trial;
     ``perturbation`` maps each direction pushed to the displacement (relative to the palm) it caused.
     """
 
@@ -131,7 +133,7 @@ class TrialWorld:
     approach_dir: np.ndarray
     object_body: int
     palm_body: int
-    hand_geoms: np.ndarray
+    is_hand: np.ndarray  # per geom: does it belong to the hand
     object_geom: int
     wrist_act: np.ndarray
     digit_act: np.ndarray
@@ -147,22 +149,25 @@ class TrialWorld:
         ro = self.data.xmat[self.object_body].reshape(3, 3)
         return r.T @ (po - p), r.T @ ro
 
-    def hand_contacts(self) -> list[tuple[int, float, float]]:
-        """(contact index, normal force N, distance m) of every hand-object contact."""
+    def hand_contacts(self) -> tuple[np.ndarray, np.ndarray]:
+        """Normal forces (N) and distances (m) of the active hand-object contacts.
+
+        With elliptic cones a contact's first constraint row is its normal force (what
+        ``mj_contactForce`` returns as force[0]); reading ``efc_force`` directly avoids a Python loop.
+        """
         d = self.data
         n = d.ncon
         if n == 0:
-            return []
+            return _EMPTY, _EMPTY
         g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        mask = ((g1 == self.object_geom) & np.isin(g2, self.hand_geoms)) | (
-            (g2 == self.object_geom) & np.isin(g1, self.hand_geoms)
-        )
-        out = []
-        buf = np.zeros(6)
-        for i in np.flatnonzero(mask):
-            mujoco.mj_contactForce(self.model, d, int(i), buf)
-            out.append((int(i), float(buf[0]), float(d.contact.dist[i])))
-        return out
+        mask = ((g1 == self.object_geom) & self.is_hand[g2]) | ((g2 == self.object_geom) & self.is_hand[g1])
+        mask &= d.contact.efc_address[:n] >= 0
+        if not mask.any():
+            return _EMPTY, _EMPTY
+        return d.efc_force[d.contact.efc_address[:n][mask]], d.contact.dist[:n][mask]
+
+
+_EMPTY = np.zeros(0)
 
 
 def _placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
@@ -224,7 +229,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     spec.worldbody.add_light(pos=[0.3, -0.3, 0.8], dir=[-0.3, 0.3, -0.8], diffuse=[0.7, 0.7, 0.7])
     add_table(spec)
     add_object(spec, model_obj, axes, obj_pos)
-    H.add_hand(spec, approach=plan.approach, mount_m=palm_pos, torque_limits=targets.torque_limits)
+    H.add_hand(spec, approach=plan.approach, mount_m=palm_pos, torque_limits=targets.closing_limits)
     try:
         model = spec.compile()
     except Exception as exc:
@@ -235,10 +240,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     digit_act = np.array([model.actuator(n).id for n in H.ACTUATOR_NAMES])
     wrist_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.WRIST_JOINT_NAMES])
     digit_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.JOINT_NAMES])
-    hand_bodies = {model.body(n).id for n in ("palm",)} | {
-        i for i in range(model.nbody) if i not in (0, model.body("object").id)
-    }
-    hand_geoms = np.array([g for g in range(model.ngeom) if model.geom_bodyid[g] in hand_bodies])
+    object_body = model.body("object").id
+    # Hand geoms: every geom on a body other than the world (the table) and the object.
+    is_hand = (model.geom_bodyid != 0) & (model.geom_bodyid != object_body)
 
     noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
     open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
@@ -253,9 +257,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         plan=plan,
         targets=targets,
         approach_dir=approach_dir,
-        object_body=model.body("object").id,
+        object_body=object_body,
         palm_body=model.body("palm").id,
-        hand_geoms=hand_geoms,
+        is_hand=is_hand,
         object_geom=model.geom("object_geom").id,
         wrist_act=wrist_act,
         digit_act=digit_act,
@@ -267,13 +271,14 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
 def check_physics(model: mujoco.MjModel, data: mujoco.MjData, where: str = "") -> None:
     """Raise :class:`PhysicsError` if the state holds NaN/Inf or any MuJoCo warning fired (after
     dm_control's ``Physics.check_invalid_state``)."""
-    for arr, name in ((data.qpos, "qpos"), (data.qvel, "qvel"), (data.qacc, "qacc")):
-        if not np.all(np.isfinite(arr)):
-            raise PhysicsError(f"simulation diverged{where}: non-finite {name} at t={data.time:.3f} s")
-    for i in range(int(mujoco.mjtWarning.mjNWARNING)):
-        if data.warning[i].number > 0:
-            name = mujoco.mjtWarning(i).name
-            raise PhysicsError(f"simulation diverged{where}: MuJoCo warning {name} at t={data.time:.3f} s")
+    if not np.isfinite(data.qpos.sum() + data.qvel.sum() + data.qacc.sum()):
+        for arr, name in ((data.qpos, "qpos"), (data.qvel, "qvel"), (data.qacc, "qacc")):
+            if not np.all(np.isfinite(arr)):
+                raise PhysicsError(f"simulation diverged{where}: non-finite {name} at t={data.time:.3f} s")
+    counts = data.warning.number
+    if counts.any():
+        name = mujoco.mjtWarning(int(np.flatnonzero(counts)[0])).name
+        raise PhysicsError(f"simulation diverged{where}: MuJoCo warning {name} at t={data.time:.3f} s")
 
 
 def _smooth(u: float) -> float:
@@ -300,12 +305,12 @@ class _Runner:
         check_physics(self.m, self.d, where)
 
     def _measure(self, record_force: bool = False) -> float:
-        contacts = self.w.hand_contacts()
-        total = sum(f for _, f, _ in contacts)
-        if contacts:
-            self.max_force = max(self.max_force, max(f for _, f, _ in contacts))
+        forces, _ = self.w.hand_contacts()
+        total = float(forces.sum())
+        if forces.size:
+            self.max_force = max(self.max_force, float(forces.max()))
         if record_force:
-            self.hold_forces.append(total)
+            self.hold_forces.append(total / 2.0)  # the squeeze: contact forces from both sides, halved
         if self.ref_pos is not None:
             pos, rot = self.w.object_in_palm()
             self.slip = max(self.slip, float(np.linalg.norm(pos - self.ref_pos)) / H.CM)
@@ -330,7 +335,8 @@ class _Runner:
         d, w = self.d, self.w
         saved = d.qpos[w.wrist_qpos].copy()
         mujoco.mj_forward(self.m, d)
-        depth = max([0.0] + [-dist for _, _, dist in w.hand_contacts()])
+        _, dists = w.hand_contacts()
+        depth = max(0.0, float(-dists.min())) if dists.size else 0.0
         d.qpos[w.wrist_qpos] = saved + APPROACH_M * w.approach_dir
         mujoco.mj_forward(self.m, d)
         return depth
@@ -374,12 +380,14 @@ class _Runner:
         m, d, w = self.m, self.d, self.w
         strongest = H.max_torques()
         for k, name in enumerate(H.ACTUATOR_NAMES):
-            if name != "thumb_rot" and w.targets.torque_limits[name] <= H.UNUSED_TORQUE_NM:
+            if name not in w.targets.squeezing and name != "thumb_rot":
                 continue
             a = w.digit_act[k]
             q = d.qpos[m.jnt_qposadr[m.actuator_trnid[a, 0]]]
             kp = m.actuator_gainprm[a, 0]
-            d.ctrl[a] = q + d.actuator_force[a] / kp
+            direction = np.sign(w.targets.close[k] - w.targets.open[k])
+            squeeze = w.targets.torque_limits[name] if name in w.targets.squeezing else 0.0
+            d.ctrl[a] = q + direction * squeeze / kp
             m.actuator_forcerange[a] = (-strongest[name], strongest[name])
 
     def lift(self) -> float:
@@ -457,7 +465,7 @@ def run_trial(
             )
         runner.approach()
         runner.close()
-        if not world.hand_contacts():
+        if not world.hand_contacts()[0].size:
             return finish("failure", "no contact after closing: the digits missed the object")
         rose = runner.lift()
         result.lifted = rose >= LIFTED_FRACTION * LIFT_M / H.CM

@@ -1,0 +1,147 @@
+"""Grasp trials in MuJoCo (sim/trial.py): physical honesty, determinism, divergence handling."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+
+from kb.errors import PhysicsError
+from kb.features import ObjectRecord
+from sim import hand as H
+from sim.grasps import GRASP_TYPES, GraspPlan
+from sim.trial import PERTURBATION_DIRECTIONS, TrialResult, build_world, check_physics, run_trial
+
+
+def _plan(grasp_type: str, aperture: float, force: float, approach: str = "top", dim: str = "c") -> GraspPlan:
+    return GraspPlan(grasp_type, GRASP_TYPES[grasp_type], dim, aperture, approach, force, 1.0)
+
+
+CUBE = ObjectRecord.create(
+    "cube",
+    a_cm=5,
+    b_cm=5,
+    c_cm=5,
+    mass_g=100,
+    shape="compact",
+    texture="medium",
+    material="plastic",
+    rigidity="rigid",
+    fragility="sturdy",
+)
+TENNIS_BALL = ObjectRecord.create(
+    "tennis ball",
+    a_cm=6.5,
+    b_cm=6.5,
+    c_cm=6.5,
+    mass_g=58,
+    shape="radial",
+    texture="rough",
+    material="fabric",
+    rigidity="squeezable",
+    fragility="sturdy",
+)
+#: Heavy and slippery: a 1.5 kg polished glass block.
+HEAVY_GLASS = ObjectRecord.create(
+    "glass block",
+    a_cm=5,
+    b_cm=5,
+    c_cm=5,
+    mass_g=1500,
+    shape="compact",
+    texture="smooth",
+    material="glass",
+    rigidity="rigid",
+    fragility="medium",
+)
+
+
+@pytest.fixture(scope="module")
+def cube_wrap() -> TrialResult:
+    return run_trial(CUBE, _plan("medium_wrap", 7.0, 10.0, approach="side"), seed=0)
+
+
+def test_small_cube_passes_a_power_grasp(cube_wrap):
+    r = cube_wrap
+    assert r.outcome == "success", r.reason
+    assert r.success and r.lifted
+    assert r.slip_cm < 5.0 and r.rotation_deg < 15.0
+    assert set(r.perturbation) == set(PERTURBATION_DIRECTIONS)  # every push was survived
+    assert r.grip_force_n > 1.0 and r.max_contact_force_n > 0.0
+    assert r.simulator == f"mujoco {mujoco.__version__}" and r.hand_version == H.HAND_VERSION
+    assert r.sim_time_s > 2.0 and r.wall_time_s > 0.0
+
+
+def test_small_cube_passes_a_top_power_sphere():
+    r = run_trial(CUBE, _plan("power_sphere", 7.0, 10.0), seed=0)
+    assert r.outcome == "success", r.reason
+
+
+def test_tennis_ball_passes_a_power_sphere():
+    r = run_trial(TENNIS_BALL, _plan("power_sphere", 8.0, 3.0), seed=0)
+    assert r.outcome == "success", r.reason
+    assert r.family == "power" and r.grasp_type == "power_sphere"
+
+
+@pytest.mark.parametrize("grasp_type", ["thumb_index_finger", "thumb_2_finger"])
+def test_heavy_slippery_object_fails_a_fingertip_pinch(grasp_type):
+    # The planner would ask for more than fingertips can give; plan the most they can: it still slips.
+    r = run_trial(HEAVY_GLASS, _plan(grasp_type, 6.5, 60.0), seed=0)
+    assert r.outcome == "failure" and not r.success
+    assert "inside" not in r.reason  # it failed for the physics (it slid out), not the set-up
+    assert "lifted" in r.reason or "slipped" in r.reason
+
+
+def test_the_same_pinch_holds_a_light_object():
+    light = ObjectRecord.create(
+        "wood block", a_cm=4, b_cm=4, c_cm=4, mass_g=40, shape="compact", texture="medium", material="wood"
+    )
+    r = run_trial(light, _plan("thumb_2_finger", 5.0, 3.0), seed=0)
+    assert r.outcome == "success", r.reason
+
+
+def test_same_seed_same_result_other_seed_differs(cube_wrap):
+    again = run_trial(CUBE, _plan("medium_wrap", 7.0, 10.0, approach="side"), seed=0)
+    a, b = cube_wrap.to_dict(), again.to_dict()
+    a.pop("wall_time_s"), b.pop("wall_time_s")
+    assert a == b
+    other = run_trial(CUBE, _plan("medium_wrap", 7.0, 10.0, approach="side"), seed=1)
+    assert other.seed == 1
+    assert (other.slip_cm, other.grip_force_n) != (cube_wrap.slip_cm, cube_wrap.grip_force_n)
+
+
+def test_hand_starting_inside_the_object_fails():
+    # An aperture far too small: the pre-shaped fingers overlap the object at the grasp pose.
+    r = run_trial(CUBE, _plan("thumb_2_finger", 0.5, 5.0), seed=0)
+    assert r.outcome == "failure"
+    assert "inside the object" in r.reason
+    assert r.sim_time_s == 0.0
+
+
+def test_result_serialises_to_plain_data(cube_wrap):
+    d = cube_wrap.to_dict()
+    assert d["outcome"] == "success" and d["object_name"] == "cube"
+    assert isinstance(d["perturbation"], dict)
+    assert set(d) >= {"slip_cm", "rotation_deg", "grip_force_n", "seed", "simulator", "hand_version"}
+
+
+def test_check_physics_turns_nan_and_warnings_into_errors():
+    world = build_world(CUBE, _plan("medium_wrap", 7.0, 10.0, approach="side"))
+    m, d = world.model, world.data
+    check_physics(m, d)
+    d.qvel[0] = np.nan
+    with pytest.raises(PhysicsError, match="non-finite qvel"):
+        check_physics(m, d)
+    d.qvel[0] = 0.0
+    d.warning[int(mujoco.mjtWarning.mjWARN_BADQACC)].number = 1
+    with pytest.raises(PhysicsError, match="BADQACC"):
+        check_physics(m, d)
+
+
+def test_diverging_simulation_is_an_error_never_a_success():
+    # Blow the object up mid-trial: the result must be an error, not a success or a failure.
+    world = build_world(CUBE, _plan("medium_wrap", 7.0, 10.0, approach="side"))
+    world.data.qvel[:6] = 1e30  # the object's free joint: an absurd velocity
+    r = run_trial(CUBE, world.plan, world=world)
+    assert r.outcome == "error" and not r.success
+    assert "diverged" in r.reason
