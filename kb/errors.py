@@ -68,7 +68,7 @@ class InvalidFeature(ObjrecallError, ValueError):
 
 
 class CatalogError(ObjrecallError):
-    pass
+    """A catalog operation failed."""
 
 
 class ObjectNotFound(CatalogError, LookupError):
@@ -89,34 +89,36 @@ class CatalogImportError(CatalogError):
 
 
 class DatabaseError(ObjrecallError):
-    pass
+    """The database file could not be used (missing, read-only, busy)."""
 
 
 class DatabaseBusy(DatabaseError):
-    pass
+    """Another process held the database for longer than the busy timeout."""
 
 
 class MigrationError(DatabaseError):
-    pass
+    """The database could not be brought to the schema head; nothing changed."""
 
 
 class QueryRefused(ObjrecallError):
-    pass
+    """User SQL tried to write, read files, attach, install or load."""
 
 
 class QueryFailed(ObjrecallError):
-    pass
+    """User SQL failed (syntax error, time limit, ...)."""
 
 
 class DescriptionError(ObjrecallError, ValueError):
-    pass
+    """A description could not be parsed at all (not text, too long)."""
 
 
 class RecallError(ObjrecallError):
-    pass
+    """Recall could not run (empty catalog, unknown metric)."""
 
 
 class FetchError(ObjrecallError):
+    """A page could not be fetched (HTTP status, timeout, size cap, robots.txt)."""
+
     def __init__(self, url: str, reason: str):
         self.url = url
         self.reason = reason
@@ -124,28 +126,28 @@ class FetchError(ObjrecallError):
 
 
 class RobotsDisallowed(FetchError):
-    pass
+    """robots.txt forbids fetching the URL."""
 
 
 class PageTooLarge(FetchError):
-    pass
+    """The page is larger than the size cap; it was not loaded."""
 
 
 class ExtractionError(ObjrecallError):
-    pass
+    """A page was fetched but holds no usable product record."""
 
 
 class IngestionError(ObjrecallError):
-    pass
+    """An ingestion run failed as a whole; the catalog is as it was."""
 
 
 class SourcesError(ObjrecallError):
-    pass
+    """A sources file is malformed."""
 
 
 class SimulationError(ObjrecallError):
-    pass
+    """A grasp trial could not be run."""
 
 
 class PhysicsError(SimulationError):
-    pass
+    """The simulation diverged (NaN, MuJoCo warnings): an error, never a result."""
