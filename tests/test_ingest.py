@@ -1,0 +1,282 @@
+"""The ingestion job end to end: demo store over real HTTP on 127.0.0.1 -> a real DuckDB catalog file."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import requests
+
+from kb.catalog import KnowledgeBase
+from scrapers.demo_store import PRODUCTS, DemoStore
+from scrapers.ingest import run_ingestion
+from scrapers.sources import parse_sources
+from tests.conftest import SEED_CSV
+
+SOURCES = """
+[defaults]
+delay_s = 0
+read_timeout_s = 0.4
+connect_timeout_s = 2
+max_retries = 1
+backoff_s = 0
+max_bytes = 2_000_000
+
+[[stores]]
+name = "demo"
+base_url = "http://127.0.0.1:1"
+sitemaps = ["{base_url}/sitemap.xml"]
+
+[[stores]]
+name = "demo-shopify-json"
+base_url = "http://127.0.0.1:1"
+sitemaps = ["{base_url}/sitemap.xml"]
+include = ["^/products/"]
+adapter = "shopify"
+"""
+
+BROKEN_REASONS = {"http_500", "timeout", "too_large", "robots_disallowed", "absurd_value", "no_product"}
+
+
+def sources_for(store: DemoStore, include: str | None = None):
+    """The two demo stores, or (with ``include``) only the HTML store restricted to matching paths."""
+    text = SOURCES
+    if include is not None:
+        text = SOURCES.split("[[stores]]")[0] + '[[stores]]\nname = "demo"\nbase_url = "http://127.0.0.1:1"\n'
+        text += f'sitemaps = ["{{base_url}}/sitemap.xml"]\ninclude = ["{include}"]\n'
+    return parse_sources(text, origin="test-sources.toml", base_url=store.base_url)
+
+
+_SEEDED: dict[str, Path] = {}
+
+
+def seeded(path: Path) -> KnowledgeBase:
+    """A catalog at ``path`` holding the seed catalog (imported once per session, then copied)."""
+    if "template" not in _SEEDED:
+        template = path.parent / "seed-template.duckdb"
+        KnowledgeBase.open(template).import_csv(SEED_CSV)
+        _SEEDED["template"] = template
+    shutil.copy(_SEEDED["template"], path)
+    return KnowledgeBase.open(path)
+
+
+def rows(kb: KnowledgeBase, sql: str, params=()) -> list[tuple]:
+    with kb.connect() as con:
+        return con.execute(sql, list(params)).fetchall()
+
+
+@pytest.fixture(scope="module")
+def store():
+    with DemoStore(crawl_delay=None, slow_s=1.0) as s:
+        yield s
+
+
+@pytest.fixture(scope="module")
+def first_run(store, tmp_path_factory):
+    """One ingestion of the demo store into a seeded catalog; tests copy the file before changing it."""
+    path = tmp_path_factory.mktemp("ingest") / "catalog.duckdb"
+    kb = seeded(path)
+    before = rows(kb, "SELECT count(*) FROM objects")[0][0]
+    with requests.Session() as session:
+        report = run_ingestion(kb, sources_for(store), session=session)
+    return path, report, before
+
+
+def test_first_run_counts(first_run, store):
+    path, report, before = first_run
+    kb = KnowledgeBase.open(path, read_only=True)
+    assert report.status == "ok"
+    assert report.pages == len(store.sitemap_paths()) + sum(p.fmt == "shopify" for p in PRODUCTS)
+    assert set(report.rejected_reasons) >= BROKEN_REASONS
+    assert report.rejected == sum(report.rejected_reasons.values())
+    assert (
+        report.fetched
+        + report.rejected_reasons["http_500"]
+        + report.rejected_reasons["timeout"]
+        + (report.rejected_reasons["too_large"] + report.rejected_reasons["robots_disallowed"])
+        == report.pages
+    )
+    assert report.new >= 25 and report.new == len(report.new_objects)
+    in_seed = {p.name for p in PRODUCTS if p.in_seed}
+    assert set(report.updated_objects) == in_seed
+    assert rows(kb, "SELECT count(*) FROM objects")[0][0] == before + report.new
+    (run,) = rows(
+        kb,
+        "SELECT id, status, fetched, not_modified, extracted, rejected, new, updated, rejected_reasons, duration_s "
+        "FROM ingestion_runs",
+    )
+    assert run[:8] == (report.run_id, "ok", report.fetched, 0, report.extracted, report.rejected, report.new,
+                       report.updated)  # fmt: skip
+    assert '"too_large": 1' in run[8] and run[9] > 0
+
+
+def test_bad_pages_are_recorded_with_their_reason(first_run, store):
+    path, report, _ = first_run
+    kb = KnowledgeBase.open(path, read_only=True)
+    events = {
+        url: (stage, reason) for url, stage, reason in rows(kb, "SELECT url, stage, reason FROM page_events")
+    }
+    expect = {
+        "/p/server-error.html": ("fetch", "http_500"),
+        "/p/slow-teapot.html": ("fetch", "timeout"),
+        "/p/huge-catalogue.html": ("fetch", "too_large"),
+        "/private/staff-lamp.html": ("fetch", "robots_disallowed"),
+        "/p/giant-mug.html": ("validate", "absurd_value"),
+        "/about.html": ("extract", "no_product"),
+        "/p/broken-jsonld.html": ("extract", "no_product"),
+    }
+    for path_, (stage, reason) in expect.items():
+        got_stage, got_reason = events[store.url(path_)]
+        assert got_stage == stage and got_reason.startswith(reason + ":"), path_
+    assert not rows(kb, "SELECT * FROM objects WHERE name IN ('giant mug', 'about us', 'staff desk lamp')")
+    (err,) = rows(kb, "SELECT error FROM pages WHERE url = ?", [store.url("/p/giant-mug.html")])
+    assert err[0].startswith("absurd_value")
+    assert not any(
+        store.url("/private/") in u for (u,) in rows(kb, "SELECT url FROM pages WHERE status = 200")
+    )
+
+
+def test_new_objects_carry_the_true_values(first_run):
+    path, report, _ = first_run
+    kb = KnowledgeBase.open(path, read_only=True)
+    catalog = {o.name: o for o in kb.list_objects()}
+    checked = 0
+    for prod in PRODUCTS:
+        if prod.in_seed or prod.name not in report.new_objects:
+            continue
+        obj = catalog[prod.name]
+        assert obj.dims_cm[: len(prod.dims_cm)] == pytest.approx(prod.dims_cm, rel=0.01), prod.handle
+        assert obj.mass_g == pytest.approx(prod.mass_g, rel=0.01), prod.handle
+        assert obj.source.startswith("http://127.0.0.1:")
+        checked += 1
+    assert checked >= 25
+
+
+def test_every_value_is_kept_with_its_source(first_run, store):
+    path, report, _ = first_run
+    kb = KnowledgeBase.open(path, read_only=True)
+    prov = kb.provenance("digital kitchen scale")
+    product = {o["feature"]: o for o in prov if o["role"] == "product"}
+    package = [o for o in prov if o["role"] == "package"]
+    assert product["mass_g"]["source"] == store.url("/dp/kitchen-scale")
+    assert product["mass_g"]["run_id"] == report.run_id and product["mass_g"]["raw_text"]
+    assert product["mass_g"]["adapter"]
+    assert {o["feature"] for o in package} == {"a_cm", "b_cm", "c_cm", "mass_g"}
+    obj = kb.get_object("digital kitchen scale")
+    # Package values are kept apart: the catalog holds the product's own (9.25 x 6.3 x 0.79 in; 1.06 lb).
+    assert obj.a_cm == pytest.approx(23.495, rel=0.01) and obj.mass_g == pytest.approx(480.8, rel=0.01)
+
+
+def test_pages_of_one_product_become_one_object(first_run, store):
+    path, _, _ = first_run
+    kb = KnowledgeBase.open(path, read_only=True)
+    towel_pages = rows(
+        kb,
+        "SELECT url, object_id FROM pages WHERE url LIKE '%linen-tea-towel%' ORDER BY url",
+    )
+    assert {u for u, _ in towel_pages} == {
+        store.url("/products/linen-tea-towel"),
+        store.url("/products/linen-tea-towel.json"),
+        store.url("/collections/kitchen/products/linen-tea-towel"),
+    }
+    assert len({oid for _, oid in towel_pages}) == 1 and towel_pages[0][1] is not None
+    skillet = rows(kb, "SELECT object_id FROM pages WHERE url LIKE '%cast-iron%'")
+    assert len(skillet) == 2 and len({oid for (oid,) in skillet}) == 1
+    assert rows(kb, "SELECT count(*) FROM objects WHERE name LIKE '%linen tea towel%'")[0][0] == 1
+
+
+def test_seed_objects_are_fused_with_page_values(first_run, store):
+    path, report, _ = first_run
+    kb = KnowledgeBase.open(path, read_only=True)
+    seed = {o.name: o for o in _seed_records()}
+    mug = kb.get_object("coffee mug")
+    page = next(p for p in PRODUCTS if p.handle == "coffee-mug")
+    # Two sources (the seed catalog and the page): the median is their mean.
+    assert mug.mass_g == pytest.approx((seed["coffee mug"].mass_g + page.mass_g) / 2)
+    assert mug.texture == seed["coffee mug"].texture  # no page states texture: kept
+    assert mug.source == seed["coffee mug"].source
+    sources = {o["source"] for o in kb.provenance("coffee mug")}
+    assert store.url("/p/coffee-mug.html") in sources and len(sources) == 2
+    (url,) = rows(kb, "SELECT canonical_url FROM objects WHERE name = 'coffee mug'")
+    assert url[0] == store.url("/p/coffee-mug.html")
+
+
+def _seed_records():
+    from kb.csvio import read_catalog_csv
+
+    return read_catalog_csv(SEED_CSV).records
+
+
+def test_second_run_changes_nothing(first_run, store, tmp_path):
+    path, first, _ = first_run
+    copy = tmp_path / "again.duckdb"
+    shutil.copy(path, copy)
+    kb = KnowledgeBase.open(copy)
+    objects_before = rows(kb, "SELECT * FROM objects ORDER BY id")
+    obs_before = rows(kb, "SELECT count(*) FROM observations")
+    with requests.Session() as session:
+        report = run_ingestion(kb, sources_for(store), session=session)
+    assert report.new == report.updated == report.observations_added == 0
+    assert report.not_modified >= first.new + first.updated
+    assert rows(kb, "SELECT * FROM objects ORDER BY id") == objects_before
+    assert rows(kb, "SELECT count(*) FROM observations") == obs_before
+    runs = rows(kb, "SELECT id, not_modified, new, updated FROM ingestion_runs ORDER BY id")
+    assert len(runs) == 2 and runs[1] == (report.run_id, report.not_modified, 0, 0)
+    # The pages were asked with their validators: 304s, not parsed.
+    conditional = [e for e in store.log if e.if_none_match and e.started > 0 and e.status == 304]
+    assert len(conditional) >= first.new
+
+
+def test_a_changed_page_adds_its_new_values(tmp_path):
+    with DemoStore(crawl_delay=None, slow_s=1.0) as store, requests.Session() as session:
+        kb = seeded(tmp_path / "c.duckdb")
+        sources = sources_for(store, include="bamboo|tennis")
+        run_ingestion(kb, sources, session=session)
+        before = kb.get_object("bamboo serving tray")
+        store.update_product("bamboo-serving-tray", mass=0.95)
+        report = run_ingestion(kb, sources, session=session)
+        assert report.updated_objects == ["bamboo serving tray"] and report.new == 0
+        masses = [o["value_num"] for o in kb.provenance("bamboo serving tray") if o["feature"] == "mass_g"]
+        assert masses == [950.0, 850.0]  # newest first; the old value is kept
+        after = kb.get_object("bamboo serving tray")
+        # One source, its latest value counts.
+        assert before.mass_g == 850.0 and after.mass_g == 950.0 and after.a_cm == before.a_cm
+
+
+def test_an_extractor_failure_skips_only_that_page(store, tmp_path):
+    from scrapers.extract import extract_page
+
+    def flaky_extractor(body, url, content_type):
+        if "tennis-ball" in url:
+            raise RuntimeError("bug in an adapter")
+        return extract_page(body, url, content_type)
+
+    kb = seeded(tmp_path / "e.duckdb")
+    with requests.Session() as session:
+        report = run_ingestion(
+            kb, sources_for(store, "tennis|bamboo|rolling"), session=session, extract=flaky_extractor
+        )
+    assert report.rejected_reasons == {"extractor_failed": 1}
+    assert report.new_objects == ["bamboo serving tray"] and report.updated_objects == ["rolling pin"]
+
+
+def test_no_database_handle_is_held_while_fetching(store, tmp_path):
+    """Another process can open the catalog while pages are being fetched (only the final write locks it)."""
+    path = tmp_path / "r.duckdb"
+    kb = seeded(path)
+    probe = "import duckdb, sys; c = duckdb.connect(sys.argv[1], read_only=True); print(c.execute('select count(*) from objects').fetchone()[0])"
+    seen: list[str] = []
+
+    def progress(done: int, total: int, url: str) -> None:
+        if done == 10:
+            out = subprocess.run(
+                [sys.executable, "-c", probe, str(path)], capture_output=True, text=True, timeout=60
+            )
+            seen.append(out.stdout.strip() or out.stderr)
+
+    with requests.Session() as session:
+        run_ingestion(kb, sources_for(store, "^/(p|dp)/"), session=session, progress=progress)
+    assert seen and seen[0].isdigit()

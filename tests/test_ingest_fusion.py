@@ -1,0 +1,101 @@
+"""The fusion rule (scrapers/fusion.py): product values only, one vote per source, median, majority."""
+
+from __future__ import annotations
+
+from datetime import datetime, timedelta
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from scrapers.fusion import Observation, fuse, is_curated
+
+T0 = datetime(2026, 11, 1)
+
+
+def obs(feature, value, source, *, role="product", days=0, id=0):
+    return Observation(feature, value, source, role=role, fetched_at=T0 + timedelta(days=days), id=id)
+
+
+def test_median_of_the_latest_value_per_source():
+    fused = fuse(
+        [
+            obs("mass_g", 300.0, "https://a/x"),
+            obs("mass_g", 320.0, "https://a/x", days=1),  # supersedes a's 300
+            obs("mass_g", 310.0, "https://b/y"),
+            obs("mass_g", 900.0, "https://c/z"),  # one wrong source cannot move a median of three
+        ]
+    )
+    assert fused.values["mass_g"] == 320.0
+    assert fused.support["mass_g"] == 3
+    assert any("disagree on mass_g" in w for w in fused.warnings)
+
+
+def test_two_sources_meet_in_the_middle_and_agreeing_sources_do_not_warn():
+    fused = fuse([obs("a_cm", 10.0, "csv:seed.csv"), obs("a_cm", 10.5, "https://a/x")])
+    assert fused.values["a_cm"] == 10.25 and not fused.warnings
+
+
+def test_package_values_never_become_catalog_values():
+    fused = fuse([obs("a_cm", 30.0, "https://a/x", role="package"), obs("mass_g", 5.0, "https://a/x")])
+    assert "a_cm" not in fused.values and fused.values["mass_g"] == 5.0
+
+
+def test_words_by_majority_ties_to_curated_then_newest():
+    three = [
+        obs("material", "metal", "https://a"),
+        obs("material", "metal", "https://b"),
+        obs("material", "wood", "csv:s"),
+    ]
+    assert fuse(three).values["material"] == "metal"
+    tie = [obs("shape", "compact", "https://a", days=3), obs("shape", "prism", "csv:seed.csv")]
+    assert fuse(tie).values["shape"] == "prism"
+    web_tie = [obs("shape", "compact", "https://a", days=3), obs("shape", "prism", "https://b", days=1)]
+    assert fuse(web_tie).values["shape"] == "compact"
+    assert any("disagree on shape" in w for w in fuse(web_tie).warnings)
+
+
+def test_curated_sources():
+    assert is_curated("csv:seed_catalog.csv") and is_curated("typical value (estimate)")
+    assert not is_curated("https://shop.example/p/1") and not is_curated("http://127.0.0.1:8765/p")
+
+
+def test_ties_in_time_are_broken_by_id():
+    same_time = [obs("mass_g", 1.0, "https://a", id=1), obs("mass_g", 2.0, "https://a", id=2)]
+    assert fuse(same_time).values["mass_g"] == 2.0
+
+
+values = st.floats(min_value=0.1, max_value=400, allow_nan=False)
+
+
+@given(st.lists(st.tuples(values, values, values), min_size=1, max_size=8))
+def test_fused_dims_stay_sorted_and_within_the_sources(triples):
+    observations = []
+    for i, triple in enumerate(triples):
+        a, b, c = sorted(triple, reverse=True)
+        observations += [
+            obs("a_cm", a, f"https://s{i}"),
+            obs("b_cm", b, f"https://s{i}"),
+            obs("c_cm", c, f"https://s{i}"),
+        ]
+    fused = fuse(observations).values
+    assert fused["a_cm"] >= fused["b_cm"] >= fused["c_cm"]
+    for k, feat in enumerate(("a_cm", "b_cm", "c_cm")):
+        column = [sorted(t, reverse=True)[k] for t in triples]
+        assert min(column) <= fused[feat] <= max(column)
+
+
+@given(st.lists(values, min_size=1, max_size=9), st.randoms(use_true_random=False))
+def test_fusion_ignores_the_order_observations_arrive_in(masses, rnd):
+    observations = [obs("mass_g", m, f"https://s{i}") for i, m in enumerate(masses)]
+    shuffled = observations[:]
+    rnd.shuffle(shuffled)
+    assert fuse(shuffled).values == fuse(observations).values
+
+
+@given(st.lists(values, min_size=1, max_size=6), values)
+def test_a_source_repeating_itself_does_not_outvote_others(others, repeated):
+    base = [obs("mass_g", m, f"https://s{i}") for i, m in enumerate(others)]
+    once = fuse([*base, obs("mass_g", repeated, "https://loud")]).values["mass_g"]
+    many = fuse([*base, *(obs("mass_g", repeated, "https://loud", id=k) for k in range(10))]).values["mass_g"]
+    assert once == pytest.approx(many)
