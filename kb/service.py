@@ -38,7 +38,7 @@ import threading
 import time
 from collections.abc import Iterator
 from contextlib import asynccontextmanager, contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -702,9 +702,13 @@ def create_app(
         aliases = values.pop("aliases")
         source = values.pop("source") or "api"
         record = ObjectRecord.create(name, aliases=aliases, source=source, **values)
-        kb = KnowledgeBase.open(settings.db, busy_timeout=settings.busy_timeout, upgrade=False)
         if not settings.db.exists():
             raise DatabaseError(f"{settings.db}: no catalog there (create it with `objrecall init`)")
+        kb = KnowledgeBase.open(settings.db, busy_timeout=settings.busy_timeout, upgrade=False)
+        try:  # an alias edits the object it names
+            record = replace(record, name=kb.get_object(record.name).name)
+        except ObjectNotFound:
+            pass
         report = kb.upsert([record], source=source, adapter="api")
         stored = kb.get_object(record.name).to_dict()
         stored.pop("extra", None)

@@ -1,0 +1,360 @@
+"""The knowledge service in-process (the ASGI app through Starlette's test client): endpoints, errors, auth,
+limits and the SQL sandbox. The same app over real HTTP is in tests/test_service_live.py."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from fastapi.testclient import TestClient
+
+from kb.service import ERROR_STATUS, MAX_PAGE, create_app, load_token
+
+TOKEN = "test-token-not-secret"
+AUTH = {"Authorization": f"Bearer {TOKEN}"}
+
+
+@pytest.fixture(scope="module")
+def shared_db(tmp_path_factory) -> Path:
+    """One seeded catalog for the read-only tests of this module."""
+    from kb.catalog import KnowledgeBase
+    from kb.commands import seed_catalog_path
+
+    path = tmp_path_factory.mktemp("service") / "catalog.duckdb"
+    KnowledgeBase.open(path).import_csv(seed_catalog_path())
+    return path
+
+
+@pytest.fixture(scope="module")
+def client(shared_db: Path) -> TestClient:
+    return TestClient(create_app(shared_db, token=""), raise_server_exceptions=False)
+
+
+@pytest.fixture
+def writer(seeded_db: Path) -> TestClient:
+    """A client of an app with writes enabled, on a fresh seeded catalog."""
+    return TestClient(create_app(seeded_db, token=TOKEN), raise_server_exceptions=False)
+
+
+def assert_error(response, status: int, error: str | None = None, words: str | None = None) -> dict:
+    assert response.status_code == status, response.text
+    body = response.json()
+    assert set(body) >= {"error", "detail"} and body["detail"]
+    if error:
+        assert body["error"] == error
+    if words:
+        assert words in body["detail"]
+    return body
+
+
+# ------------------------------------------------------------------------------------------ reads
+def test_health_and_version(client):
+    assert client.get("/health").json() == {"status": "ok", "catalog": True}
+    v = client.get("/version").json()
+    assert v["catalog"]["objects"] > 100
+    assert v["schema_revision"]
+    assert v["writes_enabled"] is False
+
+
+def test_objects_are_paged_with_a_total(client):
+    first = client.get("/objects", params={"limit": 10}).json()
+    second = client.get("/objects", params={"limit": 10, "offset": 10}).json()
+    assert first["total"] == second["total"] > 20
+    assert len(first["items"]) == len(second["items"]) == 10
+    names = [o["name"] for o in first["items"] + second["items"]]
+    assert names == sorted(names) and len(set(names)) == 20
+    everything = client.get("/objects", params={"limit": MAX_PAGE}).json()
+    assert len(everything["items"]) == everything["total"]
+    assert_error(client.get("/objects", params={"limit": MAX_PAGE + 1}), 422, "ValidationError", "limit")
+    assert_error(client.get("/objects", params={"offset": -1}), 422)
+    past_end = client.get("/objects", params={"offset": 100_000}).json()
+    assert past_end["items"] == [] and past_end["total"] == first["total"]
+
+
+def test_object_by_name_or_alias_with_provenance(client):
+    mug = client.get("/objects/mug").json()  # an alias
+    assert mug["name"] == "coffee mug" and "mug" in mug["aliases"]
+    assert mug["provenance"], "the seed import records where each value came from"
+    assert {p["feature"] for p in mug["provenance"]} >= {"mass_g", "material"}
+    assert all(p["adapter"] == "csv" for p in mug["provenance"])
+    assert_error(client.get("/objects/no%20such%20thing"), 404, "ObjectNotFound", "no such thing")
+
+
+def test_parse(client):
+    body = client.post("/parse", json={"text": "a glass jar about 12 cm tall weighing 400 g"}).json()
+    assert body["a_cm"] == pytest.approx(12.0)
+    assert body["mass_g"] == pytest.approx(400.0)
+    assert body["material"] == "glass"
+    assert body["evidence"]["mass_g"]["words"]
+    assert_error(client.post("/parse", json={"text": ""}), 422)
+    assert_error(client.post("/parse", json={}), 422, "ValidationError", "text")
+    assert_error(client.post("/parse", json={"text": 5}), 422)
+    assert_error(
+        client.post("/parse", content=b"{not json", headers={"content-type": "application/json"}), 422
+    )
+
+
+def test_recall_ranks_with_explanations(client):
+    body = client.post(
+        "/recall", json={"text": "a yellow fuzzy tennis ball, about 6.5 cm across, 58 g", "top": 3}
+    ).json()
+    assert body["matches"][0]["name"] == "tennis ball"
+    assert len(body["matches"]) == 3
+    assert 0.0 <= body["confidence"] <= 1.0
+    assert set(body["matches"][0]["contributions"]) >= {"mass_g"}
+    features_only = client.post(
+        "/recall",
+        json={"text": "a tennis ball", "features_only": True, "metric": "euclidean"},
+    ).json()
+    assert features_only["features_only"] is True and features_only["metric"] == "euclidean"
+    assert_error(client.post("/recall", json={"text": "a ball", "metric": "nonsense"}), 422, words="metric")
+    assert_error(client.post("/recall", json={"text": "a ball", "top": 0}), 422, words="top")
+    assert_error(client.post("/recall", json={"text": "a ball", "top": 10_000}), 422, words="top")
+    nonsense = client.post("/recall", json={"text": "qwx zzzt"}).json()
+    assert nonsense["matches"] == [] and nonsense["confidence"] == 0.0
+
+
+def test_grasp_plan_by_name_and_by_description(client):
+    by_name = client.post("/grasp/plan", json={"name": "tennis ball"}).json()
+    assert by_name["object"] == "tennis ball" and by_name["recalled"]["method"] == "name"
+    assert by_name["plans"][0]["grasp_type"] and by_name["plans"][0]["rationale"]
+    by_text = client.post("/grasp/plan", json={"text": "a fuzzy yellow tennis ball, 58 g", "top": 2}).json()
+    assert by_text["object"] == "tennis ball" and by_text["recalled"]["method"] == "recall"
+    assert len(by_text["plans"]) == 2
+    assert_error(client.post("/grasp/plan", json={}), 400, words="exactly one")
+    assert_error(client.post("/grasp/plan", json={"text": "a", "name": "b"}), 400, words="exactly one")
+    assert_error(client.post("/grasp/plan", json={"name": "unicorn horn"}), 404, "ObjectNotFound")
+    assert_error(client.post("/grasp/plan", json={"text": "qwx zzzt"}), 400, "RecallError")
+
+
+def test_grasp_validations_paged_and_filtered(writer, seeded_db):
+    from kb.catalog import KnowledgeBase
+
+    rows = [
+        {"object_name": name, "grasp_type": "power_sphere", "family": "power", "rank": 1, "success": True,
+         "outcome": "held", "seed": seed, "hand_version": "t", "features_hash": "h"}
+        for name in ("tennis ball", "coffee mug") for seed in range(3)
+    ]  # fmt: skip
+    KnowledgeBase.open(seeded_db).record_grasp_results(rows)
+    everything = writer.get("/grasp/validations").json()
+    assert everything["total"] == 6
+    page = writer.get("/grasp/validations", params={"object": "tennis ball", "limit": 2, "offset": 1}).json()
+    assert page["total"] == 3 and len(page["items"]) == 2
+    assert {r["object_name"] for r in page["items"]} == {"tennis ball"}
+    assert writer.get("/grasp/validations", params={"object": "nothing"}).json()["total"] == 0
+
+
+def test_ingestion_runs_list(client):
+    body = client.get("/ingestion/runs").json()
+    assert body == {"runs": [], "jobs": []}
+    assert_error(client.get("/ingestion/runs", params={"limit": 0}), 422)
+    assert_error(client.get("/ingestion/jobs/abc"), 404, "JobNotFound")
+
+
+# ------------------------------------------------------------------------------------ the SQL sandbox
+def test_sql_select(client):
+    body = client.post(
+        "/sql", json={"query": "SELECT name, mass_g FROM objects WHERE name = 'tennis ball'"}
+    ).json()
+    assert body["columns"] == ["name", "mass_g"]
+    assert body["rows"] == [{"name": "tennis ball", "mass_g": pytest.approx(body["rows"][0]["mass_g"])}]
+    assert body["truncated"] is False
+
+
+@pytest.mark.parametrize(
+    "query",
+    [
+        "SELECT * FROM read_csv('/etc/passwd')",
+        "SELECT * FROM read_text('/etc/hostname')",
+        "SELECT * FROM '/etc/passwd'",
+        "COPY objects TO '/tmp/objrecall-stolen.csv'",
+        "COPY (SELECT 1) TO '/tmp/objrecall-stolen.parquet' (FORMAT parquet)",
+        "ATTACH '/tmp/objrecall-other.duckdb' AS other",
+        "INSTALL httpfs",
+        "LOAD httpfs",
+        "SELECT * FROM read_json('http://127.0.0.1:1/x.json')",
+        "DELETE FROM objects",
+        "DROP TABLE objects",
+        "UPDATE objects SET mass_g = 1",
+        "INSERT INTO objects (name) VALUES ('x')",
+        "CREATE TABLE t AS SELECT 1",
+        "SET enable_external_access = true",
+        "PRAGMA database_list; SELECT 1",
+        "SELECT 1; DROP TABLE objects",
+        "EXPORT DATABASE '/tmp/objrecall-export'",
+    ],
+)
+def test_sql_refuses_hostile_queries(client, query):
+    body = assert_error(client.post("/sql", json={"query": query}), 400)
+    assert body["error"] in ("QueryRefused", "QueryFailed")
+    assert not Path("/tmp/objrecall-stolen.csv").exists()
+    assert client.get("/version").json()["catalog"]["objects"] > 100  # nothing was deleted
+
+
+def test_sql_row_limit_and_caps(client):
+    body = client.post("/sql", json={"query": "SELECT * FROM range(1000000000)", "max_rows": 100}).json()
+    assert len(body["rows"]) == 100 and body["truncated"] is True
+    default = client.post("/sql", json={"query": "SELECT * FROM range(1000000000)"}).json()
+    assert len(default["rows"]) == 1000 and default["truncated"] is True
+    assert_error(client.post("/sql", json={"query": "SELECT 1", "max_rows": 10**7}), 422, words="max_rows")
+    assert_error(client.post("/sql", json={"query": "SELECT 1", "timeout_s": 3600}), 422, words="timeout_s")
+    assert_error(client.post("/sql", json={"query": "SELEC nothing"}), 400, "QueryFailed", "SQL error")
+
+
+def test_sql_huge_cross_join_times_out(client):
+    body = assert_error(
+        client.post(
+            "/sql",
+            json={"query": "SELECT count(*) FROM range(100000000) a, range(100000000) b", "timeout_s": 0.5},
+        ),
+        504,
+        "RequestTimeout",
+    )
+    assert "time limit" in body["detail"]
+    assert client.post("/sql", json={"query": "SELECT 42 AS x"}).json()["rows"] == [{"x": 42}]
+
+
+# ------------------------------------------------------------------------------------ writes and auth
+def test_writes_disabled_without_a_configured_token(client):
+    body = assert_error(
+        client.put("/objects/widget", json={"mass_g": 5}, headers=AUTH), 403, "WritesDisabled"
+    )
+    assert "OBJRECALL_API_TOKEN" in body["detail"]
+    assert_error(client.post("/ingestion/runs", headers=AUTH), 403, "WritesDisabled")
+
+
+def test_writes_need_the_right_bearer_token(writer):
+    missing = assert_error(writer.put("/objects/widget", json={"mass_g": 5}), 401, "Unauthorized")
+    assert "Bearer" in missing["detail"]
+    wrong = writer.put("/objects/widget", json={"mass_g": 5}, headers={"Authorization": "Bearer nope"})
+    assert_error(wrong, 401, "Unauthorized", "invalid API token")
+    assert wrong.headers["www-authenticate"] == "Bearer"
+    basic = writer.put("/objects/widget", json={"mass_g": 5}, headers={"Authorization": f"Basic {TOKEN}"})
+    assert basic.status_code == 401
+    assert_error(writer.get("/objects/widget"), 404)  # nothing was written
+
+
+def test_put_object_inserts_then_edits_with_provenance(writer):
+    new = writer.put(
+        "/objects/Brass%20Door%20Knob",
+        json={"a_cm": 5.5, "b_cm": 6, "c_cm": 5.5, "mass_g": 180, "material": "metal", "shape": "radial",
+              "aliases": ["doorknob"], "source": "measured by hand"},
+        headers=AUTH,
+    )  # fmt: skip
+    assert new.status_code == 201, new.text
+    obj = new.json()
+    assert (
+        obj["name"] == "brass door knob" and obj["a_cm"] == 6.0 and obj["c_cm"] == 5.5
+    )  # sorted a >= b >= c
+    assert obj["aliases"] == ["doorknob"]
+    assert {p["adapter"] for p in obj["provenance"]} == {"api"}
+    edited = writer.put("/objects/doorknob", json={"mass_g": 200}, headers=AUTH)
+    assert edited.status_code == 200
+    assert edited.json()["name"] == "brass door knob" and edited.json()["mass_g"] == 200
+    again = writer.get("/objects/brass door knob").json()
+    assert again["material"] == "metal"  # values not given stay as stored
+    recall = writer.post("/recall", json={"text": "a brass door knob"}).json()
+    assert recall["matches"][0]["name"] == "brass door knob"  # the recall snapshot sees the edit
+
+
+@pytest.mark.parametrize(
+    ("body", "words"),
+    [
+        ({"mass_g": -3}, "mass_g"),
+        ({"a_cm": 1e9}, "a_cm"),
+        ({"shape": "hexagonal"}, "shape"),
+        ({"material": "unobtainium"}, "material"),
+        ({"colour": "red"}, "colour"),
+        ({"mass_g": "heavy"}, "mass_g"),
+    ],
+)
+def test_put_object_refuses_invalid_values(writer, body, words):
+    r = writer.put("/objects/widget", json=body, headers=AUTH)
+    assert r.status_code in (400, 422), r.text
+    assert words in r.json()["detail"]
+    assert writer.get("/objects/widget").status_code == 404
+
+
+def test_trigger_ingestion_needs_configured_sources(writer):
+    assert_error(writer.post("/ingestion/runs", headers=AUTH), 400, words="no sources file")
+
+
+def test_token_from_env_or_file(tmp_path):
+    assert load_token({}) is None
+    assert load_token({"OBJRECALL_API_TOKEN": " abc \n"}) == "abc"
+    secret = tmp_path / "token"
+    secret.write_text("from-file\n")
+    assert load_token({"OBJRECALL_API_TOKEN_FILE": str(secret)}) == "from-file"
+    assert load_token({"OBJRECALL_API_TOKEN": "env", "OBJRECALL_API_TOKEN_FILE": str(secret)}) == "env"
+    secret.write_text("  \n")
+    assert load_token({"OBJRECALL_API_TOKEN_FILE": str(secret)}) is None
+    from kb.errors import ObjrecallError
+
+    with pytest.raises(ObjrecallError, match="cannot read"):
+        load_token({"OBJRECALL_API_TOKEN_FILE": str(tmp_path / "missing")})
+
+
+# ---------------------------------------------------------------------------------------------- limits
+def test_request_body_size_limit(client):
+    big = {"text": "a mug " * 20_000}
+    assert_error(client.post("/parse", json=big), 413, "PayloadTooLarge")
+
+    def chunks():  # no Content-Length: chunked upload
+        for _ in range(100):
+            yield b"x" * 1024
+
+    assert_error(client.post("/parse", content=chunks(), headers={"content-type": "application/json"}), 413)
+
+
+def test_request_time_limit(shared_db):
+    slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), raise_server_exceptions=False)
+    r = slow.post(
+        "/sql", json={"query": "SELECT count(*) FROM range(100000000) a, range(100000000) b", "timeout_s": 3}
+    )
+    assert_error(r, 504, "RequestTimeout", "0.5 s")
+
+
+def test_missing_catalog_is_a_clear_503(tmp_path):
+    c = TestClient(create_app(tmp_path / "none.duckdb", token=""), raise_server_exceptions=False)
+    assert c.get("/health").json() == {"status": "ok", "catalog": False}
+    assert_error(c.get("/objects"), 503, "DatabaseError", "objrecall init")
+    assert_error(c.post("/recall", json={"text": "a mug"}), 503, "DatabaseError")
+
+
+def test_every_error_class_has_a_status():
+    import kb.errors as errors
+
+    for name in errors.__all__:
+        cls = getattr(errors, name)
+        status = next(ERROR_STATUS[c] for c in cls.__mro__ if c in ERROR_STATUS)
+        assert 400 <= status < 600 and status != 500, name
+    assert ERROR_STATUS[errors.ObjectNotFound] == 404
+    assert ERROR_STATUS[errors.DatabaseBusy] == 503
+    assert ERROR_STATUS[errors.QueryRefused] == 400
+
+
+# ----------------------------------------------------------------------------------- OpenAPI and page
+def test_openapi_and_docs(client):
+    spec = client.get("/openapi.json").json()
+    paths = spec["paths"]
+    for path in ("/health", "/version", "/objects", "/objects/{name}", "/parse", "/recall", "/grasp/plan",
+                 "/grasp/validations", "/sql", "/ingestion/runs"):  # fmt: skip
+        assert path in paths, path
+    assert "put" in paths["/objects/{name}"] and "post" in paths["/ingestion/runs"]
+    assert "HTTPBearer" in spec["components"]["securitySchemes"]
+    assert client.get("/docs").status_code == 200
+
+
+def test_web_page_is_served_with_a_strict_policy(client):
+    page = client.get("/")
+    assert page.status_code == 200 and "text/html" in page.headers["content-type"]
+    assert "script-src 'self'" in page.headers["content-security-policy"]
+    js = client.get("/static/app.js")
+    assert js.status_code == 200
+    assert (
+        ".innerHTML" not in js.text
+        and "insertAdjacentHTML" not in js.text
+        and "document.write" not in js.text
+    )
+    assert client.get("/static/style.css").status_code == 200
+    assert client.get("/static/../service.py").status_code == 404
