@@ -74,7 +74,7 @@ _KIND_WORDS: dict[str, str] = {
         "dimensions",
         "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
         "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
-        "afmetingen mått",
+        "afmetingen mått габаритные габаритный",
     ),
     **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
     **_words(
@@ -88,7 +88,7 @@ _PACKAGE_WORDS = {
         "package packages packaging packed shipping shipment box carton parcel gross verpackung verpackt "
         "versand paket karton brutto emballage emballé colis embalaje embalado paquete envío caja imballo "
         "imballaggio confezione spedizione pacco embalagem pacote caixa opakowanie opakowaniu balenie "
-        "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking"
+        "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking bruto lordo brut"
     ).split()
 }
 _NEGATIONS = {
@@ -101,8 +101,9 @@ _QUALIFIERS = {
         "total totale gesamt body unit assembled device net netto nett neto нетто устройства товара "
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
-        "ungefähr aprox environ общий общая общие nominal real actual main"
-        " l b h w d t"
+        "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
+        "produktu produkcie výrobku vyrobku geräts gerätes изделия товару"
+        " l b h w d t x х"
     ).split()
 }
 # German compounds: <prefix><kind word>, e.g. Artikelgewicht, Verpackungsgewicht, Produktabmessungen.
@@ -259,6 +260,8 @@ def _classify(label: object) -> LabelInfo | None:
         return None
     # "Item Package Dimensions", "Product size": the most specific kind wins; weight beats dimensions
     # only when no axis or dimension word is present.
+    if len({k for k in kinds if k in AXES}) >= 2:
+        return LabelInfo("dimensions", package, unit)  # "Width x Height x Depth", "Largo x Ancho x Alto"
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:

@@ -243,9 +243,16 @@ _UNIT = r"(?:''|[\"″′']|(?![xX]\b)[^\W\d_]+\.?)"
 _TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
 
 _DIMS_RE = re.compile(
-    rf"(?P<n1>{_NUMBER})\s*(?P<u1>{_UNIT})?\s*(?P<l1>\b(?![xX]\b)[a-zA-Z]\b)?"
-    rf"{_TIMES}(?P<n2>{_NUMBER})\s*(?P<u2>{_UNIT})?\s*(?P<l2>\b(?![xX]\b)[a-zA-Z]\b)?"
+    rf"(?P<n1>{_NUMBER})\s*(?P<u1>{_UNIT})?\s*(?P<l1>\(?\b(?![xX]\b)[a-zA-Z]\b\)?)?"
+    rf"{_TIMES}(?P<n2>{_NUMBER})\s*(?P<u2>{_UNIT})?\s*(?P<l2>\(?\b(?![xX]\b)[a-zA-Z]\b\)?)?"
     rf"(?:{_TIMES}(?P<n3>{_NUMBER})\s*(?P<u3>{_UNIT})?)?"
+)
+# An axis letter or word written before a number inside a dimensions value.
+_AXIS_PREFIX = re.compile(
+    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ)\.?\s*[:=]?\s*(?=\d)"
+)
+_POUNDS_OUNCES = re.compile(
+    r"(\d+(?:\.\d+)?)\s*(?:lbs?|pounds?)\.?,?\s*(?:and\s+)?(\d+(?:\.\d+)?)\s*(?:oz|ounces?)\b", re.IGNORECASE
 )
 _QUANTITY_RE = re.compile(rf"(?P<n>{_NUMBER})\s*(?P<u>{_UNIT})?")
 _TIMES_SIGN = re.compile(r"(\d\s*)([^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)")
@@ -408,6 +415,8 @@ def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool |
 
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
     s = clean_text(text)
+    if _AXIS_PREFIX.search(s):
+        s = clean_text(_AXIS_PREFIX.sub("", s))  # "H 30 cm x W 20 cm", "長37.5*寬26*高13.5cm"
     found: list[Dims] = []
     for m in _DIMS_RE.finditer(s):
         nums = [m.group("n1"), m.group("n2"), m.group("n3")]
@@ -436,6 +445,10 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
 
 def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: bool | None) -> float | None:
     s = clean_text(text)
+    if convert is mass_unit:
+        m = _POUNDS_OUNCES.search(s)
+        if m:
+            return round(float(m.group(1)) * 453.59237 + float(m.group(2)) * 28.349523125, 6)
     if _RANGE_RE.search(s):
         return None
     for m in _QUANTITY_RE.finditer(s):

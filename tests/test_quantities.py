@@ -70,6 +70,11 @@ def test_parse_number_refuses_non_numbers(text):
         ("2 x 3 x 4 m", None, None, (200.0, 300.0, 400.0)),
         ("10 x 20 x 30 MMT", None, None, (1.0, 2.0, 3.0)),
         ("1 x 2 x 3 FOT", None, None, (30.48, 60.96, 91.44)),
+        ("10 inches (H) x 5 inches (W) x 3 inches (D)", None, None, (25.4, 12.7, 7.62)),
+        ("H 30 cm x W 20 cm x D 10 cm", None, None, (30.0, 20.0, 10.0)),
+        ('10"L x 5"W x 3"H', None, None, (25.4, 12.7, 7.62)),
+        ("長37.5*寬26*高13.5cm", None, False, (37.5, 26.0, 13.5)),
+        ("幅30×奥行20×高さ10cm", None, False, (30.0, 20.0, 10.0)),
     ],
 )
 def test_parse_dims_real_page_shapes(text, unit, dc, expected):
@@ -100,6 +105,8 @@ def test_parse_dims_needs_a_length_unit(text):
         ("56", "кг", True, 56000.0),
         ("1,6 Kilogramos", None, True, 1600.0),
         ("190.51 Gramm", None, True, 190.51),
+        ("1 lb 4 oz", None, None, 566.990463),
+        ("1.2 kg (2.6 lbs)", None, None, 1200.0),
     ],
 )
 def test_parse_mass(text, unit, dc, grams):
