@@ -72,6 +72,8 @@ class CatalogError(ObjrecallError):
 
 
 class ObjectNotFound(CatalogError, LookupError):
+    """No object with that name or alias."""
+
     def __init__(self, name: str):
         self.name = name
         super().__init__(f"no object named {name!r} in the catalog")
