@@ -106,6 +106,7 @@ _QUALIFIERS = {
         " l b h w d t x х"
     ).split()
 }
+_OVERALL = {"overall", "assembled", "gesamt", "total", "outer", "exterior", "aussen", "außen"}
 # German compounds: <prefix><kind word>, e.g. Artikelgewicht, Verpackungsgewicht, Produktabmessungen.
 _COMPOUND_PREFIXES = {
     "artikel": False,
@@ -257,6 +258,8 @@ def _classify(label: object) -> LabelInfo | None:
             kinds.append(kind)
             package = package or (is_package and not negated)
     if not kinds:
+        if set(words) <= _OVERALL:
+            return LabelInfo("size", package, unit)  # Wayfair's "Overall: 15.5'' H x 12'' W x 12'' D"
         return None
     # "Item Package Dimensions", "Product size": the most specific kind wins; weight beats dimensions
     # only when no axis or dimension word is present.

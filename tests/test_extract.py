@@ -291,3 +291,35 @@ def test_cli_extract_url_over_loopback_http():
     assert data["dims_cm"] == [65.0, 51.6, 20.3]
     assert data["mass_g"] == 9700.0
     assert data["url"] == url
+
+
+def test_diameter_counts_as_width_and_depth():
+    page = "<html lang='en'><body><ul><li>Diameter: 7.2 cm</li><li>Height: 21.5 cm</li><li>Weight: 660 g</li>" \
+        "</ul></body></html>"  # fmt: skip
+    record = extract_page(page, "https://shop.example/bottle")
+    assert_dims(record.dims_cm, (21.5, 7.2, 7.2))
+    assert record.shape == "prism"
+
+
+def test_overall_label_and_heading_followed_by_pairs():
+    page = "<html lang='en'><body><h3>Dimensions</h3><p>Overall: 15.5'' H x 12'' W x 12'' D</p>" \
+        "<p>Overall Product Weight: 8 lb.</p></body></html>"  # fmt: skip
+    record = extract_page(page, "https://shop.example/pendant")
+    assert_dims(record.dims_cm, (39.37, 30.48, 30.48))
+    assert record.mass_g == pytest.approx(3628.74, rel=1e-4)
+    page = "<html lang='en'><body><h3>Dimensions</h3><p>Width: 30 cm</p><p>Height: 20 cm</p></body></html>"
+    assert_dims(extract_page(page, "https://shop.example/x").dims_cm, (30.0, 20.0))
+
+
+def test_decimal_point_rescue_on_a_decimal_comma_page():
+    page = "<html lang='de'><body><table><tr><th>Gewicht</th><td>1.250 kg</td></tr>" \
+        "<tr><th>Gewicht netto</th><td>1.25 kg</td></tr></table></body></html>"  # fmt: skip
+    record = extract_page(page, "https://shop.example.de/x")
+    assert record.mass_g == pytest.approx(1250.0)
+    assert any("decimal point" in w for w in record.warnings)
+
+
+def test_shopify_js_format_weight_in_grams():
+    body = json.dumps({"title": "Pan", "handle": "pan", "variants": [{"weight": 1450, "price": 3900}]})
+    record = extract_page(body, "https://shop.example/products/pan.js", "application/json")
+    assert record.mass_g == pytest.approx(1450.0)

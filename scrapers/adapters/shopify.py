@@ -40,7 +40,8 @@ def _variant_mass(variant: dict) -> tuple[float | None, str]:
         except ValueError:
             weight = None
     if isinstance(weight, (int, float)) and not isinstance(weight, bool) and weight > 0:
-        factor = mass_unit(str(unit)) if unit else None
+        # the .js product format gives "weight" in grams with no unit
+        factor = mass_unit(str(unit)) if unit else (1.0 if "grams" not in variant else None)
         if factor is not None:
             return round(weight * factor, 6), f"weight: {weight} {unit}"
     return None, ""

@@ -108,7 +108,7 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
                     pairs.append(
                         Pair(text, nxt.text, info, line.package or nxt.package, line.index, nxt.group)
                     )
-                    i += 2
+                    i += 1  # the value line may hold pairs of its own ("Dimensions" / "Width: 30 cm")
                     continue
         if _DIGIT.search(text) and len(text) <= 600:
             for label, value, info in split_inline(text):
@@ -118,11 +118,14 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
 
 
 def _plausible_mass(value: str, unit: str | None, dc: bool | None) -> tuple[float | None, str | None]:
+    """The mass in ``value``; when that reading is absurd and the other decimal-mark reading is not,
+    the other one, with a note."""
     mass = parse_mass(value, unit, dc)
-    if mass is not None and mass > MAX_MASS_G and dc is not True:
-        retry = parse_mass(value, unit, True)
+    if mass is not None and mass > MAX_MASS_G:
+        retry = parse_mass(value, unit, not dc)
         if retry is not None and retry <= MAX_MASS_G:
-            return retry, f"read {value.strip()!r} with a decimal comma (the other reading is absurd)"
+            mark = "decimal comma" if not dc else "decimal point"
+            return retry, f"read {value.strip()!r} with a {mark} (the other reading is absurd)"
     return mass, None
 
 
@@ -145,8 +148,8 @@ def observations_from_pairs(
             if dims:
                 d = dims[0]
                 note = None
-                if max(d.values_cm) > MAX_DIM_CM and decimal_comma is not True:
-                    again = parse_dims(pair.value, info.unit, True)
+                if max(d.values_cm) > MAX_DIM_CM:
+                    again = parse_dims(pair.value, info.unit, not decimal_comma)
                     if again and max(again[0].values_cm) <= MAX_DIM_CM:
                         d, note = again[0], "read with a decimal comma (the other reading is absurd)"
                 obs.append(Observation("dims", d.values_cm, package, rank, pair.order, pair.group, raw, note))
@@ -183,12 +186,17 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
     def flush() -> Iterator[Observation]:
         if len(row) >= 2:
             first = row[0][2]
+            values = [v for _, v, *_ in row]
+            kinds = {k for k, *_ in row}
+            if "diameter" in kinds and not kinds & {"width", "depth", "length"} and len(values) < 3:
+                # a round object: the diameter is both its width and its depth (a bottle: d x d x h)
+                values.append(next(v for k, v, *_ in row if k == "diameter"))
             raw = "; ".join(f"{p.label}: {p.value}" for _, _, p, _, _ in row)[:300]
             notes = "; ".join(n for *_, n in row if n) or None
             package = any(p.package or p.info.package for _, _, p, _, _ in row)
             yield Observation(
                 "dims",
-                tuple(v for _, v, *_ in row),
+                tuple(values),
                 package,
                 max(r for *_, r, _ in row),
                 first.order,
