@@ -294,7 +294,13 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
 
     if o.is_sphere:
         d = w
-        if heavy or d >= POWER_SPHERE_MIN_CM:
+        if o.fragility == "fragile" and m < 100.0 and d < 9.0:
+            out.append(
+                ("precision_sphere", f"round, fragile and light ({m:.0f} g): gently on the fingertips")
+            )
+            out.append(("power_sphere", "round: cupped in the palm"))
+            out.append(("tripod", "thumb, index and middle finger pads"))
+        elif heavy or d >= POWER_SPHERE_MIN_CM:
             why = "heavy" if heavy else f"{d:g} cm across (>= {POWER_SPHERE_MIN_CM:g} cm)"
             out.append(("power_sphere", f"round and {why}: cupped in the palm (Cutkosky: power, circular)"))
             out.append(("precision_sphere", "round: fingertips around it (precision, circular)"))
@@ -425,9 +431,12 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
         return out
 
     if o.shape == "compact" and a < 4.0:
-        out.append(("tripod", f"small ({a:g} cm) and light: thumb, index and middle finger pads"))
-        out.append(("thumb_2_finger" if a >= 2.0 else "thumb_index_finger", "small: fingertip pinch"))
-        out.append(("precision_sphere", "fingertips around it"))
+        kind = "thumb_2_finger" if a >= 2.0 else "thumb_index_finger"
+        out.append(
+            (kind, f"small ({a:g} cm) and light block: fingertip pinch (Cutkosky: precision, prismatic)")
+        )
+        out.append(("tripod", "small: thumb, index and middle finger pads"))
+        out.append(("lateral_pinch", "small: thumb against the side of the index"))
         return out
 
     kind = _fingers_for_length(a, m)

@@ -54,15 +54,17 @@ def test_paper_balls_get_a_power_circular_grasp(features):
         (dict(a_cm=4.3, b_cm=4.3, c_cm=4.3, mass_g=46, shape="radial"), "precision", {"precision_sphere"}),
         (dict(a_cm=7.2, b_cm=7.2, c_cm=2, mass_g=60, shape="compact", material="wood"), "precision",
          {"precision_disk"}),
-        (dict(a_cm=3, b_cm=3, c_cm=3, mass_g=12, shape="compact"), "precision", {"tripod"}),
+        (dict(a_cm=3, b_cm=3, c_cm=3, mass_g=12, shape="compact"), "precision", {"thumb_2_finger"}),
+        (dict(a_cm=8, b_cm=8, c_cm=8, mass_g=20, shape="radial", fragility="fragile", material="glass"),
+         "precision", {"precision_sphere"}),
         (dict(a_cm=19, b_cm=0.75, c_cm=0.75, mass_g=6, shape="long", material="wood"), "precision",
          {"thumb_2_finger", "tripod"}),
         (dict(a_cm=20, b_cm=4, c_cm=3.5, mass_g=150, shape="long"), "power", {"medium_wrap"}),
         (dict(a_cm=75, b_cm=40, c_cm=0.5, mass_g=200, shape="thin", material="fabric", rigidity="floppy"),
          "power", {"medium_wrap"}),
     ],
-    ids=["water bottle", "hammer", "key", "marble", "golf ball", "wood disk", "small cube", "pencil", "banana",
-         "towel"],
+    ids=["water bottle", "hammer", "key", "marble", "golf ball", "wood disk", "small cube", "glass ornament",
+         "pencil", "banana", "towel"],
 )  # fmt: skip
 def test_rules_choose_family_and_type(features, family, types):
     plan = best_grasp(features)
@@ -182,7 +184,7 @@ features_strategy = st.fixed_dictionaries(
 )
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=150, deadline=None)
 @given(features_strategy)
 def test_any_valid_features_get_valid_ranked_plans(features):
     plans = plan_grasps(features)
@@ -196,14 +198,14 @@ def test_any_valid_features_get_valid_ranked_plans(features):
     assert plans == plan_grasps(features)  # deterministic
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(features_strategy, st.floats(500, 100_000))
 def test_heavy_objects_always_get_power_grasps(features, mass):
     """Feix et al. 2014: heavy objects are held with power grasps."""
     assert best_grasp({**features, "mass_g": mass}).family == "power"
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=100, deadline=None)
 @given(
     st.floats(0.3, 3.0), st.floats(0.3, 3.0), st.floats(0.3, 3.0), st.floats(0.5, 20),
     maybe(st.sampled_from(SHAPES)), maybe(st.sampled_from(MATERIALS)),
