@@ -1,0 +1,154 @@
+"""Crash safety and the CLI: a real `objrecall ingest` subprocess, killed (SIGKILL) at several moments,
+leaves the catalog as it was before the run or as it is after it, never in between."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import duckdb
+import pytest
+
+from kb.catalog import KnowledgeBase
+from scrapers.demo_store import DemoStore
+from scrapers.ingest import PAUSE_ENV
+from tests.conftest import SEED_CSV
+
+pytestmark = pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="needs POSIX signals")
+
+SOURCES = """
+[defaults]
+delay_s = 0
+read_timeout_s = 0.4
+max_retries = 1
+backoff_s = 0
+max_bytes = 2_000_000
+
+[[stores]]
+name = "demo"
+base_url = "http://127.0.0.1:8765"
+sitemaps = ["{base_url}/sitemap.xml"]
+include = ["^/(p|dp|ikea|shop)/"]
+"""
+
+
+def snapshot(path: Path) -> tuple:
+    """The catalog's content, without timestamps and run ids (which differ between equal runs)."""
+    con = duckdb.connect(str(path), read_only=True)
+    try:
+        objects = con.execute(
+            "SELECT name, a_cm, b_cm, c_cm, mass_g, shape, texture, fragility, material, rigidity, source, gtin, "
+            "canonical_url FROM objects ORDER BY name"
+        ).fetchall()
+        observations = con.execute(
+            "SELECT o.name, feature, value_num, value_text, role, b.source, adapter FROM observations b "
+            "JOIN objects o ON o.id = b.object_id ORDER BY ALL"
+        ).fetchall()
+        counts = con.execute(
+            "SELECT (SELECT count(*) FROM ingestion_runs), (SELECT count(*) FROM pages), "
+            "(SELECT count(*) FROM page_events)"
+        ).fetchone()
+    finally:
+        con.close()
+    return objects, observations, counts
+
+
+@pytest.fixture(scope="module")
+def store():
+    with DemoStore(crawl_delay=None, slow_s=1.0) as s:
+        yield s
+
+
+@pytest.fixture(scope="module")
+def setup(store, tmp_path_factory):
+    """A seeded catalog (before), the sources file, and the state after one complete CLI run (after)."""
+    root = tmp_path_factory.mktemp("crash")
+    before_db = root / "before.duckdb"
+    KnowledgeBase.open(before_db).import_csv(SEED_CSV)
+    sources = root / "sources.toml"
+    sources.write_text(SOURCES)
+    after_db = root / "after.duckdb"
+    shutil.copy(before_db, after_db)
+    started = time.monotonic()
+    done = _ingest(after_db, sources, store)
+    out, err = done.communicate(timeout=120)
+    duration = time.monotonic() - started
+    assert done.returncode == 0, err
+    report = json.loads(out)
+    assert report["new"] > 10 and report["run_id"] == 1
+    return before_db, sources, snapshot(before_db), snapshot(after_db), duration, report
+
+
+def _env(extra: dict[str, str] | None = None) -> dict[str, str]:
+    env = dict(os.environ)
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    env.update(extra or {})
+    return env
+
+
+def _ingest(db: Path, sources: Path, store: DemoStore, env: dict[str, str] | None = None) -> subprocess.Popen:
+    exe = shutil.which("objrecall", path=_env()["PATH"])
+    cmd = [exe] if exe else [sys.executable, "-m", "kb.cli"]
+    return subprocess.Popen(
+        [*cmd, "ingest", "--sources", str(sources), "--db", str(db), "--base-url", store.base_url, "--json"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=_env(env),
+    )
+
+
+def test_cli_reports_the_run_as_json(setup):
+    *_, report = setup
+    assert report["status"] == "ok" and report["rejected_reasons"]["http_500"] == 1
+    assert report["fetched"] > 0 and report["pages_per_s"] > 0
+
+
+@pytest.mark.parametrize("fraction", [0.3, 0.7, 0.95])
+def test_kill_at_any_moment_leaves_before_or_after(setup, store, tmp_path, fraction):
+    before_db, sources, before, after, duration, _ = setup
+    db = tmp_path / "killed.duckdb"
+    shutil.copy(before_db, db)
+    proc = _ingest(db, sources, store)
+    time.sleep(duration * fraction)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    state = snapshot(db)
+    assert state == before or state == after
+
+
+def test_kill_inside_the_open_write_transaction_leaves_before_then_a_rerun_completes(setup, store, tmp_path):
+    before_db, sources, before, after, *_ = setup
+    db = tmp_path / "killed-in-tx.duckdb"
+    shutil.copy(before_db, db)
+    proc = _ingest(db, sources, store, env={PAUSE_ENV: "60"})
+    deadline = time.monotonic() + 120
+    line = ""
+    while time.monotonic() < deadline:
+        line = proc.stderr.readline()
+        if "write transaction open" in line or not line:
+            break
+    assert "write transaction open" in line  # every row is written, only COMMIT is missing
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=30)
+    assert snapshot(db) == before
+    rerun = _ingest(db, sources, store)
+    _, err = rerun.communicate(timeout=120)
+    assert rerun.returncode == 0, err
+    assert snapshot(db) == after
+
+
+def test_bad_sources_file_is_one_clear_error(tmp_path, store):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[[stores]]\nname = 'x'\n")
+    proc = _ingest(tmp_path / "x.duckdb", bad, store)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 1
+    assert err.strip().splitlines()[-1].startswith("Error: ") and "missing base_url" in err
+    assert "Traceback" not in err
