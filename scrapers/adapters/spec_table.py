@@ -217,6 +217,7 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
     yield from flush()
 
 
+_MATERIAL_HINT = re.compile(r"ateri|atéri|atièr|werkstoff|атериал|材質|材质|素材", re.IGNORECASE)
 _MATERIAL_LABEL = re.compile(
     r"(?:primary |main |frame |body |product |top )?(?:material|materials|materiał(?: wykonania)?|matériau|"
     r"matériaux|matière|werkstoff|materiale|materiali|materiais|material principal|материал|материал корпуса|"
@@ -229,6 +230,8 @@ def material_observations(lines: list[Line]) -> list[Observation]:
     """``Material: Plástico`` lines (label and value on one line or two), first known material first."""
     obs = []
     for i, line in enumerate(lines):
+        if not _MATERIAL_HINT.search(line.text):
+            continue
         text = clean_text(line.text)
         label, _, value = text.partition(":")
         if not value.strip():
