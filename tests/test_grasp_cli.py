@@ -130,10 +130,10 @@ def test_validate_missing_database(tmp_path):
 
 
 def test_validate_end_to_end_with_real_physics_report_and_resume(db, tmp_path):
-    """Real MuJoCo trials in two worker processes, stored, reported with renders; a rerun does nothing."""
-    report = tmp_path / "report"
+    """Real MuJoCo trials in two worker processes, stored; a rerun with --report runs no trial again but
+    renders the best grasp of each object for the report."""
     args = ["grasp", "validate", "tennis ball", "small cube", "--top", "2", "--workers", "2", "--db", str(db)]
-    result = invoke(*args, "--report", str(report), "--json")
+    result = invoke(*args, "--json")
     assert result.exit_code == 0, result.output
     summary = json.loads(result.output)
     assert summary["trials"] == 4 and summary["ran"] == 4 and summary["not_stored"] == 0
@@ -143,12 +143,16 @@ def test_validate_end_to_end_with_real_physics_report_and_resume(db, tmp_path):
     from sim.hand import HAND_VERSION
 
     assert all(r["simulator"].startswith("mujoco") and r["hand_version"] == HAND_VERSION for r in stored)
+    cube = next(r for r in stored if r["object_name"] == "small cube" and r["family"] == "power")
+    assert cube["success"] is True, cube["reason"]  # a 5 cm, 100 g cube holds in a power grasp
+
+    report = tmp_path / "report"
+    again = json.loads(invoke(*args, "--report", str(report), "--json").output)
+    assert again["ran"] == 0 and again["skipped"] == 4
     assert (report / "index.html").is_file() and (report / "results.csv").is_file()
     images = sorted((report / "images").glob("*.png"))
     assert len(images) == 2, "one render of the best plan per object"
     assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in images)
     page = (report / "index.html").read_text()
     assert all(f"images/{p.name}" in page for p in images)
-
-    again = json.loads(invoke(*args, "--json").output)
-    assert again["ran"] == 0 and again["skipped"] == 4
+    assert len(json.loads((report / "results.json").read_text())["results"]) == 4
