@@ -45,21 +45,22 @@ _KIND_WORDS: dict[str, str] = {
     **_words(
         "length",
         "length len long länge laenge longueur longitud largo lunghezza comprimento długość dlugosc dĺžka "
-        "délka длина довжина lengte längd",
+        "délka длина довжина lengte längd længde lengde uzunluk uzunluğu lungime pituus hossz hosszúság μήκος panjang",
     ),
     **_words(
         "width",
         "width wide breite largeur ancho anchura larghezza largura szerokość šírka šířka ширина ширина "
-        "breedte bredd",
+        "breedte bredd bredde genişlik genişliği lățime latime leveys szélesség πλάτος lebar",
     ),
     **_words(
         "height",
-        "height high tall höhe hoehe hauteur alto altura altezza wysokość výška высота висота hoogte höjd",
+        "height high tall höhe hoehe hauteur alto altura altezza wysokość výška высота висота hoogte höjd højde "
+        "høyde yükseklik yüksekliği înălțime inaltime korkeus magasság ύψος tinggi",
     ),
     **_words(
         "depth",
         "depth deep tiefe profondeur profundidad fondo profondità profundidade głębokość hĺbka hloubka "
-        "глубина глибина diepte djup",
+        "глубина глибина diepte djup dybde derinlik derinliği adâncime syvyys mélység βάθος",
     ),
     **_words(
         "diameter",
@@ -74,12 +75,14 @@ _KIND_WORDS: dict[str, str] = {
         "dimensions",
         "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
         "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
-        "afmetingen mått габаритные габаритный",
+        "afmetingen mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
+        "méret διαστάσεις dimensi ukuran",
     ),
     **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
     **_words(
         "weight",
-        "weight weighs mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt",
+        "weight weighs wt mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt vægt vekt "
+        "ağırlık ağırlığı greutate paino súly βάρος berat",
     ),
 }
 _PACKAGE_WORDS = {
@@ -88,7 +91,8 @@ _PACKAGE_WORDS = {
         "package packages packaging packed shipping shipment box carton parcel gross verpackung verpackt "
         "versand paket karton brutto emballage emballé colis embalaje embalado paquete envío caja imballo "
         "imballaggio confezione spedizione pacco embalagem pacote caixa opakowanie opakowaniu balenie "
-        "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking bruto lordo brut"
+        "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking bruto lordo brut "
+        "opakowaniem opakowania упаковці упаковки ambalaj ambalaj ambalajlı emballasje förpackning"
     ).split()
 }
 _NEGATIONS = {
@@ -102,7 +106,8 @@ _QUALIFIERS = {
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
-        "produktu produkcie výrobku vyrobku geräts gerätes изделия товару"
+        "produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
+        "netto нето ürün urun produsului tuotteen"
         " l b h w d t x х"
     ).split()
 }
@@ -185,6 +190,12 @@ _CJK_LABELS: dict[str, tuple[str, bool]] = {
     "크기": ("dimensions", False),
     "무게": ("weight", False),
     "중량": ("weight", False),
+    "質量": ("weight", False),
+    "商品毛重": ("weight", True),
+    "商品淨重": ("weight", False),
+    "商品净重": ("weight", False),
+    "사이즈": ("dimensions", False),
+    "제품크기": ("dimensions", False),
 }
 _ORDER_HINT = re.compile(r"\b[a-zа-я](?:\s*[x×хX*/]\s*[a-zа-я]\b){1,2}", re.IGNORECASE)
 _ORDER_WORD = re.compile(r"[a-zа-я](?:[xх][a-zа-я]){1,2}")
