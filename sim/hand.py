@@ -376,8 +376,9 @@ _ACTIVE: dict[str, tuple[str, ...]] = {
 }
 #: Precision finger posture: PIP follows MCP at this ratio, so the pad turns to face the thumb.
 PIP_PER_MCP = 0.8
-#: How far past the object's centre line precision targets are placed (cm): the tips would meet there,
-#: so an object that slips out leaves them closed in the air instead of caging it from below.
+#: How far past the object's surface precision targets are placed (cm): far enough that the pads press
+#: at their force limit, near enough that an object slipping out leaves them closed in the air instead
+#: of sweeping it along (a thumb swinging on far past contact rolls the object up and out) or caging it.
 PRECISION_OVERSHOOT_CM = 1.0
 
 
@@ -416,7 +417,9 @@ def thumb_flex_for(y_cm: float) -> float:
 class GraspTargets:
     """Joint targets (radians, in :data:`ACTUATOR_NAMES` order) and force limits for one grasp.
 
-    ``open``: the pre-shape (hand opened to the plan's aperture around ``center_y_cm``). ``close``: where
+    ``open``: the pre-shape (hand opened to the plan's aperture around ``center_y_cm``). ``touch``
+    (precision grasps; the pre-shape for power grasps): where each pad just meets the object, so that
+    thumb and fingers can arrive together instead of one pushing the object into the other. ``close``: where
     the digits are driven to; they stop on the object and press at ``closing_limits`` (N m). Then the
     trial holds the ``squeezing`` joints with ``torque_limits``: the torques that give the plan's grip
     force. ``center_y_cm`` and ``contact_z_cm``: where (hand frame, y) the object's centre
@@ -425,6 +428,7 @@ class GraspTargets:
 
     open: np.ndarray
     close: np.ndarray
+    touch: np.ndarray
     torque_limits: dict[str, float]
     closing_limits: dict[str, float]
     squeezing: tuple[str, ...]
@@ -439,7 +443,7 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
 
     ``width_cm`` defaults to the plan's aperture less the planner's margin. Closing is force-limited
     position control: each used digit's target lies beyond contact (power: fully flexed; precision: the
-    tips crossing the object's centre line), and its actuator's force limit is the torque that presses
+    pads 1 cm past the object's surface), and its actuator's force limit is the torque that presses
     with its share of the planned grip force. The plan's ``grip_force_n`` is the squeeze: the normal
     force on each side of the opposition axis (the planner's F = m g SF / (2 mu) for a two-sided grip).
     The thumb presses with all of it and the fingers share it, so forces balance across the object;
@@ -472,6 +476,7 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
 
     open_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
     close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
+    touch_q: dict[str, float] = {}
     # Thumb rotation: aim the tip at the centre of the fingers it opposes.
 
     if family == "power":
@@ -510,16 +515,18 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
 
         center = _solve(height_gap, 0.0, -2.0, 8.0)
         open_q["thumb_flex"] = thumb_flex_for(center - half_open - r_t)
-        close_q["thumb_flex"] = thumb_flex_for(center + PRECISION_OVERSHOOT_CM)
-        thumb_contact = thumb_tip(thumb_flex_for(center - width / 2.0 - r_t))[1]
+        close_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t + PRECISION_OVERSHOOT_CM)
+        touch_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t)
+        thumb_contact = thumb_tip(touch_q["thumb_flex"])[1]
         finger_contacts = []
         for f in fingers:
             r_f = FINGER_BY_NAME[f].radius_cm * 0.9
             q_open = finger_pinch_mcp(f, center + half_open + r_f)
-            q_close = finger_pinch_mcp(f, center - PRECISION_OVERSHOOT_CM)
+            q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM)
             open_q[f"{f}_mcp"], open_q[f"{f}_pip"] = q_open, PIP_PER_MCP * q_open
             close_q[f"{f}_mcp"], close_q[f"{f}_pip"] = q_close, PIP_PER_MCP * q_close
             q_touch = finger_pinch_mcp(f, center + width / 2.0 + r_f)
+            touch_q[f"{f}_mcp"], touch_q[f"{f}_pip"] = q_touch, PIP_PER_MCP * q_touch
             finger_contacts.append(finger_tip(f, q_touch, PIP_PER_MCP * q_touch)[1])
         contact_z = 0.5 * (thumb_contact + float(np.mean(finger_contacts)))
     # Thumb rotation: aim the tip at the centre of the fingers it opposes, at the depth where it touches
@@ -535,6 +542,7 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     return GraspTargets(
         open=np.array([open_q[n] for n in ACTUATOR_NAMES]),
         close=np.array([close_q[n] for n in ACTUATOR_NAMES]),
+        touch=np.array([touch_q.get(n, open_q[n]) for n in ACTUATOR_NAMES]),
         torque_limits=limits,
         closing_limits=closing,
         squeezing=squeezing,

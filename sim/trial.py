@@ -65,6 +65,7 @@ PENETRATION_TOL_M = 0.002
 #: Phase durations (s). Closing ramps for CLOSE_RAMP_S then settles; each perturbation lasts PUSH_S.
 SETTLE_S = 0.04
 APPROACH_S = 0.3
+TOUCH_S = 0.2  # precision grasps only: pads travel to the object's sides together
 CLOSE_RAMP_S = 0.25
 CLOSE_HOLD_S = 0.15
 LIFT_S = 0.5
@@ -355,7 +356,15 @@ class _Runner:
     def close(self) -> None:
         w, d = self.w, self.d
         open_q = d.ctrl[w.digit_act].copy()
-        close_q = w.targets.close
+        touch_q, close_q = w.targets.touch, w.targets.close
+        if GRASP_TYPES[w.plan.grasp_type] != "power":
+            # Pads first travel to where they meet the object, all arriving together, then press on.
+            self._phase(
+                TOUCH_S,
+                " while closing",
+                lambda u: d.ctrl.__setitem__(w.digit_act, open_q + _smooth(u) * (touch_q - open_q)),
+            )
+            open_q = touch_q
         self._phase(
             CLOSE_RAMP_S,
             " while closing",
