@@ -323,3 +323,12 @@ def test_shopify_js_format_weight_in_grams():
     body = json.dumps({"title": "Pan", "handle": "pan", "variants": [{"weight": 1450, "price": 3900}]})
     record = extract_page(body, "https://shop.example/products/pan.js", "application/json")
     assert record.mass_g == pytest.approx(1450.0)
+
+
+def test_value_split_over_cells_and_lone_colons():
+    page = "<html lang='en'><body><table><tr><td>Weight</td><td>4.7</td><td>kg</td></tr>" \
+        "<tr><td><span>Height</span><span>:</span></td><td>30 cm</td></tr>" \
+        "<tr><td>Width</td><td>:</td><td>20 cm</td></tr></table></body></html>"  # fmt: skip
+    record = extract_page(page, "https://shop.example/x")
+    assert record.mass_g == pytest.approx(4700.0)
+    assert_dims(record.dims_cm, (30.0, 20.0))

@@ -25,12 +25,22 @@ from scrapers.adapters import Observation, adapter
 from scrapers.labels import AXES, LabelInfo, classify_label
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page
-from scrapers.quantities import clean_text, parse_dims, parse_length, parse_length_range, parse_mass
+from scrapers.quantities import (
+    clean_text,
+    length_unit,
+    mass_unit,
+    parse_dims,
+    parse_length,
+    parse_length_range,
+    parse_mass,
+)
 
 __all__ = ["Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
 
 #: Separate axis fields further apart than this many lines are not one product's dimensions.
 AXIS_GROUP_GAP = 8
+_PUNCT_ONLY = re.compile(r"[\W_]+")
+_BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
 _SEPARATOR = re.compile(r"\s*(?::|\s[—–]\s|=)\s*")
 _DIGIT = re.compile(r"\d")
 _MAX_LABEL_WORDS = 6
@@ -93,28 +103,34 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
 
 
 def pairs_from_lines(lines: list[Line]) -> list[Pair]:
-    """Label/value pairs from visible text lines: a label line followed by a value line, or pairs within
+    """Label/value pairs from visible text lines: a label line followed by a value line (a lone ``:``
+    between them is skipped; a unit alone on the line after a bare number joins it), or pairs within
     one line."""
     pairs: list[Pair] = []
-    i, n = 0, len(lines)
-    while i < n:
-        line = lines[i]
+    n = len(lines)
+    for i, line in enumerate(lines):
         text = line.text
-        if len(text) <= 80:
-            info = classify_label(text)
-            if info is not None and i + 1 < n:
-                nxt = lines[i + 1]
-                if _DIGIT.search(nxt.text) and classify_label(nxt.text) is None:
-                    pairs.append(
-                        Pair(text, nxt.text, info, line.package or nxt.package, line.index, nxt.group)
-                    )
-                    i += 1  # the value line may hold pairs of its own ("Dimensions" / "Width: 30 cm")
-                    continue
+        info = classify_label(text) if len(text) <= 80 else None
+        if info is not None:
+            j = i + 1
+            while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
+                j += 1
+            if j < n:
+                nxt = lines[j]
+                value = nxt.text
+                if _DIGIT.search(value) and classify_label(value) is None:
+                    if j + 1 < n and _BARE_NUMBER.fullmatch(value) and _is_unit(lines[j + 1].text):
+                        value = f"{value} {lines[j + 1].text}"
+                    pairs.append(Pair(text, value, info, line.package or nxt.package, line.index, nxt.group))
+                    continue  # the value line is still read for pairs of its own ("Width: 30 cm")
         if _DIGIT.search(text) and len(text) <= 600:
-            for label, value, info in split_inline(text):
-                pairs.append(Pair(label, value, info, line.package, line.index, line.group))
-        i += 1
+            for label, value, label_info in split_inline(text):
+                pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
     return pairs
+
+
+def _is_unit(text: str) -> bool:
+    return len(text) <= 12 and (length_unit(text) is not None or mass_unit(text) is not None)
 
 
 def _plausible_mass(value: str, unit: str | None, dc: bool | None) -> tuple[float | None, str | None]:
