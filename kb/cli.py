@@ -16,7 +16,7 @@ app = typer.Typer(
 )
 
 #: Modules whose ``register(app)`` adds commands; each imports its heavy dependencies lazily.
-COMMAND_MODULES = ("kb.commands", "recall.cli", "scrapers.cli", "sim.cli", "kb.service")
+COMMAND_MODULES = ("kb.commands", "recall.cli", "recall.cli_recall", "scrapers.cli", "sim.cli", "kb.service")
 
 
 def _register() -> None:

@@ -1,0 +1,181 @@
+"""`objrecall recall` and `objrecall evaluate` (registered by kb/cli.py through COMMAND_MODULES)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+
+from kb.cli_common import DbOption, JsonOption
+
+METRIC_HELP = "Distance: jp (the paper's Joint Probability), euclidean, minkowski (p=4), cosine, kdtree."
+
+
+def register(app: typer.Typer) -> None:
+    """Add the recall and evaluate commands to the root app."""
+
+    @app.command("recall")
+    def recall_command(
+        text: Annotated[str | None, typer.Argument(help="The description, in quotes.")] = None,
+        file: Annotated[
+            Path | None,
+            typer.Option("--file", help="CSV with a 'description' column: JSON Lines, one per row."),
+        ] = None,
+        top: Annotated[int, typer.Option("--top", min=1, help="How many matches to return.")] = 5,
+        metric: Annotated[str, typer.Option("--metric", help=METRIC_HELP)] = "jp",
+        features_only: Annotated[
+            bool,
+            typer.Option("--features-only", help="Ignore object names in the text (the paper's method)."),
+        ] = False,
+        db: DbOption = None,
+        json_out: JsonOption = False,
+    ) -> None:
+        """Recall the catalog objects a description is about, nearest first, with the reasons."""
+        from kb.cli_common import emit, emit_lines, resolve_db
+        from kb.errors import DescriptionError, RecallError
+        from recall.engine import Recaller
+        from recall.metrics import METRICS
+
+        if (text is None) == (file is None):
+            raise DescriptionError("give either a description TEXT or --file D.csv (not both)")
+        if metric not in METRICS:
+            raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
+        recaller = Recaller.from_db(resolve_db(db))
+        options = dict(top=top, metric=metric, features_only=features_only)
+        if file is not None:
+            rows = _descriptions(file)
+            results = (recaller.recall_text(row, **options) for row in rows)
+            if json_out:
+                emit_lines(r.to_dict() for r in results)
+            else:
+                for row, result in zip(rows, results, strict=True):
+                    _print_result(result, title=row)
+            return
+        assert text is not None
+        result = recaller.recall_text(text, **options)
+        if json_out:
+            emit(result.to_dict())
+        else:
+            _print_result(result)
+
+    @app.command("evaluate")
+    def evaluate_command(
+        catalog: Annotated[Path, typer.Option("--catalog", help="Catalog CSV (canonical header).")],
+        descriptions: Annotated[
+            Path, typer.Option("--descriptions", help="CSV with columns object,description.")
+        ],
+        json_out: JsonOption = False,
+    ) -> None:
+        """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss."""
+        from kb.cli_common import emit
+        from recall.evaluation import evaluate
+
+        for path in (catalog, descriptions):
+            if not path.is_file():
+                raise FileNotFoundError(2, "No such file", str(path))
+        report = evaluate(catalog, descriptions)
+        if json_out:
+            emit(report.to_dict())
+        else:
+            _print_report(report)
+
+
+def _descriptions(path: Path) -> list[str]:
+    """The ``description`` column of a CSV, in order (blank cells kept: they give empty results)."""
+    import csv
+
+    from kb.errors import DescriptionError
+
+    with path.open(newline="", encoding="utf-8-sig") as fh:
+        reader = csv.DictReader(fh)
+        fields = [f.strip() for f in (reader.fieldnames or [])]
+        if "description" not in fields:
+            raise DescriptionError(
+                f"{path}: no 'description' column (columns: {', '.join(fields) or 'none'})"
+            )
+        key = (reader.fieldnames or [])[fields.index("description")]
+        return [row.get(key) or "" for row in reader]
+
+
+def _fmt(value: Any) -> str:
+    if value is None:
+        return "?"
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+def _print_result(result, title: str | None = None) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    stated = list(result.query["values"])
+    if title:
+        console.print(f"[bold]{title}[/bold]")
+    if not result.matches:
+        console.print("No feature or object name found in the description: nothing to recall.")
+        return
+    quals = result.query.get("qualifiers", {})
+    described = ", ".join(
+        f"{f}={_fmt(v)}" + (f" ({quals[f]})" if f in quals else "") for f, v in result.query["values"].items()
+    )
+    console.print(
+        f"Described: {described or 'no features'}"
+        + (f"; named: {', '.join(result.named)}" if result.named else "")
+    )
+    table = Table(
+        title=f"metric {result.metric}" + (" (features only)" if result.features_only else " + names")
+    )
+    table.add_column("#", justify="right")
+    table.add_column("object")
+    table.add_column("distance", justify="right")
+    for feat in stated:
+        table.add_column(feat, justify="right")
+    for i, m in enumerate(result.matches, 1):
+        name = m.name + (" (named)" if m.matched_by_name else "")
+        cells = [f"{_fmt(m.features.get(f))} [dim]+{m.contributions.get(f, 0.0):.2f}[/dim]" for f in stated]
+        table.add_row(str(i), name, f"{m.distance:.3f}", *cells)
+    console.print(table)
+    verdict = (
+        "NOT a close match (open set): nothing in the catalog is near" if result.open_set else "close match"
+    )
+    console.print(f"confidence {result.confidence:.2f}; {verdict}")
+
+
+def _print_report(report) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    from recall.evaluation import PAPER_TOP1
+
+    console = Console()
+    table = Table(title=f"Recall accuracy on {report.n} descriptions (the paper's Fig. 5)")
+    for col in ("metric", "top-1", "top-3", "paper top-1"):
+        table.add_column(col, justify="left" if col == "metric" else "right")
+    for s in report.scores:
+        label = s.metric if s.features_only else f"{s.metric} + names (hybrid)"
+        paper = f"{PAPER_TOP1[s.metric]} %" if s.features_only and s.metric in PAPER_TOP1 else "-"
+        table.add_row(label, f"{s.top1_pct:.1f} %", f"{s.top3_pct:.1f} %", paper)
+    console.print(table)
+    p = report.parse
+    if p:
+        cats = ", ".join(
+            f"{k} {v:.0%}" for k, v in (p.get("category_accuracy") or {}).items() if v is not None
+        )
+        r2d = p.get("r2_dims")
+        r2m = p.get("r2_mass")
+        console.print(
+            f"Parse: R² dimensions {_fmt(round(r2d, 3)) if r2d is not None else '-'}, "
+            f"R² mass {_fmt(round(r2m, 3)) if r2m is not None else '-'}; category accuracy: {cats}"
+        )
+    if report.unknown_objects:
+        console.print(
+            f"Skipped {len(report.unknown_objects)} description(s) of objects not in the catalog: "
+            + ", ".join(sorted(set(report.unknown_objects)))
+        )
+    if report.misses:
+        console.print(f"\n[bold]Misses ({len(report.misses)})[/bold]")
+        for m in report.misses:
+            console.print(f"[{m.mode}] {m.object} -> {m.got}: {m.reason}\n    [dim]{m.description}[/dim]")

@@ -1,0 +1,307 @@
+"""Distance metrics between a description's features and catalog objects (the paper's section III).
+
+The paper's Joint Probability distance ranks catalog objects by
+
+    d_JP(i, o) = sum_j log(1 + |f_j(i) - f_j(o)|)
+
+over only the features ``j`` the description states (the mask), numeric features in catalog units (cm, g)
+and categorical features one-hot, with no normalisation. The baselines (Euclidean, Minkowski p=4, Cosine,
+scikit-learn's k-d tree) use the same masked columns. See ``recall/RECALL.md`` for the rules below.
+
+Rules the paper leaves open, decided here (NumPy, the pruned search and the SQL macros all follow them):
+
+* **Qualifiers.** A stated numeric value is a point (``about``/``exact``) or an interval (``at_least`` →
+  [v, 2v] (:data:`AT_LEAST_SPAN`), ``at_most`` → [0, v], ``range`` → [low, high]). The difference of a catalog value ``x`` is its
+  distance to the interval: ``max(low − x, x − high, 0)``; a point is the interval [v, v].
+* **Unknown catalog values.** A catalog object whose value of a stated numeric feature is unknown is
+  scored as if it were off by :data:`UNKNOWN_NUMERIC_FRACTION` of the stated value (difference
+  ``0.5 · v``): worse than a typical human estimate, far better than a wrong object. An unknown category
+  is an all-zero one-hot block, so it costs half a mismatch (``log 2`` instead of ``2 log 2``).
+* Cosine and the k-d tree need a catalog *vector*, not a difference: they use the stated point value,
+  impute an unknown numeric value as ``v · (1 + 0.5)`` (cosine) or the column median (k-d tree, whose tree
+  is built once per mask), and an unknown category as zeros.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from kb.errors import RecallError
+from kb.features import CATEGORICAL_FEATURES, CATEGORIES, NUMERIC_FEATURES, VECTOR_COLUMNS, validate_features
+
+__all__ = [
+    "CATEGORY_CODES",
+    "LN2",
+    "METRICS",
+    "MISMATCH_TERM",
+    "NumericCondition",
+    "FeatureQuery",
+    "UNKNOWN_CATEGORY_TERM",
+    "UNKNOWN_NUMERIC_FRACTION",
+    "distances",
+    "feature_terms",
+    "jp_term",
+]
+
+#: Metric names accepted by the recall engine and the CLI (``kdtree`` is Euclidean through sklearn's KDTree).
+METRICS: tuple[str, ...] = ("jp", "euclidean", "minkowski", "cosine", "kdtree")
+MINKOWSKI_P = 4
+#: An unknown catalog value of a stated numeric feature counts as off by this fraction of the stated value.
+UNKNOWN_NUMERIC_FRACTION = 0.5
+#: A bound a person states is near the value: "more than 1.5 cm" is read as [1.5, 1.5 * AT_LEAST_SPAN] cm,
+#: "under an ounce" as [28 / AT_MOST_SPAN, 28] g (math.inf: unbounded). See RECALL.md for the measurement.
+AT_LEAST_SPAN = 2.0
+#: A stated value ("about 300 g", "15 cm long") is a person's rounded estimate: values within this fraction
+#: of it cost nothing, and the difference is counted from the edge of that band.
+ABOUT_TOLERANCE = 0.0
+AT_MOST_SPAN = math.inf
+LN2 = math.log(2.0)
+#: JP cost of a categorical mismatch: two one-hot columns differ by 1 -> 2 log 2.
+MISMATCH_TERM = 2.0 * LN2
+#: JP cost of an unknown catalog category (an all-zero block): one column differs by 1 -> log 2.
+UNKNOWN_CATEGORY_TERM = LN2
+#: Code of each category value within its feature (the order of kb.features' tuples); -1 = unknown.
+CATEGORY_CODES: dict[str, dict[str, int]] = {
+    f: {v: i for i, v in enumerate(vals)} for f, vals in CATEGORIES.items()
+}
+
+_QUALIFIERS = ("about", "exact", "at_least", "at_most", "range")
+
+
+def jp_term(difference: np.ndarray | float) -> np.ndarray | float:
+    """One feature's Joint Probability term ``log(1 + |d|)`` (= −log P(i → o | d))."""
+    return np.log1p(np.abs(difference))
+
+
+@dataclass(frozen=True)
+class NumericCondition:
+    """A stated numeric feature: the point ``value`` and the interval [low, high] it allows (catalog units)."""
+
+    feature: str
+    value: float
+    low: float
+    high: float
+    qualifier: str = "about"
+
+    @property
+    def unknown_difference(self) -> float:
+        """The difference charged to a catalog object whose value is unknown."""
+        return UNKNOWN_NUMERIC_FRACTION * abs(self.value)
+
+    def differences(self, x: np.ndarray) -> np.ndarray:
+        """Distance of catalog values ``x`` (NaN = unknown) to the interval; unknown gets the fixed penalty."""
+        d = np.maximum(np.maximum(self.low - x, x - self.high), 0.0)
+        return np.where(np.isnan(x), self.unknown_difference, d)
+
+
+@dataclass(frozen=True)
+class FeatureQuery:
+    """The features a description states: numeric conditions and categorical values (the paper's mask)."""
+
+    numeric: tuple[NumericCondition, ...] = ()
+    categorical: tuple[tuple[str, str], ...] = ()
+
+    @property
+    def stated(self) -> tuple[str, ...]:
+        """Stated features in :data:`kb.features.FEATURES` order."""
+        names = {c.feature for c in self.numeric} | {f for f, _ in self.categorical}
+        return tuple(f for f in (*NUMERIC_FEATURES, *CATEGORICAL_FEATURES) if f in names)
+
+    def __len__(self) -> int:
+        return len(self.numeric) + len(self.categorical)
+
+    def values(self) -> dict[str, Any]:
+        """Point values of the stated features."""
+        out: dict[str, Any] = {c.feature: c.value for c in self.numeric}
+        out.update(dict(self.categorical))
+        return out
+
+    @classmethod
+    def from_values(
+        cls,
+        values: Mapping[str, Any],
+        qualifiers: Mapping[str, str] | None = None,
+        bounds: Mapping[str, tuple[float | None, float | None]] | None = None,
+    ) -> FeatureQuery:
+        """Build from feature values in catalog units (None/absent = not stated).
+
+        ``qualifiers`` maps a numeric feature to about/exact/at_least/at_most/range and ``bounds`` to its
+        (low, high) for ``range`` (or to override the bound of at_least/at_most). Dimensions are taken as
+        given (a >= b >= c is the parser's job). Raises :class:`kb.errors.InvalidFeature` for bad values.
+        """
+        qualifiers = qualifiers or {}
+        bounds = bounds or {}
+        numeric = []
+        for feat in NUMERIC_FEATURES:
+            raw = values.get(feat)
+            if raw is None:
+                continue
+            value = validate_features({"mass_g": raw} if feat == "mass_g" else {"a_cm": raw})
+            number = value["mass_g"] if feat == "mass_g" else value["a_cm"]
+            if number is None:
+                continue
+            qual = (qualifiers.get(feat) or "about").lower()
+            if qual not in _QUALIFIERS:
+                raise RecallError(
+                    f"unknown qualifier {qual!r} for {feat}; expected one of {', '.join(_QUALIFIERS)}"
+                )
+            lo_b, hi_b = bounds.get(feat, (None, None))
+            if qual == "at_least":
+                low = lo_b if lo_b is not None else number
+                high = low * AT_LEAST_SPAN
+            elif qual == "at_most":
+                high = hi_b if hi_b is not None else number
+                low = high / AT_MOST_SPAN
+            elif qual == "range":
+                low = lo_b if lo_b is not None else number
+                high = hi_b if hi_b is not None else number
+                if low > high:
+                    low, high = high, low
+            else:
+                low, high = number * (1.0 - ABOUT_TOLERANCE), number * (1.0 + ABOUT_TOLERANCE)
+            numeric.append(NumericCondition(feat, float(number), float(low), float(high), qual))
+        categorical = []
+        clean = validate_features({f: values.get(f) for f in CATEGORICAL_FEATURES})
+        for feat in CATEGORICAL_FEATURES:
+            if clean[feat] is not None:
+                categorical.append((feat, clean[feat]))
+        return cls(tuple(numeric), tuple(categorical))
+
+    @classmethod
+    def from_parsed(cls, parsed: Any) -> FeatureQuery:
+        """Build from the parser's ``ParsedDescription`` (``.features``: feature -> evidence with ``value``,
+        ``qualifier``, ``low``, ``high``)."""
+        values: dict[str, Any] = {}
+        qualifiers: dict[str, str] = {}
+        bounds: dict[str, tuple[float | None, float | None]] = {}
+        for feat, ev in (getattr(parsed, "features", None) or {}).items():
+            value = getattr(ev, "value", ev)
+            if value is None:
+                continue
+            values[feat] = value
+            if feat in NUMERIC_FEATURES:
+                qual = getattr(ev, "qualifier", None)
+                if qual in _QUALIFIERS:
+                    qualifiers[feat] = qual
+                low, high = getattr(ev, "low", None), getattr(ev, "high", None)
+                bounds[feat] = (_finite_or_none(low), _finite_or_none(high))
+        return cls.from_values(values, qualifiers, bounds)
+
+
+def _finite_or_none(x: Any) -> float | None:
+    if x is None:
+        return None
+    try:
+        x = float(x)
+    except (TypeError, ValueError):
+        return None
+    return x if math.isfinite(x) else None
+
+
+def feature_terms(num: np.ndarray, cat: np.ndarray, query: FeatureQuery) -> dict[str, np.ndarray]:
+    """Per stated feature, the JP term of every row: ``num`` is (n, 4) in NUMERIC_FEATURES order (NaN =
+    unknown), ``cat`` (n, 5) category codes (-1 = unknown). The per-feature contributions of a match."""
+    out: dict[str, np.ndarray] = {}
+    for cond in query.numeric:
+        out[cond.feature] = np.log1p(cond.differences(num[:, NUMERIC_FEATURES.index(cond.feature)]))
+    for feat, value in query.categorical:
+        codes = cat[:, CATEGORICAL_FEATURES.index(feat)]
+        code = CATEGORY_CODES[feat][value]
+        out[feat] = np.where(codes == code, 0.0, np.where(codes < 0, UNKNOWN_CATEGORY_TERM, MISMATCH_TERM))
+    return out
+
+
+def _masked_columns(query: FeatureQuery) -> list[int]:
+    stated = set(query.stated)
+    return [i for i, col in enumerate(VECTOR_COLUMNS) if col.split("=")[0] in stated]
+
+
+def _column_differences(matrix: np.ndarray, query: FeatureQuery) -> np.ndarray:
+    """(n, p) absolute per-column differences over the masked one-hot columns, with the unknown rules."""
+    cols = _masked_columns(query)
+    conds = {c.feature: c for c in query.numeric}
+    cats = dict(query.categorical)
+    out = np.empty((matrix.shape[0], len(cols)))
+    for k, i in enumerate(cols):
+        col = VECTOR_COLUMNS[i]
+        x = matrix[:, i]
+        if col in conds:
+            out[:, k] = conds[col].differences(x)
+        else:
+            feat, val = col.split("=")
+            q = 1.0 if cats[feat] == val else 0.0
+            out[:, k] = np.abs(np.where(np.isnan(x), 0.0, x) - q)
+    return out
+
+
+def _vectors(matrix: np.ndarray, query: FeatureQuery, impute: str) -> tuple[np.ndarray, np.ndarray]:
+    """Masked catalog matrix (unknowns imputed) and the query's point vector, for cosine and the k-d tree."""
+    cols = _masked_columns(query)
+    conds = {c.feature: c for c in query.numeric}
+    cats = dict(query.categorical)
+    x = matrix[:, cols].copy()
+    q = np.empty(len(cols))
+    for k, i in enumerate(cols):
+        col = VECTOR_COLUMNS[i]
+        missing = np.isnan(x[:, k])
+        if col in conds:
+            q[k] = conds[col].value
+            if missing.any():
+                if impute == "median":
+                    known = x[~missing, k]
+                    fill = float(np.median(known)) if known.size else 0.0
+                else:
+                    fill = q[k] * (1.0 + UNKNOWN_NUMERIC_FRACTION)
+                x[missing, k] = fill
+        else:
+            feat, val = col.split("=")
+            q[k] = 1.0 if cats[feat] == val else 0.0
+            x[missing, k] = 0.0
+    return x, q
+
+
+def distances(
+    metric: str, matrix: np.ndarray, query: FeatureQuery, kdtree_cache: dict | None = None
+) -> np.ndarray:
+    """Distance of every catalog row to the description under ``metric`` (smaller = closer).
+
+    ``matrix`` is the catalog over :data:`kb.features.VECTOR_COLUMNS` (NaN = unknown). With no stated
+    feature every distance is 0. ``kdtree`` returns the k-d tree's Euclidean distances for all rows (the
+    tree is queried for every row so that the ranking is complete); trees are cached in ``kdtree_cache``
+    by mask.
+    """
+    if metric not in METRICS:
+        raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
+    n = matrix.shape[0]
+    if len(query) == 0 or n == 0:
+        return np.zeros(n)
+    if metric == "jp":
+        return np.log1p(_column_differences(matrix, query)).sum(axis=1)
+    if metric == "euclidean":
+        return np.sqrt((_column_differences(matrix, query) ** 2).sum(axis=1))
+    if metric == "minkowski":
+        return ((_column_differences(matrix, query) ** MINKOWSKI_P).sum(axis=1)) ** (1.0 / MINKOWSKI_P)
+    if metric == "cosine":
+        x, q = _vectors(matrix, query, impute="inflate")
+        denom = np.linalg.norm(x, axis=1) * np.linalg.norm(q)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            sim = np.where(denom > 0, (x @ q) / np.where(denom > 0, denom, 1.0), 0.0)
+        return 1.0 - sim
+    # kdtree
+    from sklearn.neighbors import KDTree
+
+    key = tuple(_masked_columns(query))
+    cache = kdtree_cache if kdtree_cache is not None else {}
+    if key not in cache:
+        x, _ = _vectors(matrix, query, impute="median")
+        cache[key] = KDTree(x)
+    _, q = _vectors(matrix[:1], query, impute="median")
+    dist, idx = cache[key].query(q.reshape(1, -1), k=n)
+    out = np.empty(n)
+    out[idx[0]] = dist[0]
+    return out

@@ -1,0 +1,302 @@
+"""Exact top-k search over a :class:`~recall.snapshot.CatalogSnapshot`.
+
+:func:`brute_force_top_k` scores every row. :class:`JPIndex` returns the *same* answer for the Joint
+Probability distance while scoring only a small part of the catalog:
+
+* argmin Σ log(1 + d_j) = argmin Π (1 + d_j), and every term is >= 0, so a row can only score <= S if
+  *each* stated feature has term <= S, i.e. ``d_j <= e^S − 1``.
+* For a numeric feature those rows form one window of the column sorted by value (``searchsorted`` on
+  float32 keys: rounding to float32 is monotonic, so the window is conservative), plus the rows whose
+  value is unknown when the unknown penalty is <= S. For a categorical feature they are the rows of the
+  stated category (precomputed row lists per value), plus unknown ones when log 2 <= S, plus every row
+  when 2 log 2 <= S.
+* S starts as the k-th best score of a small pool (rows nearest the description in each stated column)
+  and is tightened by scoring more rows near it in the most selective column. Then the rows of the
+  smallest window are filtered by the other features' windows (comparisons only) and the survivors are
+  scored exactly with the same float64 code as the brute force. Ties are broken by row number, as in the
+  brute force, so results are identical (tested on random queries).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
+from recall.metrics import (
+    CATEGORY_CODES,
+    MISMATCH_TERM,
+    UNKNOWN_CATEGORY_TERM,
+    FeatureQuery,
+    distances,
+)
+from recall.snapshot import CatalogSnapshot
+
+__all__ = ["JPIndex", "brute_force_top_k", "score_rows", "select_top_k", "top_k"]
+
+#: Catalogs up to this size are simply scanned.
+SCAN_BELOW = 2048
+#: Rows taken around the description in each stated column for the first bound.
+FIRST_POOL = 64
+#: Growth of the pool while the best window is much larger than the pool.
+POOL_GROWTH = 8
+MAX_POOL = 1 << 16
+#: Rows filtered per step of the final scan (the bound tightens between steps).
+CHUNK = 1 << 14
+MAX_CHUNK = 1 << 17
+#: Rows of the fixed random sample used to order the filter.
+SAMPLE = 512
+_NUM_INDEX = {f: j for j, f in enumerate(NUMERIC_FEATURES)}
+_CAT_INDEX = {f: j for j, f in enumerate(CATEGORICAL_FEATURES)}
+
+
+def _category_table(feature: str, value: str) -> np.ndarray:
+    """Term by (code + 1): index 0 is unknown (-1)."""
+    table = np.full(len(CATEGORY_CODES[feature]) + 1, MISMATCH_TERM)
+    table[0] = UNKNOWN_CATEGORY_TERM
+    table[CATEGORY_CODES[feature][value] + 1] = 0.0
+    return table
+
+
+def score_rows(snap: CatalogSnapshot, query: FeatureQuery, rows: np.ndarray | None = None) -> np.ndarray:
+    """JP distance of ``rows`` (all rows when None), summed in the query's feature order (float64)."""
+    n = len(snap) if rows is None else len(rows)
+    total = np.zeros(n)
+    for cond in query.numeric:
+        col = snap.num_cols[_NUM_INDEX[cond.feature]]
+        x = col if rows is None else col[rows]
+        total += np.log1p(cond.differences(x))
+    for feat, value in query.categorical:
+        col = snap.cat_cols[_CAT_INDEX[feat]]
+        codes = col if rows is None else col[rows]
+        total += _category_table(feat, value)[codes.astype(np.intp) + 1]
+    return total
+
+
+def select_top_k(rows: np.ndarray, scores: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The k smallest (score, row) pairs, ordered by score then row number."""
+    if len(scores) > k:
+        kth = np.partition(scores, k - 1)[k - 1]
+        keep = scores <= kth
+        rows, scores = rows[keep], scores[keep]
+    order = np.lexsort((rows, scores))[:k]
+    return rows[order].astype(np.int64), scores[order]
+
+
+def brute_force_top_k(snap: CatalogSnapshot, query: FeatureQuery, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """Exact top-k JP by scoring every row (the reference for :class:`JPIndex`)."""
+    k = min(k, len(snap))
+    if k <= 0:
+        return np.empty(0, dtype=np.int64), np.empty(0)
+    return select_top_k(np.arange(len(snap)), score_rows(snap, query), k)
+
+
+def top_k(
+    snap: CatalogSnapshot, query: FeatureQuery, k: int, metric: str = "jp", kdtree_cache: dict | None = None
+):
+    """Exact top-k rows and distances under ``metric`` (JP through the pruned index)."""
+    if metric == "jp":
+        return snap.index.top_k(query, k)
+    k = min(k, len(snap))
+    if k <= 0:
+        return np.empty(0, dtype=np.int64), np.empty(0)
+    d = distances(metric, snap.matrix, query, kdtree_cache=kdtree_cache)
+    return select_top_k(np.arange(len(snap)), d, k)
+
+
+def _merge(rows_a, scores_a, rows_b, scores_b, k: int):
+    """Top-k of two scored row sets that may share rows."""
+    rows, first = np.unique(np.concatenate((rows_a, rows_b)), return_index=True)
+    return select_top_k(rows, np.concatenate((scores_a, scores_b))[first], k)
+
+
+def _radius(s: float) -> float:
+    """Largest difference whose term can be <= s, widened a little against rounding."""
+    return math.expm1(s) * (1.0 + 1e-9) + 1e-12
+
+
+class JPIndex:
+    """Sorted numeric columns and per-category row lists of a snapshot, for exact pruned JP top-k."""
+
+    def __init__(self, snap: CatalogSnapshot):
+        self.snap = snap
+        self.n = len(snap)
+        self.num_order: list[np.ndarray] = []
+        self.num_keys: list[np.ndarray] = []
+        self.num_unknown: list[np.ndarray] = []
+        for col in snap.num_cols:
+            missing = np.isnan(col)
+            known = np.flatnonzero(~missing)
+            order = known[np.argsort(col[known], kind="stable")].astype(np.int32)
+            self.num_order.append(order)
+            self.num_keys.append(col[order].astype(np.float32))
+            self.num_unknown.append(np.flatnonzero(missing).astype(np.int32))
+        self.cat_order: list[np.ndarray] = []
+        self.cat_starts: list[np.ndarray] = []
+        for feat, col in zip(CATEGORICAL_FEATURES, snap.cat_cols, strict=True):
+            self.cat_order.append(np.argsort(col, kind="stable").astype(np.int32))
+            counts = np.bincount(col.astype(np.intp) + 1, minlength=len(CATEGORY_CODES[feat]) + 1)
+            self.cat_starts.append(np.concatenate(([0], np.cumsum(counts))))
+
+        self.sample = np.sort(
+            np.random.default_rng(0).choice(self.n, size=min(SAMPLE, self.n), replace=False)
+        )
+
+    @property
+    def nbytes(self) -> int:
+        arrays = [*self.num_order, *self.num_keys, *self.num_unknown, *self.cat_order, *self.cat_starts]
+        return int(sum(a.nbytes for a in arrays))
+
+    # -- category groups -------------------------------------------------------------------------
+    def _group(self, feat: str, code: int) -> np.ndarray:
+        """Rows (ascending) whose code of ``feat`` is ``code`` (-1 = unknown)."""
+        j = _CAT_INDEX[feat]
+        starts = self.cat_starts[j]
+        return self.cat_order[j][starts[code + 1] : starts[code + 2]]
+
+    # -- windows ---------------------------------------------------------------------------------
+    def _numeric_window(self, cond, s: float) -> tuple[int, int, bool]:
+        j = _NUM_INDEX[cond.feature]
+        r = _radius(s)
+        keys = self.num_keys[j]
+        lo = np.float32(cond.low - r) if math.isfinite(cond.low - r) else np.float32(-np.inf)
+        hi = np.float32(cond.high + r) if math.isfinite(cond.high + r) else np.float32(np.inf)
+        start = int(np.searchsorted(keys, lo, "left"))
+        end = int(np.searchsorted(keys, hi, "right"))
+        with_unknown = math.log1p(cond.unknown_difference) <= s + 1e-12
+        return start, end, with_unknown
+
+    def _window_size(self, item, s: float) -> int:
+        kind, obj = item
+        if kind == "num":
+            start, end, with_unknown = self._numeric_window(obj, s)
+            return end - start + (len(self.num_unknown[_NUM_INDEX[obj.feature]]) if with_unknown else 0)
+        feat, value = obj
+        if MISMATCH_TERM <= s + 1e-12:
+            return self.n
+        size = len(self._group(feat, CATEGORY_CODES[feat][value]))
+        if UNKNOWN_CATEGORY_TERM <= s + 1e-12:
+            size += len(self._group(feat, -1))
+        return size
+
+    def _window_rows(self, item, s: float) -> np.ndarray:
+        kind, obj = item
+        if kind == "num":
+            j = _NUM_INDEX[obj.feature]
+            start, end, with_unknown = self._numeric_window(obj, s)
+            rows = self.num_order[j][start:end]
+            return np.concatenate((rows, self.num_unknown[j])) if with_unknown else rows
+        feat, value = obj
+        if MISMATCH_TERM <= s + 1e-12:
+            return np.arange(self.n, dtype=np.int32)
+        rows = self._group(feat, CATEGORY_CODES[feat][value])
+        if UNKNOWN_CATEGORY_TERM <= s + 1e-12:
+            rows = np.concatenate((rows, self._group(feat, -1)))
+        return rows
+
+    def _nearest(self, item, m: int) -> np.ndarray:
+        """About ``m`` rows nearest the description in one column (both sides of the stated interval)."""
+        kind, obj = item
+        if kind == "cat":
+            feat, value = obj
+            return self._group(feat, CATEGORY_CODES[feat][value])[:m]
+        j = _NUM_INDEX[obj.feature]
+        keys, order = self.num_keys[j], self.num_order[j]
+        lo = np.float32(obj.low) if math.isfinite(obj.low) else np.float32(-np.inf)
+        hi = np.float32(obj.high) if math.isfinite(obj.high) else np.float32(np.inf)
+        start = int(np.searchsorted(keys, lo, "left"))
+        end = int(np.searchsorted(keys, hi, "right"))
+        half = max(1, m // 2)
+        if end - start <= m:
+            return order[max(0, start - half) : end + half]
+        return np.concatenate(
+            (order[max(0, start - half) : start + half], order[max(0, end - half) : end + half])
+        )
+
+    def _factor(self, item, rows: np.ndarray | None) -> np.ndarray:
+        """A lower bound of ``1 + d`` (= e^term) per row for one stated feature (an unknown numeric value
+        counts as 1: optimistic, so the filter never drops a row it should keep)."""
+        kind, obj = item
+        if kind == "num":
+            col = self.snap.num_cols[_NUM_INDEX[obj.feature]]
+            x = col if rows is None else col[rows]
+            d = np.maximum(obj.low - x, x - obj.high)
+            np.fmax(d, 0.0, out=d)
+            d += 1.0
+            return d
+        feat, value = obj
+        col = self.snap.cat_cols[_CAT_INDEX[feat]]
+        codes = col if rows is None else col[rows]
+        return np.where(codes == CATEGORY_CODES[feat][value], 1.0, np.where(codes < 0, 2.0, 4.0))
+
+    def _survivors(self, items: list, order: list[int], rows, s: float) -> np.ndarray:
+        """Rows (of an index array or a slice) whose product Π(1 + d_j) can be <= e^s: multiply in the
+        features from the most selective one and drop rows as soon as the bound is passed."""
+        bound = math.exp(s) * (1.0 + 1e-9) + 1e-12
+        prod = None
+        for i in order:
+            f = self._factor(items[i], rows)
+            prod = f if prod is None else np.multiply(prod, f, out=prod)
+            keep = prod <= bound
+            if isinstance(rows, slice):
+                rows = np.flatnonzero(keep) + rows.start
+            else:
+                rows = rows[keep]
+            prod = prod[keep]
+            if not len(rows):
+                break
+        return rows
+
+    # -- search ----------------------------------------------------------------------------------
+    def top_k(self, query: FeatureQuery, k: int) -> tuple[np.ndarray, np.ndarray]:
+        """Exact top-k (rows, JP distances), identical to :func:`brute_force_top_k`."""
+        k = min(k, self.n)
+        if k <= 0:
+            return np.empty(0, dtype=np.int64), np.empty(0)
+        if len(query) == 0:
+            return np.arange(k, dtype=np.int64), np.zeros(k)
+        if self.n <= SCAN_BELOW:
+            return brute_force_top_k(self.snap, query, k)
+        snap = self.snap
+        items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
+        pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
+        best_rows, best_scores = select_top_k(pool, score_rows(snap, query, pool), k)
+        s = float(best_scores[-1])
+        m = FIRST_POOL
+        while True:
+            sizes = [self._window_size(it, s) for it in items]
+            lead = min(range(len(items)), key=lambda i: sizes[i])
+            if sizes[lead] <= POOL_GROWTH * m or m * POOL_GROWTH > self.n // 16:
+                break
+            m *= POOL_GROWTH
+            more = self._nearest(items[lead], m)
+            best_rows, best_scores = _merge(best_rows, best_scores, more, score_rows(snap, query, more), k)
+            s = float(best_scores[-1])
+        if s == 0.0 or sizes[lead] > self.n // 2:
+            # ties at 0 are decided by row number: scan in row order and stop early
+            source, total, ascending = None, self.n, True
+        else:
+            source = self._window_rows(items[lead], s)
+            total = len(source)
+            # a category's own rows are in row order (not once the unknown ones are appended)
+            ascending = items[lead][0] == "cat" and not UNKNOWN_CATEGORY_TERM <= s + 1e-12
+        # filter order: the feature that typically adds the most to the distance first
+        sample = self.sample
+        weight = [float(np.mean(np.log(self._factor(it, sample)))) for it in items]
+        order = sorted(range(len(items)), key=lambda i: (i != lead or source is None, -weight[i]))
+        start, step = 0, CHUNK
+        while start < total:
+            stop = min(start + step, total)
+            chunk = slice(start, stop) if source is None else source[start:stop]
+            first = start if source is None else int(chunk[0])
+            if ascending and s == 0.0 and int(best_rows.max()) < first:
+                break  # only a score below 0, or 0 at a lower row number, could still enter
+            rows = self._survivors(items, order, chunk, s)
+            if len(rows):
+                best_rows, best_scores = _merge(
+                    best_rows, best_scores, rows, score_rows(snap, query, rows), k
+                )
+                s = float(best_scores[-1])
+            start, step = stop, min(step * 2, MAX_CHUNK)
+        return best_rows, best_scores
