@@ -25,15 +25,47 @@ from sim.trial import TrialWorld, build_world, run_trial  # noqa: E402
 
 __all__ = ["encode_png", "render_trial", "render_world"]
 
+#: Camera azimuth (degrees) per approach.
+VIEW_AZIMUTH_DEG = {"top": 155.0, "side": -60.0}
+
 GL_HINT = (
     "offscreen rendering needs an OpenGL backend: set MUJOCO_GL=egl (apt install libegl1 libegl-mesa0 "
     "libgl1-mesa-dri) or MUJOCO_GL=osmesa (apt install libosmesa6) before Python starts"
 )
 
 
+def _headless_backend() -> None:
+    """Use EGL/OSMesa even when mujoco was imported (with its default GLFW backend) before this module.
+
+    MuJoCo binds its OpenGL backend at import time; on a Linux machine without a display that default
+    (GLFW) cannot work. If ``MUJOCO_GL`` asks for egl or osmesa, or is unset without a display, swap the
+    renderer's context class for the headless one (what ``MUJOCO_GL`` would have chosen at import).
+    """
+    if not sys.platform.startswith("linux"):
+        return
+    wanted = os.environ.get("MUJOCO_GL", "").lower() or ("" if os.environ.get("DISPLAY") else "egl")
+    if wanted not in ("egl", "osmesa"):
+        return
+    from mujoco.rendering.classic import gl_context
+
+    current = getattr(gl_context, "GLContext", None)
+    if current is not None and getattr(current, "__module__", "").endswith(wanted):
+        return
+    try:
+        if wanted == "egl":
+            os.environ.setdefault("PYOPENGL_PLATFORM", "egl")
+            from mujoco.egl import GLContext
+        else:
+            os.environ.setdefault("PYOPENGL_PLATFORM", "osmesa")
+            from mujoco.osmesa import GLContext
+    except Exception as exc:  # missing system libraries
+        raise SimulationError(f"cannot load the {wanted} OpenGL backend ({exc}); {GL_HINT}") from exc
+    gl_context.GLContext = GLContext
+
+
 def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> np.ndarray:
     """An RGB image (height x width x 3, uint8) of the world's current state, looking at the object
-    from the front-left and slightly above, framed to show the hand around it."""
+    from slightly above, framed to show the hand around it."""
     model, data = world.model, world.data
     model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
     model.vis.global_.offheight = max(model.vis.global_.offheight, height)
@@ -43,9 +75,12 @@ def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> n
     palm_pos = data.xpos[world.palm_body]
     cam.lookat[:] = 0.6 * obj_pos + 0.4 * palm_pos
     size = max(world.obj.dims_cm) * 0.01
-    cam.distance = max(0.35, 2.2 * size)
-    cam.azimuth = -125.0
-    cam.elevation = -20.0
+    cam.distance = max(0.4, 2.2 * size)
+    # Look across the opposition axis so both the thumb and the fingers show: for a top grasp from the
+    # index side, for a side grasp from the fingers' side of the object.
+    cam.azimuth = VIEW_AZIMUTH_DEG.get(world.plan.approach, 155.0)
+    cam.elevation = -15.0
+    _headless_backend()
     try:
         renderer = mujoco.Renderer(model, height=height, width=width)
     except Exception as exc:

@@ -145,3 +145,17 @@ def test_diverging_simulation_is_an_error_never_a_success():
     r = run_trial(CUBE, world.plan, world=world)
     assert r.outcome == "error" and not r.success
     assert "diverged" in r.reason
+
+
+def test_render_trial_gives_a_png_of_the_hold():
+    from sim.render import render_trial
+
+    png = render_trial(TENNIS_BALL, _plan("power_sphere", 8.0, 3.0), width=160, height=120)
+    assert png.startswith(b"\x89PNG\r\n\x1a\n")
+    import io
+
+    import matplotlib.image
+
+    image = matplotlib.image.imread(io.BytesIO(png))
+    assert image.shape[:2] == (120, 160)
+    assert image[..., :3].std() > 0.05  # a scene, not a blank frame
