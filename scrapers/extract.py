@@ -18,6 +18,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from kb.errors import ExtractionError
+from kb.features import MATERIALS
 
 # Importing an adapter module registers its adapters (in priority order, whatever the import order).
 from scrapers.adapters import ADAPTERS, Observation, jsonld, microdata, shopify, spec_table, text, woocommerce  # noqa: F401
@@ -204,7 +205,7 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
 
     material = None
     for o in sorted((o for o in observations if o.feature == "material"), key=_priority):
-        material = material_from_text(o.value)
+        material = o.value if o.value in MATERIALS else material_from_text(o.value)
         if material:
             raw["material"] = o.raw
             break

@@ -108,19 +108,19 @@ def _fold(text: str) -> str:
 _MATERIAL_WORDS: dict[str, str] = {}
 for _material, _words in {
     "metal": "metal metallic metall metalen metalico metallo metalowy steel stainless iron aluminium aluminum "
-    "brass copper chrome zinc titanium stahl edelstahl eisen acier inox fer acero hierro acciaio ferro aco "
+    "brass copper chrome zinc titanium fonte aluminio alluminio stahl edelstahl eisen acier inox fer acero hierro acciaio ferro aco "
     "metalu stal металл сталь алюминий kov oceľ 不鏽鋼 不锈钢 金屬 金属 鋼 鋁",
     "plastic": "plastic plastics plastik kunststoff plastique plastico plastica pvc abs polypropylene "
     "polyethylene polycarbonate acrylic polystyrene melamine tworzywo пластик пластмасса plast 塑膠 塑料",
     "wood": "wood wooden oak pine beech birch walnut bamboo teak mdf particleboard plywood veneer holz eiche "
-    "buche kiefer bois chene madera roble legno madeira eucalipto drewno дерево древесина drevo 木 木頭 竹",
+    "buche kiefer bois chene hetre cork kork liege corcho sughero cortica madera roble legno madeira eucalipto drewno дерево древесина drevo 木 木頭 竹",
     "glass": "glass glas verre vidrio vetro vidro szklo стекло sklo 玻璃",
     "paper": "paper cardboard paperboard papier pappe karton carton papel carta cartone papelao бумага картон 紙 纸",
     "fabric": "fabric cotton polyester linen wool textile nylon velvet felt stoff baumwolle leinen tissu coton "
     "tela algodon tessuto cotone tecido algodao tkanina ткань хлопок látka 布 棉",
     "rubber": "rubber silicone latex gummi kautschuk caoutchouc goma caucho gomma borracha guma резина "
     "силикон 橡膠 橡胶 矽膠 硅胶",
-    "other": "ceramic ceramics porcelain stone marble keramik porzellan ceramique porcelaine ceramica "
+    "other": "ceramic ceramics porcelain stoneware earthenware terracotta stone marble granite keramik porzellan ceramique porcelaine ceramica "
     "porcelana marmol керамика фарфор 陶瓷",
 }.items():
     for _w in _words.split():

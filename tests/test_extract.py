@@ -66,6 +66,8 @@ CASES = [
     ("woocommerce_variations_only.html", "woocommerce", (45.0, 45.0, 12.0), 450.0, [], []),
     # a page that contradicts itself: item dims agree in two units, the weights do not
     ("amazon_de_conflict.html", "spec_table", (18.7, 5.7, 4.1), 190.51, [(19.0, 5.6, 3.8)], [240.0]),
+    # sizes and weight only in a sentence of the description; another product's sentence in an aside
+    ("free_text.html", "free_text", (30.0, 6.0, 1.0), 45.0, [], []),
 ]  # fmt: skip
 
 
@@ -126,6 +128,7 @@ def test_names_materials_and_canonical_urls():
     assert extract("amazon_es_tech.html").material == "plastic"
     assert extract("ikea_packages.html").canonical_url == "https://shop.example/p/bordlund-table-00000001/"
     assert extract("microdata_product.html").name == "Tagliere in legno di faggio"
+    assert extract("free_text.html").material == "wood"  # "carved from a single piece of olive wood"
 
 
 def test_shape_is_inferred_from_dimensions():

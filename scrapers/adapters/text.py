@@ -1,5 +1,6 @@
-"""Free-text fallback: sizes written in the product's name (``Panel 60 x 30 cm``, ``Table, 235x100 cm``)
-and the page's title and canonical URL.
+"""Free text: sizes written in the product's name (``Panel 60 x 30 cm``, ``Table, 235x100 cm``), the page's
+title and canonical URL (``text``), and sizes, weight and material in sentences of the description
+(``free_text``, a fallback).
 
 The lowest priority: a size in a name is often only two of three dimensions, or a variant's; it is
 used only when nothing better states the dimensions, always with a note. The name itself comes from
@@ -8,16 +9,19 @@ here when structured data has none.
 
 from __future__ import annotations
 
+import re
+
 from scrapers.adapters import Observation, adapter
+from scrapers.normalize import material_from_text
 from scrapers.page import Page
-from scrapers.quantities import parse_dims
+from scrapers.quantities import parse_dims, parse_length, parse_mass
 
 __all__ = ["text"]
 
 
 @adapter("text", priority=90)
 def text(page: Page) -> list[Observation]:
-    """The page title (name, and a size written in it) and the canonical URL."""
+    """The page title (name, and a size written in it), the canonical URL and "made of ..." material."""
     obs: list[Observation] = []
     title = page.title
     if title:
@@ -33,6 +37,80 @@ def text(page: Page) -> list[Observation]:
                     note=f"dimensions read from the product name ({title!r})",
                 )
             )
+    for line in page.lines:
+        made = _MADE_OF.search(line.text) if len(line.text) <= 600 else None
+        material = material_from_text(made.group("m")) if made else None
+        if material:
+            obs.append(Observation("material", material, rank=2, order=line.index, raw=line.text[:200]))
+            break
     if page.canonical_url:
         obs.append(Observation("canonical_url", page.canonical_url, rank=2, raw=page.canonical_url))
+    return obs
+
+
+_QTY = r"\d+(?:[.,]\d+)*\s*(?:mm|cm|m|in|inch|inches|ft|feet|\"|''|millimeters?|centimeters?|centimetres?)"
+_AXIS_WORDS = {
+    "long": "length", "in length": "length", "de long": "length", "de largo": "length", "lang": "length",
+    "wide": "width", "in width": "width", "de large": "width", "de ancho": "width", "breit": "width",
+    "tall": "height", "high": "height", "in height": "height", "de haut": "height", "de alto": "height",
+    "hoch": "height", "deep": "depth", "in depth": "depth", "tief": "depth", "thick": "thickness",
+    "dick": "thickness", "across": "diameter", "in diameter": "diameter", "de diamètre": "diameter",
+    "de diámetro": "diameter", "im durchmesser": "diameter",
+}  # fmt: skip
+_AXIS_PHRASE = re.compile(
+    rf"(?P<q>{_QTY})\s+(?P<axis>{'|'.join(sorted(map(re.escape, _AXIS_WORDS), key=len, reverse=True))})\b",
+    re.IGNORECASE,
+)
+_MEASURES = re.compile(
+    r"\b(?:measures?|measuring|dimensions?|size|mide|misura|mede|mesure|misst)\b", re.IGNORECASE
+)
+_WEIGHS = re.compile(
+    r"\b(?:weighs?|weighing|weight of|wiegt|pesa|pèse|waży|весит)\s+(?:just |only |about |approx\.? |approximately "
+    r"|around |ca\.? |nur |etwa |environ |unos |circa |cerca de )?(?P<q>\d+(?:[.,]\d+)*\s*[^\W\d_]+\.?)",
+    re.IGNORECASE,
+)
+_MADE_OF = re.compile(
+    r"\b(?:made (?:of|from)|crafted (?:of|from)|carved from|cast in|aus|hergestellt aus|fabricado en|"
+    r"realizzato in|feito de|fait en|en)\s+(?:a single piece of |solid |pure |massivem? |100% )?"
+    r"(?P<m>[^\W\d_]+(?:\s+[^\W\d_]+)?)",
+    re.IGNORECASE,
+)
+
+
+@adapter("free_text", priority=80, fallback=True)
+def free_text(page: Page) -> list[Observation]:
+    """Sizes and weight in sentences of the description ("30 cm long, 6 cm wide", "weighs 45 g",
+    "measures 7 x 7 x 7 cm", "made of olive wood"); used only when nothing better states them."""
+    obs: list[Observation] = []
+    dc = page.decimal_comma
+    note = "read from the description text"
+    for line in page.lines:
+        text = line.text
+        if not 15 <= len(text) <= 600:
+            continue
+        if not any(ch.isdigit() for ch in text):
+            continue
+        raw = text[:200]
+        if _MEASURES.search(text):
+            dims = parse_dims(text, None, dc)
+            if dims:
+                obs.append(
+                    Observation("dims", dims[0].values_cm, rank=2, order=line.index, raw=raw, note=note)
+                )
+        axes: dict[str, float] = {}
+        for m in _AXIS_PHRASE.finditer(text):
+            kind = _AXIS_WORDS[m.group("axis").lower()]
+            value = parse_length(m.group("q"), None, dc)
+            if value is not None and kind not in axes:
+                axes[kind] = value
+        if len(axes) >= 2:
+            values = list(axes.values())
+            if "diameter" in axes and not set(axes) & {"width", "depth", "length"}:
+                values.append(axes["diameter"])
+            obs.append(Observation("dims", tuple(values), rank=2, order=line.index, raw=raw, note=note))
+        weighs = _WEIGHS.search(text)
+        if weighs:
+            mass = parse_mass(weighs.group("q"), None, dc)
+            if mass is not None:
+                obs.append(Observation("mass", mass, rank=2, order=line.index, raw=raw, note=note))
     return obs
