@@ -29,49 +29,84 @@ def plan_dict(plan: Any) -> dict[str, Any]:
     return d
 
 
+#: Header words accepted besides the canonical ones (the paper's table says "stiffness" for rigidity).
+HEADER_ALIASES = {
+    "object": "name",
+    "a": "a_cm",
+    "b": "b_cm",
+    "c": "c_cm",
+    "mass": "mass_g",
+    "weight_g": "mass_g",
+    "stiffness": "rigidity",
+}
+
+
 def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
-    """Plans for every row of a catalog CSV, in order: one dict per row with ``name``, the best plan's
-    ``grasp_type`` and ``family`` (and its details), and the ranked ``alternatives``.
+    """Plans for every row of a catalog CSV, in order: one dict per row with ``name`` (as written in the
+    file), the best plan's ``grasp_type`` and ``family`` (and its details), and the ranked ``alternatives``.
 
     Read leniently: only ``name`` is required; missing columns and blank cells are unknown features,
-    extra columns are ignored. A row with an invalid value gets ``error`` (naming column and reason)
-    instead of a plan, so the output still has one line per row.
+    extra columns are ignored. An invalid value (a negative size, an unknown word) is treated as unknown
+    and named in the row's ``warnings``; a row without a name gets ``error`` instead of a plan, so the
+    output always has one line per row.
     """
     from kb.features import FEATURES, ObjectRecord
     from sim.planner import plan_grasps
 
     with Path(path).open(newline="", encoding="utf-8-sig") as fh:
         reader = csv.DictReader(fh)
-        header = [h.strip().lower() for h in (reader.fieldnames or [])]
-        if "name" not in header:
+        header = [h.strip().lower() for h in (reader.fieldnames or []) if h is not None]
+        keys = {h: (h if h in (*FEATURES, "name") else HEADER_ALIASES.get(h, h)) for h in header}
+        if "name" not in keys.values():
             raise CatalogError(f"{path}: no 'name' column in the header")
         out: list[dict[str, Any]] = []
         for lineno, raw in enumerate(reader, start=2):
-            row = {(k or "").strip().lower(): (v or "").strip() for k, v in raw.items() if k is not None}
+            row: dict[str, str] = {}
+            for k, v in raw.items():
+                if k is None or not isinstance(v, str | None):
+                    continue
+                key = keys.get(k.strip().lower(), k.strip().lower())
+                if key not in row or not row[key]:
+                    row[key] = (v or "").strip()
             name = row.get("name", "")
-            try:
-                obj = ObjectRecord.create(name, **{f: row.get(f) or None for f in FEATURES})
-            except InvalidFeature as err:
-                out.append({"name": name, "row": lineno, "error": str(err)})
+            values: dict[str, Any] = {f: row.get(f) or None for f in FEATURES}
+            warnings: list[str] = []
+            obj = None
+            for _ in range(len(FEATURES) + 1):
+                try:
+                    obj = ObjectRecord.create(name, **values)
+                    break
+                except InvalidFeature as err:
+                    if err.field in values and values[err.field] is not None:
+                        warnings.append(f"{err}: treated as unknown")
+                        values[err.field] = None
+                    elif err.field == "dimensions":
+                        warnings.append(f"{err}: treated as unknown")
+                        values.update(a_cm=None, b_cm=None, c_cm=None)
+                    else:
+                        out.append({"name": name, "row": lineno, "error": str(err)})
+                        break
+            if obj is None:
                 continue
             plans = plan_grasps(obj, top=top)
             best = plans[0]
-            out.append(
-                {
-                    "name": obj.name,
-                    "grasp_type": best.grasp_type,
-                    "family": best.family,
-                    "grasped_dim": best.grasped_dim,
-                    "aperture_cm": best.aperture_cm,
-                    "approach": best.approach,
-                    "grip_force_n": best.grip_force_n,
-                    "score": best.score,
-                    "rationale": list(best.rationale),
-                    "alternatives": [
-                        {"grasp_type": p.grasp_type, "family": p.family, "score": p.score} for p in plans[1:]
-                    ],
-                }
-            )
+            line = {
+                "name": name,
+                "grasp_type": best.grasp_type,
+                "family": best.family,
+                "grasped_dim": best.grasped_dim,
+                "aperture_cm": best.aperture_cm,
+                "approach": best.approach,
+                "grip_force_n": best.grip_force_n,
+                "score": best.score,
+                "rationale": list(best.rationale),
+                "alternatives": [
+                    {"grasp_type": p.grasp_type, "family": p.family, "score": p.score} for p in plans[1:]
+                ],
+            }
+            if warnings:
+                line["warnings"] = warnings
+            out.append(line)
     return out
 
 

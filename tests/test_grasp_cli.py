@@ -55,7 +55,23 @@ def test_plan_catalog_json_lines_one_per_row_in_order(tmp_path):
         {"grasp_type", "family", "score"} <= set(a) for a in lines[0]["alternatives"]
     )
     assert "grasp_type" in lines[2]  # unknown features still get a plan
-    assert "a_cm" in lines[3]["error"] and lines[3]["row"] == 5
+    assert lines[3]["grasp_type"] and "a_cm" in lines[3]["warnings"][0]  # invalid value -> unknown, named
+
+
+def test_plan_catalog_accepts_the_papers_header_words_and_keeps_names_as_written(tmp_path):
+    csv = tmp_path / "c.csv"
+    csv.write_text(
+        "\ufeffObject,a,b,c,mass,shape,texture,fragility,material,stiffness\n"
+        "Tennis Ball,6.4,6.4,6.4,56,radial,rough,medium,fabric,soft\n"
+        "Odd Thing,5,5,5,100,blob,,,,\n"
+        ",1,1,1,1,,,,,\n"
+    )
+    result = invoke("grasp", "plan", "--catalog", str(csv), "--json")
+    assert result.exit_code == 0, result.output
+    first, odd, nameless = (json.loads(line) for line in result.output.splitlines())
+    assert first["name"] == "Tennis Ball" and first["grasp_type"] == "power_sphere"
+    assert "shape" in odd["warnings"][0] and odd["grasp_type"]
+    assert nameless["error"] and nameless["row"] == 4
 
 
 def test_plan_catalog_without_name_column_is_one_error_line(tmp_path):
