@@ -109,9 +109,10 @@ def bench_trials(quick: bool = False, *, limit: int | None = None) -> dict[str, 
 
     pairs = best_plans(limit or (20 if quick else None))
     raw = bench_raw_steps(pairs[: min(len(pairs), 20)])
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     results = [run_trial(record, plan, seed=0) for record, plan in pairs]
     wall = time.perf_counter() - start
+    cpu = time.process_time() - cpu_start  # CPU time: robust when other processes share the cores
     sim_time = sum(r.sim_time_s for r in results)
     steps = sim_time / 0.002
     outcomes = {k: sum(r.outcome == k for r in results) for k in ("success", "failure", "error")}
@@ -122,6 +123,9 @@ def bench_trials(quick: bool = False, *, limit: int | None = None) -> dict[str, 
         "mean_trial_wall_s": round(wall / len(results), 3),
         "max_trial_wall_s": round(max(r.wall_time_s for r in results), 3),
         "sim_to_wall": round(sim_time / wall, 2),
+        "cpu_s": round(cpu, 2),
+        "trials_per_cpu_s": round(len(results) / cpu, 2),
+        "sim_to_cpu": round(sim_time / cpu, 2),
         "us_per_step_in_trials": round(1e6 * wall / steps, 1),
         "baseline_raw": raw,
         "overhead_vs_raw_steps": round((wall / steps) / (raw["wall_s"] / raw["steps"]), 2),
@@ -130,7 +134,8 @@ def bench_trials(quick: bool = False, *, limit: int | None = None) -> dict[str, 
     print(
         f"one core: {out['trials']} full trials in {out['wall_s']} s = {out['trials_per_s_one_core']} trials/s "
         f"(mean {out['mean_trial_wall_s']} s, max {out['max_trial_wall_s']} s per trial); simulated/wall "
-        f"{out['sim_to_wall']}; {out['us_per_step_in_trials']} us per step in trials vs "
+        f"{out['sim_to_wall']} (CPU time {out['cpu_s']} s: {out['trials_per_cpu_s']} trials per CPU second, "
+        f"simulated/CPU {out['sim_to_cpu']}); {out['us_per_step_in_trials']} us per step in trials vs "
         f"{raw['us_per_step']} us raw mj_step (x{out['overhead_vs_raw_steps']}, baseline sim/wall "
         f"{raw['sim_to_wall']}); {outcomes['success']} success, {outcomes['failure']} failure, "
         f"{outcomes['error']} error",
