@@ -162,6 +162,7 @@ class FetchResult:
     fetched_at: datetime
     attempts: int = 1
     redirects: int = 0
+    retry_after: str | None = None  # the Retry-After header of a 408/429/5xx answer
 
     @property
     def not_modified(self) -> bool:
@@ -395,7 +396,7 @@ class PoliteFetcher:
                 self.clock.sleep(extra)
 
     def _retry_after(self, result: FetchResult, policy: FetchPolicy) -> float | None:
-        value = getattr(result, "_retry_after", None)
+        value = result.retry_after
         if not value:
             return None
         value = value.strip()
@@ -457,8 +458,8 @@ class PoliteFetcher:
                 etag=resp.headers.get("ETag"),
                 last_modified=resp.headers.get("Last-Modified"),
                 fetched_at=fetched_at,
+                retry_after=resp.headers.get("Retry-After"),
             )
-            result._retry_after = resp.headers.get("Retry-After")  # type: ignore[attr-defined]
             return result
         finally:
             resp.close()

@@ -119,6 +119,7 @@ class IngestionReport:
     updated: int = 0
     unchanged: int = 0
     observations_added: int = 0
+    aliases_added: int = 0
     new_objects: list[str] = field(default_factory=list)
     updated_objects: list[str] = field(default_factory=list)
     errors: list[dict[str, str]] = field(default_factory=list)
@@ -589,6 +590,23 @@ def _write(
                     }
                 )
                 report.updated_objects.append(obj["name"])
+            # Other names a product goes by (a second store's title matched by URL or GTIN) become aliases.
+            alias_rows = []
+            taken = set(by_name) | set(ids)
+            owners = [(ids[g[0].clean.name], g) for g in fresh] + list(matched.items())
+            for oid, group in owners:
+                for p in group:
+                    if p.clean.name not in taken:
+                        taken.add(p.clean.name)
+                        alias_rows.append({"alias": p.clean.name, "object_id": oid})
+            _bulk(
+                con,
+                "ingest_aliases",
+                ["alias", "object_id"],
+                alias_rows,
+                "INSERT INTO object_aliases (alias, object_id) SELECT alias, object_id FROM ingest_aliases",
+            )
+            report.aliases_added = len(alias_rows)
             sets = ", ".join(f"{c} = u.{c}" for c in [*FEATURES, "gtin", "canonical_url", "updated_at"])
             _bulk(
                 con,

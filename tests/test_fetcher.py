@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import email.utils
 import threading
+import time
 from datetime import UTC, datetime, timedelta
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
@@ -34,6 +35,17 @@ class FakeClock:
         return self.wall + timedelta(seconds=self.t - 1000.0)
 
 
+def logged(store: DemoStore, path: str, expected: int | None = None) -> int:
+    """Requests the store logged for ``path``. The server logs after sending its answer, so the client may
+    be a moment ahead: wait (briefly) for ``expected``."""
+    deadline = time.monotonic() + 2.0
+    while True:
+        n = sum(1 for e in store.log if e.path == path)
+        if expected is None or n >= expected or time.monotonic() > deadline:
+            return n
+        time.sleep(0.01)
+
+
 FAST = FetchPolicy(delay_s=0, read_timeout_s=0.5, connect_timeout_s=2, max_retries=1, backoff_s=0.0)
 
 
@@ -56,6 +68,7 @@ def test_fetches_a_page_with_validators_and_user_agent(store, session):
     assert b"Coffee Mug" in result.body
     assert result.etag and result.last_modified
     assert result.content_type.startswith("text/html")
+    logged(store, "/p/coffee-mug.html", 1)
     sent = [e for e in store.log if e.path == "/p/coffee-mug.html"][-1]
     assert sent.user_agent == USER_AGENT
     assert USER_AGENT.startswith("objrecall/") and "+https://" in USER_AGENT
@@ -72,25 +85,26 @@ def test_conditional_request_gives_not_modified_without_body(store, session):
     assert by_date.not_modified
     stale = fetcher.fetch(store.url("/p/tennis-ball.html"), validators=Validators(etag='"something-else"'))
     assert stale.status == 200 and stale.body == first.body
+    assert logged(store, "/p/tennis-ball.html", 4) == 4
     assert [e for e in store.log if e.path == "/p/tennis-ball.html"][1].if_none_match == first.etag
 
 
 def test_robots_disallow_is_obeyed_without_requesting_the_page(store, session):
     fetcher = PoliteFetcher(session, clock=FakeClock(), policy=FAST)
-    before = sum(1 for e in store.log if e.path.startswith("/private/"))
+    before = logged(store, "/private/staff-lamp.html")
     with pytest.raises(RobotsDisallowed) as info:
         fetcher.fetch(store.url("/private/staff-lamp.html"))
     assert fetch_error_kind(info.value) == "robots_disallowed"
-    assert sum(1 for e in store.log if e.path.startswith("/private/")) == before
+    assert logged(store, "/private/staff-lamp.html") == before
     assert fetcher.sitemaps(store.url("/")) == [store.url("/sitemap.xml")]
 
 
 def test_robots_is_fetched_once_per_host(store, session):
     fetcher = PoliteFetcher(session, clock=FakeClock(), policy=FAST)
-    before = sum(1 for e in store.log if e.path == "/robots.txt")
+    before = logged(store, "/robots.txt")
     for path in ("/p/coffee-mug.html", "/p/rolling-pin.html", "/about.html"):
         fetcher.fetch(store.url(path))
-    assert sum(1 for e in store.log if e.path == "/robots.txt") == before + 1
+    assert logged(store, "/robots.txt") == before + 1
 
 
 def test_crawl_delay_and_host_delay_are_waited_for(session):
@@ -128,12 +142,12 @@ def test_retry_after_is_honoured_then_page_served(session):
 def test_server_errors_are_retried_with_backoff_then_fail(store, session):
     clock = FakeClock()
     fetcher = PoliteFetcher(session, clock=clock, policy=FetchPolicy(delay_s=0, max_retries=3, backoff_s=0.5))
-    before = sum(1 for e in store.log if e.path == "/p/server-error.html")
+    before = logged(store, "/p/server-error.html")
     with pytest.raises(FetchError) as info:
         fetcher.fetch(store.url("/p/server-error.html"))
     assert fetch_error_kind(info.value) == "http_500"
     assert "4 attempt" in str(info.value)
-    assert sum(1 for e in store.log if e.path == "/p/server-error.html") == before + 4
+    assert logged(store, "/p/server-error.html", before + 4) == before + 4
     assert clock.sleeps == [pytest.approx(0.5), pytest.approx(1.0), pytest.approx(2.0)]
 
 
@@ -142,7 +156,7 @@ def test_not_found_is_not_retried(store, session):
     with pytest.raises(FetchError) as info:
         fetcher.fetch(store.url("/no/such/page"))
     assert fetch_error_kind(info.value) == "http_404"
-    assert sum(1 for e in store.log if e.path == "/no/such/page") == 1
+    assert logged(store, "/no/such/page", 1) == 1
 
 
 def test_slow_page_times_out(store, session):
@@ -190,6 +204,9 @@ def test_one_request_at_a_time_per_host(session):
             t.start()
         for t in threads:
             t.join()
+        deadline = time.monotonic() + 2
+        while sum(1 for e in store.log if e.status == 200) < len(paths) + 1 and time.monotonic() < deadline:
+            time.sleep(0.01)
         assert store.max_in_flight == 1
         assert sum(1 for e in store.log if e.status == 200) == len(paths) + 1  # + robots.txt
 

@@ -20,12 +20,15 @@ from scrapers.demo_store import DemoStore
 from scrapers.ingest import PAUSE_ENV
 from tests.conftest import SEED_CSV
 
-pytestmark = pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="needs POSIX signals")
+pytestmark = [
+    pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="needs POSIX signals"),
+    pytest.mark.slow,
+]
 
 SOURCES = """
 [defaults]
 delay_s = 0
-read_timeout_s = 0.4
+read_timeout_s = 1.0
 max_retries = 1
 backoff_s = 0
 max_bytes = 2_000_000
@@ -61,7 +64,7 @@ def snapshot(path: Path) -> tuple:
 
 @pytest.fixture(scope="module")
 def store():
-    with DemoStore(crawl_delay=None, slow_s=1.0) as s:
+    with DemoStore(crawl_delay=None, slow_s=2.5) as s:
         yield s
 
 

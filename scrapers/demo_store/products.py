@@ -242,8 +242,16 @@ FLAKY_PRODUCT = P(
 )
 
 
+#: The same product sold under another title on another page, with the same GTIN: it must become an alias
+#: of the object (and a second source for its values), not a second object.
+TWIN_PRODUCTS: tuple[DemoProduct, ...] = (
+    P("cast-iron-frying-pan", "jsonld", "en", "Pre-Seasoned Cast Iron Frying Pan", (17.1, 10.75, 2.0), "in",
+      5.4, "lb", "metal", "cast iron", gtin="0075536510206", route="/p/pre-seasoned-frying-pan.html"),
+)  # fmt: skip
+
+
 def product_by_handle(handle: str) -> DemoProduct:
-    for prod in (*PRODUCTS, FLAKY_PRODUCT):
+    for prod in (*PRODUCTS, FLAKY_PRODUCT, *TWIN_PRODUCTS):
         if prod.handle == handle:
             return prod
     raise KeyError(handle)

@@ -31,6 +31,7 @@ from scrapers.demo_store.products import (
     FLAKY_PATH,
     FLAKY_PRODUCT,
     PRODUCTS,
+    TWIN_PRODUCTS,
     BrokenPage,
     DemoProduct,
 )
@@ -84,6 +85,7 @@ class _Handler(BaseHTTPRequestHandler):
     def _serve(self, *, head: bool) -> None:
         store = self.server.store
         started = time.monotonic()
+        self._left = False
         with store._lock:
             store._in_flight += 1
             store.max_in_flight = max(store.max_in_flight, store._in_flight)
@@ -93,8 +95,8 @@ class _Handler(BaseHTTPRequestHandler):
         except (BrokenPipeError, ConnectionResetError):
             status = 499  # the client went away (e.g. a size cap): fine
         finally:
+            self.leave()
             with store._lock:
-                store._in_flight -= 1
                 store.log.append(
                     RequestLogEntry(
                         self.command,
@@ -107,6 +109,14 @@ class _Handler(BaseHTTPRequestHandler):
                         time.monotonic(),
                     )
                 )
+
+    def leave(self) -> None:
+        """Count this request as answered; called before the last bytes go out, so that a client that
+        sends its next request after reading this answer can never be seen as overlapping it."""
+        if not self._left:
+            self._left = True
+            with self.server.store._lock:
+                self.server.store._in_flight -= 1
 
 
 class DemoStore:
@@ -135,7 +145,9 @@ class DemoStore:
         self.crawl_delay = crawl_delay
         self.slow_s = slow_s
         self.huge_bytes = huge_bytes
-        self.products: dict[str, DemoProduct] = {p.handle: p for p in (*products, FLAKY_PRODUCT)}
+        self.products: dict[str, DemoProduct] = {
+            p.handle: p for p in (*products, FLAKY_PRODUCT, *TWIN_PRODUCTS)
+        }
         self.broken: dict[str, BrokenPage] = {b.path: b for b in BROKEN_PAGES}
         self.log: list[RequestLogEntry] = []
         self.max_in_flight = 0
@@ -198,9 +210,7 @@ class DemoStore:
     # ------------------------------------------------------------------ content
     def product_pages(self) -> dict[str, DemoProduct]:
         """path -> product, for every product page (not the broken ones, not duplicates)."""
-        pages = {p.path: p for h, p in self.products.items() if h != FLAKY_PRODUCT.handle}
-        pages[FLAKY_PATH] = self.products[FLAKY_PRODUCT.handle]
-        return pages
+        return {p.path: p for p in self.products.values()}
 
     def sitemap_paths(self) -> list[str]:
         return [*self.product_pages(), *DUPLICATE_ROUTES, *self.broken]
@@ -300,6 +310,7 @@ class DemoStore:
         h.send_response(200)
         h.send_header("Content-Type", "text/html; charset=utf-8")
         h.send_header("Transfer-Encoding", "chunked")
+        h.leave()
         h.end_headers()
         if head:
             return 200
@@ -331,6 +342,7 @@ def _send(h: _Handler, status: int, body: bytes, ctype: str, *, head: bool, extr
         h.send_header(k, v)
     if status != 304:
         h.send_header("Content-Length", str(len(body)))
+    h.leave()
     h.end_headers()
     if not head and status != 304:
         h.wfile.write(body)
