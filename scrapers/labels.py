@@ -75,7 +75,7 @@ _KIND_WORDS: dict[str, str] = {
         "dimensions",
         "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
         "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
-        "afmetingen mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
+        "afmetingen afmeting mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
         "méret διαστάσεις dimensi ukuran",
     ),
     **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
@@ -106,41 +106,38 @@ _QUALIFIERS = {
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
-        "produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
+        "jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen"
         " l b h w d t x х"
     ).split()
 }
 _OVERALL = {"overall", "assembled", "gesamt", "total", "outer", "exterior", "aussen", "außen"}
-# German compounds: <prefix><kind word>, e.g. Artikelgewicht, Verpackungsgewicht, Produktabmessungen.
-_COMPOUND_PREFIXES = {
-    "artikel": False,
-    "produkt": False,
-    "netto": False,
-    "gesamt": False,
-    "korpus": False,
-    "aussen": False,
-    "außen": False,
-    "geräte": False,
-    "gerate": False,
-    "eigen": False,
-    "leer": False,
-    "verpackungs": True,
-    "verpackung": True,
-    "versand": True,
-    "paket": True,
-    "brutto": True,
-    "karton": True,
+# Compounds of German, Dutch and the Scandinavian languages: <prefix><kind word>, e.g. Artikelgewicht,
+# Verpackungsgewicht, Produktabmessungen, productafmetingen, förpackningsmått. Only known prefixes count,
+# so Schlauchlänge (hose length) or Sitzhöhe (seat height) are not the product's measurements.
+_PRODUCT_PREFIXES = (
+    "artikel artikels produkt produkts product netto nett gesamt totaal total korpus aussen außen geräte gerät "
+    "eigen leer"
+)
+_PACKAGE_PREFIXES = (
+    "verpackungs verpackung versand paket pakket brutto karton verpakkings verpakking verzend förpacknings "
+    "forpaknings emballage frakt"
+)
+_COMPOUND_PREFIXES: dict[str, bool] = {
+    **{_fold(w): False for w in _PRODUCT_PREFIXES.split()},
+    **{_fold(w): True for w in _PACKAGE_PREFIXES.split()},
 }
-_GERMAN_KIND_SUFFIXES = sorted(
+_COMPOUND_SUFFIXES = sorted(
     (
         _fold(w)
-        for w in "gewicht abmessungen abmessung maße masse höhe breite länge tiefe durchmesser stärke "
-        "dicke größe".split()
+        for w in "gewicht abmessungen abmessung maße masse höhe breite länge tiefe durchmesser stärke dicke größe "
+        "afmetingen afmeting hoogte breedte diepte lengte vikt mått höjd bredd djup längd vægt mål højde bredde "
+        "dybde længde vekt".split()
     ),
     key=len,
     reverse=True,
 )
+assert all(suffix in _KIND_WORDS for suffix in _COMPOUND_SUFFIXES)
 # Labels of languages written without spaces, matched whole (after removing spaces and punctuation).
 _CJK_LABELS: dict[str, tuple[str, bool]] = {
     "尺寸": ("dimensions", False),
@@ -190,6 +187,12 @@ _CJK_LABELS: dict[str, tuple[str, bool]] = {
     "크기": ("dimensions", False),
     "무게": ("weight", False),
     "중량": ("weight", False),
+    "商品の重量": ("weight", False),
+    "商品サイズ": ("dimensions", False),
+    "製品サイズ": ("dimensions", False),
+    "商品の寸法": ("dimensions", False),
+    "梱包重量": ("weight", True),
+    "発送重量": ("weight", True),
     "質量": ("weight", False),
     "商品毛重": ("weight", True),
     "商品淨重": ("weight", False),
@@ -285,7 +288,7 @@ def _classify(label: object) -> LabelInfo | None:
 
 
 def _split_compound(word: str) -> tuple[str, bool] | None:
-    for suffix in _GERMAN_KIND_SUFFIXES:
+    for suffix in _COMPOUND_SUFFIXES:
         if word.endswith(suffix) and len(word) > len(suffix):
             prefix = word[: -len(suffix)].rstrip("-")
             if prefix in _COMPOUND_PREFIXES:

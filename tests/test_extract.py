@@ -94,7 +94,8 @@ def test_fixture_pages(name, adapter, dims, mass, package_dims, package_mass):
 
 def test_every_adapter_has_a_fixture():
     covered = {adapter for _, adapter, *_ in CASES}
-    assert {a.name for a in ADAPTERS} - covered <= {"text"}
+    # "text" (title, canonical URL) serves every page; "opengraph" has its own test below
+    assert {a.name for a in ADAPTERS} - covered <= {"text", "opengraph"}
 
 
 def test_disagreeing_weights_are_warned():
@@ -335,3 +336,14 @@ def test_value_split_over_cells_and_lone_colons():
     record = extract_page(page, "https://shop.example/x")
     assert record.mass_g == pytest.approx(4700.0)
     assert_dims(record.dims_cm, (30.0, 20.0))
+
+
+def test_opengraph_product_weight():
+    page = """<html><head><meta property="og:title" content="Desk Lamp">
+    <meta property="product:weight:value" content="1.4"><meta property="product:weight:units" content="kg">
+    <meta property="product:shipping_weight:value" content="2.0">
+    <meta property="product:shipping_weight:units" content="kg"></head><body></body></html>"""
+    record = extract_page(page, "https://shop.example/lamp")
+    assert record.mass_g == pytest.approx(1400.0)
+    assert record.package_mass_g == [pytest.approx(2000.0)]
+    assert record.adapter == "opengraph"

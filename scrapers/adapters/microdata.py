@@ -4,6 +4,8 @@ The first Product item that is not itself a property of another item is the page
 turned into the same dict shape as JSON-LD and read by :func:`scrapers.adapters.jsonld.read_product`.
 Nested items (``weight`` as a QuantitativeValue, ``additionalProperty`` PropertyValues) are kept;
 nested Products (``isSimilarTo``) are other products and are ignored by the reader.
+
+The ``opengraph`` adapter reads the product weight that Open Graph / catalog meta tags state.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from typing import Any
 from scrapers.adapters import Observation, adapter
 from scrapers.adapters.jsonld import PRODUCT_TYPES, read_product
 from scrapers.page import Page
+from scrapers.quantities import parse_mass
 
 __all__ = ["item_dict"]
 
@@ -69,3 +72,26 @@ def microdata(page: Page) -> list[Observation]:
         if itemtype in PRODUCT_TYPES and item.get("itemprop") is None:
             return read_product(item_dict(item), 1, page.decimal_comma)
     return []
+
+
+_OG_WEIGHTS = (("product:weight", False), ("product:shipping_weight", True), ("og:weight", False))
+
+
+@adapter("opengraph", priority=25)
+def opengraph(page: Page) -> list[Observation]:
+    """Open Graph / Facebook catalog product meta: ``product:weight:value`` with ``:units`` (and the
+    shipping weight, a package value)."""
+    tree = page.tree
+    if tree is None or "weight:value" not in page.text:
+        return []
+    meta = {}
+    for el in tree.xpath("//meta[@property][@content]"):
+        meta.setdefault(el.get("property").strip().lower(), el.get("content").strip())
+    obs = []
+    for prefix, package in _OG_WEIGHTS:
+        value, units = meta.get(f"{prefix}:value"), meta.get(f"{prefix}:units")
+        if value and units:
+            mass = parse_mass(f"{value} {units}", None, False)
+            if mass is not None:
+                obs.append(Observation("mass", mass, package, rank=0, raw=f"{prefix}: {value} {units}"))
+    return obs
