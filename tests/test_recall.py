@@ -1,0 +1,164 @@
+"""The recall engine on the seed catalog: paper cases, the hybrid, confidence, open set, bad input."""
+
+from __future__ import annotations
+
+import functools
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from kb.errors import RecallError
+from kb.features import ObjectRecord
+from recall.engine import NameIndex, Recaller, normalize_words
+from recall.snapshot import CatalogSnapshot, load_snapshot
+
+SEED_CSV = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"
+
+
+PAPER = {
+    "calculator": "A scientific calculator with plastic body. It is about fifteen and half centimeters long, "
+    "8 centimeters wide and appears to be more than one and half centimeters thick.",
+    "water bottle": "A metallic water bottle of about seven and quarter centimeters in diameter and twenty one "
+    "and half centimeters long. It is filled with about half a liter of water and is heavy.",
+    "wood cylinder": "A cylindrical wood block of about eight centimeters long and about three centimeters in "
+    "diameter. It is light weight. It has a rough surface.",
+    "cardboard box": "An empty cardboard box about fifteen centimeters in length, nine centimeters wide and about "
+    "two centimeters thick. It is very light weight. It weighs about sixty grams.",
+    "mini rubix cube": "A mini rubix cube of about three centimeters wide. It is made of plastic and has smooth "
+    "texture.",
+}
+
+
+@functools.cache
+def seed() -> Recaller:
+    return Recaller.from_csv(SEED_CSV)
+
+
+@pytest.mark.parametrize("obj", sorted(PAPER))
+@pytest.mark.parametrize("features_only", [True, False])
+def test_paper_table_iii_descriptions_are_recalled(obj, features_only):
+    result = seed().recall_text(PAPER[obj], features_only=features_only)
+    assert result.best.name == obj
+    assert result.features_only is features_only
+    assert 0.0 <= result.confidence <= 1.0
+    assert not result.open_set
+
+
+def test_contributions_explain_the_distance():
+    result = seed().recall_text(PAPER["calculator"], features_only=True, top=5)
+    assert [m.distance for m in result.matches] == sorted(m.distance for m in result.matches)
+    for m in result.matches:
+        assert set(m.contributions) == {"a_cm", "b_cm", "c_cm", "material"}
+        assert sum(m.contributions.values()) == pytest.approx(m.distance)
+    # "more than one and half centimeters thick" is an at-least bound the calculator's 1.5 cm meets
+    assert result.query["qualifiers"]["c_cm"] == "at_least"
+    assert result.best.contributions["c_cm"] == 0.0
+
+
+def test_hybrid_uses_a_name_and_features_only_does_not():
+    text = "a tennis ball"
+    hybrid = seed().recall_text(text)
+    assert hybrid.best.name == "tennis ball" and hybrid.best.matched_by_name
+    assert hybrid.named == ["tennis ball"]
+    assert hybrid.confidence > 0.9
+    plain = seed().recall_text(text, features_only=True)
+    assert not any(m.matched_by_name for m in plain.matches)
+    # an alias, in the plural
+    assert seed().recall_text("two remote controls").best.name == "tv remote"
+
+
+def test_name_evidence_yields_to_features_far_off():
+    # "cardboard box" is a catalog name, but these dimensions and mass are a tissue box's
+    text = "A cardboard box, about 24 cm long, 12 cm wide, 9 cm tall, around 230 grams, holds tissues."
+    records = [
+        ObjectRecord.create("cardboard box", a_cm=15.5, b_cm=9, c_cm=1.8, mass_g=66, material="paper"),
+        ObjectRecord.create("tissue box", a_cm=24, b_cm=12, c_cm=9, mass_g=230, material="paper"),
+        *[ObjectRecord.create(f"filler {i}", a_cm=1 + i, mass_g=10 + i) for i in range(20)],
+    ]
+    result = Recaller.from_records(records).recall_text(text)
+    assert result.best.name == "tissue box"
+
+
+def test_numbers_and_comparisons_do_not_name_objects():
+    index = NameIndex(["us quarter", "tennis ball", "lemon"], [("quarter",), (), ()])
+    assert index.find("seven and quarter centimeters", skip_spans=[(0, 29)]).exact == {}
+    assert index.find("about the size of a tennis ball").exact == {}
+    assert index.find("a lemon-shaped plastic thing").exact == {}
+    assert index.find("like a tennis ball").exact == {}
+    found = index.find("my old tennis balls")
+    assert list(found.exact) == [1] and found.phrases == ("tennis ball",)
+    assert normalize_words("Rubik's cubes, T-shirts") == ["rubik", "cube", "t", "shirt"]
+
+
+def test_longest_name_wins():
+    index = NameIndex(["ball", "tennis ball", "ping pong ball"], [(), (), ("table tennis ball",)])
+    assert list(index.find("a table tennis ball").exact) == [2]
+
+
+def test_open_set_still_returns_the_nearest_object():
+    far = seed().recall_text(
+        "A refrigerator, about 180 cm tall, 70 cm wide and 70 cm deep, around 70 kilograms, metal."
+    )
+    assert far.open_set and far.matches
+    assert far.confidence <= 0.5
+    near = seed().recall_text(PAPER["cardboard box"])
+    assert not near.open_set
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.text(max_size=300))
+def test_any_text_recalls_without_crashing(text):
+    result = seed().recall_text(text)
+    assert 0.0 <= result.confidence <= 1.0
+    if not result.matches:
+        assert result.confidence == 0.0
+
+
+def test_nonsense_gives_an_empty_result():
+    result = seed().recall_text("colorless green ideas sleep furiously")
+    assert result.matches == [] and result.confidence == 0.0
+    assert result.to_dict()["matches"] == []
+
+
+def test_recall_from_hand_made_values_and_every_metric():
+    values = {"a_cm": 21.5, "b_cm": 7.2, "c_cm": 7.2, "mass_g": 650, "material": "metal"}
+    for metric in ("jp", "euclidean", "minkowski", "cosine", "kdtree"):
+        result = seed().recall_features(values, metric=metric, top=3)
+        assert result.metric == metric and len(result.matches) == 3
+        assert result.best.name == "water bottle", metric
+    with pytest.raises(RecallError, match="unknown metric"):
+        seed().recall_features(values, metric="hamming")
+    with pytest.raises(RecallError):
+        seed().recall_features(values, top=0)
+
+
+def test_confidence_grows_with_the_margin():
+    from recall.engine import confidence_from_margin
+
+    values = [confidence_from_margin(m) for m in (0.0, 0.5, 1.0, 2.0, 4.0)]
+    assert values == sorted(values) and values[0] < 0.5 < values[-1]
+
+
+def test_empty_catalog_is_refused():
+    with pytest.raises(RecallError, match="empty"):
+        Recaller(CatalogSnapshot.from_records([]))
+
+
+def test_snapshot_is_cached_until_the_catalog_changes(tmp_path):
+    from kb.catalog import KnowledgeBase
+
+    db = tmp_path / "kb.duckdb"
+    kb = KnowledgeBase.open(db)
+    kb.import_csv(SEED_CSV)
+    first = load_snapshot(db)
+    assert load_snapshot(db) is first
+    extra = tmp_path / "extra.csv"
+    extra.write_text(
+        "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\nzz gadget,4,3,2,9,,,,,\n"
+    )
+    kb.import_csv(extra)
+    second = load_snapshot(db)
+    assert second is not first and "zz gadget" in second.names
+    assert Recaller.from_db(db).recall_text("a zz gadget").best.name == "zz gadget"
