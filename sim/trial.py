@@ -200,6 +200,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     # Where the object's centre sits in the hand frame (cm).
     depth = ext[2] if plan.approach == "top" else ext[0]  # extent along the approach axis
     palm_face = -H.PALM_HALF_CM[2]
+    grip_depth = 0.0  # precision: how far below the near face the pads meet the object (cm)
     if family == "power":
         x_c = 0.0
         z_c = palm_face - PALM_CLEARANCE_CM - depth / 2.0
@@ -248,6 +249,13 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
     open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
     data.qpos[digit_qpos] = open_q
+    if family != "power":
+        # Round objects bulge above their equator into the fingers that reach down to it: pinch higher,
+        # in 5 mm steps up to 1 cm below the top, until the pre-shaped hand clears the object.
+        backoff = _precision_backoff_m(
+            model, data, is_hand, model.geom("object_geom").id, wrist_qpos, approach_dir, grip_depth - 1.0
+        )
+        noise = noise + backoff * approach_dir
     data.qpos[wrist_qpos] = noise
     data.ctrl[digit_act] = open_q
     data.ctrl[wrist_act] = noise
@@ -267,6 +275,22 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         wrist_qpos=wrist_qpos,
     )
     return world
+
+
+def _precision_backoff_m(model, data, is_hand, object_geom, wrist_qpos, approach_dir, max_cm: float) -> float:
+    """Smallest back-off (m, along the approach, 5 mm steps up to ``max_cm``) at which the pre-shaped hand
+    does not overlap the object; 0 if none does (the trial then fails as starting inside)."""
+    steps = int(max(0.0, max_cm) // 0.5)
+    for k in range(steps + 1):
+        offset = k * 0.005
+        data.qpos[wrist_qpos] = offset * approach_dir
+        mujoco.mj_forward(model, data)
+        n = data.ncon
+        g1, g2 = data.contact.geom1[:n], data.contact.geom2[:n]
+        mine = ((g1 == object_geom) & is_hand[g2]) | ((g2 == object_geom) & is_hand[g1])
+        if not (data.contact.dist[:n][mine] < -PENETRATION_TOL_M).any():
+            return offset
+    return 0.0
 
 
 def check_physics(model: mujoco.MjModel, data: mujoco.MjData, where: str = "") -> None:
