@@ -425,6 +425,20 @@ def _bulk(con, view: str, columns: list[str], rows: list[dict[str, Any]], sql: s
         con.unregister(view)
 
 
+def _warm_up_arrow() -> None:
+    """Register one Arrow table on a throwaway in-memory database: DuckDB and pyarrow import what they need
+    for that (pandas and friends, seconds on a cold, busy machine) now, not while we hold the write lock."""
+    import duckdb
+    import pyarrow as pa
+
+    con = duckdb.connect()
+    try:
+        con.register("warm_up", pa.table({"x": [1]}))
+        con.execute("SELECT count(*) FROM warm_up").fetchone()
+    finally:
+        con.close()
+
+
 def _naive(ts: datetime | None) -> datetime | None:
     return ts.replace(tzinfo=None) if ts is not None and ts.tzinfo is not None else ts
 
@@ -436,6 +450,7 @@ def _write(
     extracted = [p for p in outcomes if p.outcome == "extracted"]
     groups = _group_pages(extracted)
     pause = float(os.environ.get(PAUSE_ENV, "0") or 0)
+    _warm_up_arrow()
     with kb.connect(write=True) as con:
         t0 = time.monotonic()
         con.begin()

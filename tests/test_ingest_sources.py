@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import pytest
 import requests
+from hypothesis import given
+from hypothesis import strategies as st
 
 from kb.errors import SourcesError
 from scrapers.demo_store import DemoStore
@@ -126,3 +128,63 @@ def test_discovery_from_sitemap_and_from_robots():
         events = []
         assert discover_urls(fetcher, not_xml, events) == []
         assert events[0][2].startswith("bad_sitemap")
+
+
+@given(st.text(max_size=300))
+def test_any_text_is_sources_or_a_clear_error(text):
+    try:
+        sources = parse_sources(text, origin="fuzz.toml")
+    except SourcesError as err:
+        assert str(err).startswith("fuzz.toml")
+    else:
+        assert sources.stores
+
+
+@given(
+    st.dictionaries(
+        st.sampled_from(["name", "base_url", "delay_s", "max_pages", "urls", "adapter", "include", "max_bytes"]),
+        st.one_of(st.integers(-5, 5), st.floats(allow_nan=True), st.text(max_size=20), st.booleans(),
+                  st.lists(st.text(max_size=10), max_size=3)),
+    )
+)  # fmt: skip
+def test_any_store_table_is_a_store_or_a_clear_error(table):
+    import tomllib
+
+    lines = ["[[stores]]"]
+    for key, value in table.items():
+        lines.append(f"{key} = {_toml(value)}")
+    text = "\n".join(lines) + "\n"
+    try:
+        tomllib.loads(text)
+    except tomllib.TOMLDecodeError:
+        return
+    try:
+        (store,) = parse_sources(text, origin="t.toml").stores
+    except SourcesError as err:
+        assert str(err).startswith("t.toml")
+    else:
+        assert store.name and store.base_url.startswith("http") and store.max_pages > 0
+
+
+def _toml(value) -> str:
+    import json
+
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float) and value != value:
+        return "nan"
+    if isinstance(value, float) and value in (float("inf"), float("-inf")):
+        return "inf" if value > 0 else "-inf"
+    return json.dumps(value)
+
+
+@given(st.text(max_size=60))
+def test_retry_after_of_any_header_is_bounded_or_ignored(header):
+    from scrapers.fetcher import FetchResult, SystemClock
+
+    fetcher = PoliteFetcher(requests.Session(), clock=SystemClock())
+    result = FetchResult(url="http://x/", final_url="http://x/", status=503, body=None, content_type=None,
+                         etag=None, last_modified=None, fetched_at=None, retry_after=header)  # fmt: skip
+    policy = FetchPolicy(max_retry_after_s=30)
+    seconds = fetcher._retry_after(result, policy)
+    assert seconds is None or 0 <= seconds <= 30
