@@ -21,12 +21,14 @@ The pipeline (the paper's Fig. 2), built once by :class:`DescriptionParser`:
 from __future__ import annotations
 
 import functools
+import re
 import threading
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from nltk.chunk import RegexpParser
+from nltk.chunk import RegexpChunkParser, RegexpParser
+from nltk.chunk.regexp import ChunkString
 from nltk.tag import RegexpTagger, UnigramTagger
 from nltk.tokenize import RegexpTokenizer
 from nltk.tree import Tree
@@ -90,6 +92,65 @@ DIM:
   {<QUANT><IN|OF>?<DIM>}
   {<DIM><BE|OF|IN|W|CM>?<BE|OF|IN|W>?<BE|OF|IN|W>?<QUANT>}
 """
+
+
+#: When a stage can match: each listed tag set must meet the sentence's tags (or earlier chunks).
+_STAGE_TRIGGERS: dict[str, tuple[frozenset[str], ...]] = {
+    "NUM": (frozenset({"CD", "NW", "NMAG", "FRC"}),),
+    "UNIT": (frozenset({"ULEN", "UMASS", "UVOL"}),),
+    "HEDGE": (frozenset({"HA", "HL", "HU", "HX"}),),
+    "RANGE": (frozenset({"NUM"}), frozenset({"RTO", "BETW"})),
+    "QUANT": (frozenset({"NUM", "RANGE"}),),
+    "MULTI": (frozenset({"QUANT"}), frozenset({"BY"})),
+    "DIM": (frozenset({"QUANT"}), frozenset({"DIM"})),
+}
+
+
+def _required_tags(rule_text: str) -> tuple[frozenset[str], ...]:
+    """The tag groups a rule cannot match without: every ``<A|B>`` not marked optional (``?``/``*``)."""
+    groups = []
+    for m in re.finditer(r"<([A-Z|]+)>([?*+]?)", rule_text):
+        if m.group(2) not in ("?", "*"):
+            groups.append(frozenset(m.group(1).split("|")))
+    return tuple(groups)
+
+
+class _QuietStage(RegexpChunkParser):
+    """One stage of the cascade: nltk's RegexpChunkParser without ChunkString's per-call self-check
+    (debug_level=0; the grammar is fixed and tested), applying only the rules whose required tags are
+    present in the sentence."""
+
+    def __init__(self, rules, chunk_label, root_label="S", trace=0):
+        super().__init__(rules, chunk_label=chunk_label, root_label=root_label, trace=trace)
+        self.triggers = _STAGE_TRIGGERS[chunk_label]
+        self.required = [_required_tags(rule.descr() if rule.descr() else str(rule)) for rule in rules]
+
+    def chunk(self, tree: Tree, present: set[str]) -> Tree:
+        chunkstr = ChunkString(tree, debug_level=0)
+        for rule, required in zip(self.rules(), self.required, strict=True):
+            if all(present & group for group in required):
+                rule.apply(chunkstr)
+        return chunkstr.to_chunkstruct(self._chunk_label)
+
+
+class _Cascade(RegexpParser):
+    """nltk's cascaded RegexpParser over :data:`GRAMMAR`, skipping a stage that cannot match the
+    sentence (:data:`_STAGE_TRIGGERS`; most sentences need only a few of the seven stages)."""
+
+    def _add_stage(self, rules, lhs, root_label, trace):  # nltk's hook: build our quiet stages
+        if rules:
+            self._stages.append(_QuietStage(rules, chunk_label=lhs, root_label=root_label, trace=trace))
+
+    def parse(self, chunk_struct, trace=None) -> Tree:
+        pairs = list(chunk_struct)
+        present = {tag for _word, tag in pairs}
+        tree = Tree("S", pairs)
+        for stage in self._stages:
+            if all(present & group for group in stage.triggers):
+                tree = stage.chunk(tree, present)
+                present.update(child.label() for child in tree if isinstance(child, Tree))
+        return tree
+
 
 _NUMBER_TAGS = frozenset({"CD", "NW", "NMAG", "FRC"})
 _UNIT_TAGS = frozenset({"ULEN", "UMASS", "UVOL"})
@@ -222,7 +283,7 @@ class DescriptionParser:
         )  # fmt: skip
         self._model = lx.tag_model()
         self._tagger = UnigramTagger(model=self._model, backoff=fallback)
-        self._chunker = RegexpParser(GRAMMAR)
+        self._chunker = _Cascade(GRAMMAR)
         self._units = unit_table()
         mwe: dict[tuple[str, ...], str] = {}
         for phrase in lx.MULTIWORD:
@@ -330,7 +391,7 @@ class DescriptionParser:
         k = 0
         for child in tree:
             if isinstance(child, Tree):
-                n = len(child.leaves())
+                n = _size(child)
                 toks = segment[k : k + n]
                 self._read_chunk(child, toks, base + k, reading, fill, segment, k)
                 k += n
@@ -363,7 +424,7 @@ class DescriptionParser:
         j = 0
         for sub in chunk:
             if isinstance(sub, Tree):
-                n = len(sub.leaves())
+                n = _size(sub)
                 if sub.label() == "QUANT":
                     q = self._quantity(sub, toks[j : j + n], pos + j)
                     if q is not None:
@@ -429,7 +490,7 @@ class DescriptionParser:
         j = 0
         for sub in chunk:
             if isinstance(sub, Tree):
-                n = len(sub.leaves())
+                n = _size(sub)
                 part = toks[j : j + n]
                 label = sub.label()
                 if label == "HEDGE":
@@ -446,7 +507,7 @@ class DescriptionParser:
                     r = 0
                     for rsub in sub:
                         if isinstance(rsub, Tree):
-                            rn = len(rsub.leaves())
+                            rn = _size(rsub)
                             if rsub.label() == "NUM":
                                 value = _num(part[r : r + rn])
                                 if value is None:
@@ -509,7 +570,7 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
                 tag = "ULEN"  # "4 in long", "3 in." ; "7 in diameter" stays a preposition
         elif tok.low in _SYMBOL_UNITS:
             tag = "ULEN" if prev_num else "CM"
-        elif tag in _UNIT_TAGS and not prev_num:
+        elif tag in _UNIT_TAGS and not prev_num and not _number_before_of(out):
             before_a = out[-2] if len(out) >= 2 else None
             if prev is not None and prev.tag == "A" and len(tok.low) > 2:
                 if before_a is None or (before_a.tag not in _NUMBER_TAGS and before_a.tag != "OF"):
@@ -545,6 +606,14 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
     return out
 
 
+def _number_before_of(out: list[_Token]) -> bool:
+    """True after "<number> of" or "<number> of a": "a couple of kilos", "half of a liter"."""
+    k = len(out) - 1
+    if k >= 0 and out[k].tag == "A":
+        k -= 1
+    return k >= 1 and out[k].tag == "OF" and out[k - 1].tag in _NUMBER_TAGS
+
+
 def _fill_context(segment: list[_Token]) -> int | None:
     """Index in the segment of a contents word ("filled", "full", "contains"), or None; a capacity word
     ("capacity", "empty", "can hold") anywhere in the sentence cancels it."""
@@ -565,6 +634,14 @@ def _fill_context(segment: list[_Token]) -> int | None:
 
 
 # --------------------------------------------------------------------------------------- small readers
+def _size(tree: Tree) -> int:
+    """Number of tokens under a chunk."""
+    n = 0
+    for child in tree:
+        n += _size(child) if isinstance(child, Tree) else 1
+    return n
+
+
 def _num(toks: Sequence[_Token]) -> float | None:
     words = [t.low for t in toks]
     if len(words) == 1 and words[0] in ("a", "an"):

@@ -1,0 +1,162 @@
+"""Description parser vs quantulum3 on the development set: speed (descriptions per second, one core) and
+accuracy of the quantities (dimensions and mass against the true objects), measured in the same run.
+
+    python benchmarks/parse_bench.py [--passes 3] [--tolerance 0.2]
+
+Quantities are scored the same way for both: a true dimension (a, b or c) is *found* when an extracted
+length is within ``tolerance`` of it; the mass when the first extracted mass is. quantulum3 (a
+test/benchmark-only dependency) ships its own unit classifier (``clf.joblib``, pickled with scikit-learn 1.8) and loads it on first use; it
+downloads nothing. When that pickle cannot be loaded by the installed scikit-learn (1.9 moved
+``sklearn._loss``), the benchmark switches quantulum3 to its no-classifier mode and says so (retraining
+would need the ``stemming`` package).
+Warm-up (loading, first parse) is timed separately and not counted in the rates.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import time
+import warnings
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from kb.features import DIMENSIONS  # noqa: E402
+from recall.parse_eval import load_labeled  # noqa: E402
+
+#: quantulum3 unit names -> (kind, factor to cm or g)
+Q3_UNITS = {
+    "millimetre": ("length", 0.1), "centimetre": ("length", 1.0), "metre": ("length", 100.0),
+    "inch": ("length", 2.54), "foot": ("length", 30.48), "yard": ("length", 91.44),
+    "milligram": ("mass", 0.001), "gram": ("mass", 1.0), "kilogram": ("mass", 1000.0),
+    "ounce": ("mass", 28.349523125), "pound-mass": ("mass", 453.59237), "pound": ("mass", 453.59237),
+}  # fmt: skip
+
+
+def _close(a: float, b: float, tol: float) -> bool:
+    return abs(a - b) <= tol * b
+
+
+def _score(extracted: list[tuple[list[float], list[float]]], records, tol: float) -> dict[str, float]:
+    dims_found = dims_total = mass_found = mass_total = 0
+    for (lengths, masses), rec in zip(extracted, records, strict=True):
+        for d in DIMENSIONS:
+            truth = getattr(rec, d)
+            if truth is not None:
+                dims_total += 1
+                dims_found += any(_close(x, truth, tol) for x in lengths)
+        if rec.mass_g is not None:
+            mass_total += 1
+            mass_found += bool(masses) and _close(masses[0], rec.mass_g, tol)
+    return {"dims_found": dims_found / dims_total, "mass_found": mass_found / mass_total}
+
+
+def _ours(texts: list[str]):
+    from recall.parser import parse
+
+    out = []
+    for text in texts:
+        v = parse(text).values()
+        out.append(
+            ([float(v[d]) for d in DIMENSIONS if d in v], [float(v["mass_g"])] if "mass_g" in v else [])
+        )
+    return out
+
+
+def _quantulum_classifier() -> tuple[str | None, str]:
+    """(classifier_path for quantulum3.parser.parse, how it was obtained)."""
+    from quantulum3 import classifier as clf
+
+    warnings.filterwarnings("ignore")
+    try:
+        clf.Classifier()
+        return None, "its shipped clf.joblib"
+    except Exception as err:  # noqa: BLE001 - report whatever the unpickling raised
+        # Retraining needs the "stemming" package (not installed); use quantulum3's own fallback for
+        # installs without a classifier: heuristic disambiguation (faster than the classifier).
+        clf.USE_CLF = False
+        return None, (
+            f"its shipped clf.joblib does not load with this scikit-learn ({type(err).__name__}: {err}); "
+            "using its no-classifier mode (heuristic disambiguation)"
+        )
+
+
+_Q3_PATH: str | None = None
+
+
+def _quantulum(texts: list[str], unknown: set[str]):
+    from quantulum3 import parser as q3
+
+    out = []
+    for text in texts:
+        lengths: list[float] = []
+        masses: list[float] = []
+        for q in q3.parse(text, classifier_path=_Q3_PATH):
+            kind_factor = Q3_UNITS.get(q.unit.name)
+            if kind_factor is None:
+                unknown.add(q.unit.name)
+                continue
+            kind, factor = kind_factor
+            (lengths if kind == "length" else masses).append(float(q.value) * factor)
+        out.append((lengths, masses))
+    return out
+
+
+def _rate(fn, texts: list[str], passes: int) -> float:
+    """Descriptions per CPU second of this process (one core; fair on a busy machine), median of passes."""
+    rates = []
+    for _ in range(passes):
+        t0 = time.process_time()
+        fn(texts)
+        rates.append(len(texts) / (time.process_time() - t0))
+    return statistics.median(rates)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--passes", type=int, default=3)
+    ap.add_argument("--tolerance", type=float, default=0.2)
+    args = ap.parse_args()
+    if hasattr(os, "sched_setaffinity"):
+        os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})  # one core
+    labeled = load_labeled()
+    texts = [t for t, _r in labeled]
+    records = [r for _t, r in labeled]
+
+    t0 = time.perf_counter()
+    ours = _ours(texts[:1])
+    ours_warm = time.perf_counter() - t0
+    global _Q3_PATH
+    _Q3_PATH, how = _quantulum_classifier()
+    print(f"quantulum3 classifier: {how}")
+    unknown: set[str] = set()
+    t0 = time.perf_counter()
+    _quantulum(texts[:1], unknown)
+    q3_warm = time.perf_counter() - t0
+
+    ours = _ours(texts)
+    theirs = _quantulum(texts, unknown)
+    ours_rate = _rate(_ours, texts, args.passes)
+    q3_rate = _rate(lambda ts: _quantulum(ts, unknown), texts, args.passes)
+    s_ours = _score(ours, records, args.tolerance)
+    s_q3 = _score(theirs, records, args.tolerance)
+
+    print(f"descriptions: {len(texts)} (recall/data/dev_descriptions.csv), tolerance {args.tolerance:.0%}")
+    print(f"{'':14s}{'desc/s':>10s}{'warm-up s':>11s}{'dims found':>12s}{'mass found':>12s}")
+    print(
+        f"{'objrecall':14s}{ours_rate:10.0f}{ours_warm:11.2f}{s_ours['dims_found']:12.1%}{s_ours['mass_found']:12.1%}"
+    )
+    print(
+        f"{'quantulum3':14s}{q3_rate:10.0f}{q3_warm:11.2f}{s_q3['dims_found']:12.1%}{s_q3['mass_found']:12.1%}"
+    )
+    print(f"speed ratio objrecall / quantulum3: {ours_rate / q3_rate:.1f}x (goal >= 10x)")
+    if unknown:
+        print(f"quantulum3 units not scored: {', '.join(sorted(unknown))}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,402 @@
+"""The description parser (recall/parser.py): Table III end to end, dimension patterns, units, hedges,
+categories, odd input, and the development-set scores."""
+
+from __future__ import annotations
+
+import json
+import random
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from nltk.tree import Tree
+
+from kb.errors import DescriptionError
+from kb.features import CATEGORIES, FEATURES
+from recall import lexicon
+from recall.parser import MAX_TEXT_CHARS, QUALIFIERS, FeatureEvidence, ParsedDescription, parse
+from recall.units import unit_table
+
+approx = pytest.approx
+
+# ---------------------------------------------------------------------- the paper's Table III, end to end
+TABLE_III = [
+    (
+        "A scientific calculator with plastic body. It is about fifteen and half centimeters long, 8 "
+        "centimeters wide and appears to be more than one and half centimeters thick.",
+        {"a_cm": 15.5, "b_cm": 8.0, "c_cm": 1.5, "material": "plastic"},
+        {"a_cm": "about", "b_cm": "exact", "c_cm": "at_least"},
+        None,
+    ),
+    (
+        "A metallic water bottle of about seven and quarter centimeters in diameter and twenty one and half "
+        "centimeters long. It is filled with about half a liter of water and is heavy.",
+        {"a_cm": 21.5, "b_cm": 7.25, "c_cm": 7.25, "mass_g": 500.0, "material": "metal", "shape": "prism"},
+        {"a_cm": "exact", "b_cm": "about", "mass_g": "at_least"},
+        "heavy",
+    ),
+    (
+        "A cylindrical wood block of about eight centimeters long and about three centimeters in diameter. "
+        "It is light weight. It has a rough surface.",
+        {"a_cm": 8.0, "b_cm": 3.0, "c_cm": 3.0, "material": "wood", "shape": "prism", "texture": "rough"},
+        {"a_cm": "about", "b_cm": "about"},
+        "light",
+    ),
+    (
+        "An empty cardboard box about fifteen centimeters in length, nine centimeters wide and about two "
+        "centimeters thick. It is very light weight. It weighs about sixty grams.",
+        {"a_cm": 15.0, "b_cm": 9.0, "c_cm": 2.0, "mass_g": 60.0, "material": "paper"},
+        {"a_cm": "about", "b_cm": "exact", "c_cm": "about", "mass_g": "about"},
+        "light",
+    ),
+    (
+        "A mini rubix cube of about three centimeters wide. It is made of plastic and has smooth texture.",
+        {
+            "a_cm": 3.0,
+            "b_cm": 3.0,
+            "c_cm": 3.0,
+            "material": "plastic",
+            "shape": "compact",
+            "texture": "smooth",
+        },
+        {"a_cm": "about"},
+        None,
+    ),
+]
+
+
+@pytest.mark.parametrize(("text", "values", "qualifiers", "hint"), TABLE_III)
+def test_table_iii(text: str, values: dict, qualifiers: dict, hint: str | None) -> None:
+    parsed = parse(text)
+    got = parsed.values()
+    for feature, value in values.items():
+        assert got[feature] == (approx(value) if isinstance(value, float) else value), feature
+    for feature, qualifier in qualifiers.items():
+        assert parsed.features[feature].qualifier == qualifier, feature
+    assert parsed.mass_hint == hint
+
+
+def test_evidence_points_at_the_words() -> None:
+    text = TABLE_III[1][0]
+    parsed = parse(text)
+    ev = parsed.features["b_cm"]
+    assert isinstance(ev, FeatureEvidence)
+    assert ev.words == "about seven and quarter centimeters in diameter"
+    assert text[ev.start : ev.end] == ev.words
+    mass = parsed.features["mass_g"]
+    assert mass.low == approx(500.0) and mass.high is None
+    assert "half a liter" in mass.words
+
+
+def test_chunk_tree_has_the_papers_chunks() -> None:
+    tree = parse(TABLE_III[0][0]).tree
+    assert isinstance(tree, Tree) and tree.label() == "S"
+    labels = {t.label() for t in tree.subtrees()}
+    assert {"NUM", "UNIT", "HEDGE", "QUANT", "DIM"} <= labels
+    dims = [" ".join(w for w, _t in t.leaves()) for t in tree.subtrees(lambda t: t.label() == "DIM")]
+    assert dims == [
+        "about fifteen and half centimeters long",
+        "8 centimeters wide",
+        "more than one and half centimeters thick",
+    ]
+
+
+# ---------------------------------------------------------------------------------------- dimensions
+DIMENSION_CASES = [
+    ("10 x 5 x 2 cm", (10, 5, 2)),
+    ("2 x 10 x 5 cm", (10, 5, 2)),
+    ("10cm x 5cm x 2cm", (10, 5, 2)),
+    ("10×5×2 cm", (10, 5, 2)),
+    ("three by four centimeters", (4, 3, None)),
+    ("6 by 3.5 inches, under an inch thick", (15.24, 8.89, 2.54)),
+    ("about 3 cm on each side", (3, 3, 3)),
+    ("a cube of 4 cm", (4, 4, 4)),
+    ("a cube about three centimeters wide", (3, 3, 3)),
+    ("a ball 6.5 cm in diameter", (6.5, 6.5, 6.5)),
+    ("a ball with a radius of 3 cm", (6, 6, 6)),
+    ("a can 12 cm tall and 6.6 cm in diameter", (12, 6.6, 6.6)),
+    ("a wooden disc 7 cm across and 2 cm thick", (7, 7, 2)),
+    ("a round dish about 27 cm across and 2.5 cm tall", (27, 27, 2.5)),
+    ("a mug 9.5 cm tall and 8 cm wide", (9.5, 8, 8)),
+    ("a cylinder 3 cm in diameter", (None, 3, 3)),
+    ("a coin 2.3 cm in diameter", (2.3, 2.3, None)),
+    ("15 cm long, 8 cm wide and 1.5 cm thick", (15, 8, 1.5)),
+    ("1.5 cm thick, 15 cm long, 8 cm wide", (15, 8, 1.5)),
+    ("length 15 cm, width 8 cm", (15, 8, None)),
+    ("its length is about 20 cm", (20, None, None)),
+    ("30 cm long and 1 mm thick", (30, None, 0.1)),
+    ("9 cm wide and 2 cm thick", (None, 9, 2)),
+    ("fifteen centimeters long, eight wide and two thick", (15, 8, 2)),  # unit carried over
+    ("about 18 inches long, 6 inches deep and an inch thick", (45.72, 15.24, 2.54)),
+    ("a 30 cm ruler", (30, None, None)),
+    ("a 5-cm-long stick", (5, None, None)),
+    ("about a foot long", (30.48, None, None)),
+    ('a 4" wide card', (None, 10.16, None)),
+    ("3 ft tall", (91.44, None, None)),
+    ("4 in long", (10.16, None, None)),
+    ("a round lid an inch and a half across", (3.81, 3.81, None)),
+    ("an inch and a half across", (None, 3.81, None)),
+    ("12 3/4 by 9 inches", (32.385, 22.86, None)),
+    ("7½ cm long", (7.5, None, None)),
+    ("7,5 cm long", (7.5, None, None)),
+    ("150 mm long", (15, None, None)),
+    ("0.3 m long", (30, None, None)),
+]
+
+
+@pytest.mark.parametrize(("text", "dims"), DIMENSION_CASES)
+def test_dimension_patterns(text: str, dims: tuple) -> None:
+    got = parse(text).values()
+    for name, expected in zip(("a_cm", "b_cm", "c_cm"), dims, strict=True):
+        if expected is None:
+            assert name not in got, (name, got)
+        else:
+            assert got.get(name) == approx(expected), (name, got)
+
+
+def test_dimensions_are_sorted() -> None:
+    got = parse("It is 2 cm long, 10 cm wide and 5 cm thick").values()
+    assert got["a_cm"] >= got["b_cm"] >= got["c_cm"]
+
+
+# -------------------------------------------------------------------------------------- mass and units
+MASS_CASES = [
+    ("it weighs 60 g", 60),
+    ("about 1.5 kg", 1500),
+    ("weighs 10 oz", 283.495),
+    ("2 lbs", 907.185),
+    ("half a pound", 226.796),
+    ("a pound and a half", 680.389),
+    ("an ounce and a half", 42.524),
+    ("a quarter of a kilogram", 250),
+    ("a third of a kilo", 333.333),
+    ("under half an ounce", 14.175),
+    ("a couple of kilos", 2000),
+    ("weighs a dozen grams", 12),
+    ("1,200 grams", 1200),
+    ("it weighs one hundred and fifty grams", 150),
+]
+
+
+@pytest.mark.parametrize(("text", "grams"), MASS_CASES)
+def test_mass(text: str, grams: float) -> None:
+    assert parse(text).values()["mass_g"] == approx(grams, rel=1e-4)
+
+
+def test_contents_give_a_lower_bound_on_mass() -> None:
+    ev = parse("A steel bottle filled with 750 ml of water.").features["mass_g"]
+    assert (ev.value, ev.qualifier, ev.low) == (approx(750), "at_least", approx(750))
+    assert "mass_g" not in parse("A bottle with 750 ml capacity.").features
+    assert "mass_g" not in parse("A 1 liter bottle, empty.").features
+    # a stated mass wins over contents
+    assert parse("A jug full of water, 2 liters, weighs 2.3 kg").values()["mass_g"] == approx(2300)
+
+
+def test_unit_table_is_built_with_pint_once() -> None:
+    table = unit_table()
+    assert table is unit_table()
+    assert table["inches"].factor == approx(2.54)
+    assert table["lb"].factor == approx(453.59237)
+    assert table["kg"].kind == "mass" and table["ml"].kind == "volume" and table["'"].kind == "length"
+    # every unit word of the lexicon is in the table
+    for words in (lexicon.LENGTH_UNITS, lexicon.MASS_UNITS, lexicon.VOLUME_UNITS):
+        assert set(words) <= set(table)
+
+
+def test_quarter_is_a_number_not_pints_unit() -> None:
+    assert parse("seven and a quarter inches long").values()["a_cm"] == approx(7.25 * 2.54)
+    assert "mass_g" not in parse("the top quarter is red").features
+
+
+# -------------------------------------------------------------------------------------- hedges, ranges
+HEDGE_CASES = [
+    ("about 5 cm long", "about", 5, None, None),
+    ("roughly 5 cm long", "about", 5, None, None),
+    ("around 5 cm long", "about", 5, None, None),
+    ("nearly 5 cm long", "about", 5, None, None),
+    ("almost 5 cm long", "about", 5, None, None),
+    ("5 cm or so long", "about", 5, None, None),
+    ("more than 5 cm long", "at_least", 5, 5, None),
+    ("a bit over 5 cm long", "at_least", 5, 5, None),
+    ("at least 5 cm long", "at_least", 5, 5, None),
+    ("just under 5 cm long", "at_most", 5, None, 5),
+    ("less than 5 cm long", "at_most", 5, None, 5),
+    ("exactly 5 cm long", "exact", 5, None, None),
+    ("5 cm long", "exact", 5, None, None),
+    ("3 to 4 cm long", "range", 3.5, 3, 4),
+    ("3-4 cm long", "range", 3.5, 3, 4),
+    ("between 3 and 4 cm long", "range", 3.5, 3, 4),
+    ("3 cm to 4 cm long", "range", 3.5, 3, 4),
+    ("3 or 4 cm long", "range", 3.5, 3, 4),
+    ("3 to 4 inches long", "range", 8.89, 7.62, 10.16),
+]
+
+
+@pytest.mark.parametrize(("text", "qualifier", "value", "low", "high"), HEDGE_CASES)
+def test_hedges_and_ranges(text: str, qualifier: str, value: float, low, high) -> None:
+    ev = parse(text).features["a_cm"]
+    assert ev.qualifier == qualifier and ev.qualifier in QUALIFIERS
+    assert ev.value == approx(value)
+    assert ev.low == (None if low is None else approx(low))
+    assert ev.high == (None if high is None else approx(high))
+
+
+# ----------------------------------------------------------------------------------------- categories
+CATEGORY_CASES = [
+    ("a metallic thing", "material", "metal"),
+    ("made of stainless steel", "material", "metal"),
+    ("an aluminum can", "material", "metal"),
+    ("a wooden spoon", "material", "wood"),
+    ("a cardboard box", "material", "paper"),
+    ("cotton", "material", "fabric"),
+    ("a ceramic mug", "material", "other"),
+    ("a glass jar", "material", "glass"),
+    ("a rubber duck", "material", "rubber"),
+    ("a paper clip made of steel", "material", "metal"),
+    ("a cylindrical thing", "shape", "prism"),
+    ("a ball", "shape", "radial"),
+    ("flat", "shape", "thin"),
+    ("a cube", "shape", "compact"),
+    ("a long stick", "shape", "long"),
+    ("it is squeezable", "rigidity", "squeezable"),
+    ("soft and squishy", "rigidity", "squeezable"),
+    ("floppy", "rigidity", "floppy"),
+    ("hard", "rigidity", "rigid"),
+    ("a smooth surface", "texture", "smooth"),
+    ("grippy", "texture", "grippy"),
+    ("fuzzy", "texture", "rough"),
+    ("ridged edge", "texture", "grippy"),
+    ("medium texture", "texture", "medium"),
+    ("fragile", "fragility", "fragile"),
+    ("delicate", "fragility", "fragile"),
+    ("sturdy", "fragility", "sturdy"),
+    ("not fragile", "fragility", "sturdy"),
+]
+
+
+@pytest.mark.parametrize(("text", "feature", "value"), CATEGORY_CASES)
+def test_categories(text: str, feature: str, value: str) -> None:
+    assert parse(text).values().get(feature) == value
+
+
+def test_long_as_a_dimension_is_not_a_shape() -> None:
+    assert "shape" not in parse("it is 15 cm long").features
+
+
+def test_negated_category_is_dropped_and_light_colours_are_not_weights() -> None:
+    assert "material" not in parse("it is not plastic").features
+    assert parse("a light blue cup").mass_hint is None
+    assert parse("it is not heavy").mass_hint == "light"
+    assert parse("quite heavy").mass_hint == "heavy"
+
+
+def test_lexicon_values_are_canonical() -> None:
+    for feature, table in lexicon.TABLES.items():
+        assert set(table.values()) <= set(CATEGORIES[feature]), feature
+    assert set(lexicon.HEDGES.values()) <= set(QUALIFIERS)
+
+
+# ---------------------------------------------------------------------------------------- odd input
+@pytest.mark.parametrize(
+    "text", ["", "   ", "hello world", "the quick brown fox jumps", "x x x", "cm cm cm", "!!!", "in in in"]
+)
+def test_no_features_gives_an_empty_result(text: str) -> None:
+    parsed = parse(text)
+    assert parsed.is_empty() and parsed.features == {} and parsed.values() == {}
+    d = parsed.to_dict()
+    assert all(d[f] is None for f in FEATURES)
+
+
+@pytest.mark.parametrize("bad", [None, 42, b"bytes", ["a list"]])
+def test_non_text_is_refused(bad) -> None:
+    with pytest.raises(DescriptionError):
+        parse(bad)  # type: ignore[arg-type]
+
+
+def test_too_long_text_is_refused() -> None:
+    with pytest.raises(DescriptionError, match="too long"):
+        parse("a" * (MAX_TEXT_CHARS + 1))
+
+
+def test_absurd_values_are_dropped() -> None:
+    assert parse("it is 9000 m long and weighs 3000 kg").features == {}
+
+
+def test_to_dict_is_json_with_all_features() -> None:
+    parsed = parse(TABLE_III[1][0])
+    d = json.loads(json.dumps(parsed.to_dict()))
+    assert set(FEATURES) <= set(d)
+    assert d["mass_hint"] == "heavy" and d["qualifiers"]["mass_g"] == "at_least"
+    assert d["evidence"]["a_cm"]["words"] == "twenty one and half centimeters long"
+    assert d["texture"] is None
+
+
+@settings(max_examples=150, suppress_health_check=[HealthCheck.too_slow], deadline=None)
+@given(st.text(max_size=300))
+def test_any_unicode_text_parses(text: str) -> None:
+    parsed = parse(text)
+    assert isinstance(parsed, ParsedDescription)
+    for feature, ev in parsed.features.items():
+        assert feature in FEATURES and ev.qualifier in QUALIFIERS
+        assert 0 <= ev.start <= ev.end <= len(text)
+        if isinstance(ev.value, float):
+            assert ev.value > 0
+
+
+_VOCAB = [
+    "about", "more", "than", "and", "a", "half", "quarter", "of", "x", "by", "to", "-", "in", "cm", "inch",
+    "inches", "mm", "lb", "oz", "kg", "g", "liter", "long", "wide", "thick", "diameter", "each", "side",
+    "one", "twenty", "hundred", "dozen", "couple", "7", "1/2", "½", "3.5", "7,5", "plastic", "ball", "cube",
+    "heavy", "light", "not", "filled", "with", ".", ",", "between", "or", "so", '"', "'",
+]  # fmt: skip
+
+
+@settings(max_examples=150, suppress_health_check=[HealthCheck.too_slow], deadline=None)
+@given(st.lists(st.sampled_from(_VOCAB), max_size=80))
+def test_random_domain_word_salad_parses(words: list[str]) -> None:
+    parsed = parse(" ".join(words))
+    dims = [parsed.values().get(d) for d in ("a_cm", "b_cm", "c_cm")]
+    known = [d for d in dims if d is not None]
+    assert known == sorted(known, reverse=True)
+
+
+@pytest.mark.timeout(60)
+def test_100kb_of_text_parses() -> None:
+    rng = random.Random(7)
+    texts = [t for t, *_rest in TABLE_III] + [
+        "lorem ipsum dolor sit amet " * 3,
+        "x" * 500,
+        "1 2 3 4 5 6 " * 20,
+    ]
+    chunks: list[str] = []
+    size = 0
+    while size < 100_000:
+        piece = rng.choice(texts)
+        chunks.append(piece)
+        size += len(piece) + 1
+    text = " ".join(chunks)
+    parsed = parse(text)
+    # sane: the first description's features win, and nothing crashed
+    assert parsed.values()["material"] in ("plastic", "metal", "wood", "paper")
+    assert len(parsed.tree.leaves()) > 10_000
+
+
+def test_one_long_sentence_without_punctuation_parses() -> None:
+    text = " ".join(["about fifteen and half centimeters long and"] * 3000)
+    assert parse(text).values()["a_cm"] == approx(15.5)
+
+
+# ------------------------------------------------------------------------------------ development set
+def test_development_set_scores() -> None:
+    from recall.parse_eval import DEV_SET, load_labeled, score_parses
+
+    if not DEV_SET.exists():
+        pytest.skip("no development set")
+    labeled = load_labeled()
+    assert len(labeled) >= 80
+    scores = score_parses((parse(text), rec) for text, rec in labeled)
+    assert scores.r2_dims is not None and scores.r2_dims >= 0.98
+    assert scores.r2_mass is not None and scores.r2_mass >= 0.95
+    assert scores.category_accuracy["material"] >= 0.9
+    d = scores.to_dict()
+    assert d["n"] == len(labeled) and set(d["category_accuracy"]) == set(CATEGORIES)
