@@ -285,3 +285,13 @@ def test_no_database_handle_is_held_while_fetching(store, tmp_path):
     with requests.Session() as session:
         run_ingestion(kb, sources_for(store, "^/(p|dp)/"), session=session, progress=progress)
     assert seen and seen[0].isdigit()
+
+
+@pytest.mark.slow
+def test_ingest_demo_in_one_call(tmp_path):
+    from scrapers.demo_store import ingest_demo
+
+    kb = seeded(tmp_path / "demo.duckdb")
+    report = ingest_demo(kb)
+    assert report.new >= 25 and len(report.updated_objects) == sum(p.in_seed for p in PRODUCTS)
+    assert report.rejected_reasons["timeout"] == 1 and report.rejected_reasons["too_large"] == 1
