@@ -65,6 +65,8 @@ PALM_HALF_CM = (4.25, 4.5, 1.25)  # palm 8.5 cm wide (x), 9 cm long (y), 2.5 cm 
 #: Fused distal bend of the fingers: the DIP joint at about 2/3 of a mid-range PIP flexion (the AR10
 #: linkage and human tendon coupling both make DIP follow PIP); fixed here, 20 degrees.
 DISTAL_BEND_DEG = 20.0
+#: Distal phalanges taper: their capsule radius is this fraction of the digit's.
+TIP_TAPER = 0.9
 #: Fused bend between thumb proximal and distal phalanx (IP joint), towards the fingers.
 THUMB_IP_BEND_DEG = 15.0
 
@@ -262,10 +264,11 @@ def add_hand(spec: mujoco.MjSpec, *, approach: str = "top", mount_m=(0.0, 0.0, 0
         _capsule(prox, f"{f.name}_proximal_geom", (0, 0, 0), (0, p1, 0), f.radius_cm, f.mass_g[0])
         mid = prox.add_body(name=f"{f.name}_middle", pos=[0, p1 * CM, 0], gravcomp=1.0)
         _hinge(mid, f"{f.name}_pip", (-1.0, 0.0, 0.0))
+        # The middle+distal body's mass splits 60/40 by length; the distal pad tapers to 0.9 of the radius.
         _capsule(mid, f"{f.name}_middle_geom", (0, 0, 0), (0, p2, 0), f.radius_cm, f.mass_g[1] * 0.6)
         bend = math.radians(DISTAL_BEND_DEG)
         tip = (0, p2 + p3 * math.cos(bend), -p3 * math.sin(bend))
-        _capsule(mid, f"{f.name}_distal_geom", (0, p2, 0), tip, f.radius_cm * 0.9, f.mass_g[1] * 0.4)
+        _capsule(mid, f"{f.name}_distal_geom", (0, p2, 0), tip, f.radius_cm * TIP_TAPER, f.mass_g[1] * 0.4)
         mid.add_site(name=f"{f.name}_tip", pos=[v * CM for v in tip], size=[0.003, 0, 0])
 
     t = THUMB
@@ -278,7 +281,7 @@ def add_hand(spec: mujoco.MjSpec, *, approach: str = "top", mount_m=(0.0, 0.0, 0
     bend = math.radians(THUMB_IP_BEND_DEG)
     tip = (0, q2 * math.sin(bend), -q1 - q2 * math.cos(bend))
     _capsule(prox, "thumb_proximal_geom", (0, 0, 0), (0, 0, -q1), t.radius_cm, t.mass_g[1] * 0.6)
-    _capsule(prox, "thumb_distal_geom", (0, 0, -q1), tip, t.radius_cm * 0.9, t.mass_g[1] * 0.4)
+    _capsule(prox, "thumb_distal_geom", (0, 0, -q1), tip, t.radius_cm * TIP_TAPER, t.mass_g[1] * 0.4)
     prox.add_site(name="thumb_tip", pos=[v * CM for v in tip], size=[0.003, 0, 0])
 
     for name in WRIST_ACTUATOR_NAMES:
@@ -502,14 +505,14 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
         # is a couple that turns the object): choose the pinch centre where, for this width, the thumb
         # tip and the finger tips touch the object at the same depth below the palm.
         # Tip positions are capsule axis ends: the pads' surfaces lie one radius closer to the object.
-        r_t = THUMB.radius_cm * 0.9
+        r_t = THUMB.radius_cm * TIP_TAPER
         half_open = aperture / 2.0
 
         def height_gap(c: float) -> float:
             thumb_z = thumb_tip(thumb_flex_for(c - width / 2.0 - r_t))[1]
             zs = []
             for f in fingers:
-                q = finger_pinch_mcp(f, c + width / 2.0 + FINGER_BY_NAME[f].radius_cm * 0.9)
+                q = finger_pinch_mcp(f, c + width / 2.0 + FINGER_BY_NAME[f].radius_cm * TIP_TAPER)
                 zs.append(finger_tip(f, q, PIP_PER_MCP * q)[1])
             return thumb_z - float(np.mean(zs))
 
@@ -520,7 +523,7 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
         thumb_contact = thumb_tip(touch_q["thumb_flex"])[1]
         finger_contacts = []
         for f in fingers:
-            r_f = FINGER_BY_NAME[f].radius_cm * 0.9
+            r_f = FINGER_BY_NAME[f].radius_cm * TIP_TAPER
             q_open = finger_pinch_mcp(f, center + half_open + r_f)
             q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM)
             open_q[f"{f}_mcp"], open_q[f"{f}_pip"] = q_open, PIP_PER_MCP * q_open
