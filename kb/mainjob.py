@@ -7,14 +7,20 @@ Like the CLI and the HTTP service, this module is part of the service face and m
 
 from __future__ import annotations
 
+import csv
+import importlib.resources
+import json
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
 
 from kb.catalog import KnowledgeBase
+from kb.cli_common import to_jsonable
 
 __all__ = ["DemoResult", "run_demo"]
 
@@ -43,4 +49,85 @@ def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers
     result.steps["seed"] = {"objects": summary["objects"], "seconds": round(time.perf_counter() - t0, 2)}
     console.print(f"catalog {db}: {summary['objects']} objects "
                   f"({', '.join(f'{k} {v}' for k, v in summary['shape'].items())})")
+
+    console.rule("[bold]2. ingest the demo storefront (127.0.0.1, no network)")
+    result.steps["ingest"] = _ingest_demo_store(kb, console)
+
+    console.rule("[bold]3. recall sample descriptions")
+    recalled = _recall_samples(db, console)
+    result.steps["recall"] = recalled
+
+    console.rule("[bold]4. validate grasps of the recalled objects in MuJoCo")
+    names = list(dict.fromkeys(r["top"] for r in recalled if r["top"]))
+    result.steps["grasp"] = _validate_grasps(kb, names, out_dir, workers)
+
+    console.rule("[bold]5. report")
+    report = result.steps["grasp"].get("report")
+    console.print(f"catalog: {db}  ({kb.count_objects()} objects)")
+    console.print(f"grasp validation report: [bold]{report}[/]")
+    (out_dir / "demo_summary.json").write_text(json.dumps(to_jsonable(result.to_dict()), indent=2))
+    result.steps["seconds"] = round(time.perf_counter() - t0, 1)
+    console.print(f"main job done in {result.steps['seconds']} s")
     return result
+
+
+def demo_descriptions_path() -> Path:
+    return Path(str(importlib.resources.files("kb") / "data" / "demo_descriptions.csv"))
+
+
+def _ingest_demo_store(kb: KnowledgeBase, console: Console) -> dict[str, Any]:
+    import requests
+
+    from scrapers.cli import _print_ingest_summary, _progress
+    from scrapers.demo_store import DemoStore
+    from scrapers.ingest import run_ingestion
+    from scrapers.sources import load_sources
+
+    sources_file = Path(str(importlib.resources.files("scrapers") / "demo_sources.toml"))
+    with DemoStore(port=0, crawl_delay=0, slow_s=3.0) as store:
+        sources = load_sources(sources_file, base_url=store.base_url, delay_s=0)
+        with requests.Session() as session, _progress(enabled=console.is_terminal) as progress:
+            report = run_ingestion(kb, sources, session=session, progress=progress)
+    _print_ingest_summary(report)
+    out = report.to_dict()
+    return {k: out[k] for k in ("fetched", "not_modified", "extracted", "rejected", "new", "updated") if k in out}
+
+
+def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
+    from recall.engine import Recaller
+
+    recaller = Recaller.from_db(db)
+    with demo_descriptions_path().open(newline="", encoding="utf-8") as fh:
+        descriptions = [row["description"] for row in csv.DictReader(fh)]
+    table = Table("description", "recalled", "distance", "confidence", "open set", show_lines=True)
+    rows = []
+    for text in descriptions:
+        res = recaller.recall_text(text, top=3)
+        best = res.matches[0] if res.matches else None
+        rows.append({
+            "description": text,
+            "top": best.name if best else None,
+            "distance": best.distance if best else None,
+            "confidence": res.confidence,
+            "open_set": res.open_set,
+            "alternatives": [m.name for m in res.matches[1:]],
+        })
+        table.add_row(
+            escape(text if len(text) < 90 else text[:87] + "..."),
+            escape(best.name) if best else "-",
+            f"{best.distance:.2f}" if best else "-",
+            f"{res.confidence:.2f}",
+            "yes" if res.open_set else "no",
+        )
+    console.print(table)
+    return rows
+
+
+def _validate_grasps(kb: KnowledgeBase, names: list[str], out_dir: Path, workers: int) -> dict[str, Any]:
+    from sim.worker import validate
+
+    summary = validate(kb, names, workers=workers, report_dir=out_dir / "grasp-report", progress=True)
+    out = summary.to_dict() if hasattr(summary, "to_dict") else {}
+    out.pop("results", None)
+    out["report"] = str(out_dir / "grasp-report" / "index.html")
+    return out

@@ -1,0 +1,28 @@
+"""The README's main-job command, end to end, as a real process with no network."""
+
+import json
+import subprocess
+
+import pytest
+
+
+@pytest.mark.slow
+def test_demo_runs_end_to_end(tmp_path, cli_env):
+    db, out = tmp_path / "demo.duckdb", tmp_path / "out"
+    proc = subprocess.run(
+        ["objrecall", "demo", "--db", str(db), "--out", str(out), "--json"],
+        capture_output=True, text=True, env=cli_env, timeout=900,
+    )
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    summary = json.loads(proc.stdout.strip().splitlines()[-1])
+    steps = summary["steps"]
+    assert steps["seed"]["objects"] >= 100
+    assert steps["ingest"]["new"] >= 25 and steps["ingest"]["rejected"] >= 3
+    tops = [r["top"] for r in steps["recall"]]
+    assert tops[:6] == ["calculator", "water bottle", "wood cylinder", "cardboard box", "mini rubix cube", "tv remote"]
+    assert steps["grasp"]["ran"] + steps["grasp"]["skipped"] == steps["grasp"]["trials"] > 0
+    assert steps["grasp"]["errors"] == 0
+    report = out / "grasp-report" / "index.html"
+    html = report.read_text()
+    assert "calculator" in html and list((out / "grasp-report").glob("*.png"))
+    assert (out / "demo_summary.json").exists()
