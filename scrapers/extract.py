@@ -37,6 +37,10 @@ __all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "ext
 
 #: Two values agree when they differ by at most this fraction (rounding of converted units).
 AGREE_TOLERANCE = 0.02
+#: Only the highest-priority candidates of a feature are fused, and only so many disagreements reported
+#: (a page listing thousands of weights is a list, not a product page).
+MAX_CANDIDATES = 200
+MAX_DISAGREEMENTS = 5
 #: Larger saved pages are refused (the fetcher caps downloads the same way).
 MAX_PAGE_BYTES = 50 * 1024 * 1024
 
@@ -126,7 +130,7 @@ def _choose(cands: list[Observation], agree, feature: str, warnings: list[str]) 
     if not cands:
         return None
     clusters: list[list[Observation]] = []
-    for o in sorted(cands, key=_priority):
+    for o in sorted(cands, key=_priority)[:MAX_CANDIDATES]:
         for cluster in clusters:
             if agree(cluster[0].value, o.value):
                 cluster.append(o)
@@ -138,12 +142,14 @@ def _choose(cands: list[Observation], agree, feature: str, warnings: list[str]) 
         chosen = sorted(best, key=lambda o: (-len(o.value), _priority(o)))[0]
     else:
         chosen = best[0]
-    for other in clusters[1:]:
+    for other in clusters[1 : 1 + MAX_DISAGREEMENTS]:
         o = other[0]
         warnings.append(
             f"{feature}: {o.source} also states {_fmt(o.value)} ({o.raw[:80]!r}); kept {_fmt(chosen.value)} "
             f"from {chosen.source} ({chosen.raw[:80]!r})"
         )
+    if len(clusters) > 1 + MAX_DISAGREEMENTS:
+        warnings.append(f"{feature}: and {len(clusters) - 1 - MAX_DISAGREEMENTS} more disagreeing values")
     return chosen
 
 
@@ -162,7 +168,7 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
     warnings: list[str] = []
     raw: dict[str, str] = {}
     for o in observations:
-        if o.feature == "warning":
+        if o.feature == "warning" and len(warnings) < MAX_CANDIDATES:
             warnings.append(str(o.value))
 
     def valid(feature: str, package: bool) -> list[Observation]:
@@ -175,11 +181,11 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
                 reason = check_dims(o.value)
             else:
                 reason = check_mass(o.value)
-            if reason:
+            if reason and len(warnings) < MAX_CANDIDATES:
                 warnings.append(
                     f"{'package ' if package else ''}{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})"
                 )
-            else:
+            elif not reason:
                 out.append(o)
         return out
 
@@ -193,7 +199,7 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         if cands:
             best_source = min(cands, key=_priority).source
             chosen = sorted((o for o in cands if o.source == best_source), key=lambda o: o.order)
-            target.extend(_collapse_repeats([o.value for o in chosen]))
+            target.extend(_collapse_repeats([o.value for o in chosen[:MAX_CANDIDATES]]))
             raw[f"package_{feature}"] = " | ".join(o.raw for o in chosen)[:500]
 
     names = sorted((o for o in observations if o.feature == "name"), key=lambda o: (o.rank, _priority(o)))

@@ -236,8 +236,8 @@ def _classify_cached(label: str) -> LabelInfo | None:
 
 def _classify(label: object) -> LabelInfo | None:
     text = clean_text(label)
-    if not text or len(text) > 80:
-        return None
+    if not text or len(text) > 80 or text[0].isdigit():
+        return None  # a label does not start with a number ("1 kg" is a value)
     unit = unit_hint(text)
     text = text.rstrip(" :：-–—=").strip()
     text = _BRACKETS.sub(" ", text)

@@ -237,7 +237,9 @@ _add(
     "oncie",
 )
 
-_NUMBER = r"\d+(?:[.,]\d+)*"
+#: Only the first this many characters of a value are read (values are short; this bounds the work).
+MAX_TEXT = 2000
+_NUMBER = r"(?<![\d.,])(?>\d+(?:[.,]\d+)*)"  # atomic, starting at a number: no backtracking
 # Unit tokens: words (any script), CJK unit characters, inch and foot marks. "lb." ends with a dot.
 _UNIT = r"(?:''|[\"″′']|(?![xX]\b)[^\W\d_]+\.?)"
 _TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
@@ -252,7 +254,8 @@ _AXIS_PREFIX = re.compile(
     r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ)\.?\s*[:=]?\s*(?=\d)"
 )
 _POUNDS_OUNCES = re.compile(
-    r"(\d+(?:\.\d+)?)\s*(?:lbs?|pounds?)\.?,?\s*(?:and\s+)?(\d+(?:\.\d+)?)\s*(?:oz|ounces?)\b", re.IGNORECASE
+    r"(?<![\d.])((?>\d+(?:\.\d+)?))\s*(?:lbs?|pounds?)\.?,?\s*(?:and\s+)?((?>\d+(?:\.\d+)?))\s*(?:oz|ounces?)\b",
+    re.IGNORECASE,
 )
 _QUANTITY_RE = re.compile(rf"(?P<n>{_NUMBER})\s*(?P<u>{_UNIT})?")
 _TIMES_SIGN = re.compile(r"(\d\s*)([^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)")
@@ -375,7 +378,7 @@ def mass_unit(unit: str | None) -> float | None:
 def unit_hint(label: str) -> str | None:
     """A unit stated in a label: ``Výška [mm]``, ``Grubość (w mm)``, ``Габариты, см``, ``Weight (kg)``,
     ``Width in cm``. Returns the unit token or None."""
-    text = clean_text(label).lower()
+    text = clean_text(label[:MAX_TEXT]).lower()
     for pattern in (
         r"[\[(]\s*(?:w|in|en|em|in\s+)?\s*([^\W\d_]+\.?|''|\")\s*[\])]",
         r",\s*([^\W\d_]+)\s*:?\s*$",
@@ -414,7 +417,7 @@ def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool |
 
 
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
-    s = clean_text(text)
+    s = clean_text(text[:MAX_TEXT])
     if _AXIS_PREFIX.search(s):
         s = clean_text(_AXIS_PREFIX.sub("", s))  # "H 30 cm x W 20 cm", "長37.5*寬26*高13.5cm"
     found: list[Dims] = []
@@ -444,7 +447,7 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
 
 
 def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: bool | None) -> float | None:
-    s = clean_text(text)
+    s = clean_text(text[:MAX_TEXT])
     if convert is mass_unit:
         m = _POUNDS_OUNCES.search(s)
         if m:
@@ -502,7 +505,7 @@ def parse_length_range(
     """A range written as ``15.5" - 116.5"`` or ``0.5 - 5 mm`` as (low, high) in the unit's catalog unit
     (cm for lengths; for a mass unit, grams), or None."""
     try:
-        s = clean_text(text)
+        s = clean_text(text[:MAX_TEXT])
         m = _RANGE_PARTS.search(s)
         if not m:
             return None

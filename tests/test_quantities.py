@@ -207,3 +207,12 @@ def test_mass_round_trip(value, unit, decimal_comma, gap):
     name, factor = unit
     text = f"{gap}{_write(value, decimal_comma)}{gap or ' '}{name}"
     assert parse_mass(text, None, decimal_comma) == pytest.approx(value * factor, rel=1e-6), text
+
+
+@pytest.mark.parametrize("text", ["1" * 6000, "1." * 3000, "1 lb " * 2000, "1,1 " * 2000, "x1" * 3000])
+def test_long_number_runs_are_read_in_linear_time(text):
+    # these took minutes with a backtracking number pattern; now they finish at once
+    parse_dims(text)
+    parse_mass(text)
+    parse_length(text)
+    parse_length_range(text)
