@@ -238,7 +238,7 @@ def validate(
     names: Annotated[list[str] | None, typer.Argument(help="Catalog object names or aliases.")] = None,
     all_objects: Annotated[bool, typer.Option("--all", help="Validate every catalog object.")] = False,
     workers: Annotated[
-        int | None, typer.Option("--workers", min=1, help="Parallel workers [default: all cores].")
+        int | None, typer.Option("--workers", min=1, help="Parallel workers (default: all cores).")
     ] = None,
     report: Annotated[
         Path | None,
