@@ -270,24 +270,46 @@ DECIMAL_COMMA_LANGUAGES = frozenset(
 )
 # Country-code domains of decimal-comma countries (used when the page does not declare its language).
 _DECIMAL_COMMA_TLDS = frozenset(
-    "de at ch fr be es it pt br nl pl cz sk si hr rs ru ua by kz bg ro hu dk se no fi ee lv lt tr gr id vn ar cl co".split()
+    "de at fr be es it pt br nl pl cz sk si hr rs ru ua by kz bg ro hu dk se no fi ee lv lt tr gr id vn ar cl co".split()
 )
+
+
+# Regions whose language elsewhere writes decimal commas but which write decimal points.
+_DECIMAL_POINT_REGIONS = frozenset("mx us gt hn ni pa do pr sv cu ch li".split())
 
 
 def decimal_comma_for(lang: str | None = None, url: str | None = None) -> bool | None:
     """True when a page in ``lang`` (or, failing that, on ``url``'s country domain) writes decimal commas;
     False for other known languages; None when neither says."""
     if lang:
-        code = re.split(r"[-_]", lang.strip().lower())[0]
-        if code:
-            return code in DECIMAL_COMMA_LANGUAGES
+        parts = re.split(r"[-_]", lang.strip().lower())
+        if parts[0]:
+            if len(parts) > 1 and parts[1] in _DECIMAL_POINT_REGIONS:
+                return False  # es-MX, de-CH, ... write decimal points
+            return parts[0] in DECIMAL_COMMA_LANGUAGES
     if url:
         m = re.match(r"[a-z][a-z0-9+.-]*://([^/:?#]+)", url.strip().lower())
         if m:
             tld = m.group(1).rsplit(".", 1)[-1]
             if tld in _DECIMAL_COMMA_TLDS:
                 return True
-            if tld in {"com", "uk", "us", "au", "ca", "nz", "ie", "in", "tw", "cn", "jp", "kr", "hk", "sg"}:
+            if tld in {
+                "com",
+                "uk",
+                "us",
+                "au",
+                "ca",
+                "nz",
+                "ie",
+                "in",
+                "tw",
+                "cn",
+                "jp",
+                "kr",
+                "hk",
+                "sg",
+                "mx",
+            }:
                 return False
     return None
 

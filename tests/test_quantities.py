@@ -216,3 +216,10 @@ def test_long_number_runs_are_read_in_linear_time(text):
     parse_mass(text)
     parse_length(text)
     parse_length_range(text)
+
+
+def test_regions_that_write_decimal_points():
+    assert decimal_comma_for("es-MX") is False
+    assert decimal_comma_for("de-CH") is False
+    assert decimal_comma_for(None, "https://www.amazon.com.mx/dp/x") is False
+    assert decimal_comma_for("es-ES") is True
