@@ -591,6 +591,8 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
                 nxt.tag == "A" and after is not None and after.low in lx.FRACTION_WORDS
             ):
                 tag = "UAND"  # "an inch and a half", "a pound and a quarter"
+        elif tok.low == "cup" and prev_num:
+            tag = "UVOL"  # "1 cup of water"
         elif tok.low == "can" and tag == "SHP":
             if not (
                 (prev is not None and prev.low in lx.CAN_PRECEDERS) or (nxt is not None and nxt.low == "of")

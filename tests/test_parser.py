@@ -400,3 +400,15 @@ def test_development_set_scores() -> None:
     assert scores.category_accuracy["material"] >= 0.9
     d = scores.to_dict()
     assert d["n"] == len(labeled) and set(d["category_accuracy"]) == set(CATEGORIES)
+
+
+def test_parser_doc_lists_every_lexicon_word() -> None:
+    from pathlib import Path
+
+    doc = (Path(lexicon.__file__).parent / "PARSER.md").read_text(encoding="utf-8")
+    tables = [*lexicon.TABLES.values(), lexicon.MASS_HINT_WORDS, lexicon.DIMENSION_WORDS, lexicon.HEDGES]
+    missing = sorted(w for table in tables for w in table if w not in doc)
+    assert not missing, f"recall/PARSER.md does not list: {missing}"
+    from recall.parser import GRAMMAR
+
+    assert GRAMMAR.strip() in doc
