@@ -138,8 +138,9 @@ def test_check_physics_turns_nan_and_warnings_into_errors():
         check_physics(m, d)
 
 
-def test_diverging_simulation_is_an_error_never_a_success():
+def test_diverging_simulation_is_an_error_never_a_success(tmp_path, monkeypatch):
     # Blow the object up mid-trial: the result must be an error, not a success or a failure.
+    monkeypatch.chdir(tmp_path)  # MuJoCo logs its warning to MUJOCO_LOG.TXT in the working directory
     world = build_world(CUBE, _plan("medium_wrap", 7.0, 10.0, approach="side"))
     world.data.qvel[:6] = 1e30  # the object's free joint: an absurd velocity
     r = run_trial(CUBE, world.plan, world=world)
