@@ -197,7 +197,9 @@ class ValidationSummary:
     def to_dict(self, *, with_results: bool = True) -> dict[str, Any]:
         d = dataclasses.asdict(self)
         d["report"] = str(self.report) if self.report else None
-        if not with_results:
+        if with_results:
+            d["results"] = [{**r, "details": _details(r)} for r in self.results]
+        else:
             d.pop("results")
         return d
 
