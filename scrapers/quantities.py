@@ -274,6 +274,7 @@ _DECIMAL_COMMA_TLDS = frozenset(
 )
 
 
+_DECIMAL_POINT_TLDS = frozenset("com uk us au ca nz ie in tw cn jp kr hk sg mx ch".split())
 # Regions whose language elsewhere writes decimal commas but which write decimal points.
 _DECIMAL_POINT_REGIONS = frozenset("mx us gt hn ni pa do pr sv cu ch li".split())
 
@@ -293,23 +294,7 @@ def decimal_comma_for(lang: str | None = None, url: str | None = None) -> bool |
             tld = m.group(1).rsplit(".", 1)[-1]
             if tld in _DECIMAL_COMMA_TLDS:
                 return True
-            if tld in {
-                "com",
-                "uk",
-                "us",
-                "au",
-                "ca",
-                "nz",
-                "ie",
-                "in",
-                "tw",
-                "cn",
-                "jp",
-                "kr",
-                "hk",
-                "sg",
-                "mx",
-            }:
+            if tld in _DECIMAL_POINT_TLDS:
                 return False
     return None
 
