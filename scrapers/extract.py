@@ -21,7 +21,16 @@ from kb.errors import ExtractionError
 from kb.features import MATERIALS
 
 # Importing an adapter module registers its adapters (in priority order, whatever the import order).
-from scrapers.adapters import ADAPTERS, Observation, jsonld, microdata, shopify, spec_table, text, woocommerce  # noqa: F401
+from scrapers.adapters import (  # noqa: F401
+    ADAPTERS,
+    Observation,
+    jsonld,
+    microdata,
+    shopify,
+    spec_table,
+    text,
+    woocommerce,
+)
 from scrapers.normalize import (
     check_dims,
     check_mass,
