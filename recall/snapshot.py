@@ -212,10 +212,14 @@ def synthetic_snapshot(n: int, rng: np.random.Generator, unknown_rate: float = 0
 
 
 def synthetic_description(
-    snap: CatalogSnapshot, rng: np.random.Generator, min_features: int = 2, max_features: int = 8
+    snap: CatalogSnapshot,
+    rng: np.random.Generator,
+    min_features: int = 2,
+    max_features: int = 8,
+    features: Sequence[str] | None = None,
 ):
     """A random human-like description (as a :class:`~recall.metrics.FeatureQuery`) of a random object of
-    ``snap``: 2 to 8 of its known features, dimensions off by ~10 % and rounded to 0.5 cm, mass off by ~20 %
+    ``snap``: 2 to 8 of its known features (or those of ``features``), dimensions off by ~10 % and rounded to 0.5 cm, mass off by ~20 %
     and rounded to two significant digits, a wrong category now and then, an "at least"/"at most" sometimes.
     Returns (row, query)."""
     from recall.metrics import FeatureQuery
@@ -223,8 +227,11 @@ def synthetic_description(
     i = int(rng.integers(len(snap)))
     known = [f for j, f in enumerate(NUMERIC_FEATURES) if not np.isnan(snap.num[i, j])]
     known += [f for j, f in enumerate(CATEGORICAL_FEATURES) if snap.cat[i, j] >= 0]
-    count = int(rng.integers(min_features, max_features + 1))
-    chosen = rng.choice(known, size=min(count, len(known)), replace=False) if known else []
+    if features is not None:  # a fixed description pattern (those of its features the object has)
+        chosen = [f for f in features if f in known]
+    else:
+        count = int(rng.integers(min_features, max_features + 1))
+        chosen = rng.choice(known, size=min(count, len(known)), replace=False) if known else []
     values: dict[str, Any] = {}
     qualifiers: dict[str, str] = {}
     for feat in chosen:
