@@ -106,7 +106,7 @@ _QUALIFIERS = {
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
-        "jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
+        "os as pés feet legs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen"
         " l b h w d t x х"
     ).split()
