@@ -42,11 +42,13 @@ BROKEN_REASONS = {"http_500", "timeout", "too_large", "robots_disallowed", "absu
 
 
 def sources_for(store: DemoStore, include: str | None = None):
-    """The two demo stores, or (with ``include``) only the HTML store restricted to matching paths."""
+    """The two demo stores, or (with ``include``) only the HTML store restricted to matching paths (and
+    without the slow, flaky and huge pages, which cost seconds)."""
     text = SOURCES
     if include is not None:
         text = SOURCES.split("[[stores]]")[0] + '[[stores]]\nname = "demo"\nbase_url = "http://127.0.0.1:1"\n'
         text += f'sitemaps = ["{{base_url}}/sitemap.xml"]\ninclude = ["{include}"]\n'
+        text += 'exclude = ["slow", "flaky", "huge"]\n'
     return parse_sources(text, origin="test-sources.toml", base_url=store.base_url)
 
 

@@ -38,6 +38,7 @@ name = "demo"
 base_url = "http://127.0.0.1:8765"
 sitemaps = ["{base_url}/sitemap.xml"]
 include = ["^/(p|dp|ikea|shop)/"]
+exclude = ["slow", "flaky", "huge"]  # they test timeouts and retries (test_fetcher.py), not crash safety
 """
 
 
@@ -110,6 +111,7 @@ def _ingest(db: Path, sources: Path, store: DemoStore, env: dict[str, str] | Non
 def test_cli_reports_the_run_as_json(setup):
     *_, report = setup
     assert report["status"] == "ok" and report["rejected_reasons"]["http_500"] == 1
+    assert report["rejected_reasons"]["absurd_value"] == 1
     assert report["fetched"] > 0 and report["pages_per_s"] > 0
 
 
