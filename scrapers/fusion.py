@@ -12,7 +12,8 @@ this rule, the same for every object:
    for curated data its file (``csv:seed_catalog.csv``).
 3. **Numbers: the median** of those latest values (the mean of the two middle ones for an even count).
    One wrong source among three cannot move the value; with two sources the value lies between them. The
-   medians of ``a``, ``b`` and ``c`` keep ``a >= b >= c`` because every source's values are sorted.
+   medians of ``a``, ``b`` and ``c`` keep ``a >= b >= c`` when every source states all three (each
+   source's values are sorted); the catalog sorts them again in case a source stated fewer.
 4. **Words** (material, shape, ...): the value most sources state; a tie goes to the curated source
    (anything that is not a web page) and then to the most recent observation.
 5. **Disagreement is reported, not hidden:** when the largest and smallest latest values of a number
