@@ -356,6 +356,7 @@ def create_app(
     (the first parse builds the grammar, which takes seconds), so the first requests are not slow.
     """
     from fastapi import Depends, FastAPI, Query, Request
+    from fastapi import Path as PathParam
     from fastapi.exceptions import RequestValidationError
     from fastapi.responses import FileResponse, JSONResponse
     from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
@@ -545,6 +546,7 @@ def create_app(
 
     limit_q = Annotated[int, Query(ge=1, le=MAX_PAGE, description=f"Page size (at most {MAX_PAGE}).")]
     offset_q = Annotated[int, Query(ge=0, le=10_000_000, description="Items to skip.")]
+    name_p = Annotated[str, PathParam(min_length=1, max_length=200, description="A catalog name or alias.")]
 
     # -- reads
     @app.get("/health", tags=["service"])
@@ -581,7 +583,7 @@ def create_app(
         return {"total": kb.count_objects(), "limit": limit, "offset": offset, "items": to_jsonable(items)}
 
     @app.get("/objects/{name}", tags=["catalog"])
-    def get_object(name: str) -> dict[str, Any]:
+    def get_object(name: name_p) -> dict[str, Any]:
         """One object by name or alias, with the provenance of its values (newest first)."""
         kb = knowledge_base()
         record = kb.get_object(name).to_dict()
@@ -669,7 +671,7 @@ def create_app(
         return to_jsonable({"runs": runs, "jobs": jobs})
 
     @app.get("/ingestion/jobs/{job_id}", tags=["ingestion"])
-    def ingestion_job(job_id: str) -> dict[str, Any]:
+    def ingestion_job(job_id: Annotated[str, PathParam(max_length=40)]) -> dict[str, Any]:
         """Status and log tail of an ingestion job started by ``POST /ingestion/runs``."""
         return app.state.jobs.get(job_id).to_dict()
 
@@ -694,7 +696,7 @@ def create_app(
         return {"id": job.id, "status": job.status, "status_url": f"/ingestion/jobs/{job.id}"}
 
     @app.put("/objects/{name}", tags=["catalog"], dependencies=[Depends(require_token)])
-    def put_object(name: str, body: ObjectIn) -> JSONResponse:
+    def put_object(name: name_p, body: ObjectIn) -> JSONResponse:
         """Insert or edit an object: given values replace stored ones (validated like the CSV import),
         and every change is kept in its provenance with source ``api``. 201 when the object is new."""
         values = body.model_dump()
