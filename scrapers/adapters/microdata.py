@@ -14,7 +14,7 @@ from typing import Any
 
 from scrapers.adapters import Observation, adapter
 from scrapers.adapters.jsonld import PRODUCT_TYPES, read_product
-from scrapers.page import Page
+from scrapers.page import Page, text_content
 from scrapers.quantities import parse_mass
 
 __all__ = ["item_dict"]
@@ -43,7 +43,7 @@ def _value(el) -> Any:
         return el.get("src")
     if el.tag == "time" and el.get("datetime"):
         return el.get("datetime")
-    return " ".join(el.text_content().split())
+    return text_content(el)
 
 
 def item_dict(item) -> dict:

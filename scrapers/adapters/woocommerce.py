@@ -16,7 +16,7 @@ import json
 from scrapers.adapters import Observation, adapter
 from scrapers.adapters.spec_table import Pair, observations_from_pairs
 from scrapers.labels import LabelInfo, classify_label
-from scrapers.page import Page
+from scrapers.page import Page, text_content
 
 __all__ = ["woocommerce"]
 
@@ -46,8 +46,8 @@ def woocommerce(page: Page) -> list[Observation]:
             th, td = row.xpath("./th"), row.xpath("./td")
             if not th or not td:
                 continue
-            label = " ".join(th[0].text_content().split())
-            value = " ".join(td[0].text_content().split())
+            label = text_content(th[0])
+            value = text_content(td[0])
             info = _row_info(row.get("class") or "", label)
             if info is not None and value:
                 pairs.append(Pair(label, value, info, order=t * 1000 + r))
