@@ -20,6 +20,7 @@ Probability distance while scoring only a small part of the catalog:
 from __future__ import annotations
 
 import math
+from functools import cached_property
 
 import numpy as np
 
@@ -61,16 +62,25 @@ def _category_table(feature: str, value: str) -> np.ndarray:
 
 def score_rows(snap: CatalogSnapshot, query: FeatureQuery, rows: np.ndarray | None = None) -> np.ndarray:
     """JP distance of ``rows`` (all rows when None), summed in the query's feature order (float64)."""
-    n = len(snap) if rows is None else len(rows)
-    total = np.zeros(n)
+    return _score(snap.num_cols, snap.cat_cols, query, rows)
+
+
+def _score(num_cols, cat_cols, query: FeatureQuery, rows) -> np.ndarray:
+    """The one scoring routine (the brute force, the pruned search and the cells all use it, so their
+    distances are equal bit for bit): numeric terms then categorical ones, in the query's order."""
+    total = None
     for cond in query.numeric:
-        col = snap.num_cols[_NUM_INDEX[cond.feature]]
+        col = num_cols[_NUM_INDEX[cond.feature]]
         x = col if rows is None else col[rows]
-        total += np.log1p(cond.differences(x))
+        term = np.log1p(cond.differences(x))
+        total = term if total is None else np.add(total, term, out=total)
     for feat, value in query.categorical:
-        col = snap.cat_cols[_CAT_INDEX[feat]]
+        col = cat_cols[_CAT_INDEX[feat]]
         codes = col if rows is None else col[rows]
-        total += _category_table(feat, value)[codes.astype(np.intp) + 1]
+        term = _category_table(feat, value)[codes.astype(np.intp) + 1]
+        total = term if total is None else np.add(total, term, out=total)
+    if total is None:
+        return np.zeros(len(num_cols[0]) if rows is None else len(rows))
     return total
 
 
@@ -143,10 +153,16 @@ class JPIndex:
             np.random.default_rng(0).choice(self.n, size=min(SAMPLE, self.n), replace=False)
         )
 
+    @cached_property
+    def cells(self) -> CellIndex:
+        return CellIndex(self.snap)
+
     @property
     def nbytes(self) -> int:
+        """Bytes of the index (the cells counted once built)."""
         arrays = [*self.num_order, *self.num_keys, *self.num_unknown, *self.cat_order, *self.cat_starts]
-        return int(sum(a.nbytes for a in arrays))
+        cells = self.__dict__.get("cells")
+        return int(sum(a.nbytes for a in arrays)) + (cells.nbytes if cells is not None else 0)
 
     # -- category groups -------------------------------------------------------------------------
     def _group(self, feat: str, code: int) -> np.ndarray:
@@ -263,16 +279,10 @@ class JPIndex:
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
         best_rows, best_scores = select_top_k(pool, score_rows(snap, query, pool), k)
         s = float(best_scores[-1])
-        m = FIRST_POOL
-        while True:
-            sizes = [self._window_size(it, s) for it in items]
-            lead = min(range(len(items)), key=lambda i: sizes[i])
-            if sizes[lead] <= POOL_GROWTH * m or m * POOL_GROWTH > self.n // 16:
-                break
-            m *= POOL_GROWTH
-            more = self._nearest(items[lead], m)
-            best_rows, best_scores = _merge(best_rows, best_scores, more, score_rows(snap, query, more), k)
-            s = float(best_scores[-1])
+        sizes = [self._window_size(it, s) for it in items]
+        lead = min(range(len(items)), key=lambda i: sizes[i])
+        if s > 0.0 and sizes[lead] > CELL_WINDOW:
+            return self.cells.top_k(query, k, best_rows, best_scores)
         if s == 0.0 or sizes[lead] > self.n // 2:
             # ties at 0 are decided by row number: scan in row order and stop early
             source, total, ascending = None, self.n, True
@@ -299,4 +309,120 @@ class JPIndex:
                 )
                 s = float(best_scores[-1])
             start, step = stop, min(step * 2, MAX_CHUNK)
+        return best_rows, best_scores
+
+
+#: Cells of the best-first search: the catalog is split 4 times (largest extent, mass, middle, smallest
+#: extent), each time into this many quantile parts within the parent cell (16384 cells).
+CELL_LEVELS = (("a_cm", 16), ("mass_g", 16), ("b_cm", 8), ("c_cm", 8))
+#: Rows scored per step of the best-first search (the bound tightens between steps).
+CELL_BATCH = 4096
+#: Use the cells once the smallest window holds more rows than this.
+CELL_WINDOW = 8192
+
+
+class CellIndex:
+    """The catalog cut into about 4096 cells of neighbouring objects, with each cell's value ranges.
+
+    A lower bound of the JP distance of every row of a cell is cheap (the distance from the description
+    to the cell's ranges, and 0 / log 2 / 2 log 2 for a category the cell holds / holds unknown / lacks),
+    so cells are visited in order of their bound and the search stops once the next bound exceeds the
+    k-th best distance found. Rows of a cell are contiguous in copies of the columns sorted by cell.
+    """
+
+    def __init__(self, snap: CatalogSnapshot):
+        n = len(snap)
+        cell = np.zeros(n, dtype=np.int64)
+        for feat, split in CELL_LEVELS:
+            col = snap.num_cols[_NUM_INDEX[feat]]
+            key = np.where(np.isnan(col), np.inf, col)
+            order = np.lexsort((key, cell))
+            sorted_cell = cell[order]
+            starts = np.searchsorted(sorted_cell, sorted_cell, "left")
+            ends = np.searchsorted(sorted_cell, sorted_cell, "right")
+            part = ((np.arange(n) - starts) * split) // np.maximum(ends - starts, 1)
+            new = np.empty(n, dtype=np.int64)
+            new[order] = sorted_cell * split + part
+            cell = new
+        perm = np.argsort(cell, kind="stable")
+        ids, first = np.unique(cell[perm], return_index=True)
+        self.perm = perm.astype(np.int32)
+        self.starts = np.append(first, n).astype(np.int64)
+        m = len(ids)
+        self.num_cols = [np.ascontiguousarray(c[perm]) for c in snap.num_cols]
+        self.cat_cols = [np.ascontiguousarray(c[perm]) for c in snap.cat_cols]
+        self.cmin = np.empty((len(self.num_cols), m))
+        self.cmax = np.empty((len(self.num_cols), m))
+        self.cnan = np.empty((len(self.num_cols), m), dtype=bool)
+        with np.errstate(invalid="ignore"):
+            for j, col in enumerate(self.num_cols):
+                missing = np.isnan(col)
+                self.cmin[j] = np.minimum.reduceat(np.where(missing, np.inf, col), first)
+                self.cmax[j] = np.maximum.reduceat(np.where(missing, -np.inf, col), first)
+                self.cnan[j] = np.logical_or.reduceat(missing, first)
+        self.present = np.empty((len(self.cat_cols), m), dtype=np.uint16)
+        for j, col in enumerate(self.cat_cols):
+            bits = (np.uint16(1) << (col.astype(np.uint16) + 1).astype(np.uint16)).astype(np.uint16)
+            self.present[j] = np.bitwise_or.reduceat(bits, first)
+
+    @property
+    def nbytes(self) -> int:
+        arrays = [
+            self.perm,
+            self.starts,
+            self.cmin,
+            self.cmax,
+            self.cnan,
+            self.present,
+            *self.num_cols,
+            *self.cat_cols,
+        ]
+        return int(sum(a.nbytes for a in arrays))
+
+    def bounds(self, query: FeatureQuery) -> np.ndarray:
+        """A lower bound of the JP distance of the rows of each cell."""
+        lb = np.zeros(self.cmin.shape[1])
+        with np.errstate(invalid="ignore"):
+            for cond in query.numeric:
+                j = _NUM_INDEX[cond.feature]
+                gap = np.maximum(np.maximum(cond.low - self.cmax[j], self.cmin[j] - cond.high), 0.0)
+                term = np.log1p(gap)  # a cell with no known value: gap = inf
+                term = np.where(self.cnan[j], np.minimum(term, math.log1p(cond.unknown_difference)), term)
+                lb += term
+        for feat, value in query.categorical:
+            j = _CAT_INDEX[feat]
+            bit = np.uint16(1 << (CATEGORY_CODES[feat][value] + 1))
+            has = (self.present[j] & bit) != 0
+            unknown = (self.present[j] & np.uint16(1)) != 0
+            lb += np.where(has, 0.0, np.where(unknown, UNKNOWN_CATEGORY_TERM, MISMATCH_TERM))
+        return lb
+
+    def top_k(self, query: FeatureQuery, k: int, best_rows: np.ndarray, best_scores: np.ndarray):
+        """Improve a top-k (rows, scores) whose k-th score bounds the answer, visiting cells best first."""
+        lb = self.bounds(query)
+        s = float(best_scores[-1]) if len(best_scores) >= k else math.inf
+        order = np.flatnonzero(lb <= s + 1e-12) if math.isfinite(s) else np.arange(len(lb))
+        order = order[np.argsort(lb[order], kind="stable")]
+        counts = self.starts[order + 1] - self.starts[order]
+        ends = np.cumsum(counts)
+        i, budget = 0, CELL_BATCH // 4
+        while i < len(order):
+            j = max(i + 1, int(np.searchsorted(ends, (ends[i - 1] if i else 0) + budget, "right")))
+            batch = order[i:j]
+            i, budget = j, CELL_BATCH
+            if lb[batch[0]] > s + 1e-12:
+                break
+            batch = batch[lb[batch] <= s + 1e-12]
+            starts, stops = self.starts[batch], self.starts[batch + 1]
+            sizes = stops - starts
+            pos = np.repeat(starts - np.concatenate(([0], np.cumsum(sizes)[:-1])), sizes) + np.arange(
+                sizes.sum()
+            )
+            scores = _score(self.num_cols, self.cat_cols, query, pos)
+            keep = scores <= s + 1e-12 if math.isfinite(s) else np.ones(len(scores), dtype=bool)
+            if keep.any():
+                rows = self.perm[pos[keep]].astype(np.int64)
+                best_rows, best_scores = _merge(best_rows, best_scores, rows, scores[keep], k)
+                if len(best_scores) >= k:
+                    s = float(best_scores[-1])
         return best_rows, best_scores

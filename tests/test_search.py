@@ -142,3 +142,14 @@ def test_numpy_and_sql_macros_agree(tmp_path, values):
             "SELECT jp_distance(10, 5, NULL, 80, NULL, NULL, NULL, NULL, NULL, qc := 2.0)"
         ).fetchone()
     assert d == pytest.approx(math.log1p(0.5 * 2.0))
+
+
+@settings(max_examples=80, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), k=st.sampled_from([1, 5, 10]))
+def test_best_first_cells_alone_equal_brute_force(seed, k):
+    """The cell search from scratch (no first bound), on its own, is exact too."""
+    _, query = synthetic_description(catalog(), np.random.default_rng(seed))
+    rows, dist = index().cells.top_k(query, k, np.empty(0, dtype=np.int64), np.empty(0))
+    brows, bdist = brute_force_top_k(catalog(), query, k)
+    np.testing.assert_array_equal(rows, brows)
+    np.testing.assert_array_equal(dist, bdist)
