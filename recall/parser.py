@@ -81,7 +81,10 @@ HEDGE:
 RANGE:
   {<BETW><NUM><UNIT>?<AND|RTO><NUM>}
   {<NUM><UNIT>?<RTO><NUM>}
+SUB:
+  {<USUB>}
 QUANT:
+  {<HEDGE>?<NUM><UNIT><NUM><SUB><HS>?}
   {<HEDGE>?<NUM><OF>?<A>?<UNIT><UAND><NUM><HS>?}
   {<HEDGE>?<NUM|RANGE><OF>?<A>?<UNIT><HS>?}
   {<HEDGE>?<NUM|RANGE><HS>?}
@@ -100,6 +103,7 @@ _STAGE_TRIGGERS: dict[str, tuple[frozenset[str], ...]] = {
     "UNIT": (frozenset({"ULEN", "UMASS", "UVOL"}),),
     "HEDGE": (frozenset({"HA", "HL", "HU", "HX"}),),
     "RANGE": (frozenset({"NUM"}), frozenset({"RTO", "BETW"})),
+    "SUB": (frozenset({"USUB"}),),
     "QUANT": (frozenset({"NUM", "RANGE"}),),
     "MULTI": (frozenset({"QUANT"}), frozenset({"BY"})),
     "DIM": (frozenset({"QUANT"}), frozenset({"DIM"})),
@@ -362,14 +366,9 @@ class DescriptionParser:
     # -- sentences
     def _segments(self, tokens: list[_Token]) -> Iterator[list[_Token]]:
         seg: list[_Token] = []
-        for i, tok in enumerate(tokens):
+        for tok in tokens:
             seg.append(tok)
-            end_here = tok.tag == "SEP"
-            if end_here and tok.low == "." and i > 0 and tokens[i - 1].low in _ABBREVIATIONS:
-                nxt = tokens[i + 1] if i + 1 < len(tokens) else None
-                if nxt is not None and not nxt.word[:1].isupper():
-                    end_here = False  # "approx. 5 cm", "3 in. long"
-            if end_here or len(seg) >= MAX_SEGMENT_TOKENS:
+            if tok.tag == "SEP" or len(seg) >= MAX_SEGMENT_TOKENS:
                 yield seg
                 seg = []
         if seg:
@@ -520,6 +519,10 @@ class DescriptionParser:
                             r += 1
                 elif label == "UNIT":
                     unit = self._units.get(part[0].low)
+                elif label == "SUB":  # "1 lb 2 oz", "5 ft 3 in": one quantity in two units
+                    sub_unit = self._units.get(part[0].low)
+                    if unit is not None and sub_unit is not None and len(numbers) == 2:
+                        numbers = [numbers[0] + numbers[1] * sub_unit.factor / unit.factor]
                 j += n
             else:
                 if toks[j].tag == "HS":
@@ -565,6 +568,9 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
                 prev is not None and prev.tag in _UNIT_TAGS and nxt is not None and nxt.tag == "DIM"
             ):
                 continue  # "5-cm-long", "10-ish": the hyphen joins, it is not a range
+        if tok.low == "." and prev is not None and prev.low in _ABBREVIATIONS:
+            if nxt is not None and not nxt.word[:1].isupper():
+                continue  # "approx. 5 cm", "3 in. long": an abbreviation, not a sentence end
         if tag == "IN" and prev_num:
             if nxt is None or nxt.low not in lx.DIMENSION_NOUNS:
                 tag = "ULEN"  # "4 in long", "3 in." ; "7 in diameter" stays a preposition
@@ -603,9 +609,29 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
         elif tag == "FRC" and tok.low in ("quarter", "quarters", "third", "thirds"):
             if not (prev_num or (prev is not None and prev.tag in ("A", "AND"))):
                 tag = "W"  # "the top quarter", "third" as an ordinal
+        if tag in _UNIT_TAGS and prev_num and _smaller_unit_after(out, tok):
+            tag = "USUB"
         tok.tag = tag
         out.append(tok)
     return out
+
+
+def _smaller_unit_after(out: list[_Token], tok: _Token) -> bool:
+    """True for the second unit of "1 lb 2 oz" / "5 ft 3 in": same kind, smaller, right after the first
+    unit and its number."""
+    k = len(out) - 1
+    while k >= 0 and out[k].tag in _NUMBER_TAGS:
+        k -= 1
+    if k == len(out) - 1 or k < 1 or out[k].tag not in _UNIT_TAGS or out[k - 1].tag not in _NUMBER_TAGS:
+        return False
+    table = unit_table()
+    first, second = table.get(out[k].low), table.get(tok.low)
+    return (
+        first is not None
+        and second is not None
+        and first.kind == second.kind
+        and second.factor < first.factor
+    )
 
 
 def _number_before_of(out: list[_Token]) -> bool:

@@ -141,6 +141,9 @@ DIMENSION_CASES = [
     ("7,5 cm long", (7.5, None, None)),
     ("150 mm long", (15, None, None)),
     ("0.3 m long", (30, None, None)),
+    ("5 ft 3 in tall", (160.02, None, None)),
+    ("approx. 25cm long x 3cm wide", (25, 3, None)),
+    ("3 in. long", (7.62, None, None)),
 ]
 
 
@@ -175,6 +178,10 @@ MASS_CASES = [
     ("weighs a dozen grams", 12),
     ("1,200 grams", 1200),
     ("it weighs one hundred and fifty grams", 150),
+    ("It weighs 1 lb 2 oz", 510.291),
+    ("one pound two ounces", 510.291),
+    ("2 kg, and 30 cm long", 2000),
+    ("21 x 16 x 4 cm 200 g", 200),
 ]
 
 
