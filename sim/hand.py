@@ -166,6 +166,10 @@ WRIST_ACTUATOR_NAMES: tuple[str, ...] = WRIST_JOINT_NAMES
 APPROACH_QUAT: dict[str, tuple[float, float, float, float]] = {
     "top": (1.0, 0.0, 0.0, 0.0),
     "side": (math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0),
+    # Table-edge grasp of a flat object (sim/trial.py): palm facing world -x, fingers pointing down
+    # (opposition axis vertical: thumb on top, fingers under the overhang), spread along world y.
+    # Hand axes in world: x_H = -y, y_H = -z, z_H = +x.
+    "edge": (0.5, -0.5, 0.5, -0.5),
 }
 
 #: Collision bits: hand geoms touch only the object; the table touches only the object (the hand may

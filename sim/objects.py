@@ -137,13 +137,15 @@ def object_model(obj: ObjectRecord) -> ObjectModel:
     )
 
 
-def add_table(spec: mujoco.MjSpec) -> None:
-    """A 80 x 80 cm table whose top is the plane z = 0; it touches only the object."""
+def add_table(spec: mujoco.MjSpec, edge_x_m: float | None = None) -> None:
+    """A 80 x 80 cm table whose top is the plane z = 0; it touches only the object. With ``edge_x_m`` the
+    table ends there (its +x edge), so that an object can overhang it."""
+    center_x = 0.0 if edge_x_m is None else edge_x_m - 0.4
     spec.worldbody.add_geom(
         name="table",
         type=mujoco.mjtGeom.mjGEOM_BOX,
         size=[0.4, 0.4, 0.02],
-        pos=[0, 0, -0.02],
+        pos=[center_x, 0, -0.02],
         friction=[TABLE_FRICTION, 0.005, 0.0001],
         contype=TABLE_BIT,
         conaffinity=OBJECT_BIT,

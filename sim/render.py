@@ -26,7 +26,7 @@ from sim.trial import TrialWorld, build_world, run_trial  # noqa: E402
 __all__ = ["encode_png", "render_trial", "render_world"]
 
 #: Camera azimuth (degrees) per approach.
-VIEW_AZIMUTH_DEG = {"top": 155.0, "side": -60.0}
+VIEW_AZIMUTH_DEG = {"top": 155.0, "side": -60.0, "edge": -60.0}
 
 GL_HINT = (
     "offscreen rendering needs an OpenGL backend: set MUJOCO_GL=egl (apt install libegl1 libegl-mesa0 "
@@ -78,8 +78,8 @@ def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> n
     cam.distance = max(0.4, 2.2 * size)
     # Look across the opposition axis so both the thumb and the fingers show: for a top grasp from the
     # index side, for a side grasp from the fingers' side of the object.
-    cam.azimuth = VIEW_AZIMUTH_DEG.get(world.plan.approach, 155.0)
-    cam.elevation = -15.0
+    cam.azimuth = VIEW_AZIMUTH_DEG.get(world.approach, 155.0)
+    cam.elevation = -10.0 if world.approach == "edge" else -15.0
     _headless_backend()
     try:
         renderer = mujoco.Renderer(model, height=height, width=width)

@@ -139,6 +139,7 @@ class TrialWorld:
     wrist_act: np.ndarray
     digit_act: np.ndarray
     wrist_qpos: np.ndarray
+    approach: str = "top"  # as built: the plan's, or "edge" for a flat object grasped at a table edge
 
     def palm_pose(self) -> tuple[np.ndarray, np.ndarray]:
         return self.data.xpos[self.palm_body].copy(), self.data.xmat[self.palm_body].reshape(3, 3).copy()
@@ -181,6 +182,27 @@ def _placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     return {plan.grasped_dim: 1, rest[0]: 2, rest[1]: 0}
 
 
+#: A plan grasping an object across a side at most this fraction of the next larger side grasps a flat
+#: object (a book, a plate, a phone, a card) across its thickness.
+FLAT_RATIO = 0.35
+
+
+def _is_flat(obj: ObjectModel, plan: GraspPlan) -> bool:
+    """Does ``plan`` grasp a flat object across its thickness? Such objects lie flat, overhanging a table
+    edge, and are grasped from the edge (thumb on top, fingers underneath), as people pick up a plate or
+    a book; standing them on edge for a top or side grasp would be neither stable nor realistic."""
+    dims = sorted("abc", key=obj.extent_cm)
+    thin, middle = dims[0], dims[1]
+    return plan.grasped_dim == thin and obj.extent_cm(thin) <= FLAT_RATIO * obj.extent_cm(middle)
+
+
+def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
+    """Flat on the table (grasped thickness up), its longest side along the table edge (world y, where the
+    fingers spread) and the other across it (world x, overhanging)."""
+    rest = sorted((d for d in "abc" if d != plan.grasped_dim), key=obj.extent_cm, reverse=True)
+    return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
+
+
 def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
     """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
     if plan.grasp_type not in GRASP_TYPES:
@@ -189,16 +211,23 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         raise SimulationError(f"unknown approach {plan.approach!r}: expected top or side")
     model_obj = obj if isinstance(obj, ObjectModel) else object_model(obj)
     rng = np.random.default_rng(seed)
-    axes = _placement(model_obj, plan)
+    flat = _is_flat(model_obj, plan)
+    approach = "edge" if flat else plan.approach
+    axes = _edge_placement(model_obj, plan) if flat else _placement(model_obj, plan)
     ext = np.zeros(3)
     for dim, ax in axes.items():
         ext[ax] = model_obj.extent_cm(dim)
-    width = ext[1]
+    width = ext[2] if flat else ext[1]
     targets = H.grasp_targets(plan, width)
     family = GRASP_TYPES[plan.grasp_type]
 
     # Where the object's centre sits in the hand frame (cm).
-    depth = ext[2] if plan.approach == "top" else ext[0]  # extent along the approach axis
+    depth = ext[2] if approach == "top" else ext[0]  # extent along the approach axis
+    overhang = 0.0
+    if flat:
+        # Over the table's edge by what the grasp needs (pads 3 cm in, wraps 6 cm), never by so much
+        # that the object's centre of mass leaves the table.
+        overhang = min(0.45 * depth, (6.0 if family == "power" else 3.0) + 1.0)
     palm_face = -H.PALM_HALF_CM[2]
     grip_depth = 0.0  # precision: how far below the near face the pads meet the object (cm)
     if family == "power":
@@ -209,6 +238,8 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         # Pads meet the object's sides at its centre (no gravity torque about the pinch axis) when they
         # reach that far, else 3 cm below its near face.
         grip_depth = min(depth / 2.0, 3.0)
+        if flat:  # the fingers come from under the overhang: their pads must fit under it
+            grip_depth = max(0.3, min(grip_depth, overhang - 0.9))
         z_c = min(
             targets.contact_z_cm - depth / 2.0 + grip_depth,
             palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,
@@ -217,21 +248,21 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
 
     obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
     rot = np.zeros(9)
-    mujoco.mju_quat2Mat(rot, np.array(H.APPROACH_QUAT[plan.approach]))
+    mujoco.mju_quat2Mat(rot, np.array(H.APPROACH_QUAT[approach]))
     rot = rot.reshape(3, 3)
     palm_pos = obj_pos - rot @ center_h
-    if plan.approach == "side":
+    if approach == "side":
         # Keep the palm's lower edge above the table: the fingers spread vertically from its centre.
         palm_pos[2] = max(palm_pos[2], (H.PALM_HALF_CM[0] + 0.3) * H.CM)
-    approach_dir = np.array([0.0, 0.0, 1.0]) if plan.approach == "top" else np.array([1.0, 0.0, 0.0])
+    approach_dir = np.array([0.0, 0.0, 1.0]) if approach == "top" else np.array([1.0, 0.0, 0.0])
 
     spec = mujoco.MjSpec()
     spec.modelname = "grasp_trial"
     H.configure_options(spec)
     spec.worldbody.add_light(pos=[0.3, -0.3, 0.8], dir=[-0.3, 0.3, -0.8], diffuse=[0.7, 0.7, 0.7])
-    add_table(spec)
+    add_table(spec, (depth / 2.0 - overhang) * H.CM if flat else None)
     add_object(spec, model_obj, axes, obj_pos)
-    H.add_hand(spec, approach=plan.approach, mount_m=palm_pos, torque_limits=targets.closing_limits)
+    H.add_hand(spec, approach=approach, mount_m=palm_pos, torque_limits=targets.closing_limits)
     try:
         model = spec.compile()
     except Exception as exc:
@@ -273,6 +304,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         wrist_act=wrist_act,
         digit_act=digit_act,
         wrist_qpos=wrist_qpos,
+        approach=approach,
     )
     return world
 

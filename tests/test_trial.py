@@ -160,3 +160,29 @@ def test_render_trial_gives_a_png_of_the_hold():
     image = matplotlib.image.imread(io.BytesIO(png))
     assert image.shape[:2] == (120, 160)
     assert image[..., :3].std() > 0.05  # a scene, not a blank frame
+
+
+def test_flat_object_lies_flat_over_a_table_edge_and_is_grasped_from_it():
+    calculator = ObjectRecord.create(
+        "calculator",
+        a_cm=15.4,
+        b_cm=7.9,
+        c_cm=1.5,
+        mass_g=116,
+        shape="thin",
+        texture="medium",
+        material="plastic",
+        rigidity="rigid",
+    )
+    plan = _plan("thumb_4_finger", 3.0, 3.0)
+    world = build_world(calculator, plan)
+    assert world.approach == "edge"
+    m = world.model
+    half = m.geom("object_geom").size
+    assert half[2] == pytest.approx(0.0075)  # lying flat: its 1.5 cm thickness is vertical
+    table = m.geom("table")
+    table_edge = m.geom_pos[table.id][0] + m.geom_size[table.id][0]
+    object_edge = m.body_pos[m.body("object").id][0] + half[0]
+    assert 0.0 < object_edge - table_edge < half[0]  # it overhangs, its centre of mass still on the table
+    r = run_trial(calculator, plan)
+    assert r.outcome == "success", r.reason
