@@ -84,6 +84,7 @@ DEFAULT_PAGE = 50
 #: Caps of the SQL endpoint (a request may ask for less, never more).
 SQL_MAX_ROWS = 5_000
 SQL_MAX_TIMEOUT_S = 10.0
+SQL_MAX_RESPONSE_BYTES = 8 * 1024 * 1024
 MAX_TEXT_CHARS = 5_000
 MAX_TOP = 50
 
@@ -358,7 +359,7 @@ def create_app(
     from fastapi import Depends, FastAPI, Query, Request
     from fastapi import Path as PathParam
     from fastapi.exceptions import RequestValidationError
-    from fastapi.responses import FileResponse, JSONResponse
+    from fastapi.responses import FileResponse, JSONResponse, Response
     from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
     from fastapi.staticfiles import StaticFiles
     from pydantic import BaseModel, ConfigDict, Field
@@ -521,7 +522,7 @@ def create_app(
     class ObjectIn(BaseModel):
         """Feature values of an object (catalog units); omitted or null values stay as stored."""
 
-        model_config = ConfigDict(extra="forbid")
+        model_config = ConfigDict(extra="forbid", allow_inf_nan=False)
         a_cm: float | None = Field(None, description="Largest extent, cm.")
         b_cm: float | None = Field(None, description="Middle extent, cm.")
         c_cm: float | None = Field(None, description="Smallest extent, cm.")
@@ -650,7 +651,7 @@ def create_app(
         }
 
     @app.post("/sql", tags=["catalog"])
-    def run_sql(body: SqlIn) -> dict[str, Any]:
+    def run_sql(body: SqlIn) -> Response:
         """One read-only SELECT in the sandbox: no writes, files, network, ATTACH or extensions; at most
         ``max_rows`` rows (``truncated`` says when there were more) and ``timeout_s`` seconds (504)."""
         try:
@@ -659,9 +660,16 @@ def create_app(
             if str(err).startswith("query interrupted"):  # kb.catalog's message for its statement timeout
                 raise RequestTimeout(str(err)) from None
             raise
-        return to_jsonable(
+        payload = to_jsonable(
             {"columns": result.columns, "rows": result.to_dicts(), "truncated": result.truncated}
         )
+        data = json.dumps(payload, ensure_ascii=False).encode()
+        if len(data) > SQL_MAX_RESPONSE_BYTES:
+            raise QueryFailed(
+                f"result too large: {len(data):,} bytes as JSON (at most {SQL_MAX_RESPONSE_BYTES:,}); "
+                "select fewer rows or columns"
+            )
+        return Response(content=data, media_type="application/json")
 
     @app.get("/ingestion/runs", tags=["ingestion"])
     def ingestion_runs(limit: Annotated[int, Query(ge=1, le=200)] = 20) -> dict[str, Any]:
