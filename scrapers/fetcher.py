@@ -32,6 +32,7 @@ from typing import Protocol
 from urllib.parse import urljoin, urlsplit
 
 import requests
+import urllib3
 from protego import Protego
 
 from kb.errors import FetchError, PageTooLarge, RobotsDisallowed
@@ -101,7 +102,8 @@ class FetchPolicy:
     """How politely and patiently to fetch; every field has a safe default.
 
     ``delay_s`` is the minimum gap between two requests to one host (robots.txt Crawl-delay can raise it,
-    never lower it). ``max_retries`` counts extra attempts after the first. Backoff before retry *n*
+    never lower it). ``read_timeout_s`` bounds each wait for bytes; ``max_page_s`` bounds a whole body, so a
+    server that drips a byte at a time cannot hold the crawl. ``max_retries`` counts extra attempts after the first. Backoff before retry *n*
     (1-based) is ``backoff_s * 2 ** (n - 1)``.
     """
 
@@ -113,6 +115,7 @@ class FetchPolicy:
     max_retries: int = 3
     backoff_s: float = 1.0
     max_retry_after_s: float = 120.0
+    max_page_s: float = 120.0
     obey_robots: bool = True
     user_agent: str = USER_AGENT
 
@@ -120,7 +123,7 @@ class FetchPolicy:
         for name in ("delay_s", "backoff_s", "max_retry_after_s"):
             if getattr(self, name) < 0:
                 raise ValueError(f"{name} must be >= 0")
-        for name in ("connect_timeout_s", "read_timeout_s"):
+        for name in ("connect_timeout_s", "read_timeout_s", "max_page_s"):
             if getattr(self, name) <= 0:
                 raise ValueError(f"{name} must be > 0")
         if self.max_bytes <= 0:
@@ -475,25 +478,44 @@ class PoliteFetcher:
             )
         chunks: list[bytes] = []
         total = 0
+        deadline = self.clock.monotonic() + policy.max_page_s
         try:
-            for chunk in resp.iter_content(_CHUNK):
+            for chunk in _body_chunks(resp):
+                if self.clock.monotonic() > deadline:
+                    raise _error(FetchError, url, "timeout", f"body took longer than {policy.max_page_s:g} s")
                 total += len(chunk)
                 if total > policy.max_bytes:
                     raise _error(
                         PageTooLarge, url, "too_large", f"body passed the cap of {policy.max_bytes} bytes"
                     )
                 chunks.append(chunk)
+        except (requests.exceptions.ReadTimeout, urllib3.exceptions.ReadTimeoutError):
+            raise _error(FetchError, url, "timeout", "timed out while reading the body") from None
         except requests.exceptions.ConnectionError as err:
-            if "timed out" in str(err).lower() or isinstance(err, requests.exceptions.ReadTimeout):
+            if "timed out" in str(err).lower():
                 raise _error(FetchError, url, "timeout", "timed out while reading the body") from None
             raise _error(
                 FetchError, url, "connection_failed", "connection dropped while reading the body"
             ) from None
-        except requests.exceptions.RequestException as err:
+        except (requests.exceptions.RequestException, urllib3.exceptions.HTTPError, OSError) as err:
             raise _error(
                 FetchError, url, "connection_failed", f"body could not be read ({type(err).__name__})"
             ) from None
         return b"".join(chunks)
+
+
+def _body_chunks(resp: requests.Response):
+    """The decoded body in pieces as they arrive (``read1``: at most one socket read each), so a size cap
+    or a time limit is checked while a slow or endless body is still coming."""
+    raw = resp.raw
+    if hasattr(raw, "read1"):
+        while True:
+            chunk = raw.read1(_CHUNK, decode_content=True)
+            if not chunk:
+                return
+            yield chunk
+    else:  # an adapter without urllib3 underneath
+        yield from resp.iter_content(_CHUNK)
 
 
 def with_overrides(policy: FetchPolicy, **changes: object) -> FetchPolicy:

@@ -50,6 +50,7 @@ _POLICY_KEYS = {
     "max_retries": int,
     "backoff_s": float,
     "max_retry_after_s": float,
+    "max_page_s": float,
     "obey_robots": bool,
 }
 _STORE_KEYS = {

@@ -282,3 +282,78 @@ def test_policy_refuses_nonsense():
         FetchPolicy(max_bytes=0)
     with pytest.raises(ValueError):
         FetchPolicy(read_timeout_s=0)
+
+
+def test_a_dripping_body_is_cut_off_by_the_page_time_limit(session):
+    """Each byte comes well within the read timeout, but the whole body would take far too long."""
+
+    class Drip(BaseHTTPRequestHandler):
+        protocol_version = "HTTP/1.0"
+
+        def log_message(self, *args):
+            pass
+
+        def do_GET(self):  # noqa: N802
+            if self.path == "/robots.txt":
+                self.send_response(404)
+                self.end_headers()
+                return
+            self.send_response(200)
+            self.send_header("Content-Type", "text/html")
+            self.end_headers()
+            try:
+                for _ in range(200):
+                    self.wfile.write(b"<p>drip</p>\n")
+                    self.wfile.flush()
+                    time.sleep(0.05)
+            except OSError:
+                pass
+
+    server = ThreadingHTTPServer(("127.0.0.1", 0), Drip)
+    server.daemon_threads = True
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    try:
+        policy = FetchPolicy(delay_s=0, read_timeout_s=2, max_page_s=0.5, max_retries=0)
+        fetcher = PoliteFetcher(session, policy=policy)
+        started = time.monotonic()
+        with pytest.raises(FetchError) as info:
+            fetcher.fetch(f"http://127.0.0.1:{server.server_address[1]}/drip")
+        assert fetch_error_kind(info.value) == "timeout" and "longer than 0.5 s" in str(info.value)
+        assert time.monotonic() - started < 5
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+def test_gzip_bodies_are_decoded_and_the_cap_counts_decoded_bytes(session):
+    import gzip
+
+    page = b"<html><body>" + b"<p>mug 12 x 8 cm</p>" * 100 + b"</body></html>"
+    bomb = gzip.compress(b"\0" * (30 * 1024 * 1024), compresslevel=9)  # 30 MB of zeros in ~30 KB
+
+    class Gz(BaseHTTPRequestHandler):
+        protocol_version = "HTTP/1.1"
+
+        def log_message(self, *args):
+            pass
+
+        def do_GET(self):  # noqa: N802
+            body = gzip.compress(page) if self.path == "/page" else bomb if self.path == "/bomb" else b""
+            self.send_response(200 if body else 404)
+            self.send_header("Content-Encoding", "gzip")
+            self.send_header("Content-Length", str(len(body)))
+            self.end_headers()
+            self.wfile.write(body)
+
+    server = ThreadingHTTPServer(("127.0.0.1", 0), Gz)
+    server.daemon_threads = True
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    base = f"http://127.0.0.1:{server.server_address[1]}"
+    try:
+        fetcher = PoliteFetcher(session, policy=FetchPolicy(delay_s=0, max_retries=0, max_bytes=1_000_000))
+        assert fetcher.fetch(base + "/page").body == page
+        with pytest.raises(PageTooLarge):
+            fetcher.fetch(base + "/bomb")  # under the cap on the wire, 30x over it decoded
+    finally:
+        server.shutdown()
+        server.server_close()
