@@ -45,26 +45,26 @@ _KIND_WORDS: dict[str, str] = {
     **_words(
         "length",
         "length len long länge laenge longueur longitud largo lunghezza comprimento długość dlugosc dĺžka "
-        "délka длина довжина lengte längd længde lengde uzunluk uzunluğu lungime pituus hossz hosszúság μήκος panjang",
+        "délka длина довжина lengte längd længde lengde uzunluk uzunluğu lungime pituus hossz hosszúság μήκος panjang garums ilgis pikkus dolžina dužina duljina дължина אורך الطول طول",
     ),
     **_words(
         "width",
         "width wide breite largeur ancho anchura larghezza largura szerokość šírka šířka ширина ширина "
-        "breedte bredd bredde genişlik genişliği lățime latime leveys szélesség πλάτος lebar",
+        "breedte bredd bredde genişlik genişliği lățime latime leveys szélesség πλάτος lebar platums plotis laius širina ширина רוחב العرض عرض",
     ),
     **_words(
         "height",
         "height high tall höhe hoehe hauteur alto altura altezza wysokość výška высота висота hoogte höjd højde "
-        "høyde yükseklik yüksekliği înălțime inaltime korkeus magasság ύψος tinggi",
+        "høyde yükseklik yüksekliği înălțime inaltime korkeus magasság ύψος tinggi augstums aukštis kõrgus višina visina височина גובה الارتفاع ارتفاع",
     ),
     **_words(
         "depth",
         "depth deep tiefe profondeur profundidad fondo profondità profundidade głębokość hĺbka hloubka "
-        "глубина глибина diepte djup dybde derinlik derinliği adâncime syvyys mélység βάθος",
+        "глубина глибина diepte djup dybde derinlik derinliği adâncime syvyys mélység βάθος dziļums gylis sügavus globina dubina дълбочина עומק العمق عمق",
     ),
     **_words(
         "diameter",
-        "diameter dia durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр",
+        "diameter dia קוטר القطر durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр",
     ),
     **_words(
         "thickness",
@@ -76,13 +76,13 @@ _KIND_WORDS: dict[str, str] = {
         "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
         "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
         "afmetingen afmeting mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
-        "méret διαστάσεις dimensi ukuran",
+        "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات",
     ),
     **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
     **_words(
         "weight",
         "weight weighs wt mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt vægt vekt "
-        "ağırlık ağırlığı greutate paino súly βάρος berat",
+        "ağırlık ağırlığı greutate paino súly βάρος berat svars svoris kaal teža težina тегло משקל الوزن وزن",
     ),
 }
 _PACKAGE_WORDS = {
@@ -106,7 +106,7 @@ _QUALIFIERS = {
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
-        "os as pés feet legs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
+        "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen"
         " l b h w d t x х"
     ).split()

@@ -47,6 +47,9 @@ _INVISIBLE = dict.fromkeys(
     ),
     None,
 )
+# Hebrew unit abbreviations are written with a gershayim (or a plain double quote) inside: ס"מ = cm.
+_HEBREW_UNIT_NAMES = {"סמ": "cm", "ממ": "mm", "קג": "kg"}
+_HEBREW_UNITS = re.compile(r"(?<![\u0590-\u05ff])([סמק][\"\u05f4][מג])(?![\u0590-\u05ff])")
 _SPACES = re.compile(r"[\s\u00a0\u2000-\u200a\u202f\u205f\u3000]+")
 
 #: Length units -> centimetres per unit. Keys are lower case, accents kept (matching strips them too).
@@ -237,6 +240,12 @@ _add(
     "oncie",
 )
 
+# Arabic and Hebrew unit words (Hebrew abbreviations with a gershayim are rewritten by clean_text).
+_add(LENGTH_UNITS, 1.0, "سم", "سنتيمتر")
+_add(LENGTH_UNITS, 0.1, "مم", "ملم")
+_add(MASS_UNITS, 1000.0, "كجم", "كغ", "كيلو", "كيلوغرام", "קילו", "кгр")
+_add(MASS_UNITS, 1.0, "جم", "غ", "غرام", "جرام", "גרם")
+
 #: Only the first this many characters of a value are read (values are short; this bounds the work).
 MAX_TEXT = 2000
 _NUMBER = r"(?<![\d.,])(?>\d+(?:[.,]\d+)*)"  # atomic, starting at a number: no backtracking
@@ -307,6 +316,10 @@ def clean_text(text: object) -> str:
     if not isinstance(text, str):
         text = str(text)
     text = unicodedata.normalize("NFKC", text.translate(_INVISIBLE))
+    if "\u05f4" in text or '"' in text:
+        text = _HEBREW_UNITS.sub(
+            lambda m: _HEBREW_UNIT_NAMES.get(m.group(1)[0] + m.group(1)[2], m.group(1)), text
+        )
     text = _SPACES.sub(" ", text).strip()
     # Cyrillic х/Х and other times signs after a number (and maybe a unit or letter) and before a number.
     text = _TIMES_SIGN.sub(_times, text)

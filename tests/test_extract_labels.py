@@ -48,6 +48,19 @@ from scrapers.normalize import check_dims, check_mass, material_from_text, shape
         ("Width x Height x Depth", "dimensions", False, None),
         ("Product Depth (in.)", "depth", False, "in."),
         ("Weight & Dimensions", "dimensions", False, None),
+        ("Productafmetingen", "dimensions", False, None),
+        ("Verpakkingsafmetingen", "dimensions", True, None),
+        ("Förpackningsmått", "dimensions", True, None),
+        ("Ürün Ağırlığı", "weight", False, None),
+        ("Greutate", "weight", False, None),
+        ("Svars", "weight", False, None),  # lv
+        ("Mõõtmed", "dimensions", False, None),  # et
+        ("Težina", "weight", False, None),  # hr
+        ("Тегло", "weight", False, None),  # bg
+        ("משקל", "weight", False, None),  # he
+        ("الوزن", "weight", False, None),  # ar
+        ("商品の重量", "weight", False, None),
+        ("Altura com os pés", "height", False, None),
     ],
 )
 def test_measurement_labels(label, kind, package, unit):

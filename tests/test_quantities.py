@@ -75,6 +75,8 @@ def test_parse_number_refuses_non_numbers(text):
         ('10"L x 5"W x 3"H', None, None, (25.4, 12.7, 7.62)),
         ("長37.5*寬26*高13.5cm", None, False, (37.5, 26.0, 13.5)),
         ("幅30×奥行20×高さ10cm", None, False, (30.0, 20.0, 10.0)),
+        ('30 x 20 x 10 ס"מ', None, False, (30.0, 20.0, 10.0)),  # Hebrew cm with a quote inside
+        ("30 × 20 × 10 سم", None, False, (30.0, 20.0, 10.0)),
     ],
 )
 def test_parse_dims_real_page_shapes(text, unit, dc, expected):
@@ -106,6 +108,7 @@ def test_parse_dims_needs_a_length_unit(text):
         ("1,6 Kilogramos", None, True, 1600.0),
         ("190.51 Gramm", None, True, 190.51),
         ("1 lb 4 oz", None, None, 566.990463),
+        ("1,5 كجم", None, True, 1500.0),
         ("1.2 kg (2.6 lbs)", None, None, 1200.0),
     ],
 )
