@@ -31,9 +31,11 @@ import json
 import os
 import re
 import sys
+import threading
 import time
 from collections import Counter
 from collections.abc import Callable, Iterable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import asdict, dataclass, field
 from datetime import datetime
 from typing import Any
@@ -65,6 +67,8 @@ Extractor = Callable[[bytes, str, "str | None"], ProductRecord]
 #: so a test can kill the process while the transaction is open (see tests/test_ingest_crash.py).
 PAUSE_ENV = "OBJRECALL_INGEST_PAUSE_BEFORE_COMMIT"
 MAX_SITEMAPS = 50
+#: Hosts crawled at the same time (each host still gets one request at a time).
+DEFAULT_MAX_HOSTS = 4
 _SHOPIFY_PRODUCT = re.compile(r"^/products/[^/.]+/?$")
 
 
@@ -797,6 +801,43 @@ def _catalog_values(fused: dict[str, Any], current: dict[str, Any]) -> dict[str,
 
 
 # ---------------------------------------------------------------------------------------------- the job
+def _fetch_all(
+    fetcher: PoliteFetcher,
+    plan: list[tuple[StoreSource, str]],
+    previous: dict[str, dict[str, Any]],
+    extract: Extractor,
+    progress: ProgressFn | None,
+    max_hosts: int,
+) -> list[PageOutcome]:
+    """Fetch and extract every planned page: hosts in parallel (up to ``max_hosts``), each host's pages in
+    order, one at a time (the fetcher also enforces that). Outcomes come back in plan order."""
+    by_host: dict[str, list[int]] = {}
+    for i, (_, url) in enumerate(plan):
+        by_host.setdefault(urlsplit(url).netloc, []).append(i)
+    outcomes: list[PageOutcome | None] = [None] * len(plan)
+    lock = threading.Lock()
+    done = 0
+
+    def crawl(indices: list[int]) -> None:
+        nonlocal done
+        for i in indices:
+            store, url = plan[i]
+            outcomes[i] = _process_page(fetcher, store, url, previous.get(url), extract)
+            with lock:
+                done += 1
+                if progress:
+                    progress(done, len(plan), url)
+
+    workers = max(1, min(max_hosts, len(by_host)))
+    if workers == 1:
+        for indices in by_host.values():
+            crawl(indices)
+    else:
+        with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="ingest-host") as pool:
+            list(pool.map(crawl, by_host.values()))  # re-raises a worker's unexpected error
+    return [o for o in outcomes if o is not None]
+
+
 def run_ingestion(
     kb,
     sources: Sources,
@@ -805,11 +846,13 @@ def run_ingestion(
     clock: Clock | None = None,
     progress: ProgressFn | None = None,
     extract: Extractor | None = None,
+    max_hosts: int = DEFAULT_MAX_HOSTS,
 ) -> IngestionReport:
     """Run the whole job (see the module docstring) and return its report.
 
     ``kb`` is a :class:`kb.catalog.KnowledgeBase` opened for writing. The network (``session``) and the
-    clock are passed in. Pages that fail are recorded and skipped; only a failure of the run as a whole
+    clock are passed in. Up to ``max_hosts`` hosts are crawled at the same time (each still one request at a
+    time, with its delay). Pages that fail are recorded and skipped; only a failure of the run as a whole
     (the database cannot be written) raises :class:`~kb.errors.IngestionError`, and then the catalog is
     left exactly as it was.
     """
@@ -832,12 +875,7 @@ def run_ingestion(
     report.pages = len(plan)
     if progress:
         progress(0, len(plan), "")
-    outcomes: list[PageOutcome] = []
-    for i, (store, url) in enumerate(plan, start=1):
-        page = _process_page(fetcher, store, url, previous.get(url), extract)
-        outcomes.append(page)
-        if progress:
-            progress(i, len(plan), url)
+    outcomes = _fetch_all(fetcher, plan, previous, extract, progress, max_hosts)
     report.fetched = sum(1 for p in outcomes if p.status is not None and 200 <= p.status < 300)
     report.not_modified = sum(1 for p in outcomes if p.outcome == "not_modified")
     report.extracted = sum(1 for p in outcomes if p.record is not None)

@@ -297,3 +297,34 @@ def test_ingest_demo_in_one_call(tmp_path):
     report = ingest_demo(kb)
     assert report.new >= 25 and len(report.updated_objects) == sum(p.in_seed for p in PRODUCTS)
     assert report.rejected_reasons["timeout"] == 1 and report.rejected_reasons["too_large"] == 1
+
+
+def test_two_hosts_are_crawled_at_the_same_time_each_one_request_at_a_time(tmp_path):
+    text = """
+[defaults]
+delay_s = 0.05
+max_retries = 0
+
+[[stores]]
+name = "a"
+base_url = "{a}"
+sitemaps = ["{{base_url}}/sitemap.xml"]
+include = ["^/(p|dp)/"]
+exclude = ["slow", "flaky", "huge"]
+
+[[stores]]
+name = "b"
+base_url = "{b}"
+sitemaps = ["{{base_url}}/sitemap.xml"]
+include = ["^/(de|fr|es|it|pt)/"]
+"""
+    with DemoStore(crawl_delay=None) as a, DemoStore(crawl_delay=None) as b, requests.Session() as session:
+        sources = parse_sources(text.format(a=a.base_url, b=b.base_url))
+        kb = seeded(tmp_path / "two.duckdb")
+        report = run_ingestion(kb, sources, session=session)
+        assert report.new >= 15 and report.pages == len(a.log) - 2 + len(b.log) - 2  # minus robots, sitemap
+        assert a.max_in_flight == 1 and b.max_in_flight == 1
+        a_pages = [e for e in a.log if e.path.startswith(("/p/", "/dp/"))]
+        b_pages = [e for e in b.log if e.path.startswith(("/de/", "/fr/"))]
+        # Interleaved in time: some page of b was served while a's crawl was under way, and vice versa.
+        assert any(a_pages[0].started < e.started < a_pages[-1].started for e in b_pages)
