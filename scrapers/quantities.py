@@ -436,8 +436,48 @@ def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool |
         return []
 
 
+_LETTERED = re.compile(
+    rf"(?<![^\W_])(?P<axis>[HWDLBT])\.?\s*[:=]?\s*(?P<n>{_NUMBER})"
+    r"(?:\s*(?:(?P<u>mm|cm|m|inches|inch|in|ft)(?![^\W\d_])|(?P<q>''|\")))?"
+)
+_STANDALONE_X = re.compile(r"\bx\b")
+_LETTERED_GAP = re.compile(r"\s*(?:[,;/]|and|x)?\s*")
+
+
+def _lettered_dims(s: str, default_unit: str | None, decimal_comma: bool | None) -> Dims | None:
+    """Argos / John Lewis style ``H21.6, W9.1, D1.5cm`` (axis letters, no times signs), or None."""
+    tokens = list(_LETTERED.finditer(s))
+    if len(tokens) < 2:
+        return None
+    run = [tokens[0]]
+    for tok in tokens[1:]:
+        if _LETTERED_GAP.fullmatch(s[run[-1].end() : tok.start()]) and tok["axis"] not in {
+            t["axis"] for t in run
+        }:
+            run.append(tok)
+            if len(run) == 3:
+                break
+        elif len(run) >= 2:
+            break
+        else:
+            run = [tok]
+    if len(run) < 2:
+        return None
+    units = [t["u"] or t["q"] for t in run]
+    factors = _find_unit(units, length_unit, default_unit)
+    values = [parse_number(t["n"], decimal_comma) for t in run]
+    if any(f is None for f in factors) or any(v is None or v <= 0 for v in values):
+        return None
+    text = s[run[0].start() : run[-1].end()]
+    return Dims(tuple(round(v * f, 6) for v, f in zip(values, factors, strict=True)), text)
+
+
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
     s = clean_text(text[:MAX_TEXT])
+    if not _STANDALONE_X.search(s):
+        lettered = _lettered_dims(s, default_unit, decimal_comma)
+        if lettered is not None:
+            return [lettered]
     if _AXIS_PREFIX.search(s):
         s = clean_text(_AXIS_PREFIX.sub("", s))  # "H 30 cm x W 20 cm", "長37.5*寬26*高13.5cm"
     found: list[Dims] = []

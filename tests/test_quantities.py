@@ -76,6 +76,9 @@ def test_parse_number_refuses_non_numbers(text):
         ("長37.5*寬26*高13.5cm", None, False, (37.5, 26.0, 13.5)),
         ("幅30×奥行20×高さ10cm", None, False, (30.0, 20.0, 10.0)),
         ('30 x 20 x 10 ס"מ', None, False, (30.0, 20.0, 10.0)),  # Hebrew cm with a quote inside
+        ("H21.6, W9.1, D1.5cm", None, False, (21.6, 9.1, 1.5)),  # Argos: axis letters, no times signs
+        ("H21,6, W9,1, D1,5cm", None, True, (21.6, 9.1, 1.5)),
+        ("W 30 cm, D 20 cm, H 10 cm", None, None, (30.0, 20.0, 10.0)),
         ("30 × 20 × 10 سم", None, False, (30.0, 20.0, 10.0)),
     ],
 )
