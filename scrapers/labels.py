@@ -12,7 +12,8 @@ and ``Durchmesser Stiftspitze`` (tip diameter) are not the product's measurement
 (``Verpackung``, ``embalagem``, ``shipping``, ``упаковка``, ``包裝``...) marks a package value unless a
 negation (``without``, ``ohne``, ``sin``, ``без``...) precedes it: ``Вес без упаковки`` is the product.
 
-Languages: en, de, fr, es, it, pt, nl, pl, cs, sk, ru/kk, sv, zh (traditional and simplified), ja, ko.
+Languages: en, de, fr, es, it, pt, nl, pl, cs, sk, ru/uk/kk, bg, sl/hr/sr, ro, hu, el, tr, lv, lt, et, fi,
+sv/da/no, id, he, ar, zh (traditional and simplified), ja, ko.
 """
 
 from __future__ import annotations
