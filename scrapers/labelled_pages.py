@@ -5,8 +5,8 @@ each line of its ``labels.jsonl`` names a ``file`` and gives ``dims_cm`` (larges
 package values (null when the page states none).
 
 A page counts as right (:func:`judge`) when every non-null true value is matched within
-:data:`TOLERANCE` (dimensions: same count, each within tolerance after sorting) and every null true value
-is either null in the record or accompanied by a warning.
+:data:`TOLERANCE` (each true dimension by a different extracted one) and every null true value is either
+null in the record or accompanied by a warning.
 """
 
 from __future__ import annotations
@@ -64,11 +64,17 @@ def _close(a: float, b: float) -> bool:
 
 
 def _dims_match(got, want) -> bool:
-    if got is None or len(got) != len(want):
+    """Every true dimension is matched by a different extracted one (an extra extracted value, e.g. a
+    diameter counted as both width and depth, is allowed)."""
+    if got is None or len(got) < len(want):
         return False
-    return all(
-        _close(g, w) for g, w in zip(sorted(got, reverse=True), sorted(want, reverse=True), strict=True)
-    )
+    remaining = list(got)
+    for w in sorted(want, reverse=True):
+        hit = next((i for i, g in enumerate(remaining) if _close(g, w)), None)
+        if hit is None:
+            return False
+        remaining.pop(hit)
+    return True
 
 
 def judge(record: ProductRecord, truth: dict[str, Any]) -> Verdict:
