@@ -42,7 +42,8 @@ class GraspPlan:
     grasped_dim: which object dimension lies between thumb and fingers ("a", "b" or "c").
     aperture_cm: hand opening before closing (the grasped extent plus a margin).
     approach: direction the palm approaches from, in the object frame ("top" = from +z, "side" = from +x).
-    grip_force_n: total normal force the fingers should apply (from mass, friction and fragility).
+    grip_force_n: the squeeze: normal force on each side of the grip, F = m g SF / (2 mu) (from mass,
+    friction and fragility); the trial measures half the total hand-object normal force to compare.
     score: planner preference, higher is better (plans are ranked by it).
     rationale: the rules that chose it, in words.
     """
