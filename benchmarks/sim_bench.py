@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import importlib.resources
 import json
+import os
 import sys
 import tempfile
 import time
@@ -47,7 +48,9 @@ def bench_workers(workers: tuple[int, ...] = (1, 2), *, limit: int | None = None
             with LocalProcessExecutor(n) as pool:
                 summary = validate(kb, None, top=1, executor=pool, progress=False, render=None)
             wall = time.perf_counter() - start
-            sim_time = sum(float(json.loads(r["details"]).get("sim_time_s") or 0.0) for r in summary.results)
+            details = [json.loads(r["details"]) for r in summary.results]
+            sim_time = sum(float(d.get("sim_time_s") or 0.0) for d in details)
+            cpu_time = sum(float(d.get("cpu_time_s") or 0.0) for d in details)
             base = base or wall
             run = {
                 "workers": n,
@@ -56,6 +59,9 @@ def bench_workers(workers: tuple[int, ...] = (1, 2), *, limit: int | None = None
                 "trials_per_s": round(summary.ran / wall, 2),
                 "speedup_vs_1": round(base / wall, 2),
                 "sim_to_wall": round(sim_time / wall, 2),
+                "trial_cpu_s": round(cpu_time, 2),
+                "cpu_bound_wall_s": round(cpu_time / n, 2),
+                "load_avg_1min": round(os.getloadavg()[0], 2),
                 "success": summary.succeeded,
                 "failure": summary.failed,
                 "error": summary.errors,
@@ -65,7 +71,8 @@ def bench_workers(workers: tuple[int, ...] = (1, 2), *, limit: int | None = None
                 f"workers={n}: {run['trials']} best-grasp trials in {run['wall_s']} s "
                 f"({run['trials_per_s']} trials/s, x{run['speedup_vs_1']} vs 1 worker, "
                 f"simulated/wall {run['sim_to_wall']}); {run['success']} success, {run['failure']} failure, "
-                f"{run['error']} error",
+                f"{run['error']} error; trials used {run['trial_cpu_s']} CPU s "
+                f"(= {run['cpu_bound_wall_s']} s on {n} idle core(s)); load average {run['load_avg_1min']}",
                 flush=True,
             )
     return out

@@ -134,7 +134,7 @@ def run_task(task: TrialTask) -> dict[str, Any]:
     }
     details: dict[str, Any] = {"plan": task.plan.to_dict()}
     if task.trial is not None:
-        start = time.perf_counter()
+        start, cpu_start = time.perf_counter(), time.process_time()
         try:
             res = _result_dict(_resolve(task.trial)(task.obj, task.plan, seed=task.seed))
         except SimulationError as err:
@@ -159,6 +159,7 @@ def run_task(task: TrialTask) -> dict[str, Any]:
             if key in res:
                 details[key] = res[key]
         details.setdefault("wall_time_s", round(time.perf_counter() - start, 4))
+        details["cpu_time_s"] = round(time.process_time() - cpu_start, 4)
     if task.render is not None and task.image_path:
         try:
             png = _resolve(task.render)(
