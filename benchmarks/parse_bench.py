@@ -105,19 +105,21 @@ def _quantulum(texts: list[str], unknown: set[str]):
     return out
 
 
-def _rate(fn, texts: list[str], passes: int) -> float:
-    """Descriptions per CPU second of this process (one core; fair on a busy machine), median of passes."""
-    rates = []
+def _rates(fns: dict, texts: list[str], passes: int) -> dict[str, float]:
+    """Descriptions per CPU second of this process (one core; fairer than wall time on a busy machine),
+    median over passes; the parsers take turns within each pass so that both see the same load."""
+    rates: dict[str, list[float]] = {name: [] for name in fns}
     for _ in range(passes):
-        t0 = time.process_time()
-        fn(texts)
-        rates.append(len(texts) / (time.process_time() - t0))
-    return statistics.median(rates)
+        for name, fn in fns.items():
+            t0 = time.process_time()
+            fn(texts)
+            rates[name].append(len(texts) / (time.process_time() - t0))
+    return {name: statistics.median(r) for name, r in rates.items()}
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--passes", type=int, default=3)
+    ap.add_argument("--passes", type=int, default=5)
     ap.add_argument("--tolerance", type=float, default=0.2)
     args = ap.parse_args()
     if hasattr(os, "sched_setaffinity"):
@@ -139,8 +141,8 @@ def main() -> int:
 
     ours = _ours(texts)
     theirs = _quantulum(texts, unknown)
-    ours_rate = _rate(_ours, texts, args.passes)
-    q3_rate = _rate(lambda ts: _quantulum(ts, unknown), texts, args.passes)
+    rates = _rates({"ours": _ours, "q3": lambda ts: _quantulum(ts, unknown)}, texts, args.passes)
+    ours_rate, q3_rate = rates["ours"], rates["q3"]
     s_ours = _score(ours, records, args.tolerance)
     s_q3 = _score(theirs, records, args.tolerance)
 

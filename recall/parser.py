@@ -119,6 +119,18 @@ def _required_tags(rule_text: str) -> tuple[frozenset[str], ...]:
     return tuple(groups)
 
 
+class _ChunkString(ChunkString):
+    """nltk's ChunkString built without its self-check (debug_level 0) and with the tag string made in
+    one expression (the same string ``<A><CD>...`` as nltk's)."""
+
+    def __init__(self, chunk_struct: Tree) -> None:
+        self._root_label = chunk_struct.label()
+        self._pieces = chunk_struct[:]
+        tags = [p.label() if isinstance(p, Tree) else p[1] for p in self._pieces]
+        self._str = "<" + "><".join(tags) + ">"
+        self._debug = 0
+
+
 class _QuietStage(RegexpChunkParser):
     """One stage of the cascade: nltk's RegexpChunkParser without ChunkString's per-call self-check
     (debug_level=0; the grammar is fixed and tested), applying only the rules whose required tags are
@@ -130,7 +142,7 @@ class _QuietStage(RegexpChunkParser):
         self.required = [_required_tags(rule.descr() if rule.descr() else str(rule)) for rule in rules]
 
     def chunk(self, tree: Tree, present: set[str]) -> Tree:
-        chunkstr = ChunkString(tree, debug_level=0)
+        chunkstr = _ChunkString(tree)
         for rule, required in zip(self.rules(), self.required, strict=True):
             if all(present & group for group in required):
                 rule.apply(chunkstr)
@@ -152,7 +164,7 @@ class _Cascade(RegexpParser):
         for stage in self._stages:
             if all(present & group for group in stage.triggers):
                 tree = stage.chunk(tree, present)
-                present.update(child.label() for child in tree if isinstance(child, Tree))
+                present.add(stage._chunk_label)  # over-approximate: a later stage may find nothing
         return tree
 
 
@@ -225,7 +237,7 @@ class ParsedDescription:
 
 
 # ------------------------------------------------------------------------------------ internal records
-@dataclass
+@dataclass(slots=True)
 class _Token:
     word: str  # surface text
     low: str  # lower-case lookup form (merged words joined by one space)
@@ -234,7 +246,7 @@ class _Token:
     tag: str = "W"
 
 
-@dataclass
+@dataclass(slots=True)
 class _Quantity:
     value: float
     low: float | None
@@ -321,10 +333,13 @@ class DescriptionParser:
     # -- 1. tokens
     def _tokens(self, text: str) -> list[_Token]:
         raw: list[_Token] = []
+        model = self._model
         for start, end in self._tokenizer.span_tokenize(text):
             word = text[start:end]
-            low = word.lower().replace("’", "'")
-            if "-" in low and len(low) > 1 and low not in self._model and _split_hyphen(low):
+            low = word.lower()
+            if "’" in low:
+                low = low.replace("’", "'")
+            if "-" in low and len(low) > 1 and low not in model and _split_hyphen(low):
                 # "5-cm-long" parts, "non-fragile" -> non fragile; number compounds stay whole
                 offset = start
                 for part in word.split("-"):
@@ -334,6 +349,8 @@ class DescriptionParser:
                 continue
             raw.append(_Token(word, low, start, end))
         # merge multi-word expressions, longest first
+        if self._mwe_first.isdisjoint(t.low for t in raw):
+            return raw
         out: list[_Token] = []
         i = 0
         n = len(raw)
