@@ -66,6 +66,9 @@ LATERAL_PINCH_MAX_THICK_CM = 1.0
 LATERAL_PINCH_MAX_LENGTH_CM = 10.0
 LATERAL_PINCH_MAX_MASS_G = 100.0
 
+#: A light long object at least this long is a utensil or tool held by its handle (spatula, ladle, knife):
+#: its bounding box is wider than the handle people actually hold.
+TOOL_MIN_LENGTH_CM = 25.0
 #: Total normal force the fingertips of a precision grasp can give, and the whole hand in a power grasp
 #: (an AR10-sized servo hand; grown-up humans give several times more). Plans needing more are flagged.
 PRECISION_MAX_FORCE_N = 20.0
@@ -379,6 +382,17 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
         return out
 
     # prismatic, long and compact (box-like) objects
+    if o.shape == "long" and a >= TOOL_MIN_LENGTH_CM and m < LIGHT_MASS_G:
+        out.append(
+            (
+                "light_tool",
+                f"a long ({a:g} cm), light utensil: held by its handle like a tool (Cutkosky: power, prismatic)",
+            )
+        )
+        out.append(("medium_wrap", "the handle wrapped by the fingers"))
+        out.append((_fingers_for_length(a, m), "finger pads along its length"))
+        return out
+
     # a hand-filling object (about 5 cm and over) of 150 g or more is wrapped rather than pinched
     light_small = m < LIGHT_MASS_G and w <= PRECISION_MAX_WIDTH_CM and not (w >= 4.5 and m >= 150.0)
     if heavy or not light_small:

@@ -60,11 +60,12 @@ def test_paper_balls_get_a_power_circular_grasp(features):
         (dict(a_cm=19, b_cm=0.75, c_cm=0.75, mass_g=6, shape="long", material="wood"), "precision",
          {"thumb_2_finger", "tripod"}),
         (dict(a_cm=20, b_cm=4, c_cm=3.5, mass_g=150, shape="long"), "power", {"medium_wrap"}),
+        (dict(a_cm=32, b_cm=9, c_cm=7, mass_g=160, shape="long", material="metal"), "power", {"light_tool"}),
         (dict(a_cm=75, b_cm=40, c_cm=0.5, mass_g=200, shape="thin", material="fabric", rigidity="floppy"),
          "power", {"medium_wrap"}),
     ],
     ids=["water bottle", "hammer", "key", "marble", "golf ball", "wood disk", "small cube", "glass ornament",
-         "pencil", "banana", "towel"],
+         "pencil", "banana", "ladle", "towel"],
 )  # fmt: skip
 def test_rules_choose_family_and_type(features, family, types):
     plan = best_grasp(features)
