@@ -512,7 +512,7 @@ def _write(
                 first = group[0]
                 rows = _dedupe_rows(r for p in group for r in _observations_of(p))
                 fused = fuse(_as_observations(rows))
-                values = _catalog_values(fused.values, {})
+                values = _catalog_values(fused.values, {}, report.warnings, first.clean.name)
                 report.warnings.extend(f"{first.clean.name}: {w}" for w in fused.warnings)
                 new_rows.append(
                     {
@@ -597,7 +597,7 @@ def _write(
                 obs_rows.extend({**r, "object_id": oid} for r in added)
                 fused = fuse(_as_observations([*history, *added]))
                 report.warnings.extend(f"{obj['name']}: {w}" for w in fused.warnings)
-                values = _catalog_values(fused.values, obj)
+                values = _catalog_values(fused.values, obj, report.warnings, obj["name"])
                 first = group[0]
                 update_rows.append(
                     {
@@ -794,10 +794,18 @@ def _as_observations(rows: Iterable[dict[str, Any]]) -> list[Observation]:
     return out
 
 
-def _catalog_values(fused: dict[str, Any], current: dict[str, Any]) -> dict[str, Any]:
-    """Fused values over the current ones, checked and sorted by the catalog's rules."""
+def _catalog_values(
+    fused: dict[str, Any], current: dict[str, Any], warnings: list[str], name: str
+) -> dict[str, Any]:
+    """Fused values over the current ones, checked and sorted by the catalog's rules. A fused value the
+    catalog refuses (it cannot happen with validated observations, but old rows may predate a rule) keeps
+    the current value, with a warning."""
     merged = {f: fused.get(f, current.get(f)) for f in FEATURES}
-    return ObjectRecord.create("x", **merged).features()
+    try:
+        return ObjectRecord.create("x", **merged).features()
+    except InvalidFeature as err:
+        warnings.append(f"{name}: fused {err}; kept the catalog's values")
+        return ObjectRecord.create("x", **{f: current.get(f) for f in FEATURES}).features()
 
 
 # ---------------------------------------------------------------------------------------------- the job

@@ -7,13 +7,16 @@ import json
 import re
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 import requests
 
+import kb
 from kb.features import MATERIALS, normalize_name
 from scrapers.demo_store import BROKEN_PAGES, PRODUCTS, DemoStore
-from tests.conftest import SEED_CSV
+
+SEED_CSV = Path(kb.__file__).parent / "data" / "seed_catalog.csv"
 
 
 @pytest.fixture(scope="module")

@@ -10,11 +10,13 @@ from pathlib import Path
 import pytest
 import requests
 
+import kb
 from kb.catalog import KnowledgeBase
 from scrapers.demo_store import PRODUCTS, DemoStore
 from scrapers.ingest import run_ingestion
 from scrapers.sources import parse_sources
-from tests.conftest import SEED_CSV
+
+SEED_CSV = Path(kb.__file__).parent / "data" / "seed_catalog.csv"
 
 SOURCES = """
 [defaults]

@@ -15,10 +15,12 @@ from pathlib import Path
 import duckdb
 import pytest
 
+import kb
 from kb.catalog import KnowledgeBase
 from scrapers.demo_store import DemoStore
 from scrapers.ingest import PAUSE_ENV
-from tests.conftest import SEED_CSV
+
+SEED_CSV = Path(kb.__file__).parent / "data" / "seed_catalog.csv"
 
 pytestmark = [
     pytest.mark.skipif(not hasattr(signal, "SIGKILL"), reason="needs POSIX signals"),
