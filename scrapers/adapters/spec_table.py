@@ -61,34 +61,31 @@ class Pair:
 
 def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
     """Recognised ``label: value`` pairs within one line (several per line allowed), or a label followed
-    directly by a number (``Gewicht 4,7 kg``)."""
+    directly by a number (``Gewicht 4,7 kg``).
+
+    Before each separator (``:``, a spaced dash, ``=``) the longest run of up to six words that
+    :func:`classify_label` recognises is the label; its value runs to where the next label starts (the
+    last word before the next separator when that one is not recognised)."""
     text = clean_text(text)
     seps = list(_SEPARATOR.finditer(text))
-    found: list[tuple[str, str, LabelInfo, int, int]] = []  # label, info, label_start, value_start
+    labelled: list[tuple[str, LabelInfo, int]] = []  # label, what it names, where its value starts
+    starts: list[int] = []  # where each separator's label starts
     prev_end = 0
-    starts: list[int] = []
     for sep in seps:
-        region = text[prev_end : sep.start()]
-        words = list(re.finditer(r"\S+", region))
-        label_start = sep.start()
-        hit = None
+        words = list(re.finditer(r"\S+", text[prev_end : sep.start()]))
+        label_start = prev_end + words[-1].start() if words else sep.start()
         for n in range(min(_MAX_LABEL_WORDS, len(words)), 0, -1):
             cand_start = prev_end + words[-n].start()
             info = classify_label(text[cand_start : sep.start()])
             if info is not None:
-                hit = (text[cand_start : sep.start()], info)
+                labelled.append((text[cand_start : sep.start()], info, sep.end()))
                 label_start = cand_start
                 break
-        if hit is None and words:
-            label_start = prev_end + words[-1].start()
         starts.append(label_start)
-        if hit is not None:
-            found.append((hit[0], "", hit[1], label_start, sep.end()))
         prev_end = sep.end()
     out: list[tuple[str, str, LabelInfo]] = []
-    for label, _, info, _label_start, value_start in found:
-        nxt = [s for s in starts if s >= value_start]
-        end = nxt[0] if nxt else len(text)
+    for label, info, value_start in labelled:
+        end = next((s for s in starts if s >= value_start), len(text))
         value = text[value_start:end].strip(" ;,|")
         if _DIGIT.search(value):
             out.append((label, value, info))
