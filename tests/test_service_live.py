@@ -49,7 +49,7 @@ LONG_WRITER = textwrap.dedent(
             con.begin()
             kb.upsert([ObjectRecord.create(f"slow writer object {i}", mass_g=10 + i, shape="compact")],
                       source="long-writer", adapter="test", con=con)
-            print("holding", i, flush=True)
+            print("holding", i, time.time(), flush=True)
             time.sleep(1.0)
             con.commit()
         time.sleep(0.3)
@@ -152,6 +152,7 @@ def test_reads_keep_answering_while_the_nightly_job_writes(live):
     before = httpx.get(f"{base}/objects", params={"limit": 1}, timeout=60).json()["total"]
     failures: list[str] = []
     counts = {"ok": 0}
+    spans: list[tuple[float, float, str]] = []  # (start, end, path) of every successful read
     stop = threading.Event()
 
     def reader(kind: int) -> None:
@@ -167,6 +168,7 @@ def test_reads_keep_answering_while_the_nightly_job_writes(live):
             while not stop.is_set():
                 method, path, kw = requests_[i % len(requests_)]
                 i += 1
+                began = time.time()
                 try:
                     r = c.request(method, path, **kw)
                 except httpx.HTTPError as err:
@@ -176,6 +178,7 @@ def test_reads_keep_answering_while_the_nightly_job_writes(live):
                     failures.append(f"{method} {path}: {r.status_code} {r.text[:200]}")
                 else:
                     counts["ok"] += 1
+                    spans.append((began, time.time(), path))
 
     threads = [threading.Thread(target=reader, args=(k,), daemon=True) for k in range(4)]
     for t in threads:
@@ -189,6 +192,7 @@ def test_reads_keep_answering_while_the_nightly_job_writes(live):
     )
     assert writer.returncode == 0, writer.stderr[-2000:]
     assert writer.stdout.count("holding") == 3
+    holds = [float(line.split()[2]) for line in writer.stdout.splitlines() if line.startswith("holding")]
     deadline = time.monotonic() + 240
     while True:
         status = httpx.get(f"{base}{job['status_url']}", timeout=60).json()
@@ -201,6 +205,12 @@ def test_reads_keep_answering_while_the_nightly_job_writes(live):
     assert status["status"] == "succeeded", status["log_tail"]
     assert failures == [], failures[:5]
     assert counts["ok"] >= 20
+    # reads were in flight while the writer held the database, and succeeded (they waited, or recall
+    # answered from its snapshot)
+    during = [p for b, e, p in spans if any(b < h + 1.0 and e > h for h in holds)]
+    assert during, (
+        f"no read overlapped a write transaction: holds {holds}, spans {[(round(b, 2), round(e, 2), p) for b, e, p in spans][-40:]}"
+    )
     runs = httpx.get(f"{base}/ingestion/runs", timeout=60).json()
     assert runs["runs"] and runs["runs"][0]["status"] == "ok"
     assert runs["jobs"][0]["id"] == job["id"]
