@@ -66,6 +66,14 @@ CASES = [
     ("woocommerce_variations_only.html", "woocommerce", (45.0, 45.0, 12.0), 450.0, [], []),
     # a page that contradicts itself: item dims agree in two units, the weights do not
     ("amazon_de_conflict.html", "spec_table", (18.7, 5.7, 4.1), 190.51, [(19.0, 5.6, 3.8)], [240.0]),
+    # axis letters without times signs ("Size H21.6, W9.1, D1.5cm."), another product in a carousel
+    ("argos_lettered.html", "spec_table", (21.6, 9.1, 1.5), 110.0, [], []),
+    # height and shade diameter (the diameter is width and depth), base diameter and cord length ignored
+    ("ikea_lamp.html", "spec_table", (36.0, 22.0, 22.0), None, [(38.0, 24.0, 24.0)], [1280.0]),
+    # only the parcel's dimensions (with its weight after ";"); the item weight is the product's
+    ("amazon_fr_package_only.html", "spec_table", None, 320.0, [(30.0, 10.0, 8.0)], [450.0]),
+    # Romanian labels with an order hint, decimal commas, a cable length and a capacity
+    ("emag_ro.html", "spec_table", (24.5, 22.5, 15.0), 1150.0, [], []),
     # sizes and weight only in a sentence of the description; another product's sentence in an aside
     ("free_text.html", "free_text", (30.0, 6.0, 1.0), 45.0, [], []),
 ]  # fmt: skip

@@ -39,6 +39,7 @@ __all__ = ["Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"
 
 #: Separate axis fields further apart than this many lines are not one product's dimensions.
 AXIS_GROUP_GAP = 8
+_AXIS_LETTER_END = re.compile(r"(?<=\s)[HWDLBT]\.?\s*$")
 _PUNCT_ONLY = re.compile(r"[\W_]+")
 _BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
 _SEPARATOR = re.compile(r"\s*(?::|\s[—–]\s|=)\s*")
@@ -92,10 +93,14 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
     if not seps:
         m = _DIGIT.search(text)
         if m and m.start() > 0:
-            label = text[: m.start()]
+            cut = m.start()
+            letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
+            if letter:
+                cut = letter.start()
+            label = text[:cut]
             info = classify_label(label)
             if info is not None:
-                out.append((label.strip(), text[m.start() :], info))
+                out.append((label.strip(), text[cut:], info))
     return out
 
 
