@@ -46,7 +46,7 @@ HEAD_WEIGHT = 0.4
 #: Confidence = 1 / (1 + exp(-(a + b * margin))), margin = second-best minus best ranking score (nats for
 #: JP). Fitted by logistic regression on the development set (see RECALL.md and
 #: ``python -m recall.evaluation --fit``).
-CONFIDENCE_COEF: dict[str, tuple[float, float]] = {"jp": (-0.39, 2.42)}
+CONFIDENCE_COEF: dict[str, tuple[float, float]] = {"jp": (-0.34, 2.44)}
 #: Open set: the best match's mean JP term per stated feature above this (nats) means "not a close match".
 OPEN_SET_THRESHOLD = 1.5
 

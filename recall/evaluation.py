@@ -270,7 +270,7 @@ def _main() -> None:  # pragma: no cover - a calibration script
     if args.fit:
         import recall.engine as engine
 
-        for w_name, w_head in ((0.4, 0.3), (0.6, 0.4), (0.6, 0.0), (0.8, 0.6), (1.0, 0.5)):
+        for w_name, w_head in ((0.6, 0.3), (0.6, 0.4), (0.7, 0.3), (0.7, 0.4), (0.5, 0.3)):
             engine.NAME_WEIGHT, engine.HEAD_WEIGHT = w_name, w_head
             r = evaluate(args.catalog, args.descriptions)
             print(

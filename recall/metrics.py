@@ -55,7 +55,7 @@ MINKOWSKI_P = 4
 UNKNOWN_NUMERIC_FRACTION = 0.5
 #: A bound a person states is near the value: "more than 1.5 cm" is read as [1.5, 1.5 * AT_LEAST_SPAN] cm,
 #: "under an ounce" as [28 / AT_MOST_SPAN, 28] g (math.inf: unbounded). See RECALL.md for the measurement.
-AT_LEAST_SPAN = 2.0
+AT_LEAST_SPAN = 1.5
 #: A stated value ("about 300 g", "15 cm long") is a person's rounded estimate: values within this fraction
 #: of it cost nothing, and the difference is counted from the edge of that band.
 ABOUT_TOLERANCE = 0.0

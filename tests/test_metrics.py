@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 from kb.errors import InvalidFeature, RecallError
 from kb.features import CATEGORIES, NUMERIC_FEATURES, ObjectRecord, encode
 from recall.metrics import (
+    AT_LEAST_SPAN,
     LN2,
     METRICS,
     MISMATCH_TERM,
@@ -87,17 +88,18 @@ def test_unstated_features_do_not_count():
 
 
 def test_qualifiers_make_an_interval():
-    recs = [ObjectRecord.create(str(c), a_cm=c) for c in (1.0, 1.5, 2.5, 4.0)]
+    recs = [ObjectRecord.create(str(c), a_cm=c) for c in (1.0, 1.5, 2.0, 4.0)]
     m = _snap(*recs).matrix
     at_least = FeatureQuery.from_values({"a_cm": 1.5}, {"a_cm": "at_least"})
     d = distances("jp", m, at_least)
-    assert d[1] == 0.0 and d[2] == 0.0  # 1.5 and 2.5 are "more than 1.5 cm" (within [v, 2v])
+    assert d[1] == 0.0 and d[2] == 0.0  # 1.5 and 2.0 are "more than 1.5 cm" (within [v, 1.5 v])
     assert d[0] == pytest.approx(math.log1p(0.5))
-    assert d[3] == pytest.approx(math.log1p(1.0))  # beyond 2v = 3.0
-    at_most = FeatureQuery.from_values({"a_cm": 2.5}, {"a_cm": "at_most"})
+    assert d[3] == pytest.approx(math.log1p(4.0 - 1.5 * AT_LEAST_SPAN))
+    at_most = FeatureQuery.from_values({"a_cm": 2.0}, {"a_cm": "at_most"})
     assert distances("jp", m, at_most)[:3].tolist() == [0.0, 0.0, 0.0]
     rng = FeatureQuery.from_values({"a_cm": 2}, {"a_cm": "range"}, {"a_cm": (1.2, 2.0)})
     assert distances("jp", m, rng)[1] == 0.0
+    assert distances("jp", m, rng)[3] == pytest.approx(math.log1p(2.0))
 
 
 def test_baselines_on_known_values():
