@@ -29,9 +29,10 @@ from recall.lexicon import FRACTION_WORDS, MAGNITUDE_WORDS, NUMBER_WORDS, UNICOD
 
 __all__ = ["DIGITS_PATTERN", "digits_value", "is_number_token", "number_value", "parse_number"]
 
-#: Regular expression (no nested quantifiers) for one number written with digits; the parser's
-#: tokenizer uses it as is.
-DIGITS_PATTERN = r"\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?![\d,])|\d+[.,]\d+|\d+|\.\d+"
+#: Regular expression for one number written with digits; the parser's tokenizer uses it as is. It
+#: stays linear on long digit-comma chains ("1,234,567,..."): a thousands group only needs no digit
+#: after it, so a failed match backs off one group and succeeds.
+DIGITS_PATTERN = r"\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
 
 _THOUSANDS = re.compile(r"\d{1,3}(?:,\d{3})+(?:\.\d+)?")
 _DECIMAL_COMMA = re.compile(r"\d+,\d{1,2}")

@@ -223,6 +223,7 @@ class ParsedDescription:
         return {f: ev.value for f, ev in self.features.items()}
 
     def is_empty(self) -> bool:
+        """True when no feature is stated and there is no mass hint."""
         return not self.features and self.mass_hint is None
 
     def to_dict(self) -> dict[str, Any]:
@@ -307,7 +308,6 @@ class DescriptionParser:
         self._mwe = mwe
         self._mwe_first = {k[0] for k in mwe}
         self._mwe_max = max((len(k) for k in mwe), default=1)
-        self._lock = threading.Lock()
 
     # -- public
     def parse(self, text: str) -> ParsedDescription:
@@ -318,7 +318,10 @@ class DescriptionParser:
             raise DescriptionError(
                 f"description too long: {len(text):,} characters (at most {MAX_TEXT_CHARS:,})"
             )
-        tokens = self._tag(self._tokens(text))
+        try:
+            tokens = self._tag(self._tokens(text))
+        except TimeoutError:  # nltk.redos backstop on a regular expression; never expected
+            return ParsedDescription(text=text, features={}, mass_hint=None, tree=Tree("S", []))
         reading = _Reading()
         children: list[Any] = []
         pos = 0

@@ -419,3 +419,25 @@ def test_parser_doc_lists_every_lexicon_word() -> None:
     from recall.parser import GRAMMAR
 
     assert GRAMMAR.strip() in doc
+
+
+@pytest.mark.timeout(120)
+@pytest.mark.parametrize(
+    "text",
+    [
+        "1,234," * 16_000,  # digit-comma chains once made the tokenizer backtrack quadratically
+        "1,234,567" + ",123" * 24_000 + "4",
+        "-".join(["a"] * 50_000),
+        "1.1.1.1." * 12_000,
+        "½" * 50_000,
+        '"' * 50_000,
+        "7 " * 50_000,
+        "and half " * 11_000,
+        "about more than x by " * 5_000,
+    ],
+)
+def test_hostile_100kb_inputs_complete(text: str) -> None:
+    parsed = parse(text[:100_000])
+    assert isinstance(parsed.tree, Tree)
+    for ev in parsed.features.values():
+        assert ev.qualifier in QUALIFIERS
