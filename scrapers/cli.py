@@ -64,7 +64,10 @@ def _fmt(key: str, value: Any) -> str:
 
 def extract_command(
     page: Annotated[
-        str, typer.Argument(help="A saved page (.html, or .json for Shopify product JSON) or a URL.")
+        str,
+        typer.Argument(
+            metavar="PAGE_OR_URL", help="A saved page (.html, or .json for Shopify product JSON) or a URL."
+        ),
     ],
     json_out: JsonOption = False,
 ) -> None:
