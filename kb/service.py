@@ -393,6 +393,10 @@ def create_app(
         if warm:
             threading.Thread(target=_warm_up, name="objrecall-warm-up", daemon=True).start()
         yield
+        # stop a running ingestion child with the server: its one write transaction rolls back if open
+        job = app.state.jobs.running()
+        if job is not None and job.process is not None:
+            job.process.terminate()
 
     def _warm_up() -> None:
         try:
@@ -411,7 +415,7 @@ def create_app(
         "Reads are open; writes need `Authorization: Bearer <token>`. See kb/SERVICE.md.",
     )
     app.state.settings = settings
-    app.state.jobs = IngestionJobs(Path(tempfile.mkdtemp(prefix="objrecall-ingest-logs-")))
+    app.state.jobs = IngestionJobs(Path(tempfile.gettempdir()) / f"objrecall-ingest-logs-{os.getpid()}")
     recall_cache: dict[str, Any] = {"snapshot": None, "recaller": None, "checked": 0.0}
     recall_lock = threading.Lock()
 
