@@ -124,6 +124,10 @@ _APPROACH = {
 }
 
 
+#: Feature keys accepted in a features mapping besides the canonical ones (the paper says "stiffness").
+_KEY_ALIASES = {"a": "a_cm", "b": "b_cm", "c": "c_cm", "mass": "mass_g", "stiffness": "rigidity"}
+
+
 @dataclass(frozen=True)
 class PlannedObject:
     """The features the planner worked with: known values plus defaults, and the assumptions it made."""
@@ -181,7 +185,8 @@ def resolve_features(obj: ObjectRecord | Mapping[str, Any]) -> PlannedObject:
         values = obj.features()
     else:
         name = obj.get("name")
-        values = validate_features({k: v for k, v in obj.items() if k in FEATURES})
+        raw = {_KEY_ALIASES.get(str(k).lower(), str(k).lower()): v for k, v in obj.items()}
+        values = validate_features({k: v for k, v in raw.items() if k in FEATURES})
     notes: list[str] = []
     a, b, c = values["a_cm"], values["b_cm"], values["c_cm"]
     shape = values["shape"]

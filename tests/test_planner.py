@@ -152,6 +152,12 @@ def test_object_record_and_features_dict_plan_alike():
     assert plan_grasps(record) == plan_grasps(TV_REMOTE)
 
 
+def test_features_mapping_accepts_the_papers_words():
+    paper = {"a": 6.4, "b": 6.4, "c": 6.4, "mass": 56, "shape": "radial", "stiffness": "soft"}
+    assert resolve_features(paper).rigidity == "squeezable"
+    assert best_grasp(paper).grasp_type == "power_sphere"
+
+
 def test_invalid_features_are_refused_with_the_field_named():
     with pytest.raises(InvalidFeature, match="mass_g"):
         plan_grasps({"mass_g": -3})
