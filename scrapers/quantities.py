@@ -248,9 +248,12 @@ _add(MASS_UNITS, 1.0, "جم", "غ", "غرام", "جرام", "גרם")
 
 #: Only the first this many characters of a value are read (values are short; this bounds the work).
 MAX_TEXT = 2000
-_NUMBER = r"(?<![\d.,])(?>\d+(?:[.,]\d+)*)"  # atomic, starting at a number: no backtracking
+# A number starts at a digit (atomic: no backtracking), or is a leading-dot decimal like ".5" after a
+# space, an opening bracket or a colon.
+_NUMBER = r"(?:(?<![\d.,])(?>\d+(?:[.,]\d+)*)|(?<![^\s(:])(?>\.\d+))"
 # Unit tokens: words (any script), CJK unit characters, inch and foot marks. "lb." ends with a dot.
 _UNIT = r"(?:''|[\"″′']|(?![xX]\b)[^\W\d_]+\.?)"
+_DOT_GROUPED = re.compile(r"\d{1,3}(?:\.\d{3})+")
 _TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
 
 _DIMS_RE = re.compile(
@@ -338,6 +341,8 @@ def parse_number(text: str, decimal_comma: bool | None = None) -> float | None:
     if not isinstance(text, str):
         return None
     s = text.strip().replace(" ", "")
+    if s.startswith(".") and s[1:].isdigit():
+        s = "0" + s  # ".5 Pounds"
     if not re.fullmatch(_NUMBER, s):
         return None
     commas, dots = s.count(","), s.count(".")
@@ -528,7 +533,12 @@ def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: b
             factor = convert(default_unit)
         if factor is None:
             continue
-        value = parse_number(m.group("n"), decimal_comma)
+        number = m.group("n")
+        if factor <= 1.0 and decimal_comma is not False and _DOT_GROUPED.fullmatch(number):
+            # "1.200 g", "1.500 mm": a thousandth of a gram or millimetre is not how shops write sizes
+            value = float(number.replace(".", ""))
+        else:
+            value = parse_number(number, decimal_comma)
         if value is None or value <= 0:
             continue
         return round(value * factor, 6)

@@ -355,3 +355,11 @@ def test_opengraph_product_weight():
     assert record.mass_g == pytest.approx(1400.0)
     assert record.package_mass_g == [pytest.approx(2000.0)]
     assert record.adapter == "opengraph"
+
+
+def test_a_single_stated_dimension_is_kept():
+    page = "<html lang='en'><body><table><tr><th>Diameter</th><td>12 cm</td></tr>" \
+        "<tr><th>Weight</th><td>300 g</td></tr></table></body></html>"  # fmt: skip
+    assert_dims(extract_page(page, "https://shop.example/plate").dims_cm, (12.0, 12.0))
+    page = "<html lang='en'><body><p>Length: 1.5 m</p><p>Cord length: 2 m</p></body></html>"
+    assert_dims(extract_page(page, "https://shop.example/rope").dims_cm, (150.0,))

@@ -112,6 +112,10 @@ def test_parse_dims_needs_a_length_unit(text):
         ("190.51 Gramm", None, True, 190.51),
         ("1 lb 4 oz", None, None, 566.990463),
         ("1,5 كجم", None, True, 1500.0),
+        (".5 Pounds", None, None, 226.796185),  # leading-dot decimal
+        ("Weight: .75 lb", None, None, 340.194277),
+        ("1.200 g", None, None, 1200.0),  # a dot before three digits of grams groups thousands
+        ("1.200 kg", None, None, 1200.0),  # ... but of kilograms it is a decimal point
         ("1.2 kg (2.6 lbs)", None, None, 1200.0),
     ],
 )

@@ -199,40 +199,35 @@ def observations_from_pairs(
 
 
 def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterator[Observation]:
-    row: list[tuple[str, float, Pair, int, str | None]] = []
-
-    def flush() -> Iterator[Observation]:
-        if len(row) >= 2:
-            first = row[0][2]
-            values = [v for _, v, *_ in row]
-            kinds = {k for k, *_ in row}
-            if "diameter" in kinds and not kinds & {"width", "depth", "length"} and len(values) < 3:
-                # a round object: the diameter is both its width and its depth (a bottle: d x d x h)
-                values.append(next(v for k, v, *_ in row if k == "diameter"))
-            raw = "; ".join(f"{p.label}: {p.value}" for _, _, p, _, _ in row)[:300]
-            notes = "; ".join(n for *_, n in row if n) or None
-            package = any(p.package or p.info.package for _, _, p, _, _ in row)
-            yield Observation(
-                "dims",
-                tuple(values),
-                package,
-                max(r for *_, r, _ in row),
-                first.order,
-                first.group,
-                raw,
-                notes,
-            )
-
+    """Rows of single-axis fields as dims observations (see :func:`observations_from_pairs`). When no row
+    has two axes, a lone axis is still the product's one stated dimension (``Diameter: 12 cm``), one
+    rank weaker."""
+    rows: list[list[tuple[str, float, Pair, int, str | None]]] = []
     for item in axes:
         kind, _, pair, _, _ = item
+        row = rows[-1] if rows else None
         if row:
             last = row[-1][2]
             package_changed = (last.package or last.info.package) != (pair.package or pair.info.package)
             if kind in {k for k, *_ in row} or package_changed or pair.order - last.order > AXIS_GROUP_GAP:
-                yield from flush()
-                row = []
-        row.append(item)
-    yield from flush()
+                row = None
+        if row is None:
+            rows.append([item])
+        else:
+            row.append(item)
+    multi = [r for r in rows if len(r) >= 2]
+    for row in multi or rows[:1]:
+        first = row[0][2]
+        values = [v for _, v, *_ in row]
+        kinds = {k for k, *_ in row}
+        if "diameter" in kinds and not kinds & {"width", "depth", "length"} and len(values) < 3:
+            # a round object: the diameter is both its width and its depth (a bottle: d x d x h)
+            values.append(next(v for k, v, *_ in row if k == "diameter"))
+        raw = "; ".join(f"{p.label}: {p.value}" for _, _, p, _, _ in row)[:300]
+        notes = "; ".join(n for *_, n in row if n) or None
+        package = any(p.package or p.info.package for _, _, p, _, _ in row)
+        rank = max(r for *_, r, _ in row) + (0 if multi else 1)
+        yield Observation("dims", tuple(values), package, rank, first.order, first.group, raw, notes)
 
 
 _MATERIAL_HINT = re.compile(r"ateri|atéri|atièr|werkstoff|атериал|材質|材质|素材", re.IGNORECASE)
