@@ -3,7 +3,7 @@
 # Arguments go to pytest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+OBJRECALL_EXTRAS=test,ray bash scripts/setup.sh
 export MUJOCO_GL="${MUJOCO_GL:-egl}"
 NLTK_DATA="$(mktemp -d)"
 export NLTK_DATA
