@@ -20,7 +20,14 @@ from typing import Any
 import numpy as np
 
 from kb.errors import RecallError
-from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES, VECTOR_COLUMNS, ObjectRecord
+from kb.features import (
+    CATEGORICAL_FEATURES,
+    MAX_DIM_CM,
+    MAX_MASS_G,
+    NUMERIC_FEATURES,
+    VECTOR_COLUMNS,
+    ObjectRecord,
+)
 from recall.metrics import CATEGORY_CODES
 
 __all__ = ["CatalogSnapshot", "load_snapshot", "records_from_csv"]
@@ -243,7 +250,9 @@ def synthetic_description(
                 y = round(y, digits)
             else:
                 y = round(x * rng.lognormal(0.0, 0.1) * 2) / 2
-            values[feat] = max(y, 0.5 if feat != "mass_g" else 1.0)
+            values[feat] = min(
+                max(y, 0.5 if feat != "mass_g" else 1.0), MAX_MASS_G if feat == "mass_g" else MAX_DIM_CM
+            )
             roll = rng.random()
             if roll < 0.05:
                 qualifiers[feat] = "at_least"
