@@ -20,7 +20,8 @@ OF      ``of``
 IN      ``in`` as a preposition ("in diameter"); after a number and not before a dimension noun it is
         retagged ULEN (inches)
 ULEN    a length unit; UMASS a mass unit; UVOL a volume unit (contents)
-DIM     a dimension word (its role is in :data:`DIMENSION_WORDS`)
+DIM     a dimension adjective or phrase (long, wide, on each side); DIMN a dimension noun (length,
+        diameter): roles in :data:`DIMENSION_WORDS`
 HA/HL/HU/HX  hedges: about / at least / at most / exact (:data:`HEDGES`)
 HS      a trailing hedge: "or so", "or thereabouts"
 UAND    ``and`` joining a unit to a fraction: "an inch and a half" (set in context)
@@ -94,13 +95,14 @@ VOLUME_UNITS: dict[str, str] = {
 CONTENTS_DENSITY_G_PER_ML = 1.0
 
 # ------------------------------------------------------------------------------------------ dimensions
-#: Dimension words (tag DIM) -> role. Roles: ``length`` (usually the largest, a), ``width`` (b),
+#: Dimension words (tag DIM, nouns DIMN) -> role. Roles: ``length`` and ``height`` (usually the largest,
+#: a), ``width`` (b),
 #: ``depth`` (b, or c when alone with a width), ``thickness`` (usually the smallest, c), ``diameter``
 #: (two equal dims), ``radius`` (doubled to a diameter), ``across`` (a diameter for a round thing, else
 #: a width), ``side`` (a cube: all three equal), ``size`` (an unlabelled extent).
 DIMENSION_WORDS: dict[str, str] = {
     "long": "length", "length": "length", "lengthwise": "length", "lengths": "length",
-    "tall": "length", "height": "length", "high": "length", "heigth": "length",
+    "tall": "height", "height": "height", "high": "height", "heigth": "height",
     "wide": "width", "width": "width", "across": "across", "broad": "width", "breadth": "width",
     "thick": "thickness", "thickness": "thickness", "deep": "depth", "depth": "depth",
     "diameter": "diameter", "diam": "diameter", "dia": "diameter", "diametre": "diameter",
@@ -333,6 +335,7 @@ def tag_model() -> dict[str, str]:
         (MASS_UNITS, "UMASS"),
         (VOLUME_UNITS, "UVOL"),
         (DIMENSION_WORDS, "DIM"),
+        (DIMENSION_NOUNS, "DIMN"),
         (MATERIAL_WORDS, "MAT"),
         (RIGIDITY_WORDS, "RIG"),
         (TEXTURE_WORDS, "TEX"),

@@ -92,8 +92,8 @@ MULTI:
   {<QUANT><BY><QUANT><BY><QUANT><IN>?<DIM>?}
   {<QUANT><BY><QUANT><IN>?<DIM>?}
 DIM:
-  {<QUANT><IN|OF>?<DIM>}
-  {<DIM><BE|OF|IN|W|CM>?<BE|OF|IN|W>?<BE|OF|IN|W>?<QUANT>}
+  {<DIMN><BE|OF|IN|W>?<BE|OF|IN|W>?<BE|OF|IN|W>?<QUANT>}
+  {<QUANT><IN|OF>?<DIM|DIMN>}
 """
 
 
@@ -106,7 +106,7 @@ _STAGE_TRIGGERS: dict[str, tuple[frozenset[str], ...]] = {
     "SUB": (frozenset({"USUB"}),),
     "QUANT": (frozenset({"NUM", "RANGE"}),),
     "MULTI": (frozenset({"QUANT"}), frozenset({"BY"})),
-    "DIM": (frozenset({"QUANT"}), frozenset({"DIM"})),
+    "DIM": (frozenset({"QUANT"}), frozenset({"DIM", "DIMN"})),
 }
 
 
@@ -172,7 +172,7 @@ _NUMBER_TAGS = frozenset({"CD", "NW", "NMAG", "FRC"})
 _UNIT_TAGS = frozenset({"ULEN", "UMASS", "UVOL"})
 _CATEGORY_TAGS = {"MAT": "material", "SHP": "shape", "RIG": "rigidity", "TEX": "texture", "FRA": "fragility"}
 #: Tags worth chunking a sentence for; a sentence without any is left flat.
-_INTERESTING = _NUMBER_TAGS | _UNIT_TAGS | {"DIM", "MAT", "SHP", "RIG", "TEX", "FRA", "MH"}
+_INTERESTING = _NUMBER_TAGS | _UNIT_TAGS | {"DIM", "DIMN", "MAT", "SHP", "RIG", "TEX", "FRA", "MH"}
 _ABBREVIATIONS = frozenset(
     {"in", "ft", "oz", "lb", "lbs", "approx", "ca", "cm", "mm", "dia", "diam", "no", "vs", "e", "g", "i",
      "kg", "ml", "fl", "m", "l", "gm", "gms", "dl", "cl", "st", "mr", "dr"}
@@ -451,7 +451,7 @@ class DescriptionParser:
                 j += n
             else:
                 tok = toks[j]
-                if tok.tag == "DIM":
+                if tok.tag in ("DIM", "DIMN"):
                     dim_word = tok
                     dim_first = not quants
                     role = lx.DIMENSION_WORDS.get(tok.low, "size")
@@ -475,6 +475,8 @@ class DescriptionParser:
         stmt = _DimStatement(role, quants, toks[0].start, toks[-1].end)
         if label == "MULTI":
             reading.multis.append(stmt)
+        elif role == "size":
+            reading.sizes.append(stmt)
         else:
             reading.dims.append(stmt)
 
@@ -490,7 +492,7 @@ class DescriptionParser:
         """A quantity outside any dimension chunk: a mass, contents, or an unlabelled length."""
         if q.unit is None:
             return
-        contents = fill is not None and fill < k
+        contents = fill is not None and (fill < k or segment[fill].low not in lx.WEAK_FILL_WORDS)
         if q.unit.kind == "mass":
             reading.masses.append((q, contents))
         elif q.unit.kind == "volume":
@@ -583,9 +585,9 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
         prev_num = prev is not None and prev.tag in _NUMBER_TAGS
         tag = tok.tag
         if tag == "RTO" and tok.low in ("-", "–", "—"):
-            nxt_unit = nxt is not None and nxt.tag in (_UNIT_TAGS | {"DIM", "HS"} | {"IN"})
+            nxt_unit = nxt is not None and nxt.tag in (_UNIT_TAGS | {"DIM", "DIMN", "HS", "IN"})
             if (prev_num and nxt_unit) or (
-                prev is not None and prev.tag in _UNIT_TAGS and nxt is not None and nxt.tag == "DIM"
+                prev is not None and prev.tag in _UNIT_TAGS and nxt is not None and nxt.tag in ("DIM", "DIMN")
             ):
                 continue  # "5-cm-long", "10-ish": the hyphen joins, it is not a range
         if tok.low == "." and prev is not None and prev.low in _ABBREVIATIONS:
@@ -663,8 +665,9 @@ def _number_before_of(out: list[_Token]) -> bool:
 
 
 def _fill_context(segment: list[_Token]) -> int | None:
-    """Index in the segment of a contents word ("filled", "full", "contains"), or None; a capacity word
-    ("capacity", "empty", "can hold") anywhere in the sentence cancels it."""
+    """Index in the segment of a contents word ("filled", "full", "contains": anywhere in the sentence;
+    "with": before the volume, as "with 500 ml of ..."), or None; a capacity word ("capacity", "empty",
+    "can hold") anywhere in the sentence cancels it."""
     found: int | None = None
     for i, tok in enumerate(segment):
         if tok.low in lx.CAPACITY_WORDS:
@@ -845,12 +848,16 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
         dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)
         if dim is not None:
             by_role[role] = dim
-    three = "length" in by_role and ("thickness" in by_role or "depth" in by_role)
+    three = bool(by_role.keys() & {"length", "height"}) and bool(by_role.keys() & {"thickness", "depth"})
     if round_cue and "diameter" not in by_role and "width" in by_role and not three:
         by_role["diameter"] = by_role.pop("width")  # "a mug 8 cm wide": the width of a round thing
     if reading.multis:
         stmt = reading.multis[0]
         dims = [d for q in stmt.quantities if (d := _to_cm(q, reading, stmt)) is not None]
+        if dims and dims[0].qualifier == "about":  # "roughly 9.5 x 6 x 3.5 inches": the hedge covers all
+            for d in dims[1:]:
+                if d.qualifier == "exact":
+                    d.qualifier = "about"
         if len(dims) == 2:
             extra = by_role.get("thickness") or by_role.get("depth")
             if extra is not None:
@@ -861,7 +868,9 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
         put(abc, [side, side, side])
     elif "diameter" in by_role:
         diameter = by_role["diameter"]
-        other = next((by_role[r] for r in ("length", "thickness", "depth", "width") if r in by_role), None)
+        other = next(
+            (by_role[r] for r in ("length", "height", "thickness", "depth", "width") if r in by_role), None
+        )
         if other is not None:
             put(abc, [diameter, diameter, other])
         elif sphere:
@@ -871,7 +880,9 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
         else:
             put(("a_cm", "b_cm"), [diameter, diameter])
     else:
-        linear = [(by_role[r], r) for r in ("length", "width", "depth", "thickness") if r in by_role]
+        linear = [
+            (by_role[r], r) for r in ("length", "height", "width", "depth", "thickness") if r in by_role
+        ]
         linear.sort(key=lambda dr: dr[0].start)
         if len(linear) == 1 and (cube or sphere):
             d = linear[0][0]
@@ -881,13 +892,14 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
         elif len(linear) == 2:
             roles = {r for _d, r in linear}
             if "thickness" in roles:
-                names = ("a_cm", "c_cm") if "length" in roles else ("b_cm", "c_cm")
+                names = ("a_cm", "c_cm") if roles & {"length", "height"} else ("b_cm", "c_cm")
             else:
                 names = ("a_cm", "b_cm")
             put(names, [d for d, _r in linear])
         elif len(linear) == 1:
             d, role = linear[0]
-            put([{"length": "a_cm", "width": "b_cm", "depth": "b_cm", "thickness": "c_cm"}[role]], [d])
+            slot = {"length": "a_cm", "height": "a_cm", "width": "b_cm", "depth": "b_cm", "thickness": "c_cm"}
+            put([slot[role]], [d])
         elif reading.sizes:
             sizes = [d for stmt in reading.sizes[:3] if (d := _to_cm(stmt.quantities[0], reading, stmt))]
             if len(sizes) == 1 and (cube or sphere):

@@ -144,6 +144,10 @@ DIMENSION_CASES = [
     ("5 ft 3 in tall", (160.02, None, None)),
     ("approx. 25cm long x 3cm wide", (25, 3, None)),
     ("3 in. long", (7.62, None, None)),
+    ("diameter 7cm height 12cm", (12, 7, 7)),
+    ("7 cm diameter, 12 cm height", (12, 7, 7)),
+    ("a length of 19 cm, a width of 3 cm and a height of 2 cm", (19, 3, 2)),
+    ("It is 20 cm tall and 5 cm thick", (20, None, 5)),
 ]
 
 
@@ -195,6 +199,7 @@ def test_contents_give_a_lower_bound_on_mass() -> None:
     assert (ev.value, ev.qualifier, ev.low) == (approx(750), "at_least", approx(750))
     assert "mass_g" not in parse("A bottle with 750 ml capacity.").features
     assert "mass_g" not in parse("A 1 liter bottle, empty.").features
+    assert parse("a 2 L bottle, full of water").features["mass_g"].qualifier == "at_least"
     # a stated mass wins over contents
     assert parse("A jug full of water, 2 liters, weighs 2.3 kg").values()["mass_g"] == approx(2300)
 
