@@ -645,14 +645,27 @@ def create_app(
         limit: limit_q = DEFAULT_PAGE,
         offset: offset_q = 0,
     ) -> dict[str, Any]:
-        """Stored MuJoCo grasp trials (``objrecall grasp validate``), optionally for one object."""
-        rows = knowledge_base().grasp_results(object)
-        return {
-            "total": len(rows),
-            "limit": limit,
-            "offset": offset,
-            "items": to_jsonable(rows[offset : offset + limit]),
-        }
+        """Stored MuJoCo grasp trials (``objrecall grasp validate``), optionally for one object (name or
+        alias), ordered by object, rank, grasp type and seed."""
+        from kb.features import normalize_name
+
+        where, params = "", []
+        if object is not None:
+            where, params = "WHERE object_name = ?", [normalize_name(object)]
+            try:
+                params = [knowledge_base().get_object(object).name]
+            except ObjectNotFound:
+                pass  # trials of an object since removed from the catalog are still listed
+        with knowledge_base().connect() as con:
+            total = con.execute(f"SELECT count(*) FROM grasp_validations {where}", params).fetchone()[0]
+            cur = con.execute(
+                f"SELECT * FROM grasp_validations {where} ORDER BY object_name, rank, grasp_type, seed, id "
+                "LIMIT ? OFFSET ?",
+                [*params, limit, offset],
+            )
+            cols = [d[0] for d in cur.description]
+            items = [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+        return {"total": int(total), "limit": limit, "offset": offset, "items": to_jsonable(items)}
 
     @app.post("/sql", tags=["catalog"])
     def run_sql(body: SqlIn) -> Response:

@@ -138,10 +138,15 @@ def test_grasp_validations_paged_and_filtered(writer, seeded_db):
     KnowledgeBase.open(seeded_db).record_grasp_results(rows)
     everything = writer.get("/grasp/validations").json()
     assert everything["total"] == 6
-    page = writer.get("/grasp/validations", params={"object": "tennis ball", "limit": 2, "offset": 1}).json()
+    page = writer.get("/grasp/validations", params={"object": "Tennis Ball", "limit": 2, "offset": 1}).json()
     assert page["total"] == 3 and len(page["items"]) == 2
     assert {r["object_name"] for r in page["items"]} == {"tennis ball"}
     assert writer.get("/grasp/validations", params={"object": "nothing"}).json()["total"] == 0
+    assert writer.get("/grasp/validations", params={"object": "mug"}).json()["total"] == 3  # an alias
+    seeds = [
+        r["seed"] for r in writer.get("/grasp/validations", params={"object": "coffee mug"}).json()["items"]
+    ]
+    assert seeds == [0, 1, 2]
 
 
 def test_ingestion_runs_list(client):
