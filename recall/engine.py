@@ -46,7 +46,7 @@ HEAD_WEIGHT = 0.4
 #: Confidence = 1 / (1 + exp(-(a + b * margin))), margin = second-best minus best ranking score (nats for
 #: JP). Fitted by logistic regression on the development set (see RECALL.md and
 #: ``python -m recall.evaluation --fit``).
-CONFIDENCE_COEF: dict[str, tuple[float, float]] = {"jp": (-0.34, 2.44)}
+CONFIDENCE_COEF: dict[str, tuple[float, float]] = {"jp": (-0.29, 2.46)}
 #: Open set: the best match's mean JP term per stated feature above this (nats) means "not a close match".
 OPEN_SET_THRESHOLD = 1.5
 
@@ -130,27 +130,36 @@ class NameIndex:
 
         self.phrases: dict[tuple[str, ...], set[int]] = {}
         self.heads: dict[str, set[int]] = {}
+        # (head, row) -> materials its names state ("wood cylinder" -> wood); None: some name states none
+        self.head_materials: dict[tuple[str, int], set[str] | None] = {}
         for row, (name, alias) in enumerate(zip(names, aliases, strict=True)):
             for phrase in (name, *alias):
                 words = tuple(normalize_words(phrase))
                 if words:
                     self.phrases.setdefault(words, set()).add(row)
                     head = _head(words)
-                    self.heads.setdefault(head, set()).add(row)
-                    for cut in range(1, len(head) - self.MIN_SUFFIX + 1):
-                        self.heads.setdefault(head[cut:], set()).add(row)
+                    stated = {MATERIAL_WORDS[w] for w in words if w in MATERIAL_WORDS and w != head}
+                    for key in (head, *(head[cut:] for cut in range(1, len(head) - self.MIN_SUFFIX + 1))):
+                        self.heads.setdefault(key, set()).add(row)
+                        known = self.head_materials.get((key, row), set())
+                        self.head_materials[(key, row)] = (
+                            None if known is None or not stated else known | stated
+                        )
         # material words name what a thing is made of, not the thing ("made of glass")
         self.not_heads = frozenset(_singular(w) for w in MATERIAL_WORDS if " " not in w)
         self.longest = max((len(p) for p in self.phrases), default=0)
         self.size = len(names)
 
-    def find(self, text: str, skip_spans: Sequence[tuple[int, int]] = ()) -> NameEvidence:
+    def find(
+        self, text: str, skip_spans: Sequence[tuple[int, int]] = (), material: str | None = None
+    ) -> NameEvidence:
         """The rows named in ``text``.
 
         Characters in ``skip_spans`` (the parser's numeric evidence, so "seven and quarter centimeters"
         never names the US quarter) are ignored, and so are comparisons ("lemon-shaped", "like a pen",
         "the size of a tennis ball"). Exact matches inside a longer match are dropped, then the longest
-        remaining phrases win.
+        remaining phrases win. A head noun does not name an object whose names all state another
+        material than the description's ``material`` ("a metal cylinder" is no "wood cylinder").
         """
         chars = list(text)
         for start, end in skip_spans:
@@ -183,6 +192,9 @@ class NameIndex:
             if word in self.heads and word not in self.not_heads and not _comparison(words, i, i + 1):
                 rows = self.heads[word]
                 for row in rows:
+                    implied = self.head_materials.get((word, row))
+                    if material is not None and implied and material not in implied:
+                        continue
                     head[row] = max(head.get(row, 0.0), math.log(n / len(rows)))
                 heads.append(word)
         return NameEvidence(exact, head, tuple(dict.fromkeys(phrases)), tuple(dict.fromkeys(heads)))
@@ -299,7 +311,8 @@ class Recaller:
         text = parsed.text
         # numeric evidence is masked for name matching ("seven and quarter centimeters" names no coin)
         spans = [(ev.start, ev.end) for f, ev in parsed.features.items() if f in NUMERIC_FEATURES]
-        names = NameEvidence() if features_only else self.names.find(text, spans)
+        material = parsed.values().get("material")
+        names = NameEvidence() if features_only else self.names.find(text, spans, material)
         result = self._recall(query, names, top=top, metric=metric, features_only=features_only)
         result.text = text
         result.parsed = parsed.to_dict()
@@ -319,7 +332,11 @@ class Recaller:
     ) -> RecallResult:
         """Recall from feature values in catalog units (and, for the hybrid, the ``text`` to find names in)."""
         query = FeatureQuery.from_values(values, qualifiers, bounds)
-        names = NameEvidence() if features_only or not text else self.names.find(text)
+        names = (
+            NameEvidence()
+            if features_only or not text
+            else self.names.find(text, (), query.values().get("material"))
+        )
         result = self._recall(query, names, top=top, metric=metric, features_only=features_only)
         result.text = text
         return result

@@ -80,7 +80,7 @@ def test_bad_descriptions_file(tmp_path, small):
 
 def test_development_set_goals():
     """The issue's goals on the development set: JP ahead of every baseline, >= 92 % top-1 features only;
-    the hybrid ahead of JP (the >= 97 % goal is tracked in RECALL.md)."""
+    the hybrid ahead of JP (97.1 % when written; the assertion leaves room for parser changes)."""
     assert Path(DEV_SET).is_file() and Path(SEED_CATALOG).is_file()
     report = evaluate(SEED_CATALOG, DEV_SET)
     jp = report.score("jp")
@@ -89,4 +89,4 @@ def test_development_set_goals():
     for metric in ("euclidean", "minkowski", "cosine", "kdtree"):
         assert jp.top1 > report.score(metric).top1, metric
     hybrid = report.score("jp", features_only=False)
-    assert hybrid.top1 > jp.top1 and hybrid.top1_pct >= 95.0
+    assert hybrid.top1 > jp.top1 and hybrid.top1_pct >= 96.0

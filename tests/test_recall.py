@@ -92,6 +92,14 @@ def test_numbers_and_comparisons_do_not_name_objects():
     assert normalize_words("Rubik's cubes, T-shirts") == ["rubik", "cube", "t", "shirt"]
 
 
+def test_a_head_noun_names_objects_of_the_stated_material_only():
+    index = NameIndex(["wood cylinder", "water bottle", "wine bottle"], [(), ("steel water bottle",), ()])
+    assert list(index.find("a small cylinder").head) == [0]
+    assert index.find("a small metal cylinder", material="metal").head == {}
+    found = index.find("a steel bottle", material="metal")
+    assert set(found.head) == {1, 2}  # "steel water bottle" is one name of the water bottle, not all
+
+
 def test_longest_name_wins():
     index = NameIndex(["ball", "tennis ball", "ping pong ball"], [(), (), ("table tennis ball",)])
     assert list(index.find("a table tennis ball").exact) == [2]
