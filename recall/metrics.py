@@ -46,6 +46,7 @@ __all__ = [
     "distances",
     "feature_terms",
     "jp_term",
+    "kdtree_query",
 ]
 
 #: Metric names accepted by the recall engine and the CLI (``kdtree`` is Euclidean through sklearn's KDTree).
@@ -293,6 +294,15 @@ def distances(
             sim = np.where(denom > 0, (x @ q) / np.where(denom > 0, denom, 1.0), 0.0)
         return 1.0 - sim
     # kdtree
+    idx, dist = kdtree_query(matrix, query, n, kdtree_cache)
+    out = np.empty(n)
+    out[idx] = dist
+    return out
+
+
+def kdtree_query(matrix: np.ndarray, query: FeatureQuery, k: int, kdtree_cache: dict | None = None):
+    """The k nearest rows (indices, Euclidean distances) by scikit-learn's KDTree over the stated columns;
+    one tree per mask, kept in ``kdtree_cache``."""
     from sklearn.neighbors import KDTree
 
     key = tuple(_masked_columns(query))
@@ -301,7 +311,5 @@ def distances(
         x, _ = _vectors(matrix, query, impute="median")
         cache[key] = KDTree(x)
     _, q = _vectors(matrix[:1], query, impute="median")
-    dist, idx = cache[key].query(q.reshape(1, -1), k=n)
-    out = np.empty(n)
-    out[idx[0]] = dist[0]
-    return out
+    dist, idx = cache[key].query(q.reshape(1, -1), k=k)
+    return idx[0], dist[0]

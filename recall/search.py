@@ -31,6 +31,7 @@ from recall.metrics import (
     UNKNOWN_CATEGORY_TERM,
     FeatureQuery,
     distances,
+    kdtree_query,
 )
 from recall.snapshot import CatalogSnapshot
 
@@ -111,6 +112,9 @@ def top_k(
     k = min(k, len(snap))
     if k <= 0:
         return np.empty(0, dtype=np.int64), np.empty(0)
+    if metric == "kdtree" and len(query):
+        rows, dist = kdtree_query(snap.matrix, query, k, kdtree_cache)
+        return rows.astype(np.int64), dist
     d = distances(metric, snap.matrix, query, kdtree_cache=kdtree_cache)
     return select_top_k(np.arange(len(snap)), d, k)
 
