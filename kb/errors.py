@@ -23,8 +23,13 @@ clear line (CLI, exit code 1) or a JSON body (HTTP 4xx). Anything else is a bug.
     ├── ExtractionError           a page was fetched but holds no usable product record
     ├── IngestionError            an ingestion run failed as a whole (the catalog is left as it was)
     ├── SourcesError              a sources.toml file is malformed
-    └── SimulationError           a grasp trial could not be run
-        └── PhysicsError          the simulation diverged (NaN, MuJoCo warnings): an error, never a result
+    ├── SimulationError           a grasp trial could not be run
+    │   └── PhysicsError          the simulation diverged (NaN, MuJoCo warnings): an error, never a result
+    └── ServiceError              the HTTP service refuses a request as a whole (kb/service.py)
+        ├── WritesDisabled        a write, but no API token is configured (403)
+        ├── IngestionBusy         an ingestion job started by the service is still running (409)
+        ├── JobNotFound           no ingestion job with that id (404)
+        └── RequestTimeout        the request or its SQL statement ran past its time limit (504)
 """
 
 from __future__ import annotations
@@ -37,8 +42,10 @@ __all__ = [
     "DescriptionError",
     "ExtractionError",
     "FetchError",
+    "IngestionBusy",
     "IngestionError",
     "InvalidFeature",
+    "JobNotFound",
     "MigrationError",
     "ObjectNotFound",
     "ObjrecallError",
@@ -47,9 +54,12 @@ __all__ = [
     "QueryFailed",
     "QueryRefused",
     "RecallError",
+    "RequestTimeout",
     "RobotsDisallowed",
+    "ServiceError",
     "SimulationError",
     "SourcesError",
+    "WritesDisabled",
 ]
 
 
@@ -153,3 +163,23 @@ class SimulationError(ObjrecallError):
 
 class PhysicsError(SimulationError):
     """The simulation diverged (NaN, MuJoCo warnings): an error, never a result."""
+
+
+class ServiceError(ObjrecallError):
+    """The HTTP service refuses a request as a whole."""
+
+
+class WritesDisabled(ServiceError):
+    """A write request, but no API token is configured, so writes are off (HTTP 403)."""
+
+
+class IngestionBusy(ServiceError):
+    """An ingestion job started by the service is still running (HTTP 409)."""
+
+
+class JobNotFound(ServiceError):
+    """No ingestion job with that id was started by this service (HTTP 404)."""
+
+
+class RequestTimeout(ServiceError):
+    """The request, or its SQL statement, ran past its time limit (HTTP 504)."""

@@ -52,12 +52,16 @@ from kb.errors import (
     DatabaseBusy,
     DatabaseError,
     DescriptionError,
+    IngestionBusy,
     InvalidFeature,
+    JobNotFound,
     ObjectNotFound,
     ObjrecallError,
     QueryFailed,
     QueryRefused,
     RecallError,
+    RequestTimeout,
+    WritesDisabled,
 )
 
 __all__ = [
@@ -100,17 +104,15 @@ ERROR_STATUS: dict[type[ObjrecallError], int] = {
     RecallError: 400,
     DatabaseBusy: 503,
     DatabaseError: 503,
+    WritesDisabled: 403,
+    IngestionBusy: 409,
+    JobNotFound: 404,
+    RequestTimeout: 504,
     ObjrecallError: 400,
 }
 
 
-class RequestTimeout(ObjrecallError):
-    """The request ran past the service's time limit (HTTP 504)."""
-
-
 def _status_for(err: ObjrecallError) -> int:
-    if isinstance(err, RequestTimeout):
-        return 504
     for cls in type(err).__mro__:
         if cls in ERROR_STATUS:
             return ERROR_STATUS[cls]
@@ -235,21 +237,6 @@ class IngestionJobs:
         if job is None:
             raise JobNotFound(f"no ingestion job {job_id!r} started by this service")
         return job
-
-
-class IngestionBusy(ObjrecallError):
-    """An ingestion job started by the service is still running (HTTP 409)."""
-
-
-class JobNotFound(ObjrecallError):
-    """No ingestion job with that id (HTTP 404)."""
-
-
-class WritesDisabled(ObjrecallError):
-    """No API token is configured, so writes are off (HTTP 403)."""
-
-
-ERROR_STATUS.update({IngestionBusy: 409, JobNotFound: 404, WritesDisabled: 403})
 
 
 def _now() -> str:
