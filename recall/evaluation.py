@@ -105,6 +105,15 @@ class EvaluationReport:
 def read_descriptions(path: str | Path) -> list[tuple[str, str]]:
     """(object, description) pairs of a CSV with columns ``object,description`` (others ignored)."""
     path = Path(path)
+    try:
+        return _read_descriptions(path)
+    except UnicodeDecodeError as err:
+        raise RecallError(f"{path}: not UTF-8 text ({err.reason})") from None
+    except csv.Error as err:
+        raise RecallError(f"{path}: not a CSV file ({err})") from None
+
+
+def _read_descriptions(path: Path) -> list[tuple[str, str]]:
     with path.open(encoding="utf-8-sig", newline="") as fh:
         reader = csv.DictReader(fh)
         header = [h.strip() for h in reader.fieldnames or []]

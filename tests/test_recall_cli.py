@@ -81,3 +81,10 @@ def test_recall_errors_are_one_line(seeded, tmp_path):
     assert res.exit_code == 1 and "no 'description' column" in res.output
     res = run("recall", "a ball", "--db", tmp_path / "missing.duckdb")
     assert res.exit_code == 1 and "Error:" in res.output and "Traceback" not in res.output
+
+
+def test_recall_file_that_is_not_text(seeded, tmp_path):
+    path = tmp_path / "binary.csv"
+    path.write_bytes(b"description\n\xff\xfe\x00bad\n")
+    res = run("recall", "--file", path, "--db", seeded, "--json")
+    assert res.exit_code == 1 and "not UTF-8" in res.output and "Traceback" not in res.output
