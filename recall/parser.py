@@ -842,12 +842,13 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
             slots[name] = dim
 
     by_role: dict[str, _Dim] = {}
+    stated_width = any(stmt.role == "width" for stmt in reading.dims)  # "65 cm across and 20 cm wide"
     for stmt in reading.dims:
         role = stmt.role
         if role == "radius":
             role = "diameter"
         elif role == "across":
-            role = "diameter" if round_cue else "width"
+            role = "diameter" if round_cue or stated_width else "width"
         if role in by_role:
             continue
         dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)

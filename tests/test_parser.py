@@ -148,6 +148,7 @@ DIMENSION_CASES = [
     ("7 cm diameter, 12 cm height", (12, 7, 7)),
     ("a length of 19 cm, a width of 3 cm and a height of 2 cm", (19, 3, 2)),
     ("It is 20 cm tall and 5 cm thick", (20, None, 5)),
+    ("a car tire, about 65 cm across and 20 cm wide", (65, 65, 20)),
 ]
 
 
