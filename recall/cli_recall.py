@@ -112,12 +112,13 @@ def _fmt(value: Any) -> str:
 
 def _print_result(result, title: str | None = None) -> None:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     console = Console()
     stated = list(result.query["values"])
     if title:
-        console.print(f"[bold]{title}[/bold]")
+        console.print(f"[bold]{escape(title)}[/bold]")
     if not result.matches:
         console.print("No feature or object name found in the description: nothing to recall.")
         return
@@ -125,10 +126,8 @@ def _print_result(result, title: str | None = None) -> None:
     described = ", ".join(
         f"{f}={_fmt(v)}" + (f" ({quals[f]})" if f in quals else "") for f, v in result.query["values"].items()
     )
-    console.print(
-        f"Described: {described or 'no features'}"
-        + (f"; named: {', '.join(result.named)}" if result.named else "")
-    )
+    named = f"; named: {', '.join(result.named)}" if result.named else ""
+    console.print(escape(f"Described: {described or 'no features'}{named}"))
     table = Table(
         title=f"metric {result.metric}" + (" (features only)" if result.features_only else " + names")
     )
@@ -150,6 +149,7 @@ def _print_result(result, title: str | None = None) -> None:
 
 def _print_report(report) -> None:
     from rich.console import Console
+    from rich.markup import escape
     from rich.table import Table
 
     from recall.evaluation import PAPER_TOP1
@@ -182,4 +182,5 @@ def _print_report(report) -> None:
     if report.misses:
         console.print(f"\n[bold]Misses ({len(report.misses)})[/bold]")
         for m in report.misses:
-            console.print(f"[{m.mode}] {m.object} -> {m.got}: {m.reason}\n    [dim]{m.description}[/dim]")
+            line = escape(f"[{m.mode}] {m.object} -> {m.got}: {m.reason}")
+            console.print(f"{line}\n    [dim]{escape(m.description)}[/dim]")
