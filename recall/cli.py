@@ -62,15 +62,19 @@ def _description_rows(path) -> list[str]:
 
     from kb.errors import DescriptionError
 
-    with open(path, newline="", encoding="utf-8-sig") as fh:
-        reader = csv.DictReader(fh)
-        fields = [f.strip() for f in (reader.fieldnames or [])]
-        if "description" not in fields:
-            raise DescriptionError(
-                f"{path}: no 'description' column (columns: {', '.join(fields) or 'none'})"
-            )
-        key = (reader.fieldnames or [])[fields.index("description")]
-        return [row.get(key) or "" for row in reader]
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as fh:
+            reader = csv.DictReader(fh)
+            fields = [f.strip() for f in (reader.fieldnames or [])]
+            if "description" not in fields:
+                columns = ", ".join(fields) or "none"
+                raise DescriptionError(f"{path}: no 'description' column (columns: {columns})")
+            key = (reader.fieldnames or [])[fields.index("description")]
+            return [row.get(key) or "" for row in reader]
+    except UnicodeDecodeError as err:
+        raise DescriptionError(f"{path}: not UTF-8 text ({err.reason})") from None
+    except csv.Error as err:
+        raise DescriptionError(f"{path}: not a CSV file ({err})") from None
 
 
 def _fmt_value(value) -> str:

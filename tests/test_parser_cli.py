@@ -84,6 +84,10 @@ def test_parse_errors_are_one_line(tmp_path: Path) -> None:
     bad = _write_csv(tmp_path / "bad.csv", [{"name": "x", "text": "y"}])
     result = runner.invoke(app, ["parse", "--file", str(bad), "--json"])
     assert result.exit_code == 1 and "no 'description' column" in result.output
+    binary = tmp_path / "binary.csv"
+    binary.write_bytes(b"description\n\xff\xfe\x00bad\n")
+    result = runner.invoke(app, ["parse", "--file", str(binary), "--json"])
+    assert result.exit_code == 1 and "not UTF-8" in result.output and "Traceback" not in result.output
     missing = runner.invoke(app, ["parse", "--file", str(tmp_path / "nope.csv")])
     assert missing.exit_code == 1 and "nope.csv" in missing.output
 
