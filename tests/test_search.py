@@ -34,7 +34,7 @@ def _assert_same(query: FeatureQuery, k: int) -> None:
     np.testing.assert_array_equal(dist, bdist)  # bit for bit: the same float64 code scores both
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=80, deadline=None)
 @given(seed=st.integers(0, 2**32 - 1), k=st.sampled_from([1, 3, 5, 20]))
 def test_pruned_top_k_equals_brute_force_on_human_like_descriptions(seed, k):
     _, query = synthetic_description(catalog(), np.random.default_rng(seed))
@@ -55,7 +55,7 @@ def arbitrary_queries(draw):
     return FeatureQuery.from_values(values, qualifiers)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=80, deadline=None)
 @given(query=arbitrary_queries(), k=st.integers(1, 12))
 def test_pruned_top_k_equals_brute_force_on_arbitrary_queries(query, k):
     _assert_same(query, k)
