@@ -9,7 +9,17 @@ from __future__ import annotations
 from dataclasses import asdict, dataclass, field
 from typing import Any, Literal
 
-__all__ = ["FAMILIES", "GRASP_TYPES", "Family", "GraspPlan"]
+__all__ = [
+    "ACTIVE_FINGERS",
+    "FAMILIES",
+    "FINGER_MAX_FORCE_N",
+    "GRASP_TYPES",
+    "THUMB_MAX_FORCE_N",
+    "Family",
+    "GraspPlan",
+    "active_fingers",
+    "side_force_capacity",
+]
 
 Family = Literal["power", "intermediate", "precision"]
 
@@ -32,6 +42,43 @@ GRASP_TYPES: dict[str, Family] = {
     "tripod": "precision",
 }
 FAMILIES: tuple[str, ...] = ("power", "intermediate", "precision")
+
+# ---------------------------------------------------------------------------------------------------------
+# The hand's strength: ONE set of constants for the planner (sim/planner.py: which plans are within the
+# hand's capacity) and the simulated hand (sim/hand.py: actuator force limits), so they cannot disagree.
+# ---------------------------------------------------------------------------------------------------------
+#: Strongest normal force one finger presses with (N). People: a tip pinch (thumb against the index) is
+#: about 50-70 N, a key (lateral) pinch 70-100 N and a whole-hand power grip 300-400 N (Mathiowetz et al.
+#: 1985, "Grip and pinch strength: normative data for adults", Arch Phys Med Rehabil 66). The AR10 drives
+#: each digit through a small linear servo and a linkage: far weaker than a person. We take a quarter of a
+#: human tip pinch per finger (15 N) and a thumb that can oppose all four fingers (60 N): a power grasp then
+#: squeezes with up to 60 N per side (120 N in all, a third of a person's power grip), a thumb-index pinch
+#: with 15 N, so a heavy slippery object still slides out of a fingertip pinch, as it does for a person
+#: pinching with a quarter of their strength. (Was 10 N / 30 N, which held neither a 1 kg bottle in a
+#: wrap nor matched the planner's 60 N power capacity.)
+FINGER_MAX_FORCE_N = 15.0
+THUMB_MAX_FORCE_N = 60.0
+
+#: Fingers each grasp type uses (the thumb always opposes them); types not listed use all four.
+ACTIVE_FINGERS: dict[str, tuple[str, ...]] = {
+    "thumb_index_finger": ("index",),
+    "lateral_pinch": ("index",),
+    "thumb_2_finger": ("index", "middle"),
+    "tripod": ("index", "middle"),
+    "thumb_3_finger": ("index", "middle", "ring"),
+}
+ALL_FINGERS: tuple[str, ...] = ("index", "middle", "ring", "little")
+
+
+def active_fingers(grasp_type: str) -> tuple[str, ...]:
+    """The fingers that oppose the thumb in ``grasp_type``."""
+    return ACTIVE_FINGERS.get(grasp_type, ALL_FINGERS)
+
+
+def side_force_capacity(grasp_type: str) -> float:
+    """Strongest squeeze (N, normal force per side) the hand gives in ``grasp_type``: the weaker of the
+    thumb and the sum of the fingers opposing it."""
+    return min(THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(active_fingers(grasp_type)))
 
 
 @dataclass(frozen=True)
@@ -62,7 +109,9 @@ class GraspPlan:
         if self.grasp_type not in GRASP_TYPES:
             raise ValueError(f"unknown grasp type {self.grasp_type!r}")
         if GRASP_TYPES[self.grasp_type] != self.family:
-            raise ValueError(f"{self.grasp_type} is a {GRASP_TYPES[self.grasp_type]} grasp, not {self.family}")
+            raise ValueError(
+                f"{self.grasp_type} is a {GRASP_TYPES[self.grasp_type]} grasp, not {self.family}"
+            )
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)

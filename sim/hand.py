@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from sim.grasps import GRASP_TYPES, GraspPlan
+from sim.grasps import FINGER_MAX_FORCE_N, GRASP_TYPES, THUMB_MAX_FORCE_N, GraspPlan, active_fingers
 
 __all__ = [
     "ACTUATOR_NAMES",
@@ -51,7 +51,7 @@ __all__ = [
     "thumb_tip",
 ]
 
-HAND_VERSION = "ar10like-1"
+HAND_VERSION = "ar10like-2"
 
 CM = 0.01  # metres per centimetre
 
@@ -127,12 +127,8 @@ ARMATURE = 3e-4
 #: grip force is small the actuator saturates at a small torque, and the closing speed is that torque over
 #: the damping (0.06 N m / 0.02 = 3 rad/s: a light grip still closes in ~0.3 s). Integrated implicitly.
 DAMPING = {"mcp": 0.02, "pip": 0.01, "thumb_rot": 0.05, "thumb_flex": 0.03}
-#: Strongest normal force each digit can press with (N). An AR10-sized servo hand, far weaker than a
-#: person (human tip pinch ~50 N, power grip ~400 N): 10 N per finger, 30 N for the thumb (which opposes
-#: all four fingers in a power grasp). These match the planner's capacities: a two-digit pinch gives at
-#: most 2 x 10 = 20 N total, a power grasp 2 x 30 = 60 N (sim/planner.py PRECISION/POWER_MAX_FORCE_N).
-FINGER_MAX_FORCE_N = 10.0
-THUMB_MAX_FORCE_N = 30.0
+#: Strongest normal force each digit can press with (N): shared with the planner, see sim/grasps.py for
+#: the human values and the choice (15 N per finger, 60 N for the thumb).
 #: Torque limit of an unused finger (N m): enough to hold its pose (gravity is compensated), too weak to
 #: take part in the grasp.
 UNUSED_TORQUE_NM = 0.05
@@ -373,24 +369,12 @@ def thumb_tip(flex: float) -> tuple[float, float]:
     return y, z
 
 
-#: Fingers each grasp type uses (the thumb always opposes them).
-_ACTIVE: dict[str, tuple[str, ...]] = {
-    "thumb_index_finger": ("index",),
-    "lateral_pinch": ("index",),
-    "thumb_2_finger": ("index", "middle"),
-    "tripod": ("index", "middle"),
-    "thumb_3_finger": ("index", "middle", "ring"),
-}
 #: Precision finger posture: PIP follows MCP at this ratio, so the pad turns to face the thumb.
 PIP_PER_MCP = 0.8
 #: How far past the object's surface precision targets are placed (cm): far enough that the pads press
 #: at their force limit, near enough that an object slipping out leaves them closed in the air instead
 #: of sweeping it along (a thumb swinging on far past contact rolls the object up and out) or caging it.
 PRECISION_OVERSHOOT_CM = 1.0
-
-
-def active_fingers(grasp_type: str) -> tuple[str, ...]:
-    return _ACTIVE.get(grasp_type, tuple(f.name for f in FINGERS))
 
 
 def _solve(fn, target: float, lo: float, hi: float) -> float:

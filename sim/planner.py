@@ -27,7 +27,7 @@ from typing import Any
 
 from kb.features import FEATURES, ObjectRecord, validate_features
 from sim.friction import friction_coefficient
-from sim.grasps import GRASP_TYPES, GraspPlan
+from sim.grasps import GRASP_TYPES, GraspPlan, side_force_capacity
 
 __all__ = [
     "DEFAULTS",
@@ -43,7 +43,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "1"
+PLANNER_VERSION = "2"
 
 GRAVITY = 9.81  # m/s^2
 
@@ -69,17 +69,14 @@ LATERAL_PINCH_MAX_MASS_G = 100.0
 #: A light long object at least this long is a utensil or tool held by its handle (spatula, ladle, knife):
 #: its bounding box is wider than the handle people actually hold.
 TOOL_MIN_LENGTH_CM = 25.0
-#: Total normal force the fingertips of a precision grasp can give, and the whole hand in a power grasp
-#: (an AR10-sized servo hand; grown-up humans give several times more). Plans needing more are flagged.
-PRECISION_MAX_FORCE_N = 20.0
-POWER_MAX_FORCE_N = 60.0
+# The squeeze each grasp type can give is the hand's (sim/grasps.py side_force_capacity, from the
+# FINGER_MAX_FORCE_N / THUMB_MAX_FORCE_N constants the simulated hand uses too): thumb-index 15 N,
+# thumb-2 finger 30 N, thumb-3 finger 45 N, thumb-4 finger and power grasps 60 N per side.
 #: Never plan less than this: the fingers must at least hold contact.
 MIN_GRIP_FORCE_N = 1.5
 #: Safety factor on the weight: 2 covers the weight plus the trial's perturbation (a force equal to the
 #: weight), the rest is the grip-force safety margin people keep above slip (Johansson & Westling 1984).
 SAFETY_FACTOR = {"sturdy": 2.6, "medium": 2.4, "fragile": 2.1}
-#: Upper bound on the force for fragile objects (thin glass, eggs, crisps): squeeze no harder than this.
-FRAGILE_MAX_FORCE_N = 12.0
 
 #: Defaults for unknown features (see PLANNER.md, "Unknown features").
 DEFAULTS: dict[str, Any] = {
@@ -243,13 +240,14 @@ def required_grip_force(mass_g: float, friction: float, fragility: str = "medium
     """Total normal force (N) a two-sided grip needs: ``m g SF / (2 mu)``, at least MIN_GRIP_FORCE_N.
 
     Two contact faces each give at most ``mu N`` of friction, so holding weight ``m g`` times the safety
-    factor ``SF`` takes ``N >= m g SF / (2 mu)``. Fragile objects get a smaller SF and a cap.
+    factor ``SF`` takes ``N >= m g SF / (2 mu)``. Fragile objects get a smaller SF.
     """
     sf = SAFETY_FACTOR.get(fragility, SAFETY_FACTOR["medium"])
     force = (mass_g / 1000.0) * GRAVITY * sf / (2.0 * friction)
+    # Fragile objects get the smaller safety factor only. (A fixed 12 N cap used to apply too: it only ever
+    # bound for heavy fragile objects -- a 1.25 kg wine bottle, a glass vase -- and guaranteed they slipped;
+    # light fragile objects, eggs and ornaments, need far less than 12 N anyway.)
     force = max(MIN_GRIP_FORCE_N, force)
-    if fragility == "fragile":
-        force = min(force, FRAGILE_MAX_FORCE_N)
     return round(force, 2)
 
 
@@ -516,7 +514,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
         if rank == 0:
             rationale.append(f"grasped across its smallest side c = {width:g} cm (Feix 2014: 94 % of grasps)")
         score = 1.0 - 0.2 * rank
-        capacity = POWER_MAX_FORCE_N if family == "power" else PRECISION_MAX_FORCE_N
+        capacity = side_force_capacity(grasp_type)
         force = base_force
         if o.rigidity == "squeezable":
             force = round(max(MIN_GRIP_FORCE_N, force * 0.8), 2)
@@ -528,7 +526,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
         force_ok = force <= capacity
         if not force_ok:
             score *= 0.4
-            rationale.append(f"needs {force:g} N, more than a {family} grasp's {capacity:g} N: risky")
+            rationale.append(f"needs {force:g} N, more than a {grasp_type} grasp's {capacity:g} N: risky")
             force = capacity
         if not feasible:
             score *= 0.2

@@ -71,6 +71,12 @@ CLOSE_HOLD_S = 0.15
 LIFT_S = 0.5
 HOLD_S = 0.3
 PUSH_S = 0.2
+#: After closing, the grip-force loop runs alone for this many control ticks before the lift, and then
+#: every tick until the end; each tick changes a digit's torque by at most this fraction.
+REGULATE_TICKS = 4
+REGULATE_STEP = 0.25
+#: A digit pressing with less than this (N) does not feel the object: its torque stays as planned.
+CONTACT_SENSED_N = 0.2
 #: Steps between control updates and measurements (20 ms at the 2 ms step).
 CONTROL_EVERY = 10
 PERTURBATION_DIRECTIONS: dict[str, tuple[float, float, float]] = {
@@ -140,6 +146,7 @@ class TrialWorld:
     digit_act: np.ndarray
     wrist_qpos: np.ndarray
     approach: str = "top"  # as built: the plan's, or "edge" for a flat object grasped at a table edge
+    geom_digit: dict[int, str] = field(default_factory=dict)  # hand geom id -> digit it belongs to
 
     def palm_pose(self) -> tuple[np.ndarray, np.ndarray]:
         return self.data.xpos[self.palm_body].copy(), self.data.xmat[self.palm_body].reshape(3, 3).copy()
@@ -150,6 +157,22 @@ class TrialWorld:
         po = self.data.xpos[self.object_body]
         ro = self.data.xmat[self.object_body].reshape(3, 3)
         return r.T @ (po - p), r.T @ ro
+
+    def digit_forces(self) -> dict[str, float]:
+        """Total normal force (N) each digit presses on the object with (its fingertip sensors)."""
+        d = self.data
+        n = d.ncon
+        out = dict.fromkeys(H.DIGITS, 0.0)
+        if n == 0:
+            return out
+        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
+        other = np.where(g1 == self.object_geom, g2, np.where(g2 == self.object_geom, g1, -1))
+        ok = (other >= 0) & (d.contact.efc_address[:n] >= 0)
+        for k in np.flatnonzero(ok):
+            digit = self.geom_digit.get(int(other[k]))
+            if digit is not None:
+                out[digit] += float(d.efc_force[d.contact.efc_address[k]])
+        return out
 
     def hand_contacts(self) -> tuple[np.ndarray, np.ndarray]:
         """Normal forces (N) and distances (m) of the active hand-object contacts.
@@ -305,6 +328,11 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         digit_act=digit_act,
         wrist_qpos=wrist_qpos,
         approach=approach,
+        geom_digit={
+            g: model.geom(g).name.split("_")[0]
+            for g in range(model.ngeom)
+            if model.geom(g).name.split("_")[0] in H.DIGITS
+        },
     )
     return world
 
@@ -356,6 +384,7 @@ class _Runner:
         self.max_force = 0.0
         self.hold_forces: list[float] = []
         self.wrist_base = self.d.ctrl[world.wrist_act].copy()
+        self.hold_joints: list[list] = []  # filled by _latch: the grip-force loop runs from then on
 
     def _step(self, n_steps: int, where: str) -> None:
         mujoco.mj_step(self.m, self.d, nstep=n_steps)
@@ -432,28 +461,62 @@ class _Runner:
         self.obj_z0 = float(d.xpos[w.object_body][2])
 
     def _latch(self) -> None:
-        """Hold the closed posture as a stiff spring that keeps squeezing with the planned force.
+        """Hold the closed posture as a stiff spring that squeezes with the planned force.
 
         While closing, each used digit presses at its force limit (pure force control). Holding that way
         is unstable along the opposition axis: a push towards one side finds both sides saturated and
         the whole pinch drifts. So, like a robot hand switching to an impedance hold on contact, each
-        target becomes the current angle plus the offset that gives the same torque (tau / kp), and the
-        force limit rises to the digit's strongest: the squeeze stays as planned, and a push is resisted
-        by the stiffness kp up to the digit's strength. Friction still only scales with the squeeze, so
-        a heavy, slippery object slides out of a light pinch as it should.
+        target becomes the current angle plus the offset that gives the holding torque (tau / kp), and the
+        force limit rises to the digit's strongest: a push is resisted by the stiffness kp up to the
+        digit's strength.
+
+        The holding torque is regulated on the measured contact forces (the hand's fingertip sensors, as a
+        person scales grip force to what the fingers feel; Johansson & Westling 1984): each squeezing
+        digit's torque is scaled by (its share of the planned squeeze) / (the normal force it presses
+        with now), so the thumb presses with the planned squeeze and the fingers share it. Open-loop
+        torques fell 20-40 % short, because a digit touches the object wherever the object is, not at the
+        assumed lever arm. Friction still only scales with the squeeze, so a heavy, slippery object slides
+        out of a light pinch as it should.
         """
         m, d, w = self.m, self.d, self.w
         strongest = H.max_torques()
+        self.hold_joints = []  # (actuator, reference angle, direction, torque, strongest, digit)
         for k, name in enumerate(H.ACTUATOR_NAMES):
             if name not in w.targets.squeezing and name != "thumb_rot":
                 continue
-            a = w.digit_act[k]
-            q = d.qpos[m.jnt_qposadr[m.actuator_trnid[a, 0]]]
-            kp = m.actuator_gainprm[a, 0]
-            direction = np.sign(w.targets.close[k] - w.targets.open[k])
-            squeeze = w.targets.torque_limits[name] if name in w.targets.squeezing else 0.0
-            d.ctrl[a] = q + direction * squeeze / kp
+            a = int(w.digit_act[k])
+            q = float(d.qpos[m.jnt_qposadr[m.actuator_trnid[a, 0]]])
+            direction = float(np.sign(w.targets.close[k] - w.targets.open[k]))
+            if name in w.targets.squeezing:
+                digit = name.split("_")[0]
+                torque = min(abs(float(d.actuator_force[a])), strongest[name])
+            else:
+                digit, torque = "", 0.0
+            self.hold_joints.append([a, q, direction, torque, strongest[name], digit])
             m.actuator_forcerange[a] = (-strongest[name], strongest[name])
+        self._regulate(gain=1.0)
+        for _ in range(REGULATE_TICKS):
+            self._step(CONTROL_EVERY, " while closing")
+            self._regulate(gain=1.0)
+
+    def _regulate(self, gain: float) -> None:
+        """One tick of the grip-force loop: scale each squeezing digit's holding torque towards (its share
+        of the planned squeeze) / (the normal force it feels), by at most REGULATE_STEP per tick, and hold
+        the joints at their latched angles plus torque / kp (the stiffness stays kp)."""
+        if not self.hold_joints:
+            return
+        m, d, w = self.m, self.d, self.w
+        side = w.targets.side_force_n
+        share = {"thumb": side, **{f: side / len(w.targets.fingers) for f in w.targets.fingers}}
+        felt = w.digit_forces()
+        for joint in self.hold_joints:
+            a, q_ref, direction, torque, strongest, digit = joint
+            if digit and felt[digit] > CONTACT_SENSED_N:
+                ratio = (share[digit] / felt[digit]) ** gain
+                ratio = min(1.0 + REGULATE_STEP, max(1.0 / (1.0 + REGULATE_STEP), ratio))
+                torque = min(strongest, torque * ratio)
+                joint[3] = torque
+            d.ctrl[a] = q_ref + direction * torque / m.actuator_gainprm[a, 0]
 
     def lift(self) -> float:
         w, d = self.w, self.d

@@ -95,11 +95,12 @@ def test_grip_force_follows_the_two_sided_friction_bound():
     mu = friction_coefficient("plastic", "medium")
     force = required_grip_force(400, mu, "sturdy")
     assert force == pytest.approx(0.4 * GRAVITY * SAFETY_FACTOR["sturdy"] / (2 * mu), rel=1e-3)
-    # slipperier needs more; heavier needs more; fragile gets less and is capped
+    # slipperier needs more; heavier needs more; fragile gets a smaller margin (but still holds its weight)
     assert required_grip_force(400, 0.3) > required_grip_force(400, 0.9)
     assert required_grip_force(800, mu) > required_grip_force(400, mu)
     assert required_grip_force(400, mu, "fragile") < required_grip_force(400, mu, "sturdy")
-    assert required_grip_force(3000, 0.3, "fragile") <= 12.0
+    heavy_fragile = required_grip_force(1250, 0.32, "fragile")  # a wine bottle
+    assert 1.25 * GRAVITY * 2.0 / (2 * 0.32) < heavy_fragile < required_grip_force(1250, 0.32, "sturdy")
 
 
 def test_plan_force_uses_material_and_texture_friction():
