@@ -404,7 +404,7 @@ class PoliteFetcher:
             return None
         value = value.strip()
         seconds: float | None
-        if value.isdigit():
+        if value.isascii() and value.isdigit():  # delta-seconds (RFC 9110: 1*DIGIT, ASCII only)
             seconds = float(value)
         else:
             try:
