@@ -223,3 +223,20 @@ def test_small_light_rigid_objects_are_never_power_grasped(a, b, c, mass, shape,
         dict(a_cm=a, b_cm=b, c_cm=c, mass_g=mass, shape=shape, material=material, rigidity="rigid")
     )
     assert plan.family in ("precision", "intermediate")
+
+
+def test_planner_capacity_is_the_simulated_hands_strength():
+    from sim import hand as H
+    from sim.grasps import active_fingers, side_force_capacity
+
+    assert side_force_capacity("thumb_index_finger") == H.FINGER_MAX_FORCE_N
+    assert side_force_capacity("thumb_2_finger") == 2 * H.FINGER_MAX_FORCE_N
+    assert side_force_capacity("heavy_wrap_large_diameter") == H.THUMB_MAX_FORCE_N
+    heavy = dict(a_cm=10, b_cm=4, c_cm=4, mass_g=2000, shape="prism", material="metal", texture="smooth")
+    for plan in plan_grasps(heavy):
+        capacity = side_force_capacity(plan.grasp_type)
+        assert plan.grip_force_n <= capacity
+        # what the planner promises is what the hand is asked to squeeze: no second, different cap
+        targets = H.grasp_targets(plan, width_cm=4.0)
+        assert targets.side_force_n == pytest.approx(plan.grip_force_n)
+        assert targets.fingers == active_fingers(plan.grasp_type)
