@@ -93,7 +93,9 @@ _PACKAGE_WORDS = {
         "versand paket karton brutto emballage emballé colis embalaje embalado paquete envío caja imballo "
         "imballaggio confezione spedizione pacco embalagem pacote caixa opakowanie opakowaniu balenie "
         "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking bruto lordo brut "
-        "opakowaniem opakowania упаковці упаковки ambalaj ambalaj ambalajlı emballasje förpackning"
+        "opakowaniem opakowania упаковці упаковки ambalaj ambalaj ambalajlı emballasje förpackning "
+        "collo colli kargo kargolu gönderi paketli koli kutu przesyłki wysyłki zásilky balíku balenia "
+        "csomagolás csomagolással doboz упаковкою посылки отправления"
     ).split()
 }
 _NEGATIONS = {
@@ -108,7 +110,8 @@ _QUALIFIERS = {
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
-        "netto нето ürün urun produsului tuotteen"
+        "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
+        "ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
         " l b h w d t x х"
     ).split()
 }
@@ -201,6 +204,15 @@ _CJK_LABELS: dict[str, tuple[str, bool]] = {
     "사이즈": ("dimensions", False),
     "제품크기": ("dimensions", False),
 }
+# Folded like the labels they are compared with (NFKD splits the dakuten off katakana: サイズ -> サイス).
+_CJK_LABELS = {re.sub(r"[\W_]+", "", _fold(k)): v for k, v in _CJK_LABELS.items()}
+# Wayfair's "Overall Height - Top to Bottom", "Overall Depth - Front to Back": the direction is not a word
+# of the label, but only an overall value is the product's ("Body Height - Top to Bottom" is a lamp shade's).
+_DIRECTION = re.compile(
+    r"^((?:overall|assembled|product|item)\b.*?)\s*[-–—]\s*(?:top|side|front|left|back|end)\s+to\s+"
+    r"(?:bottom|side|back|right|front|end)\s*$",
+    re.IGNORECASE,
+)
 _ORDER_HINT = re.compile(r"\b[a-zа-я](?:\s*[x×хX*/]\s*[a-zа-я]\b){1,2}", re.IGNORECASE)
 _ORDER_WORD = re.compile(r"[a-zа-я](?:[xх][a-zа-я]){1,2}")
 _BRACKETS = re.compile(r"[\[(（][^\])）]{0,30}[\])）]")
@@ -241,7 +253,7 @@ def _classify(label: object) -> LabelInfo | None:
         return None  # a label does not start with a number ("1 kg" is a value)
     unit = unit_hint(text)
     text = text.rstrip(" :：-–—=").strip()
-    text = _BRACKETS.sub(" ", text)
+    text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
     text = _ORDER_HINT.sub(" ", text)
     folded = _fold(text)
     squashed = re.sub(r"[\W_]+", "", folded)

@@ -36,6 +36,7 @@ __all__ = [
     "parse_length",
     "parse_mass",
     "parse_number",
+    "third_axis",
     "unit_hint",
 ]
 
@@ -89,6 +90,10 @@ _add(
     "мм",
     "毫米",
     "公釐",
+    "ミリ",
+    "ミリメートル",
+    "milimetrů",
+    "milimetre",
 )
 _add(
     LENGTH_UNITS,
@@ -112,6 +117,13 @@ _add(
     "公分",
     "厘米",
     "釐米",
+    "センチ",
+    "センチメートル",
+    "сантиметр",
+    "сантиметров",
+    "centimetrů",
+    "santim",
+    "santimetre",
 )
 _add(
     LENGTH_UNITS,
@@ -130,6 +142,10 @@ _add(
     "м",
     "米",
     "公尺",
+    "メートル",
+    "метр",
+    "метра",
+    "метров",
 )
 _add(
     LENGTH_UNITS,
@@ -177,10 +193,17 @@ _add(
     "grama",
     "gramas",
     "gramów",
+    "gramy",
+    "gramů",
+    "gramu",
     "г",
     "гр",
+    "грамм",
+    "грамма",
+    "граммов",
     "克",
     "公克",
+    "グラム",
 )
 _add(
     MASS_UNITS,
@@ -204,9 +227,17 @@ _add(
     "quilo",
     "quilos",
     "kilogramów",
+    "kilogramy",
+    "kilogramů",
+    "килограмм",
+    "килограмма",
+    "килограммов",
+    "кило",
     "кг",
     "公斤",
     "千克",
+    "キログラム",
+    "キロ",
 )
 _add(
     MASS_UNITS,
@@ -265,6 +296,11 @@ _DIMS_RE = re.compile(
 _AXIS_PREFIX = re.compile(
     r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ)\.?\s*[:=]?\s*(?=\d)"
 )
+_DIAMETER_PREFIX = re.compile(
+    rf"(?:(?<=^)|(?<=[\s(:;,]))(?:直径|直徑|[ØøΦφ⌀]|dia\.|diameter|durchmesser|diamètre|diámetro|diametro|"
+    rf"диаметр|średnica|průměr|priemer)\s*[:=]?\s*(?P<n>{_NUMBER})",
+    re.IGNORECASE,
+)
 _POUNDS_OUNCES = re.compile(
     r"(?<![\d.])((?>\d+(?:\.\d+)?))\s*(?:lbs?|pounds?)\.?,?\s*(?:and\s+)?((?>\d+(?:\.\d+)?))\s*(?:oz|ounces?)\b",
     re.IGNORECASE,
@@ -318,7 +354,17 @@ def clean_text(text: object) -> str:
         return ""
     if not isinstance(text, str):
         text = str(text)
-    text = unicodedata.normalize("NFKC", text.translate(_INVISIBLE))
+    text = text.translate(_INVISIBLE)
+    if _HAS_VULGAR.search(text):
+        text = _VULGAR_RE.sub(_vulgar, text)  # before NFKC, which would write "23½" as "231⁄2"
+    text = unicodedata.normalize("NFKC", text).replace("\u2032\u2032", '"')  # NFKC writes ″ as ′′
+    if "/" in text or "\u2044" in text:
+        text = _MIXED_FRACTION.sub(_mixed, text)
+        text = _FRACTION.sub(_fraction, text)
+    if "'" in text or "\u2019" in text:
+        text = _APOSTROPHE_THOUSANDS.sub(lambda m: re.sub(r"['\u2019]", "", m.group(0)), text)
+    if "'" in text or "\u2032" in text or "f" in text:
+        text = _FEET_INCHES.sub(_feet_inches, text)
     if "\u05f4" in text or '"' in text:
         text = _HEBREW_UNITS.sub(
             lambda m: _HEBREW_UNIT_NAMES.get(m.group(1)[0] + m.group(1)[2], m.group(1)), text
@@ -327,6 +373,63 @@ def clean_text(text: object) -> str:
     # Cyrillic х/Х and other times signs after a number (and maybe a unit or letter) and before a number.
     text = _TIMES_SIGN.sub(_times, text)
     return _SPACES.sub(" ", text).strip()
+
+
+# Fractions as imperial measurements are written: "23½", "10 1/2 in", "10-1/2", "3/4 lb", "5' 3\"".
+_VULGAR_VALUES = {
+    "½": 1 / 2, "¼": 1 / 4, "¾": 3 / 4, "⅓": 1 / 3, "⅔": 2 / 3, "⅛": 1 / 8, "⅜": 3 / 8, "⅝": 5 / 8,
+    "⅞": 7 / 8, "⅕": 1 / 5, "⅖": 2 / 5, "⅗": 3 / 5, "⅘": 4 / 5, "⅙": 1 / 6, "⅚": 5 / 6,
+}  # fmt: skip
+_HAS_VULGAR = re.compile(f"[{''.join(_VULGAR_VALUES)}]")
+_VULGAR_RE = re.compile(rf"(?<![\d.,])(\d{{1,4}})?[ \u00a0-]?([{''.join(_VULGAR_VALUES)}])")
+#: Denominators of the fractions shops write (halves to sixty-fourths of an inch, thirds); "4/5 stars"
+#: or a date like "8/1" is not a measurement.
+_DENOMINATORS = frozenset({2, 3, 4, 8, 16, 32, 64})
+_MIXED_FRACTION = re.compile(r"(?<![\d.,/])(\d{1,4})(?: +|-)(\d{1,2}) ?[/\u2044] ?(\d{1,2})(?![\d/])")
+# A lone fraction counts only before a unit (or at the end of a value): "3/4 lb", "3/4\" thick".
+_FRACTION = re.compile(
+    r"(?<![\d.,/])(\d{1,2}) ?[/\u2044] ?(\d{1,2})(?![\d/.,])(?= ?(?:[^\W\d_]|[\"'\u2032]|$))"
+)
+# Swiss and Liechtenstein thousands: "1'200 g", "CHF 1'249.00".
+_APOSTROPHE_THOUSANDS = re.compile(r"(?<![\d'\u2019.,])\d{1,3}(?:['\u2019]\d{3})+(?![\d'\u2019])")
+_FEET_INCHES = re.compile(
+    r"(?<![\d.,])(\d{1,3}) ?(?:'(?!')|\u2032(?!\u2032)|ft\b\.?|feet\b|foot\b)[ -]?"
+    r"(\d{1,2}(?:\.\d+)?) ?(?:''|\"|in\b\.?|inch(?:es)?\b)"
+)
+
+
+def _decimal(value: float) -> str:
+    """A number written so that no decimal-mark rule misreads it (never exactly three decimals)."""
+    text = f"{value:.4f}".rstrip("0").rstrip(".")
+    if "." in text and len(text.split(".")[1]) == 3:
+        text += "0"
+    return text
+
+
+def _vulgar(m: re.Match) -> str:
+    whole = int(m.group(1)) if m.group(1) else 0
+    return _decimal(whole + _VULGAR_VALUES[m.group(2)])
+
+
+def _mixed(m: re.Match) -> str:
+    num, den = int(m.group(2)), int(m.group(3))
+    if den not in _DENOMINATORS or not 0 < num < den:
+        return m.group(0)
+    return _decimal(int(m.group(1)) + num / den)
+
+
+def _fraction(m: re.Match) -> str:
+    num, den = int(m.group(1)), int(m.group(2))
+    if den not in _DENOMINATORS or not 0 < num < den:
+        return m.group(0)
+    return _decimal(num / den)
+
+
+def _feet_inches(m: re.Match) -> str:
+    inches = float(m.group(2))
+    if inches >= 12:
+        return m.group(0)
+    return _decimal(int(m.group(1)) * 12 + inches) + '"'
 
 
 def _times(m: re.Match) -> str:
@@ -483,6 +586,10 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
         lettered = _lettered_dims(s, default_unit, decimal_comma)
         if lettered is not None:
             return [lettered]
+    diameters: set[str] = set()
+    if _DIAMETER_PREFIX.search(s):  # "直径12cm × 高さ6.5cm", "Ø 12 x 6,5 cm": a round object, d x d x h
+        diameters = {m.group("n") for m in _DIAMETER_PREFIX.finditer(s)}
+        s = _DIAMETER_PREFIX.sub(lambda m: m.group("n"), s)
     if _AXIS_PREFIX.search(s):
         s = clean_text(_AXIS_PREFIX.sub("", s))  # "H 30 cm x W 20 cm", "長37.5*寬26*高13.5cm"
     found: list[Dims] = []
@@ -507,7 +614,10 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
         values = [parse_number(x, decimal_comma) for x in nums]
         if any(v is None or v <= 0 for v in values):
             continue
-        found.append(Dims(tuple(round(v * f, 6) for v, f in zip(values, factors, strict=True)), m.group(0)))
+        cm = [round(v * f, 6) for v, f in zip(values, factors, strict=True)]
+        if n == 2 and diameters:
+            cm += [c for x, c in zip(nums, cm, strict=True) if x in diameters][:1]
+        found.append(Dims(tuple(cm), m.group(0)))
     return found
 
 
@@ -587,5 +697,22 @@ def parse_length_range(
         if a is None or b is None or a <= 0 or b < a:
             return None
         return round(a * factor, 6), round(b * factor, 6)
+    except Exception:  # noqa: BLE001
+        return None
+
+
+_THIRD_AXIS = re.compile(
+    rf"(?P<q>{_NUMBER}\s*(?:''|[\"″]|[^\W\d_]+\.?))\s+(?:thick|deep|tall|high|in (?:height|depth|thickness)|"
+    r"dick|tief|hoch|d'épaisseur|d'epaisseur|de profondeur|de haut|de grosor|de espesor|de alto|di spessore)\b",
+    re.IGNORECASE,
+)
+
+
+def third_axis(text: str, decimal_comma: bool | None = None) -> float | None:
+    """The single axis a sentence adds to a two-value size (``8" x 10" and is 3/4" thick`` -> 1.905), in
+    cm, or None."""
+    try:
+        m = _THIRD_AXIS.search(clean_text(text[:MAX_TEXT]))
+        return parse_length(m.group("q"), None, decimal_comma) if m else None
     except Exception:  # noqa: BLE001
         return None

@@ -33,6 +33,7 @@ from scrapers.quantities import (
     parse_length,
     parse_length_range,
     parse_mass,
+    third_axis,
 )
 
 __all__ = ["Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
@@ -170,8 +171,13 @@ def observations_from_pairs(
                     again = parse_dims(pair.value, info.unit, not decimal_comma)
                     if again and max(again[0].values_cm) <= MAX_DIM_CM:
                         d, note = again[0], "read with a decimal comma (the other reading is absurd)"
-                obs.append(Observation("dims", d.values_cm, package, rank, pair.order, pair.group, raw, note))
                 rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
+                values = d.values_cm
+                if len(values) == 2:
+                    extra = third_axis(rest, decimal_comma)  # "8\" x 10\" and is 3/4\" thick"
+                    if extra is not None:
+                        values = (*values, extra)
+                obs.append(Observation("dims", values, package, rank, pair.order, pair.group, raw, note))
             if info.kind == "dimensions":
                 mass, note = _plausible_mass(rest, None, decimal_comma)
                 if mass is not None:
@@ -223,6 +229,9 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
         if "diameter" in kinds and not kinds & {"width", "depth", "length"} and len(values) < 3:
             # a round object: the diameter is both its width and its depth (a bottle: d x d x h)
             values.append(next(v for k, v, *_ in row if k == "diameter"))
+        elif "diameter" in kinds and len(values) > 3:
+            # a pan's "Diameter 26 cm" next to its length, width and height: the diameter is a part's
+            values = [v for k, v, *_ in row if k != "diameter"]
         raw = "; ".join(f"{p.label}: {p.value}" for _, _, p, _, _ in row)[:300]
         notes = "; ".join(n for *_, n in row if n) or None
         package = any(p.package or p.info.package for _, _, p, _, _ in row)

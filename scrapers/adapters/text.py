@@ -14,7 +14,7 @@ import re
 from scrapers.adapters import Observation, adapter
 from scrapers.normalize import material_from_text
 from scrapers.page import Page
-from scrapers.quantities import parse_dims, parse_length, parse_mass
+from scrapers.quantities import parse_dims, parse_length, parse_mass, third_axis
 
 __all__ = ["text"]
 
@@ -94,9 +94,10 @@ def free_text(page: Page) -> list[Observation]:
         if _MEASURES.search(text):
             dims = parse_dims(text, None, dc)
             if dims:
-                obs.append(
-                    Observation("dims", dims[0].values_cm, rank=2, order=line.index, raw=raw, note=note)
-                )
+                values = dims[0].values_cm
+                extra = third_axis(text.split(dims[0].text, 1)[-1], dc) if len(values) == 2 else None
+                values = (*values, extra) if extra is not None else values
+                obs.append(Observation("dims", values, rank=2, order=line.index, raw=raw, note=note))
         axes: dict[str, float] = {}
         for m in _AXIS_PHRASE.finditer(text):
             kind = _AXIS_WORDS[m.group("axis").lower()]
