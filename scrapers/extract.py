@@ -39,7 +39,7 @@ from scrapers.normalize import (
     shape_from_name,
     sort_desc,
 )
-from scrapers.page import Page
+from scrapers.page import MAX_LINES, Page
 from scrapers.records import ProductRecord
 
 __all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "extract_page", "fuse"]
@@ -83,6 +83,10 @@ def extract_page(body: str | bytes, url: str, content_type: str | None = None) -
             for o in found:
                 o.source = adp.name
             observations.extend(found)
+        if page.truncated:
+            observations.append(
+                Observation("warning", f"page has over {MAX_LINES} text lines; only the first were read")
+            )
         return fuse(observations, str(url or ""))
     except ExtractionError:
         raise

@@ -105,23 +105,37 @@ def _fold(text: str) -> str:
     return "".join(c for c in unicodedata.normalize("NFKD", text.lower()) if not unicodedata.combining(c))
 
 
+def _is_cjk(ch: str) -> bool:
+    return "\u3040" <= ch <= "\u30ff" or "\u4e00" <= ch <= "\u9fff"
+
+
 _MATERIAL_WORDS: dict[str, str] = {}
 for _material, _words in {
     "metal": "metal metallic metall metalen metalico metallo metalowy steel stainless iron aluminium aluminum "
     "brass copper chrome zinc titanium fonte aluminio alluminio stahl edelstahl eisen acier inox fer acero hierro acciaio ferro aco "
-    "metalu stal металл сталь алюминий kov oceľ 不鏽鋼 不锈钢 金屬 金属 鋼 鋁",
+    "metalu stal металл сталь алюминий kov oceľ 不鏽鋼 不锈钢 金屬 金属 鋼 鋁 "
+    "ocel nerez nerezová nerezova чугун чугунный нержавеющая стальной алюминиевый медь латунь bakır bakir "
+    "çelik celik paslanmaz alüminyum aluminyum döküm pirinç ステンレス 鉄 アルミ 铝合金 铸铁 铜 "
+    "aço inoxidável acero cobre rame ottone",
     "plastic": "plastic plastics plastik kunststoff plastique plastico plastica pvc abs polypropylene "
-    "polyethylene polycarbonate acrylic polystyrene melamine tworzywo пластик пластмасса plast 塑膠 塑料",
+    "polyethylene polycarbonate acrylic polystyrene melamine tworzywo пластик пластмасса plast 塑膠 塑料 "
+    "plastik polipropilen polypropylen полипропилен プラスチック ポリプロピレン 樹脂 树脂 tritan",
     "wood": "wood wooden oak pine beech birch walnut bamboo teak mdf particleboard plywood veneer holz eiche "
-    "buche kiefer bois chene hetre cork kork liege corcho sughero cortica madera roble legno madeira eucalipto drewno дерево древесина drevo 木 木頭 竹",
-    "glass": "glass glas verre vidrio vetro vidro szklo стекло sklo 玻璃",
-    "paper": "paper cardboard paperboard papier pappe karton carton papel carta cartone papelao бумага картон 紙 纸",
+    "buche kiefer bois chene hetre cork kork liege corcho sughero cortica madera roble legno madeira eucalipto drewno дерево древесина drevo 木 木頭 竹 "
+    "acacia acacie akazie mango ash maple cherry rattan seagrass seegras wicker ahşap ahsap dřevo drewniany "
+    "деревянный бук дуб сосна bambus bambou bambú bambù 木製 木制 天然木",
+    "glass": "glass glas verre vidrio vetro vidro szklo стекло sklo 玻璃 borosilicate borosilikat cam ガラス",
+    "paper": "paper cardboard paperboard papier pappe karton carton papel carta cartone papelao бумага картон 紙 纸 "
+    "kağıt kagit 和紙",
     "fabric": "fabric cotton polyester linen wool textile nylon velvet felt stoff baumwolle leinen tissu coton "
-    "tela algodon tessuto cotone tecido algodao tkanina ткань хлопок látka 布 棉",
+    "tela algodon tessuto cotone tecido algodao tkanina ткань хлопок látka 布 棉 "
+    "leather leder cuir cuero pelle couro kumaş pamuk jute hemp lin",
     "rubber": "rubber silicone latex gummi kautschuk caoutchouc goma caucho gomma borracha guma резина "
     "силикон 橡膠 橡胶 矽膠 硅胶",
     "other": "ceramic ceramics porcelain stoneware earthenware terracotta stone marble granite keramik porzellan ceramique porcelaine ceramica "
-    "porcelana marmol керамика фарфор 陶瓷",
+    "porcelana marmol керамика фарфор 陶瓷 "
+    "marble marmor marbre mármore marmo slate concrete beton seramik porselen mermer keramika porcelán "
+    "ceramika porcelana kamień kamen камень мрамор 陶器 磁器 陶磁器 石 大理石 陶 瓷",
 }.items():
     for _w in _words.split():
         _MATERIAL_WORDS[_fold(_w)] = _material
@@ -129,15 +143,27 @@ assert set(_MATERIAL_WORDS.values()) <= set(MATERIALS)
 assert {"thin", "long", "prism", "compact", "radial"} <= set(SHAPES)
 
 
+# German and Dutch compounds end in their material: Buchenholz, Borosilikatglas, Hartplastik.
+_COMPOUND_MATERIALS = ("holz", "hout", "stahl", "staal", "glas", "kunststoff", "plastik", "keramik", "leder")
+_CJK_MATERIAL_WORDS = {w: m for w, m in _MATERIAL_WORDS.items() if any(_is_cjk(ch) for ch in w)}
+
+
 def material_from_text(text: str | None) -> str | None:
-    """The catalog material the first known word of ``text`` names, or None."""
+    """The catalog material the first known word of ``text`` names (a compound like ``Buchenholz`` by
+    its last part), or None."""
     if not text:
         return None
     folded = _fold(str(text))
-    for word in re.findall(r"[^\W\d_]+", folded):
+    words = re.findall(r"[^\W\d_]+", folded)
+    for word in words:
         if word in _MATERIAL_WORDS:
             return _MATERIAL_WORDS[word]
-    for word, material in _MATERIAL_WORDS.items():  # CJK: no spaces between words
-        if any("\u4e00" <= ch <= "\u9fff" for ch in word) and word in folded:
-            return material
+    for word in words:
+        for suffix in _COMPOUND_MATERIALS:
+            if word.endswith(suffix) and len(word) > len(suffix) + 2:
+                return _MATERIAL_WORDS[suffix]
+    if any(_is_cjk(ch) for ch in folded):  # CJK: no spaces between words; the earliest known word wins
+        hits = [(folded.find(w), -len(w), m) for w, m in _CJK_MATERIAL_WORDS.items() if w in folded]
+        if hits:
+            return min(hits)[2]
     return None

@@ -19,7 +19,15 @@ from typing import Any
 
 from scrapers.quantities import decimal_comma_for
 
-__all__ = ["FOREIGN_CONTAINER", "PACKAGE_CONTAINER", "Line", "Page", "decode_body", "text_content"]
+__all__ = [
+    "FOREIGN_CONTAINER",
+    "MAX_LINES",
+    "PACKAGE_CONTAINER",
+    "Line",
+    "Page",
+    "decode_body",
+    "text_content",
+]
 
 #: id/class words of blocks that show other products (their sizes must not leak into this product).
 FOREIGN_CONTAINER = re.compile(
@@ -43,6 +51,10 @@ _LD_JSON = re.compile(
 )
 _SCRIPT = re.compile(r"<script\b([^>]*)>(.*?)</script\s*>", re.IGNORECASE | re.DOTALL)
 _WS = re.compile(r"\s+")
+#: Only the first this many visible text lines are read. The real pages measured have at most ~1,500
+#: (a 1.8 MiB Amazon page); a page with tens of thousands is a catalogue or a spec dump, and walking all
+#: of it costs seconds. :attr:`Page.truncated` says when the cap was hit.
+MAX_LINES = 12_000
 
 
 def decode_body(body: str | bytes, content_type: str | None = None) -> str:
@@ -94,6 +106,8 @@ class Page:
         self.url = url
         self.content_type = (content_type or "").lower()
         self.text = decode_body(body, content_type)
+        #: True when :attr:`lines` stopped at :data:`MAX_LINES`.
+        self.truncated = False
 
     @property
     def is_json(self) -> bool:
@@ -209,6 +223,9 @@ class Page:
         stack: list[bool] = []  # package context of each open element
         walker = etree.iterwalk(tree, events=("start", "end"))
         for event, el in walker:
+            if len(lines) >= MAX_LINES:
+                self.truncated = True
+                break
             tag = el.tag if isinstance(el.tag, str) else ""
             if event == "start":
                 foreign, own_package = _container_kind(el.get("id"), el.get("class"))

@@ -36,10 +36,14 @@ from scrapers.quantities import (
     third_axis,
 )
 
-__all__ = ["Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
+__all__ = ["MAX_PAIRS", "Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
 
 #: Separate axis fields further apart than this many lines are not one product's dimensions.
 AXIS_GROUP_GAP = 8
+#: Reading stops after this many recognised measurement pairs. Real product pages state at most a few
+#: dozen (23 on the richest page measured); a page with thousands is a parts list or a spec dump, and the
+#: product's own values come first.
+MAX_PAIRS = 400
 _AXIS_LETTER_END = re.compile(r"(?<=\s)[HWDLBT]\.?\s*$")
 _PUNCT_ONLY = re.compile(r"[\W_]+")
 _BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
@@ -112,6 +116,8 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
     pairs: list[Pair] = []
     n = len(lines)
     for i, line in enumerate(lines):
+        if len(pairs) >= MAX_PAIRS:
+            break
         text = line.text
         info = classify_label(text) if len(text) <= 80 else None
         if info is not None:
@@ -239,11 +245,16 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
         yield Observation("dims", tuple(values), package, rank, first.order, first.group, raw, notes)
 
 
-_MATERIAL_HINT = re.compile(r"ateri|atéri|atièr|werkstoff|атериал|材質|材质|素材", re.IGNORECASE)
+_MATERIAL_HINT = re.compile(
+    r"ateri|atéri|atièr|werkstoff|атериал|materyal|malzeme|材質|材质|素材", re.IGNORECASE
+)
 _MATERIAL_LABEL = re.compile(
     r"(?:primary |main |frame |body |product |top )?(?:material|materials|materiał(?: wykonania)?|matériau|"
     r"matériaux|matière|werkstoff|materiale|materiali|materiais|material principal|материал|материал корпуса|"
-    r"材質|材质|素材)",
+    r"materyal|malzeme|materiál|材質|材质|素材)"
+    # the product's (or its frame's) material, not a part's: "Материал изделия", "Material de la estructura"
+    r"(?: (?:изделия|товара|корпуса|produktu|výrobku|del producto|del artículo|de la estructura|"
+    r"de l'article|du produit|dell'articolo|do produto|des produkts|des artikels|principal|główny|ana))?",
     re.IGNORECASE,
 )
 

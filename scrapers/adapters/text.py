@@ -16,7 +16,11 @@ from scrapers.normalize import material_from_text
 from scrapers.page import Page
 from scrapers.quantities import parse_dims, parse_length, parse_mass, third_axis
 
-__all__ = ["text"]
+__all__ = ["MAX_PROSE_LINES", "free_text", "text"]
+
+#: Only the first this many visible lines are read as prose (the description comes early; a page of
+#: thousands of lines is a catalogue or a spec dump, and reading it all would cost seconds).
+MAX_PROSE_LINES = 5000
 
 
 @adapter("text", priority=90)
@@ -37,9 +41,17 @@ def text(page: Page) -> list[Observation]:
                     note=f"dimensions read from the product name ({title!r})",
                 )
             )
-    for line in page.lines:
-        made = _MADE_OF.search(line.text) if len(line.text) <= 600 else None
-        material = material_from_text(made.group("m")) if made else None
+    for line in page.lines[:MAX_PROSE_LINES]:
+        if len(line.text) > 600:
+            continue
+        material = None
+        for pattern in (_MADE_OF, _SOLID):
+            for made in pattern.finditer(line.text):
+                material = material_from_text(made.group("m"))
+                if material:
+                    break
+            if material:
+                break
         if material:
             obs.append(Observation("material", material, rank=2, order=line.index, raw=line.text[:200]))
             break
@@ -70,9 +82,15 @@ _WEIGHS = re.compile(
     re.IGNORECASE,
 )
 _MADE_OF = re.compile(
-    r"\b(?:made (?:of|from)|crafted (?:of|from)|carved from|cast in|aus|hergestellt aus|fabricado en|"
-    r"realizzato in|feito de|fait en|en)\s+(?:a single piece of |solid |pure |massivem? |100% )?"
+    r"\b(?:made (?:of|from|out of)|crafted (?:of|from)|carved (?:from|out of)|cut from|cast in|constructed (?:of|from)|"
+    r"aus|hergestellt aus|fabricado en|realizzato in|feito de|fait en|en)\s+"
+    r"(?:a single (?:piece|slab|block) of |solid |pure |massivem? |100% )?"
     r"(?P<m>[^\W\d_]+(?:\s+[^\W\d_]+)?)",
+    re.IGNORECASE,
+)
+# "a solid marble mortar", "pure copper", "massivem Eichenholz": a material word right after "solid".
+_SOLID = re.compile(
+    r"\b(?:solid|pure|massive|massivem?|massiv|massif|macizo|maciza|massiccio|maciço)\s+(?P<m>[^\W\d_]+)",
     re.IGNORECASE,
 )
 
@@ -84,7 +102,7 @@ def free_text(page: Page) -> list[Observation]:
     obs: list[Observation] = []
     dc = page.decimal_comma
     note = "read from the description text"
-    for line in page.lines:
+    for line in page.lines[:MAX_PROSE_LINES]:
         text = line.text
         if not 15 <= len(text) <= 600:
             continue
