@@ -39,6 +39,7 @@ from kb.errors import (
     ObjectNotFound,
     QueryFailed,
     QueryRefused,
+    QueryTimeout,
 )
 from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES, ObjectRecord, normalize_name
 
@@ -483,7 +484,7 @@ class KnowledgeBase:
             except duckdb.PermissionException as err:
                 raise QueryRefused(f"refused: {_first_line(err)}") from None
             except duckdb.InterruptException:
-                raise QueryFailed(f"query interrupted after the {timeout_s:g} s time limit") from None
+                raise QueryTimeout(f"query interrupted after the {timeout_s:g} s time limit") from None
             except duckdb.Error as err:
                 if "read-only" in str(err).lower():
                     raise QueryRefused(f"refused: {_first_line(err)}") from None

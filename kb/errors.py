@@ -14,7 +14,8 @@ clear line (CLI, exit code 1) or a JSON body (HTTP 4xx). Anything else is a bug.
     │   ├── DatabaseBusy          another process held the database for longer than the busy timeout
     │   └── MigrationError        the database could not be brought to the schema head
     ├── QueryRefused              user SQL tried to write, read files, attach, install or load
-    ├── QueryFailed               user SQL was valid for the sandbox but failed (syntax, timeout, ...)
+    ├── QueryFailed               user SQL was valid for the sandbox but failed (syntax, ...)
+    │   └── QueryTimeout          user SQL ran past its time limit and was interrupted
     ├── DescriptionError          a description could not be parsed at all (empty input, too long)
     ├── RecallError               recall could not run (empty catalog, unknown metric)
     ├── FetchError                a page could not be fetched (HTTP status, timeout, robots.txt, size cap)
@@ -52,6 +53,7 @@ __all__ = [
     "PageTooLarge",
     "PhysicsError",
     "QueryFailed",
+    "QueryTimeout",
     "QueryRefused",
     "RecallError",
     "RequestTimeout",
@@ -118,6 +120,10 @@ class QueryRefused(ObjrecallError):
 
 class QueryFailed(ObjrecallError):
     """User SQL failed (syntax error, time limit, ...)."""
+
+
+class QueryTimeout(QueryFailed):
+    """User SQL ran past its time limit and was interrupted."""
 
 
 class DescriptionError(ObjrecallError, ValueError):

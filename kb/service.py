@@ -59,6 +59,7 @@ from kb.errors import (
     ObjrecallError,
     QueryFailed,
     QueryRefused,
+    QueryTimeout,
     RecallError,
     RequestTimeout,
     WritesDisabled,
@@ -674,10 +675,8 @@ def create_app(
         ``max_rows`` rows (``truncated`` says when there were more) and ``timeout_s`` seconds (504)."""
         try:
             result = knowledge_base().sql(body.query, max_rows=body.max_rows, timeout_s=body.timeout_s)
-        except QueryFailed as err:
-            if str(err).startswith("query interrupted"):  # kb.catalog's message for its statement timeout
-                raise RequestTimeout(str(err)) from None
-            raise
+        except QueryTimeout as err:
+            raise RequestTimeout(str(err)) from None
         payload = to_jsonable(
             {"columns": result.columns, "rows": result.to_dicts(), "truncated": result.truncated}
         )
