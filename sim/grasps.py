@@ -19,6 +19,11 @@ __all__ = [
     "GraspPlan",
     "active_fingers",
     "side_force_capacity",
+    "EDGE_MAX_GRIP_IN_CM",
+    "FLAT_RATIO",
+    "edge_grip_in_cm",
+    "edge_overhang_cm",
+    "is_flat_grasp",
 ]
 
 Family = Literal["power", "intermediate", "precision"]
@@ -79,6 +84,41 @@ def side_force_capacity(grasp_type: str) -> float:
     """Strongest squeeze (N, normal force per side) the hand gives in ``grasp_type``: the weaker of the
     thumb and the sum of the fingers opposing it."""
     return min(THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(active_fingers(grasp_type)))
+
+
+# ---------------------------------------------------------------------------------------------------------
+# Flat objects are picked up at a table edge: one geometry for the trial (where the object lies and where
+# the pads press) and the planner (the squeeze the moment of the weight needs about that grip).
+# ---------------------------------------------------------------------------------------------------------
+#: A grasp across a side at most this fraction of the next larger side grasps a flat object (a book, a
+#: plate, a phone, a board) across its thickness: it lies flat, overhanging a table edge, and is picked
+#: from that edge, thumb on top and fingers underneath, as people pick up a plate or a book.
+FLAT_RATIO = 0.35
+#: The object overhangs the edge by at most this fraction of its depth (its centre of mass stays on the
+#: table) ...
+EDGE_OVERHANG_FRACTION = 0.45
+#: ... and the pads press at most this far in from its edge: the reach of a pinch whose thumb and finger
+#: pads meet at one depth (the fingers' middle and distal phalanges under the object).
+EDGE_MAX_GRIP_IN_CM = 6.0
+#: The finger pads stay this far short of the table edge under the overhang (a pad radius plus a gap).
+EDGE_PAD_CLEAR_CM = 0.9
+
+
+def is_flat_grasp(grasped_cm: float, next_larger_cm: float) -> bool:
+    """Does a grasp across ``grasped_cm`` hold a flat object (see :data:`FLAT_RATIO`)?"""
+    return grasped_cm <= FLAT_RATIO * next_larger_cm
+
+
+def edge_overhang_cm(depth_cm: float) -> float:
+    """How far a flat object ``depth_cm`` deep (across the edge) overhangs the table edge."""
+    return min(EDGE_OVERHANG_FRACTION * depth_cm, EDGE_MAX_GRIP_IN_CM + 1.0)
+
+
+def edge_grip_in_cm(depth_cm: float) -> float:
+    """How far in from a flat object's edge the pads press: as near its centre of mass as the overhang
+    and the pinch's reach allow (the nearer, the smaller the moment of its weight about the grip)."""
+    overhang = edge_overhang_cm(depth_cm)
+    return max(0.3, min(depth_cm / 2.0, EDGE_MAX_GRIP_IN_CM, overhang - EDGE_PAD_CLEAR_CM))
 
 
 @dataclass(frozen=True)

@@ -27,7 +27,7 @@ from typing import Any
 
 from kb.features import FEATURES, ObjectRecord, validate_features
 from sim.friction import friction_coefficient
-from sim.grasps import GRASP_TYPES, GraspPlan, side_force_capacity
+from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, is_flat_grasp, side_force_capacity
 
 __all__ = [
     "DEFAULTS",
@@ -38,12 +38,13 @@ __all__ = [
     "PlannedObject",
     "best_grasp",
     "plan_grasps",
+    "edge_grip_force",
     "required_grip_force",
     "resolve_features",
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "2"
+PLANNER_VERSION = "3"
 
 GRAVITY = 9.81  # m/s^2
 
@@ -72,6 +73,10 @@ TOOL_MIN_LENGTH_CM = 25.0
 # The squeeze each grasp type can give is the hand's (sim/grasps.py side_force_capacity, from the
 # FINGER_MAX_FORCE_N / THUMB_MAX_FORCE_N constants the simulated hand uses too): thumb-index 15 N,
 # thumb-2 finger 30 N, thumb-3 finger 45 N, thumb-4 finger and power grasps 60 N per side.
+#: How far (cm) a pressed pad can shift its centre of pressure to resist a flat object tilting about the
+#: grip (see edge_grip_force): a fingertip pad's contact is about 1 cm across at a few newtons (Serina et
+#: al. 1997), so at most 5 mm; 3 mm, calibrated on the trial (books, phones, frames held at the edge).
+EDGE_PAD_LEVER_CM = 0.3
 #: Never plan less than this: the fingers must at least hold contact.
 MIN_GRIP_FORCE_N = 1.5
 #: Safety factor on the weight: 2 covers the weight plus the trial's perturbation (a force equal to the
@@ -249,6 +254,22 @@ def required_grip_force(mass_g: float, friction: float, fragility: str = "medium
     # light fragile objects, eggs and ornaments, need far less than 12 N anyway.)
     force = max(MIN_GRIP_FORCE_N, force)
     return round(force, 2)
+
+
+def edge_grip_force(mass_g: float, depth_cm: float, fragility: str = "medium") -> float:
+    """Squeeze (N) that holds a flat object ``depth_cm`` deep, picked up at its edge, against the moment
+    of its weight: ``F = SF m g d / (2 r)``.
+
+    The pads press ``edge_grip_in_cm(depth)`` in from the edge (sim/grasps.py, as the trial places them),
+    so the weight acts ``d = depth / 2 - grip_in`` beyond them; the trial's downward push of the same
+    force doubles that moment, and ``SF`` (2.1-2.6) covers both with a margin, as in the friction bound.
+    Two opposed pads resist tilting by shifting their centres of pressure, each by up to ``r``
+    (:data:`EDGE_PAD_LEVER_CM`), so their couple is at most ``2 F r``.
+    """
+    d = max(0.0, depth_cm / 2.0 - edge_grip_in_cm(depth_cm))
+    sf = SAFETY_FACTOR.get(fragility, SAFETY_FACTOR["medium"])
+    force = sf * (mass_g / 1000.0) * GRAVITY * d / (2.0 * EDGE_PAD_LEVER_CM)
+    return round(max(MIN_GRIP_FORCE_N, force), 2)
 
 
 def _fingers_for_length(length_cm: float, mass_g: float) -> str:
@@ -503,6 +524,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
         )
 
     base_force = required_grip_force(o.mass_g, o.friction, o.fragility)
+    edge_force = edge_grip_force(o.mass_g, o.b_cm, o.fragility) if is_flat_grasp(o.c_cm, o.b_cm) else 0.0
     plans: list[GraspPlan] = []
     seen: set[str] = set()
     for rank, (grasp_type, reason) in enumerate(_candidates(o)):
@@ -519,6 +541,12 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
         if o.rigidity == "squeezable":
             force = round(max(MIN_GRIP_FORCE_N, force * 0.8), 2)
             rationale.append("squeezable: a softer grip (it deforms to the fingers, more contact area)")
+        if edge_force > force:
+            force = edge_force
+            rationale.append(
+                f"flat: picked up at its edge, the pads {edge_grip_in_cm(o.b_cm):.3g} cm in and its centre of mass "
+                f"{o.b_cm / 2:.3g} cm in; the squeeze must hold the moment of its weight: {edge_force:g} N"
+            )
         rationale.append(
             f"grip {force:g} N = m g SF / (2 mu) with m = {o.mass_g:.0f} g, mu = {o.friction:g} ({o.material or 'unknown'}, "
             f"{o.texture or 'unknown'} texture), SF = {SAFETY_FACTOR.get(o.fragility, 2.4):g} ({o.fragility})"

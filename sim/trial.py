@@ -33,7 +33,7 @@ import numpy as np
 from kb.errors import PhysicsError, SimulationError
 from kb.features import ObjectRecord
 from sim import hand as H
-from sim.grasps import GRASP_TYPES, GraspPlan
+from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
 from sim.objects import ObjectModel, add_object, add_table, object_model
 
 __all__ = [
@@ -205,18 +205,13 @@ def _placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     return {plan.grasped_dim: 1, rest[0]: 2, rest[1]: 0}
 
 
-#: A plan grasping an object across a side at most this fraction of the next larger side grasps a flat
-#: object (a book, a plate, a phone, a card) across its thickness.
-FLAT_RATIO = 0.35
-
-
 def _is_flat(obj: ObjectModel, plan: GraspPlan) -> bool:
     """Does ``plan`` grasp a flat object across its thickness? Such objects lie flat, overhanging a table
     edge, and are grasped from the edge (thumb on top, fingers underneath), as people pick up a plate or
     a book; standing them on edge for a top or side grasp would be neither stable nor realistic."""
     dims = sorted("abc", key=obj.extent_cm)
     thin, middle = dims[0], dims[1]
-    return plan.grasped_dim == thin and obj.extent_cm(thin) <= FLAT_RATIO * obj.extent_cm(middle)
+    return plan.grasped_dim == thin and is_flat_grasp(obj.extent_cm(thin), obj.extent_cm(middle))
 
 
 def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
@@ -248,9 +243,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     depth = ext[2] if approach == "top" else ext[0]  # extent along the approach axis
     overhang = 0.0
     if flat:
-        # Over the table's edge by what the grasp needs (pads 3 cm in, wraps 6 cm), never by so much
-        # that the object's centre of mass leaves the table.
-        overhang = min(0.45 * depth, (6.0 if family == "power" else 3.0) + 1.0)
+        # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the
+        # object's centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
+        overhang = edge_overhang_cm(depth)
     palm_face = -H.PALM_HALF_CM[2]
     grip_depth = 0.0  # precision: how far below the near face the pads meet the object (cm)
     if family == "power":
@@ -261,8 +256,8 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         # Pads meet the object's sides at its centre (no gravity torque about the pinch axis) when they
         # reach that far, else 3 cm below its near face.
         grip_depth = min(depth / 2.0, 3.0)
-        if flat:  # the fingers come from under the overhang: their pads must fit under it
-            grip_depth = max(0.3, min(grip_depth, overhang - 0.9))
+        if flat:  # as near its centre of mass as the pads reach, their pads under the overhang
+            grip_depth = edge_grip_in_cm(depth)
         z_c = min(
             targets.contact_z_cm - depth / 2.0 + grip_depth,
             palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,

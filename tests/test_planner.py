@@ -240,3 +240,20 @@ def test_planner_capacity_is_the_simulated_hands_strength():
         targets = H.grasp_targets(plan, width_cm=4.0)
         assert targets.side_force_n == pytest.approx(plan.grip_force_n)
         assert targets.fingers == active_fingers(plan.grasp_type)
+
+
+def test_flat_objects_are_squeezed_for_the_moment_of_their_weight_about_the_edge_grip():
+    from sim.grasps import edge_grip_in_cm
+    from sim.planner import EDGE_PAD_LEVER_CM, edge_grip_force
+
+    book = dict(a_cm=17.8, b_cm=10.8, c_cm=2.5, mass_g=250, shape="thin", material="paper", texture="medium")
+    plan = best_grasp(book)
+    d = 10.8 / 2 - edge_grip_in_cm(10.8)  # the weight acts this far beyond the pads
+    expected = SAFETY_FACTOR["medium"] * 0.25 * GRAVITY * d / (2 * EDGE_PAD_LEVER_CM)
+    assert plan.grip_force_n == pytest.approx(expected, rel=1e-2)
+    assert plan.grip_force_n > required_grip_force(250, friction_coefficient("paper", "medium"))
+    assert any("moment" in r for r in plan.rationale)
+    # deeper (centre of mass further from the grip) needs more; a block that is not flat needs none of it
+    assert edge_grip_force(250, 16.0) > edge_grip_force(250, 10.8)
+    block = best_grasp(dict(a_cm=6, b_cm=5, c_cm=4, mass_g=250, shape="compact", material="paper"))
+    assert not any("moment" in r for r in block.rationale)

@@ -214,3 +214,24 @@ def test_heavy_glass_bottle_passes_the_planners_wrap():
     r = run_trial(wine, plan, seed=0)
     assert r.outcome == "success", r.reason
     assert r.grip_force_n >= 0.9 * plan.grip_force_n
+
+
+def test_paperback_book_picked_at_the_table_edge_holds():
+    from sim.planner import best_grasp
+
+    book = ObjectRecord.create(
+        "paperback book",
+        a_cm=17.8,
+        b_cm=10.8,
+        c_cm=2.5,
+        mass_g=250,
+        shape="thin",
+        texture="medium",
+        material="paper",
+        rigidity="rigid",
+        fragility="sturdy",
+    )
+    plan = best_grasp(book)
+    r = run_trial(book, plan, seed=0)
+    assert build_world(book, plan).approach == "edge"
+    assert r.outcome == "success", r.reason
