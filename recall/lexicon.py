@@ -55,7 +55,12 @@ MAGNITUDE_WORDS: dict[str, int] = {"hundred": 100, "thousand": 1000}
 #: Fraction words (tag FRC): "half", "a quarter", "three quarters", "seven and quarter".
 FRACTION_WORDS: dict[str, float] = {
     "half": 0.5, "halves": 0.5, "quarter": 0.25, "quarters": 0.25, "third": 1 / 3, "thirds": 1 / 3,
+    "fifth": 0.2, "fifths": 0.2, "sixth": 1 / 6, "sixths": 1 / 6, "eighth": 0.125, "eighths": 0.125,
+    "tenth": 0.1, "tenths": 0.1, "sixteenth": 0.0625, "sixteenths": 0.0625,
 }  # fmt: skip
+#: Fraction words that are also ordinals or nouns ("the top quarter", "the third"): numbers only after a
+#: number, "a"/"an" or "and" ("three eighths", "an eighth", "two and a quarter").
+ORDINAL_FRACTIONS: frozenset[str] = frozenset(FRACTION_WORDS) - {"half", "halves"}
 #: Unicode vulgar fractions (tag FRC), alone ("½") or after digits ("7½").
 UNICODE_FRACTIONS: dict[str, float] = {
     "½": 1 / 2, "⅓": 1 / 3, "⅔": 2 / 3, "¼": 1 / 4, "¾": 3 / 4, "⅕": 1 / 5, "⅖": 2 / 5, "⅗": 3 / 5,
@@ -111,10 +116,24 @@ DIMENSION_WORDS: dict[str, str] = {
     "each side": "side", "per side": "side", "a side": "side", "on a side": "side", "each way": "side",
     "on all sides": "side", "all sides": "side", "in every direction": "side",
     "in size": "size", "big": "size", "large": "size",
+    "front to back": "depth", "back to front": "depth", "side to side": "width", "top to bottom": "height",
+    "end to end": "length", "tip to tip": "length",
+    "overall": "overall", "in total": "overall", "including the handle": "overall",
+    "with the handle": "overall", "including handle": "overall", "with handle": "overall",
+    "handle included": "overall",
+    "square": "square",
 }  # fmt: skip
+#: Dimension roles whose value is a straight extent (sorted into a >= b >= c with the others). ``overall``
+#: ("12 cm including the handle", "13 inches overall") is the whole object's largest extent.
+LINEAR_ROLES: tuple[str, ...] = ("length", "overall", "height", "width", "depth", "thickness")
+#: Single letters that label the numbers of a tuple ("L 20 x W 10 x H 5 cm", "20L x 10W x 5H cm").
+TUPLE_LABELS: dict[str, str] = {"l": "length", "w": "width", "h": "height", "d": "depth"}
 #: Of those, the ones that need a number right before them to count (so "a large bottle" states no
 #: dimension): they only form a DIM chunk as "<number> <unit> big".
 WEAK_DIMENSION_WORDS: frozenset[str] = frozenset({"big", "large", "in size"})
+#: Dimension words that count only right after a quantity with a length unit ("9 cm square": two equal
+#: sides; "10 square" or "a square box" state nothing).
+UNIT_ONLY_DIMENSION_WORDS: frozenset[str] = frozenset({"square"})
 #: Dimension words that are nouns: "in" before one of them is a preposition ("7 in diameter" means a
 #: value with its unit left out), before any other word after a number it is the unit inch ("4 in long").
 DIMENSION_NOUNS: frozenset[str] = frozenset(
@@ -209,13 +228,27 @@ SHAPE_WORDS: dict[str, tuple[str, int]] = {
     "dome": ("radial", 2), "egg": ("radial", 2), "oval": ("radial", 1), "orange": ("radial", 1),
     "apple": ("radial", 1), "cap": ("compact", 1), "knob": ("radial", 1),
     "coin": ("thin", 2), "puck": ("radial", 2), "doughnut": ("radial", 2), "donut": ("radial", 2),
+    "hot water bottle": ("thin", 2),
 }  # fmt: skip
 #: Shape cues used by the dimension rules (see PARSER.md): a single stated extent of a cube or a ball
 #: is all three dimensions; a diameter alone of a cylinder fills b = c, of a disc a = b.
 CUBE_WORDS: frozenset[str] = frozenset({"cube", "cubic", "cubical", "cube-shaped", "dice", "die"})
 SPHERE_WORDS: frozenset[str] = frozenset(
-    {"ball", "sphere", "spherical", "globe", "orb", "ball-shaped", "marble", "orange", "apple", "bead"}
-)
+    {"ball", "sphere", "spherical", "globe", "orb", "ball-shaped", "marble", "orange", "apple", "bead",
+     "balls", "marbles", "grapefruit", "melon", "peach", "plum", "tomato", "lime", "lemon"}
+)  # fmt: skip
+#: A compound ending in "ball" ("softball", "baseball", "basketball", "racquetball") is a ball too, unless
+#: one of these nouns follows it ("baseball cap", "softball bat"): then it only names what the thing is for.
+BALL_SUFFIX = "ball"
+BALL_COMPOUND_HEADS: frozenset[str] = frozenset(
+    {"cap", "caps", "hat", "bat", "bats", "glove", "gloves", "mitt", "card", "cards", "player", "field",
+     "court", "game", "bearing", "bearings", "pump", "jersey", "shoe", "shoes", "boot", "boots"}
+)  # fmt: skip
+#: Words that make an object flat (its width is a width, never a diameter copied into the thickness).
+FLAT_WORDS: frozenset[str] = frozenset(
+    {"flat", "flattened", "sheet", "card", "slab", "pad", "bag", "pouch", "envelope", "wallet", "mat",
+     "hot water bottle", "floppy", "sheet-like", "folded"}
+)  # fmt: skip
 CYLINDER_WORDS: frozenset[str] = frozenset(
     {"cylindrical", "cylinder", "can", "tube", "tubular", "bottle", "jar", "mug", "cup", "canister", "rod",
      "stick", "pen", "pencil", "straw", "roll", "pipe", "candle", "tumbler", "thermos", "flask",
@@ -223,7 +256,8 @@ CYLINDER_WORDS: frozenset[str] = frozenset(
 )  # fmt: skip
 DISC_WORDS: frozenset[str] = frozenset(
     {"disc", "disk", "disc-shaped", "coin", "plate", "lid", "cap", "coaster", "puck", "flat", "frisbee",
-     "saucer", "ring", "wheel", "doughnut", "donut", "cd", "dvd", "button", "record", "pancake"}
+     "saucer", "ring", "wheel", "doughnut", "donut", "cd", "dvd", "button", "record", "pancake", "dime",
+     "penny", "quarter", "nickel", "medal", "token", "tealight"}
 )  # fmt: skip
 
 #: Words that make a width of a round object its diameter, besides the sphere/cylinder/disc words.
@@ -305,6 +339,36 @@ FUNCTION_WORDS: dict[str, str] = {
     ".": "SEP", "!": "SEP", "?": "SEP", ";": "SEP", ",": "CM", "(": "CM", ")": "CM",
 }  # fmt: skip
 
+#: Nouns that name a part or an accessory: a material or shape word right before one of them
+#: ("rubber grip", "plastic bag", "long stem") describes the part, not the object (see PARSER.md).
+PART_NOUNS: frozenset[str] = frozenset(
+    {"grip", "grips", "handle", "handles", "bag", "bags", "lid", "lids", "cap", "caps", "cover", "sleeve",
+     "strap", "straps", "cord", "base", "tip", "tips", "label", "wrapper", "wrapping", "packaging", "case",
+     "stand", "coating", "band", "trim", "insert", "bristles", "buttons", "button", "feet", "seal",
+     "stopper", "spout", "nozzle", "stem", "blade", "head", "hinge", "clasp", "zip", "zipper", "sole",
+     "wheels", "legs", "knob", "rim", "edge", "edges", "inside", "interior", "lining", "liner", "pouch",
+     "packet", "box", "tray", "window", "straw", "opener", "holder", "ring", "chain", "cup"}
+)  # fmt: skip
+#: Prepositions that open a phrase about a part or a container ("with a rubber grip", "in a plastic bag"):
+#: material and shape words inside such a phrase rank below the words about the object itself.
+PART_PREPOSITIONS: frozenset[str] = frozenset({"with", "in", "inside", "on", "plus", "into", "has", "have"})
+#: Nouns that a shape noun before them only modifies ("bottle opener", "pen holder", "can opener").
+MODIFIED_HEADS: frozenset[str] = frozenset(
+    {"opener", "openers", "holder", "holders", "rack", "stand", "brush", "cleaner", "warmer", "sleeve",
+     "cover", "stopper", "top", "bag", "clip", "end", "ends", "mark", "hook", "shelf", "cap", "lid",
+     "sharpener", "case", "organizer", "organiser", "tray"}
+)  # fmt: skip
+#: Shape nouns that, before "of", only measure out a substance ("a bar of soap", "a bar of chocolate"):
+#: they say nothing about the shape.
+MEASURE_NOUNS: frozenset[str] = frozenset({"bar", "bars"})
+#: Shape nouns that, before "of", are a container or a portion ("a tube of toothpaste", "a box of
+#: tissues", "a block of wood"): still the object's shape, with the lowest priority.
+CONTAINER_NOUNS: frozenset[str] = frozenset(
+    {"tube", "box", "roll", "stick", "block", "slab", "sheet", "can", "jar", "bottle", "cup", "pad"}
+)  # fmt: skip
+#: Words that say the material is the object's own ("a plastic body", "the body is aluminium").
+BODY_WORDS: frozenset[str] = frozenset({"body", "bodied", "casing", "housing", "shell", "frame", "barrel"})
+
 #: Compound nouns whose first word is not what the object is made of (merged, tagged W).
 COMPOUND_NOUNS: frozenset[str] = frozenset({"paper clip", "paper clips", "glass cleaner"})
 
@@ -313,7 +377,7 @@ MULTIWORD: tuple[str, ...] = tuple(
     sorted(
         {w for table in (HEDGES, TRAILING_HEDGES, DIMENSION_WORDS, VOLUME_UNITS, MATERIAL_WORDS, SHAPE_WORDS,
                          FUNCTION_WORDS) for w in table if " " in w}
-        | {"can hold", "could hold"} | COMPOUND_NOUNS,
+        | {"can hold", "could hold"} | COMPOUND_NOUNS | FLAT_WORDS,
         key=lambda w: (-len(w.split()), w),
     )
 )  # fmt: skip

@@ -84,13 +84,15 @@ RANGE:
 SUB:
   {<USUB>}
 QUANT:
-  {<HEDGE>?<NUM><UNIT><NUM><SUB><HS>?}
-  {<HEDGE>?<NUM><OF>?<A>?<UNIT><UAND><NUM><HS>?}
-  {<HEDGE>?<NUM|RANGE><OF>?<A>?<UNIT><HS>?}
-  {<HEDGE>?<NUM|RANGE><HS>?}
+  {<LBL>?<HEDGE>?<NUM><UNIT><NUM><SUB><HS|LBL>?}
+  {<LBL>?<HEDGE>?<NUM><OF>?<A>?<UNIT><UAND><NUM><HS>?}
+  {<LBL>?<HEDGE>?<NUM|RANGE><HS|LBL>?<OF>?<A>?<UNIT><HS|LBL>?}
+  {<LBL>?<HEDGE>?<NUM|RANGE><HS|LBL>?}
 MULTI:
-  {<QUANT><BY><QUANT><BY><QUANT><IN>?<DIM>?}
-  {<QUANT><BY><QUANT><IN>?<DIM>?}
+  {<QUANT><DIM>?<BY><QUANT><DIM>?<BY><QUANT><IN>?<DIM|DIMN>?}
+  {<QUANT><DIM>?<BY><QUANT><IN>?<DIM|DIMN>?}
+  {<QUANT><CM><QUANT><CM><AND>?<QUANT><IN>?<DIM>?}
+  {<QUANT><CM><QUANT><AND><QUANT><IN>?<DIM>?}
 DIM:
   {<DIMN><BE|OF|IN|W>?<BE|OF|IN|W>?<BE|OF|IN|W>?<QUANT>}
   {<QUANT><IN|OF>?<DIM|DIMN>}
@@ -105,7 +107,7 @@ _STAGE_TRIGGERS: dict[str, tuple[frozenset[str], ...]] = {
     "RANGE": (frozenset({"NUM"}), frozenset({"RTO", "BETW"})),
     "SUB": (frozenset({"USUB"}),),
     "QUANT": (frozenset({"NUM", "RANGE"}),),
-    "MULTI": (frozenset({"QUANT"}), frozenset({"BY"})),
+    "MULTI": (frozenset({"QUANT"}), frozenset({"BY", "CM"})),
     "DIM": (frozenset({"QUANT"}), frozenset({"DIM", "DIMN"})),
 }
 
@@ -439,7 +441,10 @@ class DescriptionParser:
             if q is not None:
                 self._free_quantity(q, toks, reading, fill, segment, k)
             return
-        if label not in ("DIM", "MULTI"):
+        if label == "MULTI":
+            self._read_multi(chunk, toks, pos, reading, fill, segment, k)
+            return
+        if label != "DIM":
             return
         quants: list[_Quantity] = []
         role = "size"
@@ -472,18 +477,90 @@ class DescriptionParser:
             if dim_first or quants[0].unit is None:
                 return  # "a large bottle, 2": no dimension
             role = "size"
+        if dim_word is not None and dim_word.low in lx.UNIT_ONLY_DIMENSION_WORDS:
+            if dim_first or quants[0].unit is None:
+                return  # "10 square", "square 5": not "9 cm square"
+        self._add_dim(reading, role, quants, toks, pos)
+
+    @staticmethod
+    def _add_dim(reading: _Reading, role: str, quants: list[_Quantity], toks: list[_Token], pos: int) -> None:
         for i in range(pos, pos + len(toks)):
             reading.in_dim_chunk.add(i)
         for q in quants:
             if q.unit is not None:
                 reading.length_units.append((q.pos, q.unit))
         stmt = _DimStatement(role, quants, toks[0].start, toks[-1].end)
-        if label == "MULTI":
+        if role == "multi":
             reading.multis.append(stmt)
         elif role == "size":
             reading.sizes.append(stmt)
         else:
             reading.dims.append(stmt)
+
+    def _read_multi(
+        self,
+        chunk: Tree,
+        toks: list[_Token],
+        pos: int,
+        reading: _Reading,
+        fill: int | None,
+        segment: list[_Token],
+        k: int,
+    ) -> None:
+        """A tuple ("10 x 5 x 2 cm", "7.5 cm long by 5 by 5", "L 20 x W 10 x H 5 cm") or a list ("20, 10
+        and 5 cm"). Numbers without a unit take the unit of the next one in the tuple that has one, else
+        of the previous one. A tuple whose every value has its own dimension word ("10 cm long by 3 cm in
+        diameter") is read as those dimensions; a list counts only when its last value has a length
+        unit, otherwise its values are read one by one."""
+        quants: list[_Quantity] = []
+        roles: list[str | None] = []
+        spans: list[tuple[int, int]] = []
+        is_list = False
+        j = 0
+        for sub in chunk:
+            if isinstance(sub, Tree):
+                n = _size(sub)
+                if sub.label() == "QUANT":
+                    q = self._quantity(sub, toks[j : j + n], pos + j)
+                    if q is not None:
+                        quants.append(q)
+                        roles.append(None)
+                        spans.append((j, j + n))
+                j += n
+            else:
+                tok = toks[j]
+                if tok.tag in ("DIM", "DIMN") and quants and roles[-1] is None:
+                    roles[-1] = lx.DIMENSION_WORDS.get(tok.low, "size")
+                    spans[-1] = (spans[-1][0], j + 1)
+                elif tok.tag in ("CM", "AND"):
+                    is_list = True
+                j += 1
+        if not quants:
+            return
+        if is_list and (quants[-1].unit is None or quants[-1].unit.kind != "length"):
+            for q in quants:  # "300 g, 20 cm and 5": not one list of extents
+                self._free_quantity(q, toks, reading, fill, segment, k)
+            return
+        stated = [q.unit for q in quants]
+        for i, q in enumerate(quants):
+            if q.unit is None:
+                after = next((u for u in stated[i + 1 :] if u is not None), None)
+                before = next((u for u in reversed(stated[:i]) if u is not None), None)
+                q.unit = after or before
+        if any(q.unit is not None and q.unit.kind != "length" for q in quants):
+            for q in quants:  # "tall, about 300 g": not a dimension
+                if q.unit is not None:
+                    self._free_quantity(q, toks, reading, fill, segment, k)
+            return
+        if len(quants) < 2:
+            return
+        weak = lx.WEAK_DIMENSION_WORDS | lx.UNIT_ONLY_DIMENSION_WORDS
+        if not is_list and all(r is not None and r != "size" for r in roles):
+            for q, role, (a, b) in zip(quants, roles, spans, strict=True):
+                if role is not None and role not in weak:
+                    self._add_dim(reading, role, [q], toks[a:b], pos + a)
+            return
+        self._add_dim(reading, "multi", quants, toks, pos)
 
     def _free_quantity(
         self,
@@ -499,6 +576,13 @@ class DescriptionParser:
             return
         contents = fill is not None and (fill < k or segment[fill].low not in lx.WEAK_FILL_WORDS)
         if q.unit.kind == "mass":
+            if contents:
+                # "filled with 16 oz of water" is contents; "full of water, about a pound and a half" is
+                # the stated total: only a mass right after the contents word or before "of" is contents
+                end = k + len(toks)
+                after_of = end < len(segment) and segment[end].low == "of"
+                right_after = fill is not None and 0 < k - fill <= 2
+                contents = after_of or right_after
             reading.masses.append((q, contents))
         elif q.unit.kind == "volume":
             if contents:
@@ -584,6 +668,7 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
     """Tags that depend on the neighbours; one linear pass (two for dropped hyphens)."""
     out: list[_Token] = []
     n = len(tokens)
+    _tuple_labels(tokens)
     for i, tok in enumerate(tokens):
         prev = out[-1] if out else None
         nxt = tokens[i + 1] if i + 1 < n else None
@@ -603,6 +688,14 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
                 tag = "ULEN"  # "4 in long", "3 in." ; "7 in diameter" stays a preposition
         elif tok.low in _SYMBOL_UNITS:
             tag = "ULEN" if prev_num else "CM"
+        elif (
+            tag in _UNIT_TAGS
+            and prev is not None
+            and prev.tag in ("HS", "LBL")
+            and len(out) >= 2
+            and (out[-2].tag in _NUMBER_TAGS)
+        ):
+            pass  # "250-ish grams", "5H cm"
         elif tag in _UNIT_TAGS and not prev_num and not _number_before_of(out):
             before_a = out[-2] if len(out) >= 2 else None
             if prev is not None and prev.tag == "A" and len(tok.low) > 2:
@@ -613,6 +706,14 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
         elif tag in ("BY", "RTO"):
             nxt_num = nxt is not None and (nxt.tag in _NUMBER_TAGS or nxt.tag in ("A", "HA", "HL", "HU"))
             prev_ok = prev is not None and (prev.tag in _NUMBER_TAGS or prev.tag in _UNIT_TAGS)
+            if tag == "BY" and not prev_ok and prev is not None and len(out) >= 2:
+                # "7.5 cm long by 5 by 5", "20L x 10W": a labelled value before the sign
+                before = out[-2].tag
+                prev_ok = (prev.tag == "DIM" and (before in _UNIT_TAGS or before in _NUMBER_TAGS)) or (
+                    prev.tag == "LBL" and before in _NUMBER_TAGS
+                )
+            if tag == "BY" and not nxt_num and nxt is not None and nxt.tag == "LBL":
+                nxt_num = True  # "x W 10"
             if not (nxt_num and prev_ok):
                 tag = "W"
         elif tag == "BETW":
@@ -633,14 +734,38 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
                 tag = "W"  # "it can hold": a verb
         elif tag == "MH" and tok.low == "light" and nxt is not None and nxt.low in lx.COLOUR_WORDS:
             tag = "W"
-        elif tag == "FRC" and tok.low in ("quarter", "quarters", "third", "thirds"):
+        elif tag == "FRC" and tok.low in lx.ORDINAL_FRACTIONS:
             if not (prev_num or (prev is not None and prev.tag in ("A", "AND"))):
-                tag = "W"  # "the top quarter", "third" as an ordinal
+                tag = "W"  # "the top quarter", "third" or "fifth" as an ordinal
         if tag in _UNIT_TAGS and prev_num and _smaller_unit_after(out, tok):
             tag = "USUB"
         tok.tag = tag
         out.append(tok)
     return out
+
+
+_BY_WORDS = frozenset({"x", "×", "by", "*"})
+
+
+def _tuple_labels(tokens: list[_Token]) -> None:
+    """Tag LBL the letters that label the numbers of a tuple: "L 20 x W 10 x H 5 cm" (a letter before a
+    number, next to a multiplication sign) and "20L x 10W x 5H cm" (a letter glued to its number, before
+    a sign or a length unit). "a 2L bottle" keeps its litre."""
+    n = len(tokens)
+    for i, tok in enumerate(tokens):
+        if len(tok.low) != 1 or tok.low not in lx.TUPLE_LABELS:
+            continue
+        prev = tokens[i - 1] if i else None
+        nxt = tokens[i + 1] if i + 1 < n else None
+        if prev is not None and prev.tag in _NUMBER_TAGS and prev.end == tok.start:
+            if nxt is not None and (nxt.low in _BY_WORDS or nxt.tag == "ULEN"):
+                tok.tag = "LBL"
+            elif i >= 2 and tokens[i - 2].low in _BY_WORDS and (nxt is None or nxt.tag in ("CM", "SEP")):
+                tok.tag = "LBL"
+        elif nxt is not None and nxt.tag == "CD" and (prev is None or prev.tag not in _NUMBER_TAGS):
+            after = [t.low for t in tokens[i + 2 : i + 4]]
+            if (prev is not None and prev.low in _BY_WORDS) or any(w in _BY_WORDS for w in after):
+                tok.tag = "LBL"
 
 
 def _smaller_unit_after(out: list[_Token], tok: _Token) -> bool:
@@ -723,12 +848,53 @@ def _negated(segment: list[_Token], i: int) -> bool:
     return False
 
 
+def _in_part_phrase(segment: list[_Token], i: int, through_and: bool = False) -> bool:
+    """True when the word at ``i`` describes a part or a container, not the object: a part noun follows it
+    ("rubber grip", "plastic bag", "long stem") or it is in a phrase opened by "with"/"in"/"on" ("with a
+    rubber grip", "in a tin cup"; a comma, a sentence end or, unless ``through_and``, "and" closes the
+    phrase: a material after "and" may be the object's, a shape noun after "and" is still a part)."""
+    if i + 1 < len(segment) and segment[i + 1].low in lx.PART_NOUNS:
+        return True
+    for j in range(i - 1, max(-1, i - (7 if through_and else 4)), -1):
+        t = segment[j]
+        if t.tag in ("CM", "SEP") or (t.tag == "AND" and not through_and):
+            return False
+        if t.low in lx.PART_PREPOSITIONS:
+            return True
+    return False
+
+
+def _material_rank(segment: list[_Token], i: int) -> int:
+    """2: the object's own material ("made of X", "X body", "the body is X"); 0: a part's ("with a
+    rubber grip"); 1: any other mention."""
+    if i >= 2 and segment[i - 1].low in ("of", "from"):
+        if segment[i - 2].low in ("made", "out", "built", "constructed", "consists"):
+            return 2  # "made of plastic" beats a material in a name
+    if i + 1 < len(segment) and segment[i + 1].low in lx.BODY_WORDS:
+        return 2  # "a plastic body", "clear plastic barrel"
+    for j in range(i - 1, max(-1, i - 4), -1):
+        if segment[j].low in lx.BODY_WORDS:
+            return 2  # "the body is aluminium", "body: steel"
+        if segment[j].tag in ("CM", "SEP", "AND"):
+            break
+    return 0 if _in_part_phrase(segment, i) else 1
+
+
 def _read_categories(segment: list[_Token], base: int, reading: _Reading) -> None:
+    n = len(segment)
     for i, tok in enumerate(segment):
         pos = base + i
-        if not (tok.low == "can" and tok.tag != "SHP"):
-            reading.cue_words.add(tok.low)
         tag = tok.tag
+        nxt = segment[i + 1].low if i + 1 < n else ""
+        if tag not in _NUMBER_TAGS and not (tok.low == "can" and tag != "SHP"):
+            if nxt in lx.BALL_COMPOUND_HEADS and (
+                tok.low in lx.SPHERE_WORDS or tok.low.endswith(lx.BALL_SUFFIX)
+            ):
+                pass  # "baseball cap", "ball bearing": not a ball
+            else:
+                reading.cue_words.add(tok.low)
+                if tok.low.endswith(lx.BALL_SUFFIX) and len(tok.low) > len(lx.BALL_SUFFIX):
+                    reading.cue_words.add(lx.BALL_SUFFIX)  # "softball", "basketball"
         if tag == "MH":
             hint = lx.MASS_HINT_WORDS[tok.low]
             if _negated(segment, i):
@@ -736,18 +902,25 @@ def _read_categories(segment: list[_Token], base: int, reading: _Reading) -> Non
             reading.mass_hints.append(hint)
             continue
         if tag == "DIM" and tok.low in ("long", "elongated") and pos not in reading.in_dim_chunk:
+            if _in_part_phrase(segment, i, True):
+                continue  # "with a long stem", "a long handle": a part is long
             feature, value, rank = "shape", "long", 2
         elif tag in _CATEGORY_TAGS:
             feature = _CATEGORY_TAGS[tag]
             if feature == "shape":
                 value, rank = lx.SHAPE_WORDS[tok.low]
+                if nxt in lx.MODIFIED_HEADS and tok.low not in lx.MODIFIED_HEADS:
+                    continue  # "bottle opener", "pen holder": the shape of something else
+                if tok.low == "thin" and i + 1 < n and segment[i + 1].tag == "MAT":
+                    continue  # "thin plastic", "thin glass": the wall, not the object's shape
+                if nxt == "of" and tok.low in lx.MEASURE_NOUNS:
+                    continue  # "a bar of soap"
+                if (nxt == "of" and tok.low in lx.CONTAINER_NOUNS) or _in_part_phrase(segment, i, True):
+                    rank = 0  # "a bar of soap", "with a long stem", "in a tin cup"
             else:
                 table = lx.TABLES[feature]
                 value = table[tok.low]
-                rank = 1
-                if feature == "material" and i >= 2 and segment[i - 1].low in ("of", "from"):
-                    if segment[i - 2].low in ("made", "out", "built", "constructed", "consists"):
-                        rank = 2  # "made of plastic" beats a material in a name
+                rank = _material_rank(segment, i) if feature == "material" else 1
                 if feature in ("texture", "fragility") and i >= 1 and segment[i - 1].low in lx.MEDIUM_WORDS:
                     value = "medium"
         elif tok.low in lx.MEDIUM_WORDS and i + 1 < len(segment):
@@ -832,6 +1005,7 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
     sphere = bool(cues & lx.SPHERE_WORDS)
     cylinder = bool(cues & lx.CYLINDER_WORDS)
     disc = bool(cues & lx.DISC_WORDS)
+    flat = bool(cues & lx.FLAT_WORDS)
     round_cue = sphere or cylinder or bool(cues & (lx.ROUND_WORDS | (lx.DISC_WORDS - {"flat", "cap"})))
     slots: dict[str, _Dim] = {}
     abc = ("a_cm", "b_cm", "c_cm")
@@ -854,42 +1028,50 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
         dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)
         if dim is not None:
             by_role[role] = dim
-    three = bool(by_role.keys() & {"length", "height"}) and bool(by_role.keys() & {"thickness", "depth"})
-    if round_cue and "diameter" not in by_role and "width" in by_role and not three:
+    three = bool(by_role.keys() & {"length", "height", "overall"}) and bool(
+        by_role.keys() & {"thickness", "depth"}
+    )
+    if round_cue and not flat and "diameter" not in by_role and "width" in by_role and not three:
         by_role["diameter"] = by_role.pop("width")  # "a mug 8 cm wide": the width of a round thing
+    linear = [(by_role[r], r) for r in lx.LINEAR_ROLES if r in by_role]
+    linear.sort(key=lambda dr: dr[0].start)
+    multi = None
     if reading.multis:
         stmt = reading.multis[0]
-        dims = [d for q in stmt.quantities if (d := _to_cm(q, reading, stmt)) is not None]
-        if dims and dims[0].qualifier == "about":  # "roughly 9.5 x 6 x 3.5 inches": the hedge covers all
-            for d in dims[1:]:
+        multi = [d for q in stmt.quantities if (d := _to_cm(q, reading, stmt)) is not None]
+        if multi and multi[0].qualifier == "about":  # "roughly 9.5 x 6 x 3.5 inches": the hedge covers all
+            for d in multi[1:]:
                 if d.qualifier == "exact":
                     d.qualifier = "about"
-        if len(dims) == 2:
-            extra = by_role.get("thickness") or by_role.get("depth")
-            if extra is not None:
-                dims.append(extra)
-        put(abc, dims[:3])
+        if len(multi) < 2 or (len(multi) == 2 and len(linear) >= 3):
+            multi = None  # three labelled extents say more than a pair
+    if multi is not None:
+        if len(multi) == 2:
+            # "21 x 15 cm, 1 cm thick", "23 cm tall, 7 x 7 cm base": a labelled third extent
+            for role in ("thickness", "depth", "height", "length", "overall", "width"):
+                extra = by_role.get(role)
+                if extra is not None and not any(abs(extra.value - d.value) <= 0.02 * d.value for d in multi):
+                    multi.append(extra)
+                    break
+        put(abc, multi[:3])
     elif "side" in by_role:
         side = by_role["side"]
         put(abc, [side, side, side])
-    elif "diameter" in by_role:
-        diameter = by_role["diameter"]
-        other = next(
-            (by_role[r] for r in ("length", "height", "thickness", "depth", "width") if r in by_role), None
-        )
-        if other is not None:
-            put(abc, [diameter, diameter, other])
-        elif sphere:
+    elif "diameter" in by_role or "square" in by_role:
+        # a diameter or a square cross-section: two equal extents
+        diameter = by_role.get("diameter") or by_role["square"]
+        others = [d for d, _r in linear]
+        if len(others) >= 2:  # a pan 28 across, 48 long with the handle, 5 deep: 48, 28, 5
+            put(abc, [diameter, others[0], others[1]])
+        elif others:
+            put(abc, [diameter, diameter, others[0]])
+        elif sphere and "diameter" in by_role:
             put(abc, [diameter, diameter, diameter])
-        elif cylinder and not disc:
+        elif cylinder and not disc and "diameter" in by_role:
             put(("b_cm", "c_cm"), [diameter, diameter])
         else:
             put(("a_cm", "b_cm"), [diameter, diameter])
-    else:
-        linear = [
-            (by_role[r], r) for r in ("length", "height", "width", "depth", "thickness") if r in by_role
-        ]
-        linear.sort(key=lambda dr: dr[0].start)
+    elif linear:
         if len(linear) == 1 and (cube or sphere):
             d = linear[0][0]
             put(abc, [d, d, d])
@@ -898,20 +1080,21 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
         elif len(linear) == 2:
             roles = {r for _d, r in linear}
             if "thickness" in roles:
-                names = ("a_cm", "c_cm") if roles & {"length", "height"} else ("b_cm", "c_cm")
+                names = ("a_cm", "c_cm") if roles & {"length", "height", "overall"} else ("b_cm", "c_cm")
             else:
                 names = ("a_cm", "b_cm")
             put(names, [d for d, _r in linear])
-        elif len(linear) == 1:
+        else:
             d, role = linear[0]
-            slot = {"length": "a_cm", "height": "a_cm", "width": "b_cm", "depth": "b_cm", "thickness": "c_cm"}
+            slot = {"length": "a_cm", "height": "a_cm", "overall": "a_cm", "width": "b_cm", "depth": "b_cm",
+                    "thickness": "c_cm"}  # fmt: skip
             put([slot[role]], [d])
-        elif reading.sizes:
-            sizes = [d for stmt in reading.sizes[:3] if (d := _to_cm(stmt.quantities[0], reading, stmt))]
-            if len(sizes) == 1 and (cube or sphere):
-                put(abc, sizes * 3)
-            else:
-                put(abc, sizes)
+    elif reading.sizes:
+        sizes = [d for stmt in reading.sizes[:3] if (d := _to_cm(stmt.quantities[0], reading, stmt))]
+        if len(sizes) == 1 and (cube or sphere):
+            put(abc, sizes * 3)
+        else:
+            put(abc, sizes)
     for name, dim in slots.items():
         features[name] = FeatureEvidence(
             name, round(dim.value, 4), dim.qualifier, _r(dim.low), _r(dim.high), text[dim.start : dim.end],

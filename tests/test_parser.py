@@ -447,3 +447,126 @@ def test_hostile_100kb_inputs_complete(text: str) -> None:
     assert isinstance(parsed.tree, Tree)
     for ev in parsed.features.values():
         assert ev.qualifier in QUALIFIERS
+
+
+# ------------------------------------------------------------- general patterns (red-team hold-out review)
+# Each pattern with several phrasings written here (not the hold-out sentences); see PARSER.md.
+PATTERN_DIMENSIONS = [
+    # 1. length together with height: both kept, sorted
+    ("a crate 20 cm long, 10 cm wide, 5 cm tall", (20, 10, 5)),
+    ("it stands 5 cm tall and is 20 cm long", (20, 5, None)),
+    ("6 cm high, 18 cm long and 9 cm deep", (18, 9, 6)),
+    ("a tray 2 inches tall, 12 inches long, 8 inches wide", (30.48, 20.32, 5.08)),
+    # 2. the label on the first number of a chain
+    ("a sponge 9 cm long by 6 by 3", (9, 6, 3)),
+    ("40 cm long by 25 cm by 12 cm", (40, 25, 12)),
+    ("3 in wide by 2 by 1", (7.62, 5.08, 2.54)),
+    ("a bar 12 cm long by 4 cm in diameter", (12, 4, 4)),
+    # 3. a pair after labelled extents adds to them
+    ("a vase 30 cm tall with a 10 x 10 cm base", (30, 10, 10)),
+    ("18 cm high, footprint 6 by 6 cm", (18, 6, 6)),
+    ("21 x 15 cm and about a centimetre thick", (21, 15, 1)),
+    # 4. a size before a noun: the main extent alone, and it never breaks a tuple
+    ("an 8 inch frying pan", (20.32, None, None)),
+    ("a 15 cm kitchen knife", (15, None, None)),
+    ("A 3m extension lead. The plug is 5 x 4 x 2 cm.", (5, 4, 2)),
+    ("a 2 m rope coiled into a 12 by 10 by 6 cm bundle", (12, 10, 6)),
+    # 5. role phrases
+    ("40 cm side to side, 30 cm front to back, 12 cm top to bottom", (40, 30, 12)),
+    ("a jug 20 cm tall, 14 cm wide including the handle", (20, 14, None)),
+    ("a cup 8 cm tall, 7 cm across, 10 cm with the handle", (10, 8, 7)),
+    ("a pen 14 cm overall", (14, None, None)),
+    ("a beam 50 cm long, 4 cm square", (50, 4, 4)),
+    ("a 25 cm square tile", (25, 25, None)),
+    ("a 6 cm square cross section and 40 cm long", (40, 6, 6)),
+    # 6. diameter with depth/height/thickness; a flat thing's width stays a width
+    ("a saucepan 20 cm diameter and 9 cm deep", (20, 20, 9)),
+    ("a skillet, 26 cm in diameter, 45 cm long with the handle, 4 cm deep", (45, 26, 4)),
+    ("a round wok 30 cm across, 8 cm deep", (30, 30, 8)),
+    ("a flat rubber bottle, 30 cm long and 18 cm wide", (30, 18, None)),
+    ("a floppy plastic tube, 25 cm long, 6 cm wide", (25, 6, None)),
+    # 7. balls: compounds ending in "ball", round things "across"
+    ("a basketball about 24 cm in diameter", (24, 24, 24)),
+    ("a baseball, 3 inches across", (7.62, 7.62, 7.62)),
+    ("a used tennis ball 6.7 cm across", (6.7, 6.7, 6.7)),
+    ("a glass marble 1.5 cm in diameter", (1.5, 1.5, 1.5)),
+    ("an apple roughly 8 cm across", (8, 8, 8)),
+    ("a coin, a quarter, 2.4 cm across", (2.4, 2.4, None)),
+    ("a baseball cap 20 cm across", (None, 20, None)),
+    # 8. equal values
+    ("11 wide and 11 high", (11, 11, None)),
+    ("a box 10 cm long, 10 cm wide and 10 cm high", (10, 10, 10)),
+    # 9. compound quantities
+    ("a board 1 foot 2 inches long", (35.56, None, None)),
+    ("a shelf 2 ft 6 in long", (76.2, None, None)),
+    # 10. lists and letter labels
+    ("30, 20 and 10 cm", (30, 20, 10)),
+    ("12, 8, 4 inches", (30.48, 20.32, 10.16)),
+    ("L 30 x W 20 x H 10 cm", (30, 20, 10)),
+    ("30L x 20W x 10H cm", (30, 20, 10)),
+    ("dimensions: l 12 x w 9 x h 3 cm", (12, 9, 3)),
+    # fractions as words
+    ("three and three eighths inches by two and an eighth inches", (8.5725, 5.3975, None)),
+    ("five sixteenths of an inch thick", (None, None, 0.7937)),
+    ("one and five eighths inches long", (4.1275, None, None)),
+]
+
+
+@pytest.mark.parametrize(("text", "dims"), PATTERN_DIMENSIONS)
+def test_general_dimension_patterns(text: str, dims: tuple) -> None:
+    got = parse(text).values()
+    for name, expected in zip(("a_cm", "b_cm", "c_cm"), dims, strict=True):
+        if expected is None:
+            assert name not in got, (name, got)
+        else:
+            assert got.get(name) == approx(expected), (name, got)
+
+
+PATTERN_MASSES = [
+    ("it weighs 1 lb 4 oz", 566.99, "exact"),
+    ("2 lbs 8 oz", 1133.98, "exact"),
+    ("1kg 200g", 1200, "exact"),
+    ("2 kg 500 g", 2500, "exact"),
+    ("300-ish grams", 300, "about"),
+    ("300ish g", 300, "about"),
+    ("~300 g", 300, "about"),
+    ("300g-ish", 300, "about"),
+    ("a steel flask full of water, about a pound and a half", 680.39, "about"),
+    ("a jar filled with coffee beans, weighs 600 g", 600, "exact"),
+    ("a bottle filled with 12 oz of juice", 340.19, "at_least"),
+]
+
+
+@pytest.mark.parametrize(("text", "grams", "qualifier"), PATTERN_MASSES)
+def test_general_mass_patterns(text: str, grams: float, qualifier: str) -> None:
+    ev = parse(text).features["mass_g"]
+    assert (ev.value, ev.qualifier) == (approx(grams, rel=1e-3), qualifier)
+
+
+def test_a_glued_litre_is_not_a_tuple_label() -> None:
+    parsed = parse("a 2L bottle, full of water")
+    assert parsed.features["mass_g"].qualifier == "at_least"
+    assert parsed.values()["mass_g"] == approx(2000)
+
+
+PATTERN_CATEGORIES = [
+    ("a cordless drill with a rubber grip, made of plastic", "material", "plastic"),
+    ("a wooden spoon with a plastic handle", "material", "wood"),
+    ("a torch with a rubber grip and an aluminium body", "material", "metal"),
+    ("a hammer, steel head, rubber grip", "material", "metal"),
+    ("a candle in a glass jar, wax", "material", "other"),
+    ("bread in a plastic bag, soft", "material", "plastic"),  # the only material stated
+    ("a champagne flute with a long stem", "shape", None),
+    ("a wine glass with a long stem, cylindrical bowl", "shape", "prism"),
+    ("a bottle opener, steel", "shape", None),
+    ("a plastic bottle cap", "shape", "compact"),
+    ("a bar of soap", "shape", None),
+    ("a tube of crisps with a foil lid and plastic cap", "shape", "prism"),
+    ("a long stick", "shape", "long"),
+    ("a bottle made of thin plastic", "shape", "prism"),
+]
+
+
+@pytest.mark.parametrize(("text", "feature", "value"), PATTERN_CATEGORIES)
+def test_general_category_patterns(text: str, feature: str, value: str | None) -> None:
+    assert parse(text).values().get(feature) == value
