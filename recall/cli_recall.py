@@ -9,7 +9,10 @@ import typer
 
 from kb.cli_common import DbOption, JsonOption
 
-METRIC_HELP = "Distance: jp (the paper's Joint Probability), euclidean, minkowski (p=4), cosine, kdtree."
+METRIC_HELP = (
+    "Distance: jp (the paper's Joint Probability), euclidean, minkowski (p=4), cosine, kdtree, jplog (JP with "
+    "sizes and mass in log units). Default: jplog with names, jp with --features-only."
+)
 
 
 def register(app: typer.Typer) -> None:
@@ -23,7 +26,7 @@ def register(app: typer.Typer) -> None:
             typer.Option("--file", help="CSV with a 'description' column: JSON Lines, one per row."),
         ] = None,
         top: Annotated[int, typer.Option("--top", min=1, help="How many matches to return.")] = 5,
-        metric: Annotated[str, typer.Option("--metric", help=METRIC_HELP)] = "jp",
+        metric: Annotated[str | None, typer.Option("--metric", help=METRIC_HELP)] = None,
         features_only: Annotated[
             bool,
             typer.Option("--features-only", help="Ignore object names in the text (the paper's method)."),
@@ -39,7 +42,7 @@ def register(app: typer.Typer) -> None:
 
         if (text is None) == (file is None):
             raise DescriptionError("give either a description TEXT or --file D.csv (not both)")
-        if metric not in METRICS:
+        if metric is not None and metric not in METRICS:
             raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
         recaller = Recaller.from_db(resolve_db(db))
         options = dict(top=top, metric=metric, features_only=features_only)
@@ -152,6 +155,7 @@ def _print_report(report) -> None:
     from rich.markup import escape
     from rich.table import Table
 
+    from recall.engine import DEFAULT_METRIC
     from recall.evaluation import PAPER_TOP1
 
     console = Console()
@@ -160,6 +164,8 @@ def _print_report(report) -> None:
         table.add_column(col, justify="left" if col == "metric" else "right")
     for s in report.scores:
         label = s.metric if s.features_only else f"{s.metric} + names (hybrid)"
+        if not s.features_only and s.metric == DEFAULT_METRIC[False]:
+            label += ", default"
         paper = f"{PAPER_TOP1[s.metric]} %" if s.features_only and s.metric in PAPER_TOP1 else "-"
         table.add_row(label, f"{s.top1_pct:.1f} %", f"{s.top3_pct:.1f} %", paper)
     console.print(table)

@@ -9,6 +9,7 @@ documented with their numbers in ``recall/RECALL.md``.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from collections.abc import Mapping, Sequence
@@ -20,21 +21,28 @@ import numpy as np
 
 from kb.errors import RecallError
 from kb.features import FEATURES, NUMERIC_FEATURES
-from recall.metrics import METRICS, FeatureQuery, distances, feature_terms
+from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
 
 __all__ = [
     "CONFIDENCE_COEF",
+    "confidence_of",
+    "is_open_set",
+    "DEFAULT_METRIC",
     "HEAD_WEIGHT",
     "NAME_WEIGHT",
     "NameEvidence",
+    "GENERIC_NOUNS",
+    "OPEN_SET_NAMED_THRESHOLD",
     "OPEN_SET_THRESHOLD",
+    "OPEN_SET_UNKNOWN_NOUN_THRESHOLD",
     "Match",
     "NameIndex",
     "RecallResult",
     "Recaller",
     "normalize_words",
+    "resolve_metric",
 ]
 
 #: Hybrid: a name or alias in the text that names m of the catalog's N objects lowers each of their JP
@@ -43,12 +51,40 @@ __all__ = [
 #: named candidates among themselves, and a named object whose features are far off can still lose.
 NAME_WEIGHT = 0.6
 HEAD_WEIGHT = 0.4
-#: Confidence = 1 / (1 + exp(-(a + b * margin))), margin = second-best minus best ranking score (nats for
-#: JP). Fitted by logistic regression on the development set (see RECALL.md and
-#: ``python -m recall.evaluation --fit``).
-CONFIDENCE_COEF: dict[str, tuple[float, float]] = {"jp": (-0.29, 2.46)}
-#: Open set: the best match's mean JP term per stated feature above this (nats) means "not a close match".
-OPEN_SET_THRESHOLD = 1.5
+#: Confidence = 1 / (1 + exp(-(a + b * margin + c * closeness + d * unknown_noun))): margin = second-best
+#: minus best ranking score (nats, capped at MAX_MARGIN), closeness the best match's mean relative error,
+#: unknown_noun 1 when the subject is a noun the catalog does not know. Fitted by logistic regression on
+#: the development set and its open set (``python -m recall.evaluation --fit``; RECALL.md).
+CONFIDENCE_COEF: tuple[float, float, float, float] = (1.13, 1.12, -9.75, -1.89)
+MAX_MARGIN = 10.0
+#: An open-set result's confidence is at most this.
+OPEN_SET_CONFIDENCE_CAP = 0.5
+#: Open set: the best match's closeness (mean relative error over the stated features, see
+#: :func:`recall.metrics.relative_errors`) above this means "not a close match" ...
+OPEN_SET_THRESHOLD = 0.30
+#: ... above this when the description names the match by a whole name or alias (a name is evidence) ...
+OPEN_SET_NAMED_THRESHOLD = 0.45
+#: ... and above this when the subject of the description is a noun the catalog does not know ("an
+#: orange", "a watermelon"): an unknown noun alone is not enough (synonyms), with a loose match it is.
+OPEN_SET_UNKNOWN_NOUN_THRESHOLD = 0.15
+#: Nouns that say what kind of thing, not which thing: never unknown-noun evidence ("a plastic thing").
+GENERIC_NOUNS = frozenset(
+    {"thing", "object", "item", "device", "gadget", "tool", "utensil", "implement", "instrument", "piece",
+     "chunk", "bit", "strip", "rectangle", "square", "circle", "replica", "fruit", "vegetable", "vessel",
+     "container", "package", "case", "toy", "accessory", "appliance", "equipment", "stuff", "product",
+     "one", "kind", "sort", "type", "shape", "something", "model", "unit", "set", "pair", "part", "size",
+     "cube", "cuboid", "cylinder", "sphere", "disc", "disk", "rod", "slab", "sheet", "block", "lump", "wedge",
+     "prism", "orb", "globe", "stick", "tube", "ring", "nugget"}
+)  # fmt: skip
+#: Metrics in nats (a name bonus can be subtracted; the margin is a log-likelihood ratio).
+_JP_METRICS = ("jp", "jplog")
+#: The metric when none is given: the paper's JP for features only, JP in log units for the hybrid.
+DEFAULT_METRIC = {True: "jp", False: "jplog"}
+
+
+def resolve_metric(metric: str | None, features_only: bool) -> str:
+    """``metric`` or, when None, the default for the mode (:data:`DEFAULT_METRIC`)."""
+    return DEFAULT_METRIC[bool(features_only)] if metric is None else metric
 
 
 # --------------------------------------------------------------------------------------------- names
@@ -98,6 +134,46 @@ def _head(words: tuple[str, ...]) -> str:
     return words[-1]
 
 
+#: Words that end the subject noun phrase: function words, pronouns and the commonest verbs of a
+#: description ("a fuzzy ball *with* ...", "an orange *of* 7 cm", "a cork *from* a bottle").
+_PHRASE_ENDS = frozenset(
+    "is are was were be been being with without of from for that which who about around roughly approximately "
+    "nearly almost over under weighs weigh weighing weighed measuring measures measure measured made covered "
+    "in on at into onto inside and or but has have had it its i im me my we our you your he she they their "
+    "this these those there here whose when while if so to by like maybe probably".split()
+)
+_PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: Words skipped inside the subject phrase (determiners, vague size words).
+_PHRASE_SKIP = frozenset(
+    "a an the some one just very really little small big large tiny huge old new".split()
+)
+
+
+def subject_head(text: str) -> str | None:
+    """The head noun of the description's subject: the last word of the first noun phrase of the first
+    sentence (words up to a comma, a number or a word of :data:`_PHRASE_ENDS`; determiners and vague size
+    words skipped), singular. "A plush dinosaur toy, 35 cm" -> toy; "An orange of 7 cm" -> orange;
+    "My daughter's teddy bear" -> bear. No part-of-speech tagger: a heuristic, used only as evidence."""
+    low = text.lower().replace("\u2019", "'")
+    low = re.sub(r"\b(it|that|there|what|he|she)'s\b", r"\1 is", low).replace("'s", "").replace("'", "")
+    sentence = re.split(r"[.!?;:\n]", low, maxsplit=1)[0]
+    for chunk in re.split(r"[,()\[\]\d\"/&+*=-]", sentence):
+        phrase: list[str] = []
+        previous = ""
+        for word in _WORD.findall(chunk):
+            if word in _PHRASE_ENDS:
+                if phrase:
+                    break
+            elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
+                pass
+            elif word not in _PHRASE_SKIP:
+                phrase.append(word)
+            previous = word
+        if phrase:
+            return _singular(phrase[-1])
+    return None
+
+
 @dataclass(frozen=True)
 class NameEvidence:
     """Catalog rows a description names and the information of the naming, in nats: a phrase that names
@@ -109,6 +185,8 @@ class NameEvidence:
     head: dict[int, float] = field(default_factory=dict)
     phrases: tuple[str, ...] = ()
     heads: tuple[str, ...] = ()
+    #: The subject's head noun when the catalog does not know it (:meth:`NameIndex.unknown_noun`).
+    unknown_noun: str | None = None
 
     def rows(self) -> list[int]:
         return sorted(set(self.exact) | set(self.head))
@@ -147,8 +225,20 @@ class NameIndex:
                         )
         # material words name what a thing is made of, not the thing ("made of glass")
         self.not_heads = frozenset(_singular(w) for w in MATERIAL_WORDS if " " not in w)
+        self.vocabulary = frozenset(w for phrase in self.phrases for w in phrase) | frozenset(self.heads)
         self.longest = max((len(p) for p in self.phrases), default=0)
         self.size = len(names)
+
+    def unknown_noun(self, text: str) -> str | None:
+        """The head noun of the description's subject (:func:`subject_head`) when the catalog does not know
+        it: in no name or alias, not a feature word of the parser's lexicon (materials, shapes, units,
+        ...; a colour word counts as a noun here: "an orange"), not a generic noun (:data:`GENERIC_NOUNS`)."""
+        head = subject_head(text)
+        if head is None or head in self.vocabulary or head in GENERIC_NOUNS or _PARTICIPLE.search(head):
+            return None
+        if head in _feature_words():
+            return None
+        return head
 
     def find(
         self, text: str, skip_spans: Sequence[tuple[int, int]] = (), material: str | None = None
@@ -197,7 +287,46 @@ class NameIndex:
                         continue
                     head[row] = max(head.get(row, 0.0), math.log(n / len(rows)))
                 heads.append(word)
-        return NameEvidence(exact, head, tuple(dict.fromkeys(phrases)), tuple(dict.fromkeys(heads)))
+        return NameEvidence(
+            exact,
+            head,
+            tuple(dict.fromkeys(phrases)),
+            tuple(dict.fromkeys(heads)),
+            self.unknown_noun(text),
+        )
+
+
+@functools.cache
+def _feature_words() -> frozenset[str]:
+    """Single words of the parser's lexicon that state a feature, a unit, a number or a hedge. Colour
+    words and the object nouns among the shape words ("orange", "candle", "vase") are left out: as the
+    head of the subject they name the object; of the shape words only adjectives ("round", "cylindrical",
+    "ball-shaped") are kept."""
+    from recall import lexicon as lx
+
+    words: set[str] = set()
+    tables = (
+        lx.MATERIAL_WORDS, lx.RIGIDITY_WORDS, lx.TEXTURE_WORDS, lx.FRAGILITY_WORDS, lx.MASS_HINT_WORDS,
+        lx.DIMENSION_WORDS, lx.NUMBER_WORDS, lx.MAGNITUDE_WORDS, lx.FRACTION_WORDS, lx.HEDGES,
+        lx.LENGTH_UNITS, lx.MASS_UNITS, lx.VOLUME_UNITS, lx.MEDIUM_WORDS, lx.DIMENSION_NOUNS, lx.FILL_WORDS,
+        lx.CAPACITY_WORDS, lx.NEGATIONS,
+    )  # fmt: skip
+    for table in tables:
+        for phrase in table:
+            words.update(normalize_words(phrase))
+    shape_words = set(lx.SHAPE_WORDS) | lx.SPHERE_WORDS | lx.CUBE_WORDS | lx.FLAT_WORDS | lx.ROUND_WORDS
+    for word in shape_words | lx.CYLINDER_WORDS | lx.DISC_WORDS:
+        if _ADJECTIVE.search(word) or word in _SHAPE_ADJECTIVES:
+            words.update(normalize_words(word))
+    return frozenset(words)
+
+
+#: Participles and adjectives that end a phrase ("full", "filled", "folded", "useful"): never a head.
+_PARTICIPLE = re.compile(r"^(full|play|fake|toy)$|..(ed|ful|ous|able|ible)$")
+_ADJECTIVE = re.compile(r"(al|ic|ed|y|ish|ar|shaped|like)$")
+_SHAPE_ADJECTIVES = frozenset(
+    {"flat", "round", "long", "thin", "slim", "slender", "compact", "oval", "squat", "floppy"}
+)
 
 
 # ------------------------------------------------------------------------------------------- results
@@ -239,8 +368,11 @@ class RecallResult:
     features_only: bool
     named: list[str] = field(default_factory=list)
     closeness: float | None = None
+    unknown_noun: str | None = None
     text: str | None = None
     parsed: dict[str, Any] | None = None
+    #: The name evidence used (empty for features only); not part of the JSON.
+    evidence: NameEvidence = field(default_factory=NameEvidence, repr=False)
 
     @property
     def best(self) -> Match | None:
@@ -256,18 +388,45 @@ class RecallResult:
             "features_only": self.features_only,
             "named": list(self.named),
             "closeness": self.closeness,
+            "unknown_noun": self.unknown_noun,
             "query": dict(self.query),
             "parsed": self.parsed,
         }
 
 
-def confidence_from_margin(margin: float, metric: str = "jp") -> float:
-    """The calibrated probability that the first match is right, from the ranking-score margin."""
-    a, b = CONFIDENCE_COEF.get(metric, CONFIDENCE_COEF["jp"])
-    if metric != "jp":  # the baselines' distances are on other scales: rescale the margin to nats
+def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) -> bool:
+    """The open-set rule (RECALL.md): the best match is not a close match when its closeness (mean
+    relative error) exceeds :data:`OPEN_SET_THRESHOLD`, :data:`OPEN_SET_NAMED_THRESHOLD` when the text
+    names it exactly, or :data:`OPEN_SET_UNKNOWN_NOUN_THRESHOLD` when the subject is an unknown noun."""
+    if closeness is None:
+        return False
+    if named:
+        return closeness > OPEN_SET_NAMED_THRESHOLD
+    if unknown_noun is not None:
+        return closeness > OPEN_SET_UNKNOWN_NOUN_THRESHOLD
+    return closeness > OPEN_SET_THRESHOLD
+
+
+def confidence_of(margin: float, closeness: float | None, unknown_noun: bool, metric: str = "jp") -> float:
+    """The calibrated probability that the first match is the described object: a logistic model of the
+    ranking-score margin (nats, capped at :data:`MAX_MARGIN`), the closeness and whether the subject is
+    an unknown noun (:data:`CONFIDENCE_COEF`, fitted on the development sets; see RECALL.md)."""
+    a, b, c, d = CONFIDENCE_COEF
+    if metric not in _JP_METRICS:  # the baselines' distances are on other scales: rescale the margin to nats
         margin = math.log1p(max(margin, 0.0))
-    z = a + b * margin
-    return float(1.0 / (1.0 + math.exp(-max(min(z, 50.0), -50.0))))
+    margin = min(max(margin, 0.0), MAX_MARGIN)
+    z = a + b * margin + c * (closeness or 0.0) + d * float(unknown_noun)
+    # never above the two-candidate posterior of the ranking itself, e^m / (1 + e^m): a tie is at most 0.5
+    return float(min(_sigmoid(z), _sigmoid(margin)))
+
+
+def _sigmoid(z: float) -> float:
+    return 1.0 / (1.0 + math.exp(-max(min(z, 50.0), -50.0)))
+
+
+def confidence_from_margin(margin: float, metric: str = "jp") -> float:
+    """The confidence of a result with this margin, a perfect closeness and a known subject."""
+    return confidence_of(margin, 0.0, False, metric)
 
 
 # ------------------------------------------------------------------------------------------ recaller
@@ -296,7 +455,7 @@ class Recaller:
 
     # -- entry points
     def recall_text(
-        self, text: str, *, top: int = 5, metric: str = "jp", features_only: bool = False
+        self, text: str, *, top: int = 5, metric: str | None = None, features_only: bool = False
     ) -> RecallResult:
         """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result."""
         from recall.parser import parse
@@ -304,7 +463,7 @@ class Recaller:
         return self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
 
     def recall_parsed(
-        self, parsed: Any, *, top: int = 5, metric: str = "jp", features_only: bool = False
+        self, parsed: Any, *, top: int = 5, metric: str | None = None, features_only: bool = False
     ) -> RecallResult:
         """Recall from a parser result (``recall.parser.ParsedDescription``)."""
         query = FeatureQuery.from_parsed(parsed)
@@ -327,7 +486,7 @@ class Recaller:
         bounds: Mapping[str, tuple[float | None, float | None]] | None = None,
         text: str | None = None,
         top: int = 5,
-        metric: str = "jp",
+        metric: str | None = None,
         features_only: bool = False,
     ) -> RecallResult:
         """Recall from feature values in catalog units (and, for the hybrid, the ``text`` to find names in)."""
@@ -345,6 +504,8 @@ class Recaller:
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:
         if metric == "jp":
             return score_rows(self.snapshot, query, rows)
+        if metric == "jplog":
+            return score_rows(self.snapshot.log_scaled, query.log_scaled(), rows)
         return distances(metric, self.snapshot.matrix, query, kdtree_cache=self._kdtrees)[rows]
 
     def _recall(
@@ -353,9 +514,10 @@ class Recaller:
         names: NameEvidence,
         *,
         top: int,
-        metric: str,
+        metric: str | None,
         features_only: bool,
     ) -> RecallResult:
+        metric = resolve_metric(metric, features_only)
         if metric not in METRICS:
             raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
         if top < 1:
@@ -378,14 +540,17 @@ class Recaller:
                 rows = np.concatenate((rows, extra))
                 dist = np.concatenate((dist, self._distances_of(query, extra, metric)))
             bonus = np.array([names.bonus(int(r)) for r in rows])
-            if metric == "jp":
+            if metric in _JP_METRICS:
                 score = dist - bonus
             else:  # other metrics have no probabilistic scale: named objects rank first, by their evidence
                 score = dist - (dist.max() + 1.0) * bonus
         order_dist = {int(r): float(d) for r, d in zip(rows, dist, strict=True)}
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         named_set = set(names.exact)
-        terms = feature_terms(snap.num[rows], snap.cat[rows], query)
+        if metric == "jplog":
+            terms = feature_terms(snap.log_scaled.num[rows], snap.cat[rows], query.log_scaled())
+        else:  # the paper's JP terms (also shown for the baselines: why this object, in nats)
+            terms = feature_terms(snap.num[rows], snap.cat[rows], query)
         matches = []
         for i, row in enumerate(rows):
             row = int(row)
@@ -400,18 +565,21 @@ class Recaller:
                     features={f: getattr(rec, f) for f in FEATURES},
                 )
             )
-        margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else 10.0
-        confidence = confidence_from_margin(margin, metric)
-        best = matches[0]
-        closeness = float(np.mean(list(best.contributions.values()))) if best.contributions else None
-        open_set = bool(closeness is not None and closeness > OPEN_SET_THRESHOLD and not best.matched_by_name)
+        margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
+        best = int(rows[0])
+        errors = relative_errors(snap.num[best], snap.cat[best], query)
+        closeness = float(np.mean(list(errors.values()))) if errors else None
+        open_set = is_open_set(closeness, matches[0].matched_by_name, names.unknown_noun)
+        confidence = confidence_of(margin, closeness, names.unknown_noun is not None, metric)
         if open_set:
-            confidence = min(confidence, 0.5)
+            confidence = min(confidence, OPEN_SET_CONFIDENCE_CAP)
         return RecallResult(
             matches=matches[:top],
             confidence=confidence,
             open_set=open_set,
             named=list(names.phrases),
             closeness=closeness,
+            unknown_noun=names.unknown_noun,
+            evidence=names,
             **base,
         )

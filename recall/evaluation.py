@@ -20,7 +20,7 @@ import numpy as np
 
 from kb.errors import RecallError
 from kb.features import CATEGORICAL_FEATURES, normalize_name
-from recall.engine import HEAD_WEIGHT, NAME_WEIGHT, Recaller, RecallResult
+from recall.engine import DEFAULT_METRIC, HEAD_WEIGHT, NAME_WEIGHT, Recaller, RecallResult
 from recall.metrics import METRICS, FeatureQuery, feature_terms
 
 __all__ = ["PAPER_TOP1", "Case", "EvaluationReport", "MetricScore", "Miss", "evaluate", "read_descriptions"]
@@ -31,7 +31,8 @@ OPEN_SET = _HERE / "data" / "open_set_descriptions.csv"
 SEED_CATALOG = _HERE.parent / "kb" / "data" / "seed_catalog.csv"
 #: The paper's Fig. 5 (top-1 accuracy, %, 100 descriptions of 100 objects).
 PAPER_TOP1 = {"jp": 92, "euclidean": 85, "minkowski": 82, "cosine": 59, "kdtree": 85}
-HYBRID = "jp+names"
+#: The hybrid rows of the table: the default (JP in log units + names) and the paper's JP + names.
+HYBRID_METRICS = (DEFAULT_METRIC[False], "jp")
 
 
 @dataclass
@@ -147,27 +148,51 @@ def _recaller_from_catalog(catalog_csv: Path, workdir: Path) -> Recaller:
     return Recaller.from_db(workdir / "evaluation.duckdb")
 
 
-def miss_reason(recaller: Recaller, query: FeatureQuery, true_name: str, got_name: str) -> str:
-    """Why ``got_name`` beat ``true_name``: the stated features that pulled it, and the unstated ones
-    that would have told them apart."""
+def miss_reason(
+    recaller: Recaller,
+    query: FeatureQuery,
+    true_name: str,
+    got_name: str,
+    *,
+    metric: str = "jp",
+    result: RecallResult | None = None,
+) -> str:
+    """Why ``got_name`` beat ``true_name`` under ``metric`` (``jp`` or ``jplog``): both ranking scores,
+    the stated features that pulled the wrong object ahead (largest first, with the stated value, both
+    catalog values and both terms), the ones that favoured the right object, the name evidence of the
+    hybrid, and the unstated categories that would have told them apart."""
     snap = recaller.snapshot
     index = {n: i for i, n in enumerate(snap.names)}
     t, g = index[true_name], index[got_name]
     rows = np.array([t, g])
-    terms = feature_terms(snap.num[rows], snap.cat[rows], query)
+    if metric == "jplog":
+        terms = feature_terms(snap.log_scaled.num[rows], snap.cat[rows], query.log_scaled())
+    else:
+        terms = feature_terms(snap.num[rows], snap.cat[rows], query)
     true_rec, got_rec = snap.record(t), snap.record(g)
     values = query.values()
-    parts = []
-    pulls = sorted(((terms[f][0] - terms[f][1], f) for f in terms), reverse=True)
-    for diff, feat in pulls:
-        if diff <= 1e-9:
-            break
-        parts.append(
+    names = result.evidence if result is not None else None
+    bonus = (names.bonus(t), names.bonus(g)) if names is not None else (0.0, 0.0)
+    total_t = sum(float(v[0]) for v in terms.values()) - bonus[0]
+    total_g = sum(float(v[1]) for v in terms.values()) - bonus[1]
+    label = "jp" if metric == "jp" else metric
+    parts = [f"{label} {got_name} {total_g:.2f} < {true_name} {total_t:.2f}"]
+
+    def side(feat: str) -> str:
+        return (
             f"{feat}: stated {_fmt(values.get(feat))}, {true_name} {_fmt(getattr(true_rec, feat))} "
             f"(+{terms[feat][0]:.2f}) vs {got_name} {_fmt(getattr(got_rec, feat))} (+{terms[feat][1]:.2f})"
         )
-        if len(parts) == 3:
-            break
+
+    diffs = sorted(((float(terms[f][0] - terms[f][1]), f) for f in terms), reverse=True)
+    pulls = [side(f) for d, f in diffs if d > 1e-9][:3]
+    if pulls:
+        parts.append("pulled ahead by " + "; ".join(pulls))
+    against = [f"{f} ({-d:.2f})" for d, f in sorted(diffs) if d < -1e-9][:3]
+    if against:
+        parts.append("the right object was closer on " + ", ".join(against))
+    if bonus != (0.0, 0.0):
+        parts.append(f"name evidence: {true_name} -{bonus[0]:.2f}, {got_name} -{bonus[1]:.2f}")
     if not query.stated:
         parts.append("no feature stated")
     unstated = [
@@ -177,7 +202,7 @@ def miss_reason(recaller: Recaller, query: FeatureQuery, true_name: str, got_nam
     ]
     if unstated:
         parts.append("not stated: " + ", ".join(unstated))
-    if not parts:
+    if len(parts) == 1:
         parts.append("tie on every stated feature")
     return "; ".join(parts)
 
@@ -202,8 +227,9 @@ def evaluate(
     snap = recaller.snapshot
     index = {n: i for i, n in enumerate(snap.names)}
     alias_of = {a: n for n, aliases in zip(snap.names, snap.aliases, strict=True) for a in aliases}
-    hits = {(m, fo): [0, 0] for m in METRICS for fo in (True,)}
-    hits[("jp", False)] = [0, 0]
+    hits = {(m, True): [0, 0] for m in METRICS}
+    hits.update({(m, False): [0, 0] for m in HYBRID_METRICS})
+    explained = {("jp", True), (DEFAULT_METRIC[False], False)}
     misses: list[Miss] = []
     unknown: list[str] = []
     parse_pairs: list[tuple[Any, ObjectRecord]] = []
@@ -221,23 +247,30 @@ def evaluate(
         results: dict[tuple[str, bool], RecallResult] = {}
         for metric in METRICS:
             results[(metric, True)] = recaller.recall_parsed(parsed, top=3, metric=metric, features_only=True)
-        results[("jp", False)] = recaller.recall_parsed(parsed, top=3, metric="jp", features_only=False)
+        for metric in HYBRID_METRICS:
+            results[(metric, False)] = recaller.recall_parsed(
+                parsed, top=3, metric=metric, features_only=False
+            )
         for key, res in results.items():
             names = [m.name for m in res.matches]
             hits[key][0] += bool(names[:1] == [obj])
             hits[key][1] += obj in names[:3]
-            if key[0] == "jp" and names[:1] != [obj]:
+            if key in explained and names[:1] != [obj]:
                 got = names[0] if names else "(nothing)"
-                reason = miss_reason(recaller, query, obj, got) if names else "nothing stated or named"
+                reason = (
+                    miss_reason(recaller, query, obj, got, metric=key[0], result=res)
+                    if names
+                    else "nothing stated or named"
+                )
                 if not key[1]:
                     reason = (
                         "named: " + ", ".join(res.named) + "; " if res.named else "no name found; "
                     ) + reason
-                misses.append(Miss("jp" if key[1] else HYBRID, obj, got, text, reason))
+                misses.append(Miss(key[0] if key[1] else f"{key[0]}+names", obj, got, text, reason))
         if keep_cases:
-            cases.append(Case(obj, text, results[("jp", True)], results[("jp", False)]))
+            cases.append(Case(obj, text, results[("jp", True)], results[(DEFAULT_METRIC[False], False)]))
     scores = [MetricScore(m, True, n, *hits[(m, True)]) for m in METRICS]
-    scores.append(MetricScore("jp", False, n, *hits[("jp", False)]))
+    scores += [MetricScore(m, False, n, *hits[(m, False)]) for m in HYBRID_METRICS]
     parse_scores = score_parses(parse_pairs) if parse_pairs else None
     parse_dict = asdict(parse_scores) if parse_scores is not None else {}
     parse_dict.pop("confusion", None)
@@ -245,20 +278,43 @@ def evaluate(
 
 
 # ------------------------------------------------------------------------------------------ calibration
-def fit_confidence(cases: list[Case]) -> tuple[float, float, int]:
-    """Logistic fit of P(first match right) on the ranking-score margin, over the features-only and the
-    hybrid results of the development set. Returns (a, b, number of points)."""
+def confidence_inputs(result: RecallResult) -> list[float]:
+    """The confidence model's inputs of a result: margin (capped), closeness, unknown noun (0/1)."""
+    from recall.engine import MAX_MARGIN
+
+    margin = result.matches[1].score - result.matches[0].score if len(result.matches) > 1 else MAX_MARGIN
+    return [
+        min(max(margin, 0.0), MAX_MARGIN),
+        result.closeness or 0.0,
+        float(result.unknown_noun is not None),
+    ]
+
+
+def fit_confidence(cases: list[Case], open_set: list[RecallResult] = ()) -> tuple[tuple[float, ...], int]:
+    """Logistic fit of P(first match right) on :func:`confidence_inputs`, over the features-only and the
+    hybrid results of the development set and the results of the open set (never right). Returns the
+    coefficients (a, b, c, d) of ``recall.engine.CONFIDENCE_COEF`` and the number of points."""
     from sklearn.linear_model import LogisticRegression
 
     x, y = [], []
     for case in cases:
         for res in (case.features_only, case.hybrid):
-            if len(res.matches) < 2:
-                continue
-            x.append(res.matches[1].score - res.matches[0].score)
-            y.append(int(res.matches[0].name == case.object))
-    model = LogisticRegression(C=10.0).fit(np.array(x)[:, None], np.array(y))
-    return float(model.intercept_[0]), float(model.coef_[0][0]), len(x)
+            if res.matches:
+                x.append(confidence_inputs(res))
+                y.append(int(res.matches[0].name == case.object))
+    for res in open_set:
+        if res.matches:
+            x.append(confidence_inputs(res))
+            y.append(0)
+    model = LogisticRegression(C=10.0).fit(np.array(x), np.array(y))
+    return (float(model.intercept_[0]), *(float(c) for c in model.coef_[0])), len(x)
+
+
+def open_set_results(recaller: Recaller, path: str | Path, features_only: bool = False) -> list[RecallResult]:
+    """Recall every ``description`` of an open-set CSV (objects not in the catalog)."""
+    with Path(path).open(encoding="utf-8-sig", newline="") as fh:
+        texts = [row["description"] for row in csv.DictReader(fh)]
+    return [recaller.recall_text(t, features_only=features_only) for t in texts]
 
 
 def _main() -> None:  # pragma: no cover - a calibration script
@@ -270,6 +326,7 @@ def _main() -> None:  # pragma: no cover - a calibration script
     )
     ap.add_argument("--catalog", default=str(SEED_CATALOG))
     ap.add_argument("--descriptions", default=str(DEV_SET))
+    ap.add_argument("--open-set", default=str(OPEN_SET))
     ap.add_argument("--fit", action="store_true")
     args = ap.parse_args()
     report = evaluate(args.catalog, args.descriptions, keep_cases=True)
@@ -286,30 +343,26 @@ def _main() -> None:  # pragma: no cover - a calibration script
                 f"NAME_WEIGHT {w_name} HEAD_WEIGHT {w_head}: hybrid top-1 {r.score('jp', False).top1_pct:.1f} %"
             )
         engine.NAME_WEIGHT, engine.HEAD_WEIGHT = NAME_WEIGHT, HEAD_WEIGHT
-        a, b, k = fit_confidence(report.cases)
-        print(f"confidence: a={a:.3f} b={b:.3f} over {k} results")
-        close = sorted(
-            c.features_only.closeness for c in report.cases if c.features_only.closeness is not None
-        )
-        right = sorted(
-            c.features_only.closeness
-            for c in report.cases
-            if c.features_only.closeness is not None and c.features_only.matches[0].name == c.object
-        )
-        q = np.percentile(right, [50, 90, 95, 99])
-        print(
-            f"closeness of right first matches: p50 {q[0]:.2f} p90 {q[1]:.2f} p95 {q[2]:.2f} p99 {q[3]:.2f} max {max(right):.2f}"
-        )
-        print("all:", np.percentile(close, [50, 90, 99]))
         recaller = Recaller.from_csv(args.catalog)
-        with OPEN_SET.open() as fh:
-            for row in csv.DictReader(fh):
-                res = recaller.recall_text(row["description"])
-                best = res.best.name if res.best else None
-                print(
-                    f"open-set {res.closeness if res.closeness is not None else math.nan:.2f} {res.open_set} "
-                    f"{best}: {row['description'][:60]}"
-                )
+        opens = [r for fo in (False, True) for r in open_set_results(recaller, OPEN_SET, fo)]
+        coef, k = fit_confidence(report.cases, opens)
+        print("confidence (a, b, c, d):", ", ".join(f"{c:.2f}" for c in coef), f"over {k} results")
+        right = sorted(
+            c.hybrid.closeness
+            for c in report.cases
+            if c.hybrid.closeness is not None and c.hybrid.matches[0].name == c.object
+        )
+        q = np.percentile(right, [50, 90, 99])
+        print(
+            f"closeness of right hybrid matches: p50 {q[0]:.2f} p90 {q[1]:.2f} p99 {q[2]:.2f} max {max(right):.2f}"
+        )
+        for res in open_set_results(recaller, args.open_set):
+            best = res.best.name if res.best else None
+            close = res.closeness if res.closeness is not None else math.nan
+            print(
+                f"open-set {close:.2f} {res.open_set} {res.unknown_noun} {best} {res.confidence:.2f}: "
+                f"{(res.text or '')[:60]}"
+            )
 
 
 if __name__ == "__main__":

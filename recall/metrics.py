@@ -11,7 +11,7 @@ scikit-learn's k-d tree) use the same masked columns. See ``recall/RECALL.md`` f
 Rules the paper leaves open, decided here (NumPy, the pruned search and the SQL macros all follow them):
 
 * **Qualifiers.** A stated numeric value is a point (``about``/``exact``) or an interval (``at_least`` →
-  [v, 2v] (:data:`AT_LEAST_SPAN`), ``at_most`` → [0, v], ``range`` → [low, high]). The difference of a catalog value ``x`` is its
+  [v, 1.5v] (:data:`AT_LEAST_SPAN`), ``at_most`` → [0, v], ``range`` → [low, high]). The difference of a catalog value ``x`` is its
   distance to the interval: ``max(low − x, x − high, 0)``; a point is the interval [v, v].
 * **Unknown catalog values.** A catalog object whose value of a stated numeric feature is unknown is
   scored as if it were off by :data:`UNKNOWN_NUMERIC_FRACTION` of the stated value (difference
@@ -37,6 +37,7 @@ from kb.features import CATEGORICAL_FEATURES, CATEGORIES, NUMERIC_FEATURES, VECT
 __all__ = [
     "CATEGORY_CODES",
     "LN2",
+    "LOG_STEP",
     "METRICS",
     "MISMATCH_TERM",
     "NumericCondition",
@@ -47,10 +48,18 @@ __all__ = [
     "feature_terms",
     "jp_term",
     "kdtree_query",
+    "log_units",
+    "relative_errors",
 ]
 
 #: Metric names accepted by the recall engine and the CLI (``kdtree`` is Euclidean through sklearn's KDTree).
-METRICS: tuple[str, ...] = ("jp", "euclidean", "minkowski", "cosine", "kdtree")
+METRICS: tuple[str, ...] = ("jp", "euclidean", "minkowski", "cosine", "kdtree", "jplog")
+#: ``jplog`` (not the paper's; the hybrid's default): JP with every numeric feature in log units of
+#: :data:`LOG_STEP`, a 10 % step: |Δ| = |ln x − ln v| / ln 1.1, so a 20 % mass error weighs the same for a
+#: 20 g and a 2 kg object (in grams it costs log(1 + 0.2 v): more than any category mismatch). See RECALL.md.
+LOG_STEP = math.log(1.1)
+#: Values below this (cm, g) are this in log units: 0 has no logarithm, and the search wants finite ends.
+LOG_FLOOR = 1e-6
 MINKOWSKI_P = 4
 #: An unknown catalog value of a stated numeric feature counts as off by this fraction of the stated value.
 UNKNOWN_NUMERIC_FRACTION = 0.5
@@ -74,6 +83,13 @@ CATEGORY_CODES: dict[str, dict[str, int]] = {
 _QUALIFIERS = ("about", "exact", "at_least", "at_most", "range")
 
 
+def log_units(x: np.ndarray | float) -> np.ndarray | float:
+    """Positive values in log units of :data:`LOG_STEP` (ln x / ln 1.1); 0 -> -inf, inf -> inf, NaN stays."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.log(np.maximum(x, 0.0)) / LOG_STEP
+    return float(out) if np.ndim(out) == 0 else out
+
+
 def jp_term(difference: np.ndarray | float) -> np.ndarray | float:
     """One feature's Joint Probability term ``log(1 + |d|)`` (= −log P(i → o | d))."""
     return np.log1p(np.abs(difference))
@@ -88,11 +104,27 @@ class NumericCondition:
     low: float
     high: float
     qualifier: str = "about"
+    #: The difference charged to an unknown catalog value; None: UNKNOWN_NUMERIC_FRACTION of the value.
+    unknown: float | None = None
 
     @property
     def unknown_difference(self) -> float:
         """The difference charged to a catalog object whose value is unknown."""
+        if self.unknown is not None:
+            return self.unknown
         return UNKNOWN_NUMERIC_FRACTION * abs(self.value)
+
+    def log_scaled(self) -> NumericCondition:
+        """The same condition in log units (:func:`log_units`); an unknown catalog value still counts as
+        off by UNKNOWN_NUMERIC_FRACTION (a factor 1.5)."""
+        return NumericCondition(
+            self.feature,
+            float(log_units(self.value)),
+            float(log_units(max(self.low, LOG_FLOOR))),  # "at most" keeps a finite lower end
+            float(log_units(max(self.high, LOG_FLOOR))),
+            self.qualifier,
+            float(log_units(1.0 + UNKNOWN_NUMERIC_FRACTION)),
+        )
 
     def differences(self, x: np.ndarray) -> np.ndarray:
         """Distance of catalog values ``x`` (NaN = unknown) to the interval; unknown gets the fixed penalty."""
@@ -115,6 +147,10 @@ class FeatureQuery:
 
     def __len__(self) -> int:
         return len(self.numeric) + len(self.categorical)
+
+    def log_scaled(self) -> FeatureQuery:
+        """The query for ``jplog``: numeric conditions in log units, categories unchanged."""
+        return FeatureQuery(tuple(c.log_scaled() for c in self.numeric), self.categorical)
 
     def values(self) -> dict[str, Any]:
         """Point values of the stated features."""
@@ -217,6 +253,30 @@ def feature_terms(num: np.ndarray, cat: np.ndarray, query: FeatureQuery) -> dict
     return out
 
 
+def relative_errors(num_row: np.ndarray, cat_row: np.ndarray, query: FeatureQuery) -> dict[str, float]:
+    """How far one catalog object is from the description, per stated feature, on one scale-free [0, 1]
+    scale (the open-set closeness and the confidence use it; the ranking does not):
+
+    * numeric: ``d / max(v, x)``, ``d`` the difference to the stated value or interval (as in JP), ``v``
+      the stated value, ``x`` the object's (30 % too long and 30 % too heavy count the same for a coin
+      and a sofa); an unknown value counts as the unknown penalty, 1/3 (``0.5 v / 1.5 v``);
+    * categorical: 0 match, 1 mismatch, 0.5 unknown.
+    """
+    out: dict[str, float] = {}
+    for cond in query.numeric:
+        x = float(num_row[NUMERIC_FEATURES.index(cond.feature)])
+        if math.isnan(x):
+            out[cond.feature] = UNKNOWN_NUMERIC_FRACTION / (1.0 + UNKNOWN_NUMERIC_FRACTION)
+            continue
+        d = max(cond.low - x, x - cond.high, 0.0)
+        scale = max(abs(cond.value), abs(x))
+        out[cond.feature] = min(d / scale, 1.0) if scale > 0 else 0.0
+    for feat, value in query.categorical:
+        code = int(cat_row[CATEGORICAL_FEATURES.index(feat)])
+        out[feat] = 0.0 if code == CATEGORY_CODES[feat][value] else (0.5 if code < 0 else 1.0)
+    return out
+
+
 def _masked_columns(query: FeatureQuery) -> list[int]:
     stated = set(query.stated)
     return [i for i, col in enumerate(VECTOR_COLUMNS) if col.split("=")[0] in stated]
@@ -283,6 +343,10 @@ def distances(
         return np.zeros(n)
     if metric == "jp":
         return np.log1p(_column_differences(matrix, query)).sum(axis=1)
+    if metric == "jplog":
+        scaled = matrix.copy()
+        scaled[:, : len(NUMERIC_FEATURES)] = log_units(matrix[:, : len(NUMERIC_FEATURES)])
+        return np.log1p(_column_differences(scaled, query.log_scaled())).sum(axis=1)
     if metric == "euclidean":
         return np.sqrt((_column_differences(matrix, query) ** 2).sum(axis=1))
     if metric == "minkowski":

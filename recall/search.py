@@ -106,9 +106,11 @@ def brute_force_top_k(snap: CatalogSnapshot, query: FeatureQuery, k: int) -> tup
 def top_k(
     snap: CatalogSnapshot, query: FeatureQuery, k: int, metric: str = "jp", kdtree_cache: dict | None = None
 ):
-    """Exact top-k rows and distances under ``metric`` (JP through the pruned index)."""
+    """Exact top-k rows and distances under ``metric`` (JP and JP in log units through the pruned index)."""
     if metric == "jp":
         return snap.index.top_k(query, k)
+    if metric == "jplog":
+        return snap.log_scaled.index.top_k(query.log_scaled(), k)
     k = min(k, len(snap))
     if k <= 0:
         return np.empty(0, dtype=np.int64), np.empty(0)

@@ -102,6 +102,21 @@ class CatalogSnapshot:
         return out
 
     @cached_property
+    def log_scaled(self) -> CatalogSnapshot:
+        """The same catalog with the numeric columns in log units (``recall.metrics.log_units``): what the
+        ``jplog`` metric searches, with its own pruned index."""
+        from recall.metrics import log_units
+
+        return CatalogSnapshot(
+            names=self.names,
+            aliases=self.aliases,
+            num=log_units(self.num),
+            cat=self.cat,
+            records=self.records,
+            version=self.version,
+        )
+
+    @cached_property
     def index(self):  # -> recall.search.JPIndex
         """The pruned-search index (sorted columns, rows per category), built on first use."""
         from recall.search import JPIndex

@@ -153,3 +153,19 @@ def test_best_first_cells_alone_equal_brute_force(seed, k):
     brows, bdist = brute_force_top_k(catalog(), query, k)
     np.testing.assert_array_equal(rows, brows)
     np.testing.assert_array_equal(dist, bdist)
+
+
+@settings(max_examples=40, deadline=None)
+@given(query=arbitrary_queries(), k=st.integers(1, 8))
+def test_jplog_top_k_equals_brute_force(query, k):
+    """JP in log units searches the log-scaled snapshot with the same pruned index: still exact."""
+    from recall.metrics import distances
+
+    logged = catalog().log_scaled
+    rows, dist = top_k(catalog(), query, k, metric="jplog")
+    brows, bdist = brute_force_top_k(logged, query.log_scaled(), k)
+    np.testing.assert_array_equal(rows, brows)
+    np.testing.assert_array_equal(dist, bdist)
+    # and the one-hot matrix route gives the same distances
+    full = distances("jplog", catalog().matrix, query)
+    np.testing.assert_allclose(full[rows], dist, rtol=1e-9, atol=1e-9)
