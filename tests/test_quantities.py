@@ -233,3 +233,89 @@ def test_regions_that_write_decimal_points():
     assert decimal_comma_for("de-CH") is False
     assert decimal_comma_for(None, "https://www.amazon.com.mx/dp/x") is False
     assert decimal_comma_for("es-ES") is True
+
+
+# --- fractions, apostrophes, feet and inches, more languages' unit words ---------------------------------
+
+
+@pytest.mark.parametrize(
+    ("text", "cm"),
+    [
+        ("10 1/2 in", 26.67),
+        ("10-1/2 in.", 26.67),
+        ("23½ in", 59.69),
+        ('23 ½"', 59.69),
+        ('3/4" thick', 1.905),
+        ("5' 3''", 160.02),
+        ("5′ 3″", 160.02),
+        ("2' 1\"", 63.5),
+        ("5 ft 3 in", 160.02),
+        ("10″", 25.4),  # NFKC writes ″ as two primes: still inches, not feet
+        ("6 feet", 182.88),
+        ("12センチ", 12.0),
+        ("300ミリ", 30.0),
+        ("5 сантиметров", 5.0),
+    ],
+)
+def test_imperial_fractions_and_feet_inches(text, cm):
+    assert parse_length(text) == pytest.approx(cm, rel=1e-6), text
+
+
+@pytest.mark.parametrize(
+    ("text", "dc", "grams"),
+    [
+        ("3/4 lb", None, 340.19428),
+        ("1'200 g", False, 1200.0),
+        ("1\u2019200 g", None, 1200.0),
+        ("800 グラム", None, 800.0),
+        ("約2.4キログラム", None, 2400.0),
+        ("约3.1千克", None, 3100.0),
+        ("около 1,2 кг", True, 1200.0),
+        ("450 граммов", True, 450.0),
+        ("2,35 kilogramů", True, 2350.0),
+    ],
+)
+def test_masses_in_more_forms(text, dc, grams):
+    assert parse_mass(text, None, dc) == pytest.approx(grams, rel=1e-6), text
+
+
+def test_fraction_like_things_that_are_not_fractions_are_left_alone():
+    assert clean_text("2016/8/1") == "2016/8/1"  # a date
+    assert clean_text("4/5 stars") == "4/5 stars"  # not an imperial denominator
+    assert clean_text("Size 7/2 cm") == "Size 7/2 cm"  # not a proper fraction
+    assert clean_text("CHF 1'249.00") == "CHF 1249.00"
+    assert clean_text("5' 13\"") == "5' 13\""  # 13 inches is not the rest of a foot
+
+
+def test_diameter_prefix_makes_a_round_object():
+    assert parse_dims("直径12cm × 高さ6.5cm")[0].values_cm == (12.0, 6.5, 12.0)
+    assert parse_dims("Ø 12 x 6,5 cm", None, True)[0].values_cm == (12.0, 6.5, 12.0)
+    assert parse_dims("12 x 6 cm")[0].values_cm == (12.0, 6.0)
+
+
+_FRACTIONS = st.sampled_from(
+    [(1, 2), (1, 4), (3, 4), (1, 8), (3, 8), (5, 8), (7, 8), (1, 16), (15, 16), (1, 3)]
+)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(min_value=0, max_value=99), _FRACTIONS, st.sampled_from([" ", "-"]), st.booleans())
+def test_mixed_numbers_round_trip(whole, fraction, joiner, decimal_comma):
+    num, den = fraction
+    text = (f"{whole}{joiner}{num}/{den}" if whole else f"{num}/{den}") + " in"
+    expected = (whole + num / den) * 2.54
+    assert parse_length(text, None, decimal_comma) == pytest.approx(expected, rel=1e-3), text
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(min_value=1, max_value=9), st.integers(min_value=0, max_value=11), st.booleans())
+def test_feet_and_inches_round_trip(feet, inches, prime):
+    text = f"{feet}\u2032 {inches}\u2033" if prime else f"{feet}' {inches}''"
+    assert parse_length(text) == pytest.approx((feet * 12 + inches) * 2.54, rel=1e-9), text
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(min_value=1000, max_value=999_999), st.sampled_from(["'", "\u2019"]))
+def test_swiss_thousands_round_trip(value, mark):
+    text = f"{value:,}".replace(",", mark) + " g"
+    assert parse_mass(text, None, False) == value, text

@@ -44,6 +44,9 @@ AXIS_GROUP_GAP = 8
 #: dozen (23 on the richest page measured); a page with thousands is a parts list or a spec dump, and the
 #: product's own values come first.
 MAX_PAIRS = 400
+#: A weight range no wider than this ratio (``1,2 – 1,5 kg``: a handmade piece) gives its midpoint; a wider
+#: one (``1.01 - 7.2 lbs``: variants of different sizes) is not used.
+NARROW_RANGE = 1.5
 _AXIS_LETTER_END = re.compile(r"(?<=\s)[HWDLBT]\.?\s*$")
 _PUNCT_ONLY = re.compile(r"[\W_]+")
 _BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
@@ -138,6 +141,13 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
     return pairs
 
 
+def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
+    """Whether a range's unit (written after it, or the label's) is a mass unit."""
+    m = re.search(r"\d\s*([^\W\d_]+)\.?\s*(?:\(|$|[,;])", clean_text(value))
+    unit = m.group(1) if m else label_unit
+    return mass_unit(unit) is not None if unit else False
+
+
 def _is_unit(text: str) -> bool:
     return len(text) <= 12 and (length_unit(text) is not None or mass_unit(text) is not None)
 
@@ -192,10 +202,20 @@ def observations_from_pairs(
             mass, note = _plausible_mass(pair.value, info.unit, decimal_comma)
             if mass is not None:
                 obs.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
-            elif parse_length_range(pair.value, info.unit or "kg", decimal_comma) is not None:
-                obs.append(
-                    Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
-                )
+            elif (rng := parse_length_range(pair.value, info.unit or "kg", decimal_comma)) is not None:
+                low, high = rng
+                if mass_unit_of_range(pair.value, info.unit) and high <= NARROW_RANGE * low:
+                    # "ca. 1,2 – 1,5 kg" (a handmade piece): the midpoint, one rank weaker, with a note
+                    obs.append(
+                        Observation(
+                            "mass", round((low + high) / 2, 6), package, rank + 1, pair.order, pair.group,
+                            raw, f"weight given as a range ({raw}); took the midpoint",
+                        )
+                    )  # fmt: skip
+                else:
+                    obs.append(
+                        Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
+                    )
         elif info.kind in AXES:
             length = parse_length(pair.value, info.unit, decimal_comma)
             note = None

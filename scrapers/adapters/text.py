@@ -74,11 +74,14 @@ _AXIS_PHRASE = re.compile(
     re.IGNORECASE,
 )
 _MEASURES = re.compile(
-    r"\b(?:measures?|measuring|dimensions?|size|mide|misura|mede|mesure|misst)\b", re.IGNORECASE
+    r"\b(?:measures?|measuring|dimensions?|size|mide|misura|mede|mesure|misst|размеры|размер|габариты|"
+    r"wymiary|rozměry|rozmery|boyutlar[ıi]?|afmetingen)\b",
+    re.IGNORECASE,
 )
 _WEIGHS = re.compile(
-    r"\b(?:weighs?|weighing|weight of|wiegt|pesa|pèse|waży|весит)\s+(?:just |only |about |approx\.? |approximately "
-    r"|around |ca\.? |nur |etwa |environ |unos |circa |cerca de )?(?P<q>\d+(?:[.,]\d+)*\s*[^\W\d_]+\.?)",
+    r"\b(?:weighs?|weighing|weight of|wiegt|pesa|pèse|waży|весит|weegt|váží|váži)\s+(?:just |only |about "
+    r"|approx\.? |approximately |roughly |around |ca\.? |nur |etwa |environ |unos |circa |cerca de |около "
+    r"|примерно |około |asi |přibližně |ongeveer )?(?P<q>\d+(?:[.,]\d+)*\s*[^\W\d_]+\.?)",
     re.IGNORECASE,
 )
 _MADE_OF = re.compile(
