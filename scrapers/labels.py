@@ -83,7 +83,7 @@ _KIND_WORDS: dict[str, str] = {
     **_words(
         "weight",
         "weight weighs wt mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt vægt vekt "
-        "ağırlık ağırlığı greutate paino súly βάρος berat svars svoris kaal teža težina тегло משקל الوزن وزن",
+        "ağırlık ağırlığı greutate paino súly tömeg βάρος berat svars svoris kaal teža težina тегло משקל الوزن وزن",
     ),
 }
 _PACKAGE_WORDS = {
@@ -93,7 +93,7 @@ _PACKAGE_WORDS = {
         "versand paket karton brutto emballage emballé colis embalaje embalado paquete envío caja imballo "
         "imballaggio confezione spedizione pacco embalagem pacote caixa opakowanie opakowaniu balenie "
         "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking bruto lordo brut "
-        "opakowaniem opakowania упаковці упаковки ambalaj ambalaj ambalajlı emballasje förpackning "
+        "opakowaniem opakowania упаковці упаковки ambalaj ambalaj ambalajlı emballasje förpackning förpackningens "
         "collo colli kargo kargolu gönderi paketli koli kutu przesyłki wysyłki zásilky balíku balenia "
         "csomagolás csomagolással doboz упаковкою посылки отправления"
     ).split()
@@ -108,6 +108,7 @@ _QUALIFIERS = {
         "total totale gesamt body unit assembled device net netto nett neto нетто устройства товара "
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
+        "approximate dell dello dei degli van het een des "
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
@@ -260,6 +261,8 @@ def _classify(label: object) -> LabelInfo | None:
     if squashed in _CJK_LABELS:
         kind, package = _CJK_LABELS[squashed]
         return LabelInfo(kind, package, unit)
+    if any(_is_cjk(ch) for ch in squashed):
+        return _classify_cjk(squashed, unit)
     words = [w for w in re.split(r"[\W_]+", folded) if w]
     if not words or len(words) > _MAX_WORDS:
         return None
@@ -298,6 +301,75 @@ def _classify(label: object) -> LabelInfo | None:
                 return LabelInfo("dimensions", package, unit)  # "Weight & Dimensions"
             return LabelInfo(kind, package, unit)
     return None
+
+
+# Labels written without spaces (zh, ja, ko) are read token by token, longest first, with the same
+# whitelist rule as the word labels: every part must be a measurement, package or qualifier token
+# (商品の寸法 幅×奥行×高さ, 商品パッケージの寸法, 本体質量, 产品尺寸 长*宽*高).
+_CJK_KIND_TOKENS = {
+    "dimensions": "寸法 サイズ 尺寸 外形寸法 크기 사이즈 치수",
+    "weight": "重量 重さ 質量 质量 净重 淨重 무게 중량",
+    "length": "長さ 长度 長度 長 长 길이",
+    "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭",
+    "height": "高さ 高度 高 높이",
+    "depth": "奥行き 奥行 深さ 深度 深 깊이",
+    "diameter": "直径 直徑 지름",
+    "thickness": "厚さ 厚度 厚 두께",
+}
+_CJK_PACKAGE_TOKENS = "梱包 包装 包裝 パッケージ 外箱 発送 配送 出荷 毛重 포장 박스"
+_CJK_QUALIFIER_TOKENS = (
+    "商品 本体 本體 製品 产品 產品 の 的 外形 外観 外觀 規格 规格 约 約 总 總 整体 整體 实际 實際 单品 單品 "
+    "제품 상품 약 全体 完成"
+)
+
+
+def _cjk_token_table() -> dict[str, tuple[str, str | None]]:
+    table: dict[str, tuple[str, str | None]] = {}
+    for kind, tokens in _CJK_KIND_TOKENS.items():
+        for t in tokens.split():
+            table[_fold(t)] = ("kind", kind)
+    for t in _CJK_PACKAGE_TOKENS.split():
+        table[_fold(t)] = ("package", "weight" if t == "毛重" else None)
+    for t in _CJK_QUALIFIER_TOKENS.split():
+        table[_fold(t)] = ("qualifier", None)
+    return table
+
+
+_CJK_TOKENS = _cjk_token_table()
+_CJK_TOKEN_LENGTHS = sorted({len(t) for t in _CJK_TOKENS}, reverse=True)
+
+
+def _is_cjk(ch: str) -> bool:
+    return "\u3040" <= ch <= "\u30ff" or "\u4e00" <= ch <= "\u9fff" or "\uac00" <= ch <= "\ud7af"
+
+
+def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
+    kinds: list[str] = []
+    package = False
+    i = 0
+    while i < len(squashed):
+        for n in _CJK_TOKEN_LENGTHS:
+            hit = _CJK_TOKENS.get(squashed[i : i + n])
+            if hit is not None:
+                break
+        else:
+            if squashed[i].isascii() and squashed[i].isalpha():  # "W×D×H" order letters
+                i += 1
+                continue
+            return None
+        role, value = hit
+        if role == "kind":
+            kinds.append(value)
+        elif role == "package":
+            package = True
+            if value:
+                kinds.append(value)
+        i += n
+    if not kinds:
+        return None
+    if len({k for k in kinds if k in AXES}) >= 2 or "dimensions" in kinds:
+        return LabelInfo("dimensions", package, unit)
+    return LabelInfo(kinds[0], package, unit)
 
 
 def _split_compound(word: str) -> tuple[str, bool] | None:

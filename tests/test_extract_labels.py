@@ -74,6 +74,16 @@ from scrapers.normalize import check_dims, check_mass, material_from_text, shape
         ("Overall Height - Top to Bottom", "height", False, None),
         ("Overall Depth - Front to Back", "depth", False, None),
         ("Profundidad", "depth", False, None),
+        ("Dimensioni dell'articolo Lunghezza x Larghezza x Altezza", "dimensions", False, None),
+        ("Peso dell'articolo", "weight", False, None),
+        ("Gewicht van het artikel", "weight", False, None),
+        ("Förpackningens mått", "dimensions", True, None),
+        ("Tömeg", "weight", False, None),
+        ("商品の寸法 幅 × 奥行 × 高さ", "dimensions", False, None),  # zh/ja read token by token
+        ("商品パッケージの寸法", "dimensions", True, None),
+        ("产品尺寸 长*宽*高", "dimensions", False, None),
+        ("本体質量", "weight", False, None),
+        ("本体サイズ W×D×H", "dimensions", False, None),
     ],
 )
 def test_measurement_labels(label, kind, package, unit):
@@ -94,6 +104,9 @@ def test_measurement_labels(label, kind, package, unit):
         "Chain Length",
         "Body Height - Top to Bottom",
         "Shelf Height - Top to Bottom",
+        "電源コード長さ",  # cord length
+        "高さ調節",  # height adjustment
+        "耐荷重",  # load capacity
         "Peso máximo soportado",
         "Maximum Weight Recommendation",
         "Мощность замораживания, кг/сутки:",
