@@ -121,6 +121,21 @@ def _required_tags(rule_text: str) -> tuple[frozenset[str], ...]:
     return tuple(groups)
 
 
+_BRACES = re.compile(r"[{}]")
+
+
+class _Tokenizer(RegexpTokenizer):
+    """nltk's RegexpTokenizer over the fixed :data:`TOKEN_PATTERN`, compiled with the standard ``re``
+    engine. nltk routes a *caller-supplied* pattern through ``nltk.redos`` (the ``regex`` engine with a
+    wall-clock timeout on every call), which costs more than the matching itself; our pattern is a
+    constant without nested quantifiers, and the hostile-input tests (100 KB digit-comma, hyphen and
+    quote chains) show it stays linear."""
+
+    def _check_regexp(self) -> None:
+        if self._regexp is None:
+            self._regexp = re.compile(self._pattern, self._flags)
+
+
 class _ChunkString(ChunkString):
     """nltk's ChunkString built without its self-check (debug_level 0) and with the tag string made in
     one expression (the same string ``<A><CD>...`` as nltk's)."""
@@ -137,6 +152,21 @@ class _ChunkString(ChunkString):
         s = regexp.sub(repl, self._str)
         self._str = s.replace("{}", "") if "{}" in s else s
 
+    def to_chunkstruct(self, chunk_label: str = "CHUNK") -> Tree:
+        """As nltk's, splitting on the braces with a precompiled standard pattern."""
+        pieces: list[Any] = []
+        index = 0
+        in_chunk = False
+        for piece in _BRACES.split(self._str):
+            length = piece.count("<")
+            if in_chunk:
+                pieces.append(Tree(chunk_label, self._pieces[index : index + length]))
+            else:
+                pieces += self._pieces[index : index + length]
+            index += length
+            in_chunk = not in_chunk
+        return Tree(self._root_label, pieces)
+
 
 class _QuietStage(RegexpChunkParser):
     """One stage of the cascade: nltk's RegexpChunkParser without ChunkString's per-call self-check
@@ -146,13 +176,23 @@ class _QuietStage(RegexpChunkParser):
     def __init__(self, rules, chunk_label, root_label="S", trace=0):
         super().__init__(rules, chunk_label=chunk_label, root_label=root_label, trace=trace)
         self.triggers = _STAGE_TRIGGERS[chunk_label]
-        self.required = [_required_tags(rule.descr() if rule.descr() else str(rule)) for rule in rules]
+        # each rule's regular expression (nltk builds it from the tag pattern) recompiled with the
+        # standard engine, for the reason given at _Tokenizer: the grammar is a tested constant and a
+        # sentence is at most MAX_SEGMENT_TOKENS tags long
+        self.fast = [
+            (
+                _required_tags(rule.descr() if rule.descr() else str(rule)),
+                re.compile(rule._regexp.pattern),
+                rule._repl,
+            )
+            for rule in rules
+        ]
 
     def chunk(self, tree: Tree, present: set[str]) -> Tree:
         chunkstr = _ChunkString(tree)
-        for rule, required in zip(self.rules(), self.required, strict=True):
+        for required, regexp, repl in self.fast:
             if all(present & group for group in required):
-                rule.apply(chunkstr)
+                chunkstr.xform(regexp, repl)
         return chunkstr.to_chunkstruct(self._chunk_label)
 
 
@@ -175,6 +215,8 @@ class _Cascade(RegexpParser):
         return tree
 
 
+#: Most words remembered by a parser's tag cache (new words past this are tagged, not remembered).
+_TAG_CACHE_SIZE = 100_000
 _NUMBER_TAGS = frozenset({"CD", "NW", "NMAG", "FRC"})
 _UNIT_TAGS = frozenset({"ULEN", "UMASS", "UVOL"})
 _CATEGORY_TAGS = {"MAT": "material", "SHP": "shape", "RIG": "rigidity", "TEX": "texture", "FRA": "fragility"}
@@ -295,7 +337,7 @@ class DescriptionParser:
     """The tokenizer, tagger, chunker and unit table, built once; :meth:`parse` is thread-safe."""
 
     def __init__(self) -> None:
-        self._tokenizer = RegexpTokenizer(TOKEN_PATTERN)
+        self._tokenizer = _Tokenizer(TOKEN_PATTERN)
         fallback = RegexpTagger(
             [
                 (r"^(?:" + DIGITS_PATTERN + r")$", "CD"),
@@ -307,6 +349,8 @@ class DescriptionParser:
         )  # fmt: skip
         self._model = lx.tag_model()
         self._tagger = UnigramTagger(model=self._model, backoff=fallback)
+        # word -> tag: the unigram tagger looks at one word only, so its answer for a word never changes
+        self._tag_cache: dict[str, str] = {}
         self._chunker = _Cascade(GRAMMAR)
         self._units = unit_table()
         mwe: dict[tuple[str, ...], str] = {}
@@ -385,9 +429,16 @@ class DescriptionParser:
 
     # -- 2. tags
     def _tag(self, tokens: list[_Token]) -> list[_Token]:
-        tagged = self._tagger.tag([t.low for t in tokens])
-        for tok, (_w, tag) in zip(tokens, tagged, strict=True):
-            tok.tag = tag or "W"
+        cache = self._tag_cache
+        missing = list({t.low for t in tokens if t.low not in cache})
+        fresh: dict[str, str] = {}
+        if missing:
+            fresh = {w: (tag or "W") for w, tag in self._tagger.tag(missing)}
+            if len(cache) < _TAG_CACHE_SIZE:
+                cache.update(fresh)  # one dict update: safe for concurrent parses
+        for tok in tokens:
+            tag = cache.get(tok.low)
+            tok.tag = tag if tag is not None else fresh[tok.low]
         return _fix_tags(tokens)
 
     # -- sentences

@@ -570,3 +570,15 @@ PATTERN_CATEGORIES = [
 @pytest.mark.parametrize(("text", "feature", "value"), PATTERN_CATEGORIES)
 def test_general_category_patterns(text: str, feature: str, value: str | None) -> None:
     assert parse(text).values().get(feature) == value
+
+
+def test_tag_cache_gives_the_same_parse_again() -> None:
+    from recall.parser import DescriptionParser
+
+    parser = DescriptionParser()
+    text = "A metallic bottle, 20 cm tall, 7 cm in diameter, weighs 300-ish grams; zyzzyva qwerty."
+    first = parser.parse(text)
+    assert {"zyzzyva", "metallic", "300"} <= set(parser._tag_cache)
+    again = parser.parse(text)
+    assert first.values() == again.values() and first.tree == again.tree
+    assert first.values()["mass_g"] == approx(300)
