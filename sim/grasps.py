@@ -64,10 +64,12 @@ FAMILIES: tuple[str, ...] = ("power", "intermediate", "precision")
 FINGER_MAX_FORCE_N = 15.0
 THUMB_MAX_FORCE_N = 60.0
 
-#: Fingers each grasp type uses (the thumb always opposes them); types not listed use all four.
+#: Fingers each grasp type uses (the thumb always opposes them); types not listed use all four. The
+#: lateral pinch presses the object on the radial side of the index's middle phalanx, a ~2.5 cm long
+#: contact; fingers here flex in one plane, so the index and middle pads side by side stand for it.
 ACTIVE_FINGERS: dict[str, tuple[str, ...]] = {
     "thumb_index_finger": ("index",),
-    "lateral_pinch": ("index",),
+    "lateral_pinch": ("index", "middle"),
     "thumb_2_finger": ("index", "middle"),
     "tripod": ("index", "middle"),
     "thumb_3_finger": ("index", "middle", "ring"),

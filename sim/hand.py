@@ -51,7 +51,7 @@ __all__ = [
     "thumb_tip",
 ]
 
-HAND_VERSION = "ar10like-3"
+HAND_VERSION = "ar10like-4"
 
 CM = 0.01  # metres per centimetre
 

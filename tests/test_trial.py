@@ -235,3 +235,24 @@ def test_paperback_book_picked_at_the_table_edge_holds():
     r = run_trial(book, plan, seed=0)
     assert build_world(book, plan).approach == "edge"
     assert r.outcome == "success", r.reason
+
+
+def test_credit_card_lateral_pinch_holds():
+    from sim.planner import best_grasp
+
+    card = ObjectRecord.create(
+        "credit card",
+        a_cm=8.56,
+        b_cm=5.398,
+        c_cm=0.076,
+        mass_g=5,
+        shape="thin",
+        texture="smooth",
+        material="plastic",
+        rigidity="rigid",
+    )
+    plan = best_grasp(card)
+    assert plan.grasp_type == "lateral_pinch"
+    assert H.grasp_targets(plan, 0.076).fingers == ("index", "middle")  # the index's side: two pads long
+    r = run_trial(card, plan, seed=0)
+    assert r.outcome == "success", r.reason
