@@ -51,7 +51,7 @@ __all__ = [
     "thumb_tip",
 ]
 
-HAND_VERSION = "ar10like-4"
+HAND_VERSION = "ar10like-5"
 
 CM = 0.01  # metres per centimetre
 
@@ -119,6 +119,14 @@ RANGE_DEG = {
 #: limit, so a digit driven past contact presses at its limit. The grip force is not set by kp but by the force
 #: limit (see grasp_targets): targets are placed beyond contact, so the actuator saturates.
 KP = {"mcp": 2.0, "pip": 1.0, "thumb_rot": 3.0, "thumb_flex": 3.0}
+#: Holding is stiffer than closing: once the digits have closed on the object, their position gains rise
+#: by this factor (sim/trial.py _latch), as a servo hand switches to a stiff hold and as people stiffen
+#: their fingers by co-contraction, more the harder they grip (Hajian & Howe 1997, fingertip impedance).
+#: Closing stays compliant (a light grip must not knock the object away); holding with the closing gains
+#: let the pads' preload (about 1 N over 4 mm at the fingertips) vanish whenever the object shifted a few
+#: millimetres. 4x gives fingertip stiffnesses of about 1.2 N/mm (index) and 3.5 N/mm (thumb); measured
+#: on the seed catalog: 1x 112, 3x 120, 4x 124, 5x 123 of 169 best plans held.
+HOLD_STIFFNESS_FACTOR = 4.0
 #: Reflected rotor inertia of the geared servo behind each joint (kg m^2): AR10 drives each joint through
 #: a geared linear servo; 3e-4 dominates the phalanges' own ~5e-5 and keeps the joints well conditioned
 #: (sqrt(kp / I) ~ 80 rad/s for kp = 2: 0.16 rad per 2 ms step, well inside implicitfast's comfort).

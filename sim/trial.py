@@ -461,9 +461,9 @@ class _Runner:
         While closing, each used digit presses at its force limit (pure force control). Holding that way
         is unstable along the opposition axis: a push towards one side finds both sides saturated and
         the whole pinch drifts. So, like a robot hand switching to an impedance hold on contact, each
-        target becomes the current angle plus the offset that gives the holding torque (tau / kp), and the
-        force limit rises to the digit's strongest: a push is resisted by the stiffness kp up to the
-        digit's strength.
+        target becomes the current angle plus the offset that gives the holding torque (tau / kp), the
+        force limit rises to the digit's strongest and kp to HOLD_STIFFNESS_FACTOR times the closing one:
+        a push is resisted by that stiffness up to the digit's strength.
 
         The holding torque is regulated on the measured contact forces (the hand's fingertip sensors, as a
         person scales grip force to what the fingers feel; Johansson & Westling 1984): each squeezing
@@ -489,6 +489,10 @@ class _Runner:
                 digit, torque = "", 0.0
             self.hold_joints.append([a, q, direction, torque, strongest[name], digit])
             m.actuator_forcerange[a] = (-strongest[name], strongest[name])
+            # A stiffer hold than closing (sim/hand.py HOLD_STIFFNESS_FACTOR): position actuator, kp in the
+            # gain and -kp in the bias.
+            m.actuator_gainprm[a, 0] *= H.HOLD_STIFFNESS_FACTOR
+            m.actuator_biasprm[a, 1] *= H.HOLD_STIFFNESS_FACTOR
         self._regulate(gain=1.0)
         for _ in range(REGULATE_TICKS):
             self._step(CONTROL_EVERY, " while closing")
