@@ -372,6 +372,8 @@ def clean_text(text: object) -> str:
     text = _SPACES.sub(" ", text).strip()
     # Cyrillic х/Х and other times signs after a number (and maybe a unit or letter) and before a number.
     text = _TIMES_SIGN.sub(_times, text)
+    if " by " in text:
+        text = _BY.sub(r"\1 x ", text)  # "8 by 10 inches", "30 cm by 20 cm"
     return _SPACES.sub(" ", text).strip()
 
 
@@ -396,6 +398,9 @@ _FEET_INCHES = re.compile(
     r"(?<![\d.,])(\d{1,3}) ?(?:'(?!')|\u2032(?!\u2032)|ft\b\.?|feet\b|foot\b)[ -]?"
     r"(\d{1,2}(?:\.\d+)?) ?(?:''|\"|in\b\.?|inch(?:es)?\b)"
 )
+
+
+_BY = re.compile(r"(\d(?:\s?(?:''|[\"″]|[a-zA-Z]{1,6}\.?))?) by (?=\d)")
 
 
 def _decimal(value: float) -> str:
@@ -545,7 +550,7 @@ def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool |
 
 
 _LETTERED = re.compile(
-    rf"(?<![^\W_])(?P<axis>[HWDLBT])\.?\s*[:=]?\s*(?P<n>{_NUMBER})"
+    rf"(?<![^\W_])(?P<axis>[HWDLBTØ⌀])\.?\s*[:=]?\s*(?P<n>{_NUMBER})"
     r"(?:\s*(?:(?P<u>mm|cm|m|inches|inch|in|ft)(?![^\W\d_])|(?P<q>''|\")))?"
 )
 _STANDALONE_X = re.compile(r"\bx\b")
@@ -577,11 +582,27 @@ def _lettered_dims(s: str, default_unit: str | None, decimal_comma: bool | None)
     if any(f is None for f in factors) or any(v is None or v <= 0 for v in values):
         return None
     text = s[run[0].start() : run[-1].end()]
-    return Dims(tuple(round(v * f, 6) for v, f in zip(values, factors, strict=True)), text)
+    cm = [round(v * f, 6) for v, f in zip(values, factors, strict=True)]
+    axes = [t["axis"] for t in run]
+    if len(cm) == 2 and set(axes) & {"Ø", "⌀"} and not set(axes) & {"W", "D", "L", "B"}:
+        cm.append(cm[axes.index("Ø" if "Ø" in axes else "⌀")])  # "Ø 12 cm, H 20 cm": d x d x h
+    return Dims(tuple(cm), text)
+
+
+# "(L) 30 cm x (W) 20 cm", "30(W) x 20(D) x 10(H) mm": bracketed axis letters carry no value.
+_BRACKETED_AXIS = re.compile(r"\s*\(\s*[LWHDBTlwhdbt]\s*\)")
+# "30 x 20 x 10 (cm)": a unit in brackets after the last number.
+_BRACKETED_UNIT = re.compile(r"(?<=\d)\s*\(\s*(mm|cm|m|in|inch|inches|ft|см|мм)\.?\s*\)")
+# "Abmessungen (B/H/T): 30/20/10 cm": three numbers separated by slashes (fractions are already decimals).
+_SLASHED = re.compile(rf"(?<![\d/])({_NUMBER})\s*/\s*({_NUMBER})\s*/\s*({_NUMBER})(?![\d/])")
 
 
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
     s = clean_text(text[:MAX_TEXT])
+    if "(" in s:
+        s = _BRACKETED_UNIT.sub(r" \1", _BRACKETED_AXIS.sub("", s))
+    if "/" in s:
+        s = _SLASHED.sub(r"\1 x \2 x \3", s)
     if not _STANDALONE_X.search(s):
         lettered = _lettered_dims(s, default_unit, decimal_comma)
         if lettered is not None:

@@ -319,3 +319,27 @@ def test_feet_and_inches_round_trip(feet, inches, prime):
 def test_swiss_thousands_round_trip(value, mark):
     text = f"{value:,}".replace(",", mark) + " g"
     assert parse_mass(text, None, False) == value, text
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("30(W) x 20(D) x 10(H) mm", (3.0, 2.0, 1.0)),
+        ("(L) 30 cm x (W) 20 cm x (H) 10 cm", (30.0, 20.0, 10.0)),
+        ("30 x 20 x 10 (cm)", (30.0, 20.0, 10.0)),
+        ("30/20/10 cm", (30.0, 20.0, 10.0)),
+        ("30 by 20 by 10 cm", (30.0, 20.0, 10.0)),
+        ("8 by 10 inches", (20.32, 25.4)),
+        ("Ø 12 cm, H 20 cm", (12.0, 20.0, 12.0)),
+        ('10.5"L x 5.25"W x 3"H', (26.67, 13.335, 7.62)),
+    ],
+)
+def test_more_ways_of_writing_dimensions(text, expected):
+    found = parse_dims(text)
+    assert found, text
+    assert found[0].values_cm == pytest.approx(expected)
+
+
+def test_slashes_without_a_length_unit_are_not_dimensions():
+    assert parse_dims("2016/8/1") == []
+    assert parse_dims("Standby 5/10/15 min") == []
