@@ -261,7 +261,12 @@ DISC_WORDS: frozenset[str] = frozenset(
 )  # fmt: skip
 
 #: Words that make a width of a round object its diameter, besides the sphere/cylinder/disc words.
-ROUND_WORDS: frozenset[str] = frozenset({"round", "circular", "cylindrical", "rounded", "tealight"})
+#: Round vessels: round cues too, but not after "the"/"its"/"at", where they name a part ("2 inches wide
+#: at the bowl" of a spoon, "the bowl is 8 cm across" of a wine glass).
+VESSEL_WORDS: frozenset[str] = frozenset({"bowl", "pot", "saucepan", "wok", "bucket", "pail", "basin"})
+ROUND_WORDS: frozenset[str] = (
+    frozenset({"round", "circular", "cylindrical", "rounded", "tealight"}) | VESSEL_WORDS
+)
 #: "can" is a container (a cylinder cue) only after one of these words or before "of".
 CAN_PRECEDERS: frozenset[str] = frozenset(
     {"a", "the", "tin", "soda", "food", "metal", "aluminum", "aluminium", "beer", "tuna", "soup", "paint",

@@ -531,6 +531,10 @@ class DescriptionParser:
         if dim_word is not None and dim_word.low in lx.UNIT_ONLY_DIMENSION_WORDS:
             if dim_first or quants[0].unit is None:
                 return  # "10 square", "square 5": not "9 cm square"
+        end = k + len(toks)
+        if role in ("length", "height") and end < len(segment) and segment[end].tag == "DIM":
+            if lx.DIMENSION_WORDS.get(segment[end].low) == "overall":
+                role = "overall"  # "30 cm long overall", "48 cm long with the handle"
         self._add_dim(reading, role, quants, toks, pos)
 
     @staticmethod
@@ -942,6 +946,8 @@ def _read_categories(segment: list[_Token], base: int, reading: _Reading) -> Non
                 tok.low in lx.SPHERE_WORDS or tok.low.endswith(lx.BALL_SUFFIX)
             ):
                 pass  # "baseball cap", "ball bearing": not a ball
+            elif tok.low in lx.VESSEL_WORDS and i and segment[i - 1].low in ("the", "its", "at"):
+                pass  # "wide at the bowl": a part
             else:
                 reading.cue_words.add(tok.low)
                 if tok.low.endswith(lx.BALL_SUFFIX) and len(tok.low) > len(lx.BALL_SUFFIX):
@@ -1084,6 +1090,8 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
     )
     if round_cue and not flat and "diameter" not in by_role and "width" in by_role and not three:
         by_role["diameter"] = by_role.pop("width")  # "a mug 8 cm wide": the width of a round thing
+    if "overall" in by_role and "length" in by_role:
+        del by_role["length"]  # "the blade is 20 cm long, 33 cm overall": the length of a part
     linear = [(by_role[r], r) for r in lx.LINEAR_ROLES if r in by_role]
     linear.sort(key=lambda dr: dr[0].start)
     multi = None

@@ -485,6 +485,11 @@ PATTERN_DIMENSIONS = [
     ("a round wok 30 cm across, 8 cm deep", (30, 30, 8)),
     ("a flat rubber bottle, 30 cm long and 18 cm wide", (30, 18, None)),
     ("a floppy plastic tube, 25 cm long, 6 cm wide", (25, 6, None)),
+    ("a mixing bowl 24 cm across and 11 cm deep", (24, 24, 11)),
+    ("a metal bucket 30 cm wide and 28 cm tall", (30, 30, 28)),
+    ("a spoon 18 cm long, 4 cm wide at the bowl", (18, 4, None)),
+    ("the blade is 20 cm long, 33 cm overall", (33, None, None)),
+    ("the handle is 10 cm long and the whole thing is 30 cm long overall", (30, None, None)),
     # 7. balls: compounds ending in "ball", round things "across"
     ("a basketball about 24 cm in diameter", (24, 24, 24)),
     ("a baseball, 3 inches across", (7.62, 7.62, 7.62)),
