@@ -47,7 +47,7 @@ def register(app: typer.Typer) -> None:
         recaller = Recaller.from_db(resolve_db(db))
         options = dict(top=top, metric=metric, features_only=features_only)
         if file is not None:
-            rows = _descriptions(file)
+            rows = read_description_column(file)
             results = (recaller.recall_text(row, **options) for row in rows)
             if json_out:
                 emit_lines(r.to_dict() for r in results)
@@ -68,23 +68,27 @@ def register(app: typer.Typer) -> None:
         descriptions: Annotated[
             Path, typer.Option("--descriptions", help="CSV with columns object,description.")
         ],
+        open_set: Annotated[
+            Path | None,
+            typer.Option("--open-set", help="CSV with a 'description' column of objects NOT in the catalog."),
+        ] = None,
         json_out: JsonOption = False,
     ) -> None:
         """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss."""
         from kb.cli_common import emit
         from recall.evaluation import evaluate
 
-        for path in (catalog, descriptions):
-            if not path.is_file():
+        for path in (catalog, descriptions, open_set):
+            if path is not None and not path.is_file():
                 raise FileNotFoundError(2, "No such file", str(path))
-        report = evaluate(catalog, descriptions)
+        report = evaluate(catalog, descriptions, open_set_csv=open_set)
         if json_out:
             emit(report.to_dict())
         else:
             _print_report(report)
 
 
-def _descriptions(path: Path) -> list[str]:
+def read_description_column(path: Path) -> list[str]:
     """The ``description`` column of a CSV, in order (blank cells kept: they give empty results)."""
     import csv
 
@@ -180,6 +184,14 @@ def _print_report(report) -> None:
             f"Parse: R² dimensions {_fmt(round(r2d, 3)) if r2d is not None else '-'}, "
             f"R² mass {_fmt(round(r2m, 3)) if r2m is not None else '-'}; category accuracy: {cats}"
         )
+    flags = ", ".join(f"{mode} {k}/{report.n}" for mode, k in report.false_flags.items())
+    console.print(f"Open-set flags on these in-catalog descriptions (false flags): {flags}")
+    if report.open_set_n:
+        flagged = ", ".join(
+            f"{mode} {k}/{report.open_set_n} (confidence >= 0.9: {report.open_set_confident[mode]})"
+            for mode, k in report.open_set.items()
+        )
+        console.print(f"Open-set descriptions flagged: {flagged}")
     if report.unknown_objects:
         console.print(
             f"Skipped {len(report.unknown_objects)} description(s) of objects not in the catalog: "

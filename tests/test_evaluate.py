@@ -93,3 +93,23 @@ def test_development_set_goals():
     hybrid = report.score("jplog", features_only=False)  # the default hybrid
     assert hybrid.top1 > jp.top1 and hybrid.top1_pct >= 97.0
     assert report.score("jplog").top1 >= jp.top1
+
+
+def test_evaluate_counts_open_set_flags(small, tmp_path):
+    opens = tmp_path / "open.csv"
+    opens.write_text(
+        "description\n"
+        '"A refrigerator, about 180 cm tall, 70 cm wide, 70 cm deep, 70 kg"\n'
+        '"A tennis ball, 6.4 cm across"\n'
+    )
+    report = evaluate(*small, open_set_csv=opens)
+    assert report.open_set_n == 2
+    assert report.open_set == {"jp": 1, "jplog+names": 1}  # the fridge; the tennis ball is in the catalog
+    assert set(report.false_flags) == {"jp", "jplog+names"}
+    assert report.to_dict()["open_set_flagged"] == report.open_set
+    res = runner.invoke(
+        app,
+        ["evaluate", "--catalog", str(small[0]), "--descriptions", str(small[1]), "--open-set", str(opens)],
+    )
+    assert res.exit_code == 0, res.output
+    assert "Open-set descriptions flagged: jp 1/2" in " ".join(res.stdout.split())
