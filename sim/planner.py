@@ -44,7 +44,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "3"
+PLANNER_VERSION = "4"
 
 GRAVITY = 9.81  # m/s^2
 
@@ -77,6 +77,11 @@ TOOL_MIN_LENGTH_CM = 25.0
 #: grip (see edge_grip_force): a fingertip pad's contact is about 1 cm across at a few newtons (Serina et
 #: al. 1997), so at most 5 mm; 3 mm, calibrated on the trial (books, phones, frames held at the edge).
 EDGE_PAD_LEVER_CM = 0.3
+#: Fingertip grasps open at least this much wider than the object (cm): people's maximum grip aperture
+#: during the reach exceeds the object by a few centimetres (Jeannerod 1984, "The timing of natural
+#: prehension movements"). 1 cm left the pads' capsules brushing round objects and boxes on the way down
+#: (pinched higher, they squeezed them out); 2 cm: 127 instead of 124 of the seed catalog's best plans held.
+PRECISION_APERTURE_MARGIN_CM = 2.0
 #: Never plan less than this: the fingers must at least hold contact.
 MIN_GRIP_FORCE_N = 1.5
 #: Safety factor on the weight: 2 covers the weight plus the trial's perturbation (a force equal to the
@@ -495,7 +500,11 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
 
 def _aperture(grasp_type: str, width_cm: float) -> float:
     """Opening before closing: the grasped width plus a margin (more for wraps, which close around)."""
-    margin = max(1.5, 0.25 * width_cm) if GRASP_TYPES[grasp_type] == "power" else max(1.0, 0.2 * width_cm)
+    margin = (
+        max(1.5, 0.25 * width_cm)
+        if GRASP_TYPES[grasp_type] == "power"
+        else max(PRECISION_APERTURE_MARGIN_CM, 0.2 * width_cm)
+    )
     return round(min(HAND_MAX_APERTURE_CM, width_cm + margin), 2)
 
 
