@@ -587,3 +587,57 @@ def test_tag_cache_gives_the_same_parse_again() -> None:
     again = parser.parse(text)
     assert first.values() == again.values() and first.tree == again.tree
     assert first.values()["mass_g"] == approx(300)
+
+
+_ROLE_PHRASES = {
+    "length": ["{v} cm long", "a length of {v} cm", "{v} cm in length", "{v} cm end to end"],
+    "height": ["{v} cm tall", "{v} cm high", "a height of {v} cm", "{v} cm top to bottom"],
+    "width": ["{v} cm wide", "{v} cm side to side", "width {v} cm", "{v} cm in width"],
+    "depth": ["{v} cm deep", "{v} cm front to back", "depth: {v} cm"],
+    "thickness": ["{v} cm thick", "a thickness of {v} cm"],
+}
+_SEPARATORS = [", ", " and ", ", and ", "; ", ". It is "]
+
+
+@settings(max_examples=120, deadline=None)
+@given(
+    st.lists(st.sampled_from(sorted(_ROLE_PHRASES)), min_size=3, max_size=3, unique=True),
+    st.lists(st.integers(1, 400), min_size=3, max_size=3),
+    st.data(),
+)
+def test_three_labelled_extents_are_all_kept_and_sorted(roles: list[str], tenths: list[int], data) -> None:
+    """Any three different roles, in any order, any phrasing, equal values or not: a >= b >= c are the
+    three stated values (the hold-out's "long" + "tall" and "11 wide and 11 high" patterns)."""
+    values = [t / 10 for t in tenths]
+    parts = [
+        data.draw(st.sampled_from(_ROLE_PHRASES[r])).format(v=f"{v:g}")
+        for r, v in zip(roles, values, strict=True)
+    ]
+    text = "A thing, " + parts[0]
+    for part in parts[1:]:
+        text += data.draw(st.sampled_from(_SEPARATORS)) + part
+    got = parse(text).values()
+    assert [got.get("a_cm"), got.get("b_cm"), got.get("c_cm")] == approx(sorted(values, reverse=True)), text
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    st.lists(st.integers(1, 400), min_size=3, max_size=3),
+    st.sampled_from(
+        [
+            "{0} x {1} x {2} cm",
+            "{0} cm long by {1} by {2}",
+            "{0} cm x {1} cm x {2} cm",
+            "L {0} x W {1} x H {2} cm",
+            "{0}L x {1}W x {2}H cm",
+            "{0}, {1} and {2} cm",
+            "{0}, {1}, {2} cm",
+            "A 5m tape. The case is {0} x {1} x {2} cm",
+        ]
+    ),
+)
+def test_tuples_and_lists_keep_all_three_values(tenths: list[int], form: str) -> None:
+    values = [t / 10 for t in tenths]
+    text = form.format(*(f"{v:g}" for v in values))
+    got = parse(text).values()
+    assert [got.get("a_cm"), got.get("b_cm"), got.get("c_cm")] == approx(sorted(values, reverse=True)), text
