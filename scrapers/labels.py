@@ -340,7 +340,12 @@ _CJK_TOKEN_LENGTHS = sorted({len(t) for t in _CJK_TOKENS}, reverse=True)
 
 
 def _is_cjk(ch: str) -> bool:
-    return "\u3040" <= ch <= "\u30ff" or "\u4e00" <= ch <= "\u9fff" or "\uac00" <= ch <= "\ud7af"
+    return (
+        "\u3040" <= ch <= "\u30ff"
+        or "\u4e00" <= ch <= "\u9fff"
+        or "\uac00" <= ch <= "\ud7af"
+        or "\u1100" <= ch <= "\u11ff"
+    )
 
 
 def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:

@@ -106,7 +106,12 @@ def _fold(text: str) -> str:
 
 
 def _is_cjk(ch: str) -> bool:
-    return "\u3040" <= ch <= "\u30ff" or "\u4e00" <= ch <= "\u9fff"
+    return (
+        "\u3040" <= ch <= "\u30ff"
+        or "\u4e00" <= ch <= "\u9fff"
+        or "\uac00" <= ch <= "\ud7af"
+        or "\u1100" <= ch <= "\u11ff"
+    )
 
 
 _MATERIAL_WORDS: dict[str, str] = {}
@@ -116,15 +121,15 @@ for _material, _words in {
     "metalu stal металл сталь алюминий kov oceľ 不鏽鋼 不锈钢 金屬 金属 鋼 鋁 "
     "ocel nerez nerezová nerezova чугун чугунный нержавеющая стальной алюминиевый медь латунь bakır bakir "
     "çelik celik paslanmaz alüminyum aluminyum döküm pirinç ステンレス 鉄 アルミ 铝合金 铸铁 铜 "
-    "aço inoxidável acero cobre rame ottone",
+    "aço inoxidável acero cobre rame ottone 알루미늄 스테인리스 스텐 주철 cromargan",
     "plastic": "plastic plastics plastik kunststoff plastique plastico plastica pvc abs polypropylene "
     "polyethylene polycarbonate acrylic polystyrene melamine tworzywo пластик пластмасса plast 塑膠 塑料 "
-    "plastik polipropilen polypropylen полипропилен プラスチック ポリプロピレン 樹脂 树脂 tritan",
+    "plastik polipropilen polypropylen полипропилен プラスチック ポリプロピレン 樹脂 树脂 tritan 플라스틱",
     "wood": "wood wooden oak pine beech birch walnut bamboo teak mdf particleboard plywood veneer holz eiche "
     "buche kiefer bois chene hetre cork kork liege corcho sughero cortica madera roble legno madeira eucalipto drewno дерево древесина drevo 木 木頭 竹 "
     "acacia acacie akazie mango ash maple cherry rattan seagrass seegras wicker ahşap ahsap dřevo drewniany "
-    "деревянный бук дуб сосна bambus bambou bambú bambù 木製 木制 天然木",
-    "glass": "glass glas verre vidrio vetro vidro szklo стекло sklo 玻璃 borosilicate borosilikat cam ガラス",
+    "деревянный бук дуб сосна bambus bambou bambú bambù 木製 木制 天然木 원목 나무",
+    "glass": "glass glas verre vidrio vetro vidro szklo стекло sklo 玻璃 borosilicate borosilikat cam ガラス 유리",
     "paper": "paper cardboard paperboard papier pappe karton carton papel carta cartone papelao бумага картон 紙 纸 "
     "kağıt kagit 和紙",
     "fabric": "fabric cotton polyester linen wool textile nylon velvet felt stoff baumwolle leinen tissu coton "

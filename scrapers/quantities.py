@@ -305,6 +305,11 @@ _POUNDS_OUNCES = re.compile(
     r"(?<![\d.])((?>\d+(?:\.\d+)?))\s*(?:lbs?|pounds?)\.?,?\s*(?:and\s+)?((?>\d+(?:\.\d+)?))\s*(?:oz|ounces?)\b",
     re.IGNORECASE,
 )
+# Amazon India's "1 kg 450 g" (and "1 kg 450 grams", "2 кг 300 г").
+_KILOS_GRAMS = re.compile(
+    r"(?<![\d.,])((?>\d+))\s*(?:kg|kgs|kilograms?|кг)\.?,?\s*(?:and\s+)?((?>\d{1,3}))\s*(?:g|gr|grams?|г)(?![^\W\d_])",
+    re.IGNORECASE,
+)
 _QUANTITY_RE = re.compile(rf"(?P<n>{_NUMBER})\s*(?P<u>{_UNIT})?")
 _TIMES_SIGN = re.compile(r"(\d\s*)([^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)")
 _VOLUME_UNITS = frozenset(
@@ -648,6 +653,9 @@ def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: b
         m = _POUNDS_OUNCES.search(s)
         if m:
             return round(float(m.group(1)) * 453.59237 + float(m.group(2)) * 28.349523125, 6)
+        m = _KILOS_GRAMS.search(s)
+        if m:
+            return round(float(m.group(1)) * 1000 + float(m.group(2)), 6)
     if _RANGE_RE.search(s):
         return None
     for m in _QUANTITY_RE.finditer(s):

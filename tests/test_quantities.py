@@ -343,3 +343,11 @@ def test_more_ways_of_writing_dimensions(text, expected):
 def test_slashes_without_a_length_unit_are_not_dimensions():
     assert parse_dims("2016/8/1") == []
     assert parse_dims("Standby 5/10/15 min") == []
+
+
+@pytest.mark.parametrize(
+    ("text", "grams"),
+    [("1 kg 450 g", 1450.0), ("35 x 20 x 19.5 cm; 1 kg 450 g", 1450.0), ("2 кг 300 г", 2300.0)],
+)
+def test_kilograms_and_grams(text, grams):
+    assert parse_mass(text) == grams

@@ -266,12 +266,12 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
 
 
 _MATERIAL_HINT = re.compile(
-    r"ateri|atéri|atièr|werkstoff|атериал|materyal|malzeme|材質|材质|素材", re.IGNORECASE
+    r"ateri|atéri|atièr|werkstoff|атериал|materyal|malzeme|材質|材质|素材|재질|소재", re.IGNORECASE
 )
 _MATERIAL_LABEL = re.compile(
     r"(?:primary |main |frame |body |product |top )?(?:material|materials|materiał(?: wykonania)?|matériau|"
     r"matériaux|matière|werkstoff|materiale|materiali|materiais|material principal|материал|материал корпуса|"
-    r"materyal|malzeme|materiál|材質|材质|素材)"
+    r"materyal|malzeme|materiál|材質|材质|素材|재질|소재)"
     # the product's (or its frame's) material, not a part's: "Материал изделия", "Material de la estructura"
     r"(?: (?:изделия|товара|корпуса|produktu|výrobku|del producto|del artículo|de la estructura|"
     r"de l'article|du produit|dell'articolo|do produto|des produkts|des artikels|principal|główny|ana))?",
