@@ -154,3 +154,49 @@ def test_encoding_matches_kb_features():
     m = CatalogSnapshot.from_records([rec]).matrix[0]
     np.testing.assert_array_equal(np.isnan(m), ~mask)
     np.testing.assert_array_equal(m[mask], vec[mask])
+
+
+@settings(max_examples=60, deadline=None)
+@given(recs=st.lists(records(), min_size=1, max_size=6), query=queries(), factor=st.floats(0.01, 100))
+def test_jplog_is_unchanged_when_every_size_and_mass_is_scaled(recs, query, factor):
+    """JP in log units depends on ratios only: scaling catalog and description alike changes nothing
+    (the paper's JP in grams does change)."""
+    snap = CatalogSnapshot.from_records(recs)
+    scaled = CatalogSnapshot(snap.names, snap.aliases, snap.num * factor, snap.cat)
+    q2 = FeatureQuery(
+        tuple(
+            type(c)(c.feature, c.value * factor, c.low * factor, c.high * factor, c.qualifier)
+            for c in query.numeric
+        ),
+        query.categorical,
+    )
+    a = distances("jplog", snap.matrix, query)
+    b = distances("jplog", scaled.matrix, q2)
+    np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-6)
+
+
+@settings(max_examples=80, deadline=None)
+@given(rec=records(), query=queries(), factor=st.floats(0.01, 100))
+def test_relative_errors_are_in_0_1_zero_on_a_match_and_scale_free(rec, query, factor):
+    from recall.metrics import relative_errors
+
+    snap = CatalogSnapshot.from_records([rec])
+    errors = relative_errors(snap.num[0], snap.cat[0], query)
+    assert set(errors) == set(query.stated)
+    assert all(0.0 <= e <= 1.0 for e in errors.values())
+    scaled = relative_errors(
+        snap.num[0] * factor,
+        snap.cat[0],
+        FeatureQuery(
+            tuple(
+                type(c)(c.feature, c.value * factor, c.low * factor, c.high * factor, c.qualifier)
+                for c in query.numeric
+            ),
+            query.categorical,
+        ),
+    )
+    for feat, e in errors.items():
+        assert scaled[feat] == pytest.approx(e, abs=1e-9)
+    # the object's own values are a perfect match
+    own = FeatureQuery.from_values({f: getattr(rec, f) for f in query.stated})
+    assert all(e == 0.0 for e in relative_errors(snap.num[0], snap.cat[0], own).values())

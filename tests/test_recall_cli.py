@@ -34,6 +34,7 @@ def test_recall_json(seeded):
     assert {"name", "distance", "contributions", "matched_by_name"} <= set(out["matches"][0])
     assert 0 <= out["confidence"] <= 1 and out["open_set"] is False
     assert out["parsed"]["a_cm"] == 16 and out["parsed"]["material"] == "plastic"
+    assert out["metric"] == "jplog" and out["unknown_noun"] is None and 0 <= out["closeness"] <= 1
 
 
 def test_recall_options(seeded):
