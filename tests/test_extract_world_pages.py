@@ -123,3 +123,14 @@ def test_a_wide_weight_range_is_not_used():
     record = extract_page(html.encode(), "https://shop.example/vase", "text/html")
     assert record.mass_g is None
     assert any("range" in w and "not used" in w for w in record.warnings)
+
+
+@pytest.mark.parametrize(
+    ("size", "dims"), [("30 x 20 x 10 cm", (30.0, 20.0, 10.0)), ("XL", None), ("10 Ounce", None)]
+)
+def test_json_ld_size_text_gives_dimensions_only_when_it_is_a_size(size, dims):
+    ld = f'{{"@type": "Product", "name": "Box", "size": "{size}", "weight": "1.2 kg"}}'
+    html = f"<html lang='en'><head><script type='application/ld+json'>{ld}</script></head><body><h1>Box</h1></body></html>"
+    record = extract_page(html.encode(), "https://shop.example/box", "text/html")
+    assert record.dims_cm == (pytest.approx(dims) if dims else None)
+    assert record.mass_g == 1200.0

@@ -20,7 +20,7 @@ from scrapers.adapters import Observation, adapter
 from scrapers.adapters.spec_table import Pair, observations_from_pairs
 from scrapers.labels import classify_label
 from scrapers.page import Page
-from scrapers.quantities import length_unit, mass_unit, parse_length, parse_mass, parse_number
+from scrapers.quantities import length_unit, mass_unit, parse_dims, parse_length, parse_mass, parse_number
 
 __all__ = ["product_nodes", "read_product"]
 
@@ -128,10 +128,17 @@ def read_product(node: dict, order: int, decimal_comma: bool | None) -> list[Obs
                 "dims", tuple(v for v, _ in axes), rank=0, order=order, raw="; ".join(r for _, r in axes)
             )
         )
-    elif len(axes) == 1:
-        obs.append(
-            Observation("warning", f"JSON-LD states only {axes[0][1]}; not used as dimensions", order=order)
-        )
+    else:
+        size = _text(node.get("size")) if isinstance(node.get("size"), str) else None
+        found = parse_dims(size, None, decimal_comma) if size else []
+        if found:  # "size": "30 x 20 x 10 cm" (schema.org's size is free text; a clothing size is no dims)
+            obs.append(Observation("dims", found[0].values_cm, rank=1, order=order, raw=f"size: {size[:80]}"))
+        elif len(axes) == 1:
+            obs.append(
+                Observation(
+                    "warning", f"JSON-LD states only {axes[0][1]}; not used as dimensions", order=order
+                )
+            )
     if "weight" in node:
         value, raw = quantity(node.get("weight"), "mass")
         if value is not None:
