@@ -151,7 +151,14 @@ def _print_result(result, title: str | None = None) -> None:
     verdict = (
         "NOT a close match (open set): nothing in the catalog is near" if result.open_set else "close match"
     )
-    console.print(f"confidence {result.confidence:.2f}; {verdict}")
+    why = []
+    if result.closeness is not None:
+        why.append(f"mean relative error of the best match {result.closeness:.2f}")
+    if result.unknown_noun:
+        why.append(f"'{result.unknown_noun}' is no catalog noun")
+    console.print(
+        escape(f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else ""))
+    )
 
 
 def _print_report(report) -> None:
