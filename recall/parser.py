@@ -188,11 +188,14 @@ class _QuietStage(RegexpChunkParser):
             for rule in rules
         ]
 
-    def chunk(self, tree: Tree, present: set[str]) -> Tree:
+    def chunk(self, tree: Tree, present: set[str]) -> Tree | None:
+        """The tree with this stage's chunks, or None when the stage found none (the tree is unchanged)."""
         chunkstr = _ChunkString(tree)
         for required, regexp, repl in self.fast:
             if all(present & group for group in required):
                 chunkstr.xform(regexp, repl)
+        if "{" not in chunkstr._str:
+            return None
         return chunkstr.to_chunkstruct(self._chunk_label)
 
 
@@ -210,8 +213,10 @@ class _Cascade(RegexpParser):
         tree = Tree("S", pairs)
         for stage in self._stages:
             if all(present & group for group in stage.triggers):
-                tree = stage.chunk(tree, present)
-                present.add(stage._chunk_label)  # over-approximate: a later stage may find nothing
+                chunked = stage.chunk(tree, present)
+                if chunked is not None:
+                    tree = chunked
+                    present.add(stage._chunk_label)
         return tree
 
 
