@@ -89,8 +89,8 @@ QUANT:
   {<LBL>?<HEDGE>?<NUM|RANGE><HS|LBL>?<OF>?<A>?<UNIT><HS|LBL>?}
   {<LBL>?<HEDGE>?<NUM|RANGE><HS|LBL>?}
 MULTI:
-  {<QUANT><DIM>?<BY><QUANT><DIM>?<BY><QUANT><IN>?<DIM|DIMN>?}
-  {<QUANT><DIM>?<BY><QUANT><IN>?<DIM|DIMN>?}
+  {<QUANT><DIM|DIMN>?<BY><QUANT><DIM|DIMN>?<BY><QUANT><IN>?<DIM|DIMN>?}
+  {<QUANT><DIM|DIMN>?<BY><QUANT><IN>?<DIM|DIMN>?}
   {<QUANT><CM><QUANT><CM><AND>?<QUANT><IN>?<DIM>?}
   {<QUANT><CM><QUANT><AND><QUANT><IN>?<DIM>?}
 DIM:
@@ -615,6 +615,8 @@ class DescriptionParser:
         if len(quants) < 2:
             return
         weak = lx.WEAK_DIMENSION_WORDS | lx.UNIT_ONLY_DIMENSION_WORDS
+        if not is_list and len(quants) == 2 and set(roles) in ({"diameter", None}, {"radius", None}):
+            roles = [r or "length" for r in roles]  # "7 cm dia x 12 cm": the other extent of a cylinder
         if not is_list and all(r is not None and r != "size" for r in roles):
             for q, role, (a, b) in zip(quants, roles, spans, strict=True):
                 if role is not None and role not in weak:
@@ -769,9 +771,9 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
             if tag == "BY" and not prev_ok and prev is not None and len(out) >= 2:
                 # "7.5 cm long by 5 by 5", "20L x 10W": a labelled value before the sign
                 before = out[-2].tag
-                prev_ok = (prev.tag == "DIM" and (before in _UNIT_TAGS or before in _NUMBER_TAGS)) or (
-                    prev.tag == "LBL" and before in _NUMBER_TAGS
-                )
+                prev_ok = (
+                    prev.tag in ("DIM", "DIMN") and (before in _UNIT_TAGS or before in _NUMBER_TAGS)
+                ) or (prev.tag == "LBL" and before in _NUMBER_TAGS)
             if tag == "BY" and not nxt_num and nxt is not None and nxt.tag == "LBL":
                 nxt_num = True  # "x W 10"
             if not (nxt_num and prev_ok):

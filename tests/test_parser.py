@@ -462,6 +462,9 @@ PATTERN_DIMENSIONS = [
     ("40 cm long by 25 cm by 12 cm", (40, 25, 12)),
     ("3 in wide by 2 by 1", (7.62, 5.08, 2.54)),
     ("a bar 12 cm long by 4 cm in diameter", (12, 4, 4)),
+    ("7cm dia x 12cm long", (12, 7, 7)),
+    ("a tube 3 cm dia x 15 cm", (15, 3, 3)),
+    ("30cm long x 20cm wide x 10cm high", (30, 20, 10)),
     # 3. a pair after labelled extents adds to them
     ("a vase 30 cm tall with a 10 x 10 cm base", (30, 10, 10)),
     ("18 cm high, footprint 6 by 6 cm", (18, 6, 6)),
