@@ -348,11 +348,10 @@ FUNCTION_WORDS: dict[str, str] = {
 #: ("rubber grip", "plastic bag", "long stem") describes the part, not the object (see PARSER.md).
 PART_NOUNS: frozenset[str] = frozenset(
     {"grip", "grips", "handle", "handles", "bag", "bags", "lid", "lids", "cap", "caps", "cover", "sleeve",
-     "strap", "straps", "cord", "base", "tip", "tips", "label", "wrapper", "wrapping", "packaging", "case",
-     "stand", "coating", "band", "trim", "insert", "bristles", "buttons", "button", "feet", "seal",
-     "stopper", "spout", "nozzle", "stem", "blade", "head", "hinge", "clasp", "zip", "zipper", "sole",
-     "wheels", "legs", "knob", "rim", "edge", "edges", "inside", "interior", "lining", "liner", "pouch",
-     "packet", "box", "tray", "window", "straw", "opener", "holder", "ring", "chain", "cup"}
+     "strap", "straps", "cord", "base", "tip", "tips", "label", "wrapper", "wrapping", "packaging",
+     "stand", "coating", "trim", "insert", "bristles", "feet", "seal", "stopper", "spout", "nozzle",
+     "stem", "hinge", "clasp", "zip", "zipper", "sole", "wheels", "legs", "knob", "rim", "lining",
+     "liner", "inside", "interior", "window", "opener", "holder"}
 )  # fmt: skip
 #: Prepositions that open a phrase about a part or a container ("with a rubber grip", "in a plastic bag"):
 #: material and shape words inside such a phrase rank below the words about the object itself.

@@ -564,6 +564,9 @@ PATTERN_CATEGORIES = [
     ("a hammer, steel head, rubber grip", "material", "metal"),
     ("a candle in a glass jar, wax", "material", "other"),
     ("bread in a plastic bag, soft", "material", "plastic"),  # the only material stated
+    ("a cardboard box with a plastic window", "material", "paper"),
+    ("a ceramic cup, plastic lid", "material", "other"),
+    ("a rubber band ball", "material", "rubber"),
     ("a champagne flute with a long stem", "shape", None),
     ("a wine glass with a long stem, cylindrical bowl", "shape", "prism"),
     ("a bottle opener, steel", "shape", None),
