@@ -921,8 +921,8 @@ def _in_part_phrase(segment: list[_Token], i: int, through_and: bool = False) ->
         t = segment[j]
         if t.tag in ("CM", "SEP") or (t.tag == "AND" and not through_and):
             return False
-        if t.low in lx.PART_PREPOSITIONS:
-            return True
+        if t.low in lx.PART_PREPOSITIONS and segment[j + 1].tag not in ("DIM", "DIMN", *_NUMBER_TAGS):
+            return True  # not "7 cm in diameter and round", "with 500 ml"
     return False
 
 

@@ -271,6 +271,7 @@ CATEGORY_CASES = [
     ("flat", "shape", "thin"),
     ("a cube", "shape", "compact"),
     ("a long stick", "shape", "long"),
+    ("it is 7 cm in diameter and round", "shape", "radial"),
     ("it is squeezable", "rigidity", "squeezable"),
     ("soft and squishy", "rigidity", "squeezable"),
     ("floppy", "rigidity", "floppy"),
@@ -574,6 +575,7 @@ PATTERN_CATEGORIES = [
     ("a bar of soap", "shape", None),
     ("a tube of crisps with a foil lid and plastic cap", "shape", "prism"),
     ("a long stick", "shape", "long"),
+    ("it is 7 cm in diameter and round", "shape", "radial"),
     ("a bottle made of thin plastic", "shape", "prism"),
 ]
 
