@@ -510,7 +510,11 @@ def create_app(
 
     class RecallIn(TextIn):
         top: int = Field(5, ge=1, le=MAX_TOP, description="How many ranked matches.")
-        metric: MetricName = Field("jp", description="Distance metric (jp: the paper's Joint Probability).")
+        metric: MetricName | None = Field(  # type: ignore[valid-type]
+            None,
+            description="Distance metric; default: jplog with object names (the hybrid), or the paper's jp "
+            "with features_only (recall/RECALL.md).",
+        )
         features_only: bool = Field(False, description="Ignore object names in the text (features only).")
 
     class PlanIn(BaseModel):

@@ -126,7 +126,7 @@ async function runRecall(text) {
   const featuresOnly = document.getElementById("features-only").checked;
   setStatus("recall-status", "Recalling...");
   try {
-    const answer = await api("/recall", { text, top, metric, features_only: featuresOnly });
+    const answer = await api("/recall", { text, top, metric: metric || null, features_only: featuresOnly });
     const body = document.querySelector("#matches tbody");
     body.replaceChildren();
     answer.matches.forEach((m, i) => {
