@@ -678,7 +678,10 @@ def create_app(
         """One read-only SELECT in the sandbox: no writes, files, network, ATTACH or extensions; at most
         ``max_rows`` rows (``truncated`` says when there were more) and ``timeout_s`` seconds (504)."""
         try:
-            result = knowledge_base().sql(body.query, max_rows=body.max_rows, timeout_s=body.timeout_s)
+            # The statement must stop before the request's own time limit: a request that timed out would
+            # otherwise leave its worker thread inside DuckDB (and a process exiting then aborts).
+            timeout_s = min(body.timeout_s, max(0.1, 0.9 * settings.request_timeout))
+            result = knowledge_base().sql(body.query, max_rows=body.max_rows, timeout_s=timeout_s)
         except QueryTimeout as err:
             raise RequestTimeout(str(err)) from None
         payload = to_jsonable(
