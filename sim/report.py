@@ -46,7 +46,8 @@ def _e(value: Any) -> str:
     return "\u2013" if value is None else html.escape(str(value), quote=True)
 
 
-def _details(row: Mapping[str, Any]) -> dict[str, Any]:
+def row_details(row: Mapping[str, Any]) -> dict[str, Any]:
+    """The ``details`` JSON of a stored grasp-validation row as a dict ({} when absent or malformed)."""
     raw = row.get("details")
     if isinstance(raw, Mapping):
         return dict(raw)
@@ -59,7 +60,7 @@ def _details(row: Mapping[str, Any]) -> dict[str, Any]:
 
 def _normalise(row: Mapping[str, Any]) -> dict[str, Any]:
     out = dict(row.to_dict() if hasattr(row, "to_dict") else row)
-    details = _details(out)
+    details = row_details(out)
     out["details"] = details
     image = details.get("image")
     out["image"] = image if isinstance(image, str) and _SAFE_IMAGE.match(image) else None

@@ -31,6 +31,7 @@ from kb.features import ObjectRecord
 from sim.executors import Executor, make_executor
 from sim.grasps import GraspPlan
 from sim.planner import PLANNER_VERSION, plan_grasps
+from sim.report import row_details as _details
 
 __all__ = [
     "DEFAULT_TOP",
@@ -414,14 +415,3 @@ def validate(
         summary.report = write_report(results, report_path)
     summary.wall_time_s = round(clock() - t0, 3)
     return summary
-
-
-def _details(row: dict[str, Any]) -> dict[str, Any]:
-    raw = row.get("details")
-    if isinstance(raw, dict):
-        return dict(raw)
-    try:
-        out = json.loads(raw) if raw else {}
-    except (TypeError, ValueError):
-        return {}
-    return out if isinstance(out, dict) else {}
