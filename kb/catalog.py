@@ -23,7 +23,7 @@ from __future__ import annotations
 import hashlib
 import threading
 import time
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
@@ -44,11 +44,13 @@ from kb.errors import (
 from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES, ObjectRecord, normalize_name
 
 __all__ = [
+    "ARROW_TYPES",
     "DEFAULT_BUSY_TIMEOUT",
     "ImportReport",
     "KnowledgeBase",
     "QueryResult",
     "SANDBOX_CONFIG",
+    "bulk_execute",
     "features_hash",
 ]
 
@@ -414,20 +416,20 @@ class KnowledgeBase:
                 if alias not in taken_aliases and alias not in existing and alias != rec.name:
                     taken_aliases.add(alias)
                     alias_rows.append([alias, rec.name])
-        _bulk(con, "new_objects", ["name", *FEATURES, "source", "created_at", "updated_at"], inserts,
+        bulk_execute(con, "new_objects", ["name", *FEATURES, "source", "created_at", "updated_at"], inserts,
               f"INSERT INTO objects (name, {', '.join(FEATURES)}, source, created_at, updated_at) "
               f"SELECT name, {', '.join(FEATURES)}, source, created_at, updated_at FROM new_objects")
         sets = ", ".join(f"{f} = u.{f}" for f in FEATURES)
-        _bulk(con, "changed_objects", [*FEATURES, "source", "updated_at", "name"], updates,
+        bulk_execute(con, "changed_objects", [*FEATURES, "source", "updated_at", "name"], updates,
               f"UPDATE objects SET {sets}, source = u.source, updated_at = u.updated_at "
               "FROM changed_objects u WHERE objects.name = u.name")
         obs_cols = ["name", "feature", "value_num", "value_text", "role", "source", "adapter", "fetched_at",
                     "raw_text", "run_id"]
-        _bulk(con, "new_observations", obs_cols, observations,
+        bulk_execute(con, "new_observations", obs_cols, observations,
               "INSERT INTO observations (object_id, feature, value_num, value_text, role, source, adapter, "
               "fetched_at, raw_text, run_id) SELECT o.id, i.feature, i.value_num, i.value_text, i.role, i.source, "
               "i.adapter, i.fetched_at, i.raw_text, i.run_id FROM new_observations i JOIN objects o ON o.name = i.name")
-        _bulk(con, "new_aliases", ["alias", "name"], alias_rows,
+        bulk_execute(con, "new_aliases", ["alias", "name"], alias_rows,
               "INSERT INTO object_aliases (alias, object_id) SELECT a.alias, o.id FROM new_aliases a "
               "JOIN objects o ON o.name = a.name")
 
@@ -548,30 +550,44 @@ class KnowledgeBase:
             return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
 
 
-_ARROW_TYPES = {
-    **{f: "float64" for f in NUMERIC_FEATURES},
-    "value_num": "float64",
+#: Arrow types of catalog columns for :func:`bulk_execute` (other columns are strings).
+ARROW_TYPES: dict[str, str] = {
+    "id": "int64",
+    "object_id": "int64",
     "run_id": "int64",
+    "status": "int32",
+    "value_num": "float64",
+    **{f: "float64" for f in NUMERIC_FEATURES},
     "created_at": "timestamp",
     "updated_at": "timestamp",
     "fetched_at": "timestamp",
+    "occurred_at": "timestamp",
 }
 
 
-def _bulk(con: duckdb.DuckDBPyConnection, view: str, columns: list[str], rows: list[list[Any]], sql: str) -> None:
-    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (one set-based statement per batch,
-    not one statement per row)."""
+def bulk_execute(
+    con: duckdb.DuckDBPyConnection,
+    view: str,
+    columns: Sequence[str],
+    rows: Sequence[Sequence[Any]] | Sequence[Mapping[str, Any]],
+    sql: str,
+) -> None:
+    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (an Arrow table): one set-based
+    statement per batch, not one statement per row. Rows are sequences in ``columns`` order or mappings
+    (a missing key is NULL); column types come from :data:`ARROW_TYPES`."""
     if not rows:
         return
     import pyarrow as pa
 
-    fields = []
-    for c in columns:
-        kind = _ARROW_TYPES.get(c, "string")
-        fields.append(pa.field(c, pa.timestamp("us") if kind == "timestamp" else getattr(pa, kind)()))
-    table = pa.Table.from_arrays([pa.array([r[i] for r in rows], type=f.type) for i, f in enumerate(fields)],
-                                 schema=pa.schema(fields))
-    con.register(view, table)
+    by_name = isinstance(rows[0], Mapping)
+    arrays, fields = [], []
+    for i, c in enumerate(columns):
+        kind = ARROW_TYPES.get(c, "string")
+        typ = pa.timestamp("us") if kind == "timestamp" else getattr(pa, kind)()
+        values = [r.get(c) for r in rows] if by_name else [r[i] for r in rows]
+        arrays.append(pa.array(values, type=typ))
+        fields.append(pa.field(c, typ))
+    con.register(view, pa.Table.from_arrays(arrays, schema=pa.schema(fields)))
     try:
         con.execute(sql)
     finally:

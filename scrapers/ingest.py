@@ -43,6 +43,7 @@ from urllib.parse import urlsplit
 
 import requests
 
+from kb.catalog import bulk_execute
 from kb.errors import ExtractionError, FetchError, IngestionError, InvalidFeature
 from kb.features import (
     DIMENSIONS,
@@ -396,37 +397,9 @@ def _signature(rows: Iterable[dict[str, Any]]) -> tuple:
 
 
 # ---------------------------------------------------------------------------------------------- write
-_ARROW: dict[str, str] = {
-    "id": "int64",
-    "object_id": "int64",
-    "run_id": "int64",
-    "status": "int32",
-    "value_num": "float64",
-    **{f: "float64" for f in NUMERIC_FEATURES},
-    "fetched_at": "timestamp",
-    "created_at": "timestamp",
-    "updated_at": "timestamp",
-    "occurred_at": "timestamp",
-}
-
-
 def _bulk(con, view: str, columns: list[str], rows: list[dict[str, Any]], sql: str) -> None:
-    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (an Arrow table)."""
-    if not rows:
-        return
-    import pyarrow as pa
-
-    arrays, fields_ = [], []
-    for c in columns:
-        kind = _ARROW.get(c, "string")
-        typ = pa.timestamp("us") if kind == "timestamp" else getattr(pa, kind)()
-        arrays.append(pa.array([r.get(c) for r in rows], type=typ))
-        fields_.append(pa.field(c, typ))
-    con.register(view, pa.Table.from_arrays(arrays, schema=pa.schema(fields_)))
-    try:
-        con.execute(sql)
-    finally:
-        con.unregister(view)
+    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (see kb.catalog.bulk_execute)."""
+    bulk_execute(con, view, columns, rows, sql)
 
 
 def _warm_up_arrow() -> None:
