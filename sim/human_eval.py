@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 import csv
 import json
+import sys
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -82,14 +83,18 @@ def read_human_grasps(path: str | Path = HUMAN_GRASPS_CSV) -> list[HumanGrasp]:
     with open(path, newline="", encoding="utf-8") as fh:
         for line, row in enumerate(csv.DictReader(fh), start=2):
             gt, fam = row.get("human_grasp_type", ""), row.get("human_family", "")
+            where = f"{path}:{line}"
             if gt not in GRASP_TYPES:
-                raise InvalidFeature(f"{path}:{line}: human_grasp_type {gt!r} is not a known grasp type")
+                raise InvalidFeature("human_grasp_type", gt, f"{where}: not a known grasp type")
             if GRASP_TYPES[gt] != fam:
-                raise InvalidFeature(f"{path}:{line}: human_family {fam!r} is not the family of {gt}")
-            features = {k: (row[k] or None) for k in _FEATURE_COLUMNS}
+                raise InvalidFeature("human_family", fam, f"{where}: {gt} is a {GRASP_TYPES[gt]} grasp")
+            features = {k: (row.get(k) or None) for k in _FEATURE_COLUMNS}
             for k in ("a_cm", "b_cm", "c_cm", "mass_g"):
                 if features[k] is not None:
-                    features[k] = float(features[k])
+                    try:
+                        features[k] = float(features[k])
+                    except ValueError:
+                        raise InvalidFeature(k, features[k], f"{where}: not a number") from None
             out.append(HumanGrasp(row["object"], features, gt, fam, row.get("source", "")))
     return out
 
@@ -101,7 +106,9 @@ def evaluate(rows: Sequence[HumanGrasp] | None = None) -> Agreement:
     for r in rows:
         plans = plan_grasps(r.features)
         results.append(
-            ObjectResult(r.object, r.grasp_type, r.family, tuple(p.grasp_type for p in plans), plans[0].family)
+            ObjectResult(
+                r.object, r.grasp_type, r.family, tuple(p.grasp_type for p in plans), plans[0].family
+            )
         )
     n = len(results)
 
@@ -120,10 +127,16 @@ def evaluate(rows: Sequence[HumanGrasp] | None = None) -> Agreement:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m sim.human_eval", description=__doc__.split("\n")[0])
-    parser.add_argument("--csv", default=str(HUMAN_GRASPS_CSV), help="labelled objects (default: %(default)s)")
+    parser.add_argument(
+        "--csv", default=str(HUMAN_GRASPS_CSV), help="labelled objects (default: %(default)s)"
+    )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     args = parser.parse_args(argv)
-    result = evaluate(read_human_grasps(args.csv))
+    try:
+        result = evaluate(read_human_grasps(args.csv))
+    except (OSError, InvalidFeature) as exc:
+        print(f"Error: {exc}", file=sys.stderr)
+        return 1
     if args.json:
         misses = [asdict(r) for r in result.results if not r.type_match]
         print(json.dumps({**result.summary(), "type_misses": misses}))

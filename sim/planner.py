@@ -44,7 +44,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "4"
+PLANNER_VERSION = "5"
 
 GRAVITY = 9.81  # m/s^2
 
@@ -60,12 +60,25 @@ LIGHT_MASS_G = 250.0
 #: Widths at or below which fingertips pinch comfortably (precision), and above which the hand wraps.
 PRECISION_MAX_WIDTH_CM = 5.5
 #: A sphere this wide or wider is held in the palm (power sphere): the paper's tennis ball (6.4 cm) and
-#: orange (7 cm) both got a power-circular grasp.
+#: orange (7 cm) both got a power-circular grasp; a golf ball (4.3 cm) is taken on the fingertips. Light
+#: balls of 5-6 cm (plum, peach, racquetball) are borderline: the number of fingers people use rises with
+#: ball size (about 2.7 for a golf ball, 3.5 for a tennis ball, 4.5 for a softball), so a fingertip grasp
+#: is as human; 6 cm was tried in planner version 5's development and dropped: the simulated hand's
+#: precision sphere lifts none of those four balls, the power sphere holds all of them (PLANNER.md).
 POWER_SPHERE_MIN_CM = 5.0
+#: A round object this heavy is cupped in the palm even when smaller than POWER_SPHERE_MIN_CM.
+POWER_SPHERE_MIN_MASS_G = 100.0
 #: Flat objects at most this thick, this long and this light are held in a lateral pinch (keys, cards).
 LATERAL_PINCH_MAX_THICK_CM = 1.0
 LATERAL_PINCH_MAX_LENGTH_CM = 10.0
 LATERAL_PINCH_MAX_MASS_G = 100.0
+#: Flat things no longer than this (coins, paper clips, washers) are picked up between the tips of thumb and
+#: index (the tip / palmar pinch of the GRASP taxonomy), not laid against the side of the index.
+TIP_PINCH_MAX_LENGTH_CM = 3.5
+#: Pen-like objects (long, a round cross-section no thicker than this, light) are held in the writing
+#: tripod [Feix 2016], the grasp they are picked up for.
+PEN_MAX_THICK_CM = 2.0
+PEN_MAX_MASS_G = 50.0
 
 #: A light long object at least this long is a utensil or tool held by its handle (spatula, ladle, knife):
 #: its bounding box is wider than the handle people actually hold.
@@ -294,11 +307,16 @@ def _fingers_for_length(length_cm: float, mass_g: float) -> str:
     return {4: "thumb_4_finger", 3: "thumb_3_finger", 2: "thumb_2_finger", 1: "thumb_index_finger"}[n]
 
 
-def _power_wrap(width_cm: float, mass_g: float) -> str:
-    """Power prismatic type by wrap diameter and weight."""
+def _power_wrap(width_cm: float, mass_g: float, long: bool = False) -> str:
+    """Power prismatic type by wrap diameter and weight.
+
+    A heavy *long* object is held by a handle thinner than its box (hammer): a tight small-diameter wrap;
+    a heavy box 2.5-4.5 cm thick is wrapped as it is (medium wrap; heavy wrap for all of them until
+    planner version 5).
+    """
     if width_cm >= 4.5:
         return "heavy_wrap_large_diameter"
-    if mass_g >= HEAVY_MASS_G or (width_cm < 2.5 and mass_g >= LIGHT_MASS_G):
+    if (mass_g >= HEAVY_MASS_G and long) or (width_cm < 2.5 and mass_g >= LIGHT_MASS_G):
         return "heavy_wrap_small_diameter"
     if width_cm >= 2.5:
         return "medium_wrap"
@@ -332,8 +350,16 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
             )
             out.append(("power_sphere", "round: cupped in the palm"))
             out.append(("tripod", "thumb, index and middle finger pads"))
-        elif heavy or d >= POWER_SPHERE_MIN_CM:
-            why = "heavy" if heavy else f"{d:g} cm across (>= {POWER_SPHERE_MIN_CM:g} cm)"
+        elif heavy or d >= POWER_SPHERE_MIN_CM or m >= POWER_SPHERE_MIN_MASS_G:
+            why = (
+                "heavy"
+                if heavy
+                else (
+                    f"{d:g} cm across (>= {POWER_SPHERE_MIN_CM:g} cm)"
+                    if d >= POWER_SPHERE_MIN_CM
+                    else f"{m:.0f} g (>= {POWER_SPHERE_MIN_MASS_G:g} g)"
+                )
+            )
             out.append(("power_sphere", f"round and {why}: cupped in the palm (Cutkosky: power, circular)"))
             out.append(("precision_sphere", "round: fingertips around it (precision, circular)"))
             out.append(("heavy_wrap_large_diameter", "wrapped like a thick cylinder"))
@@ -373,6 +399,33 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
             )
             out.append(("tripod", "small: thumb, index and middle finger pads"))
             out.append(("lateral_pinch", "small and flat: thumb against the side of the index"))
+        return out
+
+    small_flat = (
+        w <= LATERAL_PINCH_MAX_THICK_CM
+        and a <= LATERAL_PINCH_MAX_LENGTH_CM
+        and m <= LATERAL_PINCH_MAX_MASS_G
+        and w <= 0.6 * o.b_cm
+    )
+    if small_flat and a <= TIP_PINCH_MAX_LENGTH_CM:
+        out.append(
+            (
+                "thumb_index_finger",
+                f"flat and tiny ({a:g} cm): picked up between the tips of thumb and index (tip pinch)",
+            )
+        )
+        out.append(("lateral_pinch", "flat: thumb pad against the side of the index"))
+        out.append(("thumb_2_finger", "thumb against two finger pads"))
+        return out
+    if small_flat and (o.is_flat or w < 1.0):
+        out.append(
+            (
+                "lateral_pinch",
+                f"flat-sided, thin ({w:g} cm) and small: thumb pad against the side of the index (keys, cards)",
+            )
+        )
+        out.append(("thumb_index_finger", "thin: thumb and index tips"))
+        out.append(("thumb_2_finger", "thin: thumb against two finger pads"))
         return out
 
     if o.is_flat:
@@ -434,7 +487,7 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
                 else f"{w:g} cm wide (> {PRECISION_MAX_WIDTH_CM:g} cm)"
             )
         )
-        kind = _power_wrap(w, m)
+        kind = _power_wrap(w, m, long=o.shape == "long")
         out.append(
             (
                 kind,
@@ -449,6 +502,23 @@ def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
             out.append(("power_sphere", "the fingers spread round it"))
         else:
             out.append(("heavy_wrap_small_diameter", "a tight fist round it"))
+        return out
+
+    if (
+        o.shape == "long"
+        and a >= 10.0
+        and o.b_cm <= PEN_MAX_THICK_CM
+        and w >= 0.8 * o.b_cm
+        and m < PEN_MAX_MASS_G
+    ):
+        out.append(
+            (
+                "tripod",
+                f"pen-like ({a:g} cm long, {o.b_cm:g} cm thick, {m:.0f} g): held in the writing tripod (Feix 2016)",
+            )
+        )
+        out.append((_fingers_for_length(a, m), "picked up: finger pads along its length"))
+        out.append(("lateral_pinch", "thin: thumb against the side of the index"))
         return out
 
     if o.shape == "long" and w < 3.0 and m >= 150.0:

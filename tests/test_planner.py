@@ -63,9 +63,19 @@ def test_paper_balls_get_a_power_circular_grasp(features):
         (dict(a_cm=32, b_cm=9, c_cm=7, mass_g=160, shape="long", material="metal"), "power", {"light_tool"}),
         (dict(a_cm=75, b_cm=40, c_cm=0.5, mass_g=200, shape="thin", material="fabric", rigidity="floppy"),
          "power", {"medium_wrap"}),
+        (dict(a_cm=2.4, b_cm=2.4, c_cm=0.18, mass_g=5.7, shape="thin", material="metal"), "precision",
+         {"thumb_index_finger"}),
+        (dict(a_cm=14.9, b_cm=1, c_cm=1, mass_g=6, shape="long", material="plastic"), "precision", {"tripod"}),
+        (dict(a_cm=5, b_cm=1.8, c_cm=0.9, mass_g=9, shape="prism", material="plastic"), "intermediate",
+         {"lateral_pinch"}),
+        (dict(a_cm=17.5, b_cm=8.9, c_cm=3.8, mass_g=514, shape="prism", material="paper"), "power",
+         {"medium_wrap"}),
+        (dict(a_cm=5.5, b_cm=5.5, c_cm=5.5, mass_g=100, shape="radial"), "power", {"power_sphere"}),
+        (dict(a_cm=4.5, b_cm=4.5, c_cm=4.5, mass_g=120, shape="radial"), "power", {"power_sphere"}),
     ],
     ids=["water bottle", "hammer", "key", "marble", "golf ball", "wood disk", "small cube", "glass ornament",
-         "pencil", "banana", "ladle", "towel"],
+         "pencil", "banana", "ladle", "towel", "coin", "ballpoint pen", "usb stick", "heavy box",
+         "lemon", "heavy small ball"],
 )  # fmt: skip
 def test_rules_choose_family_and_type(features, family, types):
     plan = best_grasp(features)
@@ -257,3 +267,31 @@ def test_flat_objects_are_squeezed_for_the_moment_of_their_weight_about_the_edge
     assert edge_grip_force(250, 16.0) > edge_grip_force(250, 10.8)
     block = best_grasp(dict(a_cm=6, b_cm=5, c_cm=4, mass_g=250, shape="compact", material="paper"))
     assert not any("moment" in r for r in block.rationale)
+
+
+def test_planner_agrees_with_how_people_grasp_household_objects():
+    """sim/data/human_grasps.csv: the grasp people commonly use for 79 objects (labels and their basis in
+    its source column). Planner version 5 reached 89.9 % (type), 94.9 % (family), 97.5 % (type in top 3);
+    version 4 had 79.7 %, 89.9 % and 92.4 %. A rule change must not lose agreement with people."""
+    from sim.human_eval import evaluate
+
+    result = evaluate()
+    assert result.n >= 40
+    assert result.top1_family >= 0.94
+    assert result.top1_type >= 0.89
+    assert result.top3_type >= 0.97
+
+
+def test_human_grasp_labels_are_valid_and_sourced(tmp_path):
+    from sim.human_eval import read_human_grasps
+
+    rows = read_human_grasps()
+    assert len({r.object for r in rows}) == len(rows)
+    assert all(r.source and GRASP_TYPES[r.grasp_type] == r.family for r in rows)
+    bad = tmp_path / "bad.csv"
+    bad.write_text(
+        "object,a_cm,b_cm,c_cm,mass_g,shape,material,rigidity,fragility,texture,human_grasp_type,human_family,source\n"
+        "mug,12,9,8,300,prism,,,,,handle_hook,power,x\n"
+    )
+    with pytest.raises(InvalidFeature, match="handle_hook"):
+        read_human_grasps(bad)
