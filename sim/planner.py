@@ -61,9 +61,9 @@ LIGHT_MASS_G = 250.0
 PRECISION_MAX_WIDTH_CM = 5.5
 #: A sphere this wide or wider is held in the palm (power sphere): the paper's tennis ball (6.4 cm) and
 #: orange (7 cm) both got a power-circular grasp; a golf ball (4.3 cm) is taken on the fingertips. Light
-#: balls of 5-6 cm (plum, peach, racquetball) are borderline: the number of fingers people use rises with
-#: ball size (about 2.7 for a golf ball, 3.5 for a tennis ball, 4.5 for a softball), so a fingertip grasp
-#: is as human; 6 cm was tried in planner version 5's development and dropped: the simulated hand's
+#: balls of 5-6 cm (plum, peach, racquetball) are borderline: the number of fingers used rises with
+#: ball size (2.7 golf ball, 3.5 tennis ball, 4.5 softball in a student study, a weak source), so a
+#: fingertip grasp is as human; 6 cm was tried in planner version 5's development and dropped: the simulated hand's
 #: precision sphere lifts none of those four balls, the power sphere holds all of them (PLANNER.md).
 POWER_SPHERE_MIN_CM = 5.0
 #: A round object this heavy is cupped in the palm even when smaller than POWER_SPHERE_MIN_CM.
