@@ -295,3 +295,30 @@ def test_human_grasp_labels_are_valid_and_sourced(tmp_path):
     )
     with pytest.raises(InvalidFeature, match="handle_hook"):
         read_human_grasps(bad)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.data())
+def test_agreement_fractions_are_consistent_on_any_subset(data):
+    """On any subset of the labelled objects: a type match implies a family match and a top-3 match."""
+    from sim.human_eval import evaluate, read_human_grasps
+
+    rows = read_human_grasps()
+    subset = data.draw(st.lists(st.sampled_from(rows), max_size=12))
+    result = evaluate(subset)
+    assert result.n == len(subset)
+    assert 0.0 <= result.top1_type <= result.top1_family <= 1.0
+    assert result.top1_type <= result.top3_type <= 1.0
+    assert sum(r.type_match for r in result.results) == round(result.top1_type * result.n)
+
+
+def test_human_eval_command_prints_agreement_and_refuses_a_missing_file(capsys, tmp_path):
+    import json
+
+    from sim.human_eval import main
+
+    assert main(["--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["n"] >= 40 and out["planner_version"] and isinstance(out["type_misses"], list)
+    assert main(["--csv", str(tmp_path / "missing.csv")]) == 1
+    assert "Error:" in capsys.readouterr().err
