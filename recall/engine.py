@@ -203,8 +203,21 @@ class NameIndex:
     #: Shortest head noun matched as the end of a compound ("spoon" in "teaspoon").
     MIN_SUFFIX = 4
 
-    def __init__(self, names: Sequence[str], aliases: Sequence[Sequence[str]]):
+    def __init__(
+        self,
+        names: Sequence[str],
+        aliases: Sequence[Sequence[str]],
+        materials: Sequence[str | None] | None = None,
+    ):
         from recall.lexicon import MATERIAL_WORDS
+
+        # a generic name ("wood piece", "wooden block": only material words and generic nouns) describes
+        # any object of its material; phrase -> its material, and the catalog's rows by material
+        self.generic: dict[tuple[str, ...], str] = {}
+        self.by_material: dict[str, set[int]] = {}
+        for row, mat in enumerate(materials or ()):
+            if mat:
+                self.by_material.setdefault(mat, set()).add(row)
 
         self.phrases: dict[tuple[str, ...], set[int]] = {}
         self.heads: dict[str, set[int]] = {}
@@ -217,6 +230,12 @@ class NameIndex:
                     self.phrases.setdefault(words, set()).add(row)
                     head = _head(words)
                     stated = {MATERIAL_WORDS[w] for w in words if w in MATERIAL_WORDS and w != head}
+                    if (
+                        len(stated) == 1
+                        and head in GENERIC_NOUNS
+                        and all(w in GENERIC_NOUNS or w in MATERIAL_WORDS or w == "of" for w in words)
+                    ):
+                        self.generic[words] = next(iter(stated))
                     for key in (head, *(head[cut:] for cut in range(1, len(head) - self.MIN_SUFFIX + 1))):
                         self.heads.setdefault(key, set()).add(row)
                         known = self.head_materials.get((key, row), set())
@@ -268,15 +287,20 @@ class NameIndex:
         n = max(self.size, 1)
         exact: dict[int, float] = {}
         phrases: list[str] = []
+        head: dict[int, float] = {}
         if found:
             best = max(e - s for s, e, _ in found)
             for s, e, gram in found:
-                if e - s == best:
+                if e - s == best and gram in self.generic:
+                    # "a wood piece" names no one object: weak evidence for every object of its material
+                    rows = self.phrases[gram] | self.by_material.get(self.generic[gram], set())
+                    for row in rows:
+                        head[row] = max(head.get(row, 0.0), math.log(n / len(rows)))
+                elif e - s == best:
                     rows = self.phrases[gram]
                     for row in rows:
                         exact[row] = max(exact.get(row, 0.0), math.log(n / len(rows)))
                     phrases.append(" ".join(gram))
-        head: dict[int, float] = {}
         heads: list[str] = []
         for i, word in enumerate(words):
             if word in self.heads and word not in self.not_heads and not _comparison(words, i, i + 1):
@@ -438,7 +462,11 @@ class Recaller:
         if len(snapshot) == 0:
             raise RecallError("the catalog is empty: import objects first (objrecall catalog import)")
         self.snapshot = snapshot
-        self.names = NameIndex(snapshot.names, snapshot.aliases)
+        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+
+        codes = snapshot.cat[:, CATEGORICAL_FEATURES.index("material")]
+        materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
+        self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
         self._kdtrees: dict = {}
 
     @classmethod

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import math
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +13,7 @@ from hypothesis import strategies as st
 
 from kb.errors import RecallError
 from kb.features import ObjectRecord
-from recall.engine import NameIndex, Recaller, normalize_words
+from recall.engine import HEAD_WEIGHT, NameIndex, Recaller, normalize_words
 from recall.snapshot import CatalogSnapshot, load_snapshot
 
 SEED_CSV = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"
@@ -99,6 +100,39 @@ def test_a_head_noun_names_objects_of_the_stated_material_only():
     assert index.find("a small metal cylinder", material="metal").head == {}
     found = index.find("a steel bottle", material="metal")
     assert set(found.head) == {1, 2}  # "steel water bottle" is one name of the water bottle, not all
+
+
+def test_a_generic_name_names_every_object_of_its_material():
+    """ "wood piece" (material + generic noun) is how people call any wooden thing: it is weak evidence for
+    every wooden object alike, not a whole-name match for the one object called so (catalog 2)."""
+    names = ["wood piece", "wood wedge", "flat wood piece", "plastic cap", "metal disk"]
+    index = NameIndex(
+        names, [(), ("wooden wedge",), (), (), ()], ["wood", "wood", "wood", "plastic", "metal"]
+    )
+    found = index.find("a wood piece cut at a slant, 6 cm long")
+    assert found.exact == {} and found.phrases == ()
+    assert found.bonus(1) > 0 and found.bonus(3) == found.bonus(4) == 0  # the wedge is wooden too
+    # "wood piece" no longer names its object by a whole name (0.6 ln 5 nats): only the head noun "piece"
+    assert found.bonus(0) == found.bonus(2) == pytest.approx(HEAD_WEIGHT * math.log(5 / 2))
+    assert set(index.find("a wooden wedge").head) == {0, 1, 2}  # "wedge" is a shape word: generic too
+    assert index.find("a plastic cap").exact == {3: pytest.approx(math.log(5))}  # "cap" is not generic
+
+
+def test_a_generic_name_does_not_outrank_the_features():
+    catalog = [
+        ObjectRecord.create("wood piece", a_cm=3.7, b_cm=2.9, c_cm=1.9, mass_g=7, material="wood"),
+        ObjectRecord.create("wood wedge", a_cm=6, b_cm=3, c_cm=1.5, mass_g=11, material="wood"),
+        ObjectRecord.create("long wood piece", a_cm=12, b_cm=2, c_cm=1.5, mass_g=18, material="wood"),
+        ObjectRecord.create("wood cylinder", a_cm=8, b_cm=2.9, c_cm=2.9, mass_g=21, material="wood"),
+        ObjectRecord.create("plastic cap", a_cm=3.4, b_cm=3.4, c_cm=1.3, mass_g=5, material="plastic"),
+    ]
+    r = Recaller.from_records(catalog)
+    for metric in ("jp", "jplog"):
+        got = r.recall_text(
+            "a wood piece cut at a slant, about 6 cm long and 3 cm wide, maybe 12 g", metric=metric
+        )
+        assert got.matches[0].name == "wood wedge", metric
+    assert r.recall_text("a wood piece, 3.5 by 3 by 2 cm, 7 g").matches[0].name == "wood piece"
 
 
 def test_longest_name_wins():
