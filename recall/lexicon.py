@@ -373,6 +373,14 @@ CONTAINER_NOUNS: frozenset[str] = frozenset(
 #: Words that say the material is the object's own ("a plastic body", "the body is aluminium").
 BODY_WORDS: frozenset[str] = frozenset({"body", "bodied", "casing", "housing", "shell", "frame", "barrel"})
 
+#: Long round things whose thickness is a diameter ("a pencil 19 cm long and 7 mm thick": b = c = 0.7).
+ROD_WORDS: frozenset[str] = CYLINDER_WORDS - {"jar", "mug", "cup", "tumbler", "vase", "candle"} | frozenset(
+    {"banana", "pin", "carrot", "cucumber", "zucchini", "courgette", "sausage", "baguette", "crayon", "cigar",
+     "chopstick", "chopsticks", "skewer", "wand", "chalk", "dowel", "cable", "broomstick", "flute"}
+)  # fmt: skip
+#: A tolerance after a value ("430 g +/- 20 g"): the tolerance is not a second value or a range.
+TOLERANCE_WORDS: frozenset[str] = frozenset({"+/-", "+-", "±", "plus or minus", "plus minus", "give or take"})
+
 #: Compound nouns whose first word is not what the object is made of (merged, tagged W).
 COMPOUND_NOUNS: frozenset[str] = frozenset({"paper clip", "paper clips", "glass cleaner"})
 
@@ -381,7 +389,7 @@ MULTIWORD: tuple[str, ...] = tuple(
     sorted(
         {w for table in (HEDGES, TRAILING_HEDGES, DIMENSION_WORDS, VOLUME_UNITS, MATERIAL_WORDS, SHAPE_WORDS,
                          FUNCTION_WORDS) for w in table if " " in w}
-        | {"can hold", "could hold"} | COMPOUND_NOUNS | FLAT_WORDS,
+        | {"can hold", "could hold", "plus or minus", "plus minus"} | COMPOUND_NOUNS | FLAT_WORDS,
         key=lambda w: (-len(w.split()), w),
     )
 )  # fmt: skip

@@ -24,7 +24,7 @@ import functools
 import re
 import threading
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from nltk.chunk import RegexpChunkParser, RegexpParser
@@ -64,6 +64,7 @@ TOKEN_PATTERN = (
     + r"|[" + _FRACTION_CHARS + r"]"
     + r"|[^\W\d_]+(?:['’-][^\W\d_]+)*"
     + r"|''|[\"”″'′’]"
+    + r"|\+/-|\+-|±"
     + r"|[×~≈*=:;,.!?()&–—-]"
 )  # fmt: skip
 
@@ -322,6 +323,18 @@ class _DimStatement:
 
 
 @dataclass
+class _Relation:
+    """An extent stated relative to another ("twice as long as it is wide"): ``role`` is ``factor``
+    times ``ref`` (None: the extent stated last before it, as in "6 cm wide and three times as long")."""
+
+    role: str
+    factor: float
+    ref: str | None
+    start: int
+    end: int
+
+
+@dataclass
 class _Reading:
     """Everything read from the chunks, in text order, before the features are resolved."""
 
@@ -335,6 +348,7 @@ class _Reading:
     mass_hints: list[str] = field(default_factory=list)
     cue_words: set[str] = field(default_factory=set)
     in_dim_chunk: set[int] = field(default_factory=set)
+    relations: list[_Relation] = field(default_factory=list)
 
 
 # ------------------------------------------------------------------------------------------ the parser
@@ -386,6 +400,7 @@ class DescriptionParser:
             children.extend(tree)
             self._read(tree, segment, pos, reading)
             pos += len(segment)
+        _read_relations(tokens, reading)
         features, hint = _resolve(reading, tokens, text)
         return ParsedDescription(text=text, features=features, mass_hint=hint, tree=Tree("S", children))
 
@@ -398,7 +413,13 @@ class DescriptionParser:
             low = word.lower()
             if "’" in low:
                 low = low.replace("’", "'")
-            if "-" in low and len(low) > 1 and low not in model and _split_hyphen(low):
+            if (
+                "-" in low
+                and len(low) > 1
+                and low not in model
+                and low not in lx.TOLERANCE_WORDS
+                and _split_hyphen(low)
+            ):
                 # "5-cm-long" parts, "non-fragile" -> non fragile; number compounds stay whole
                 offset = start
                 for part in word.split("-"):
@@ -471,10 +492,23 @@ class DescriptionParser:
     def _read(self, tree: Tree, segment: list[_Token], base: int, reading: _Reading) -> None:
         fill = _fill_context(segment)
         k = 0
-        for child in tree:
+        for idx, child in enumerate(tree):
             if isinstance(child, Tree):
                 n = _size(child)
                 toks = segment[k : k + n]
+                if child.label() == "QUANT" and idx + 1 < len(tree) and _noun_took_other_unit(tree[idx + 1]):
+                    # "~ 10cm diameter ~ 0.8 kg": the noun's value is the length before it, not the mass
+                    q = self._quantity(child, toks, base + k)
+                    role = lx.DIMENSION_WORDS.get(segment[k + n].low, "size")
+                    if (
+                        q is not None
+                        and q.unit is not None
+                        and q.unit.kind == "length"
+                        and role in _NOUN_ROLES
+                    ):
+                        self._add_dim(reading, role, [q], segment[k : k + n + 1], base + k)
+                        k += n
+                        continue
                 self._read_chunk(child, toks, base + k, reading, fill, segment, k)
                 k += n
             else:
@@ -718,7 +752,65 @@ class DescriptionParser:
         return _Quantity(value, low, high, qualifier, unit, start, end, pos)
 
 
+_NOUN_ROLES = frozenset({*lx.LINEAR_ROLES, "diameter", "radius"})
+
+
+def _noun_took_other_unit(node: Any) -> bool:
+    """True for a DIM chunk "<dimension noun> <quantity>" whose quantity is a mass or a volume."""
+    if (
+        not isinstance(node, Tree)
+        or node.label() != "DIM"
+        or isinstance(node[0], Tree)
+        or node[0][1] != "DIMN"
+    ):
+        return False
+    for sub in node:
+        if isinstance(sub, Tree) and sub.label() == "QUANT":
+            return any(
+                isinstance(u, Tree) and u.label() == "UNIT" and u[0][1] in ("UMASS", "UVOL") for u in sub
+            )
+    return False
+
+
 # ---------------------------------------------------------------------------------------- tag context
+def _read_relations(tokens: list[_Token], reading: _Reading) -> None:
+    """Extents stated relative to another: "twice as long as it is wide", "three times as long", "half
+    as wide as it is long"."""
+    n = len(tokens)
+    for i, tok in enumerate(tokens):
+        if tok.low != "times" and (
+            tok.low not in ("twice", "half") or i + 1 >= n or tokens[i + 1].low != "as"
+        ):
+            continue
+        first = i
+        if tok.low == "times":
+            while first > 0 and tokens[first - 1].tag in ("CD", "NW"):
+                first -= 1
+            factor = number_value([t.low for t in tokens[first:i]]) if first < i else None
+            if factor is None or not 1 < factor <= 20:
+                continue
+        else:
+            factor = 2.0 if tok.low == "twice" else 0.5
+        j = i + 1
+        if j + 1 >= n or tokens[j].low != "as" or tokens[j + 1].tag not in ("DIM", "DIMN"):
+            continue
+        role = lx.DIMENSION_WORDS.get(tokens[j + 1].low)
+        if role not in lx.LINEAR_ROLES:
+            continue
+        ref: str | None = None
+        last = tokens[j + 1]
+        if j + 2 < n and tokens[j + 2].low == "as":
+            for t in tokens[j + 3 : j + 7]:
+                if t.tag in ("CM", "SEP"):
+                    break
+                if t.tag in ("DIM", "DIMN"):
+                    ref, last = lx.DIMENSION_WORDS.get(t.low), t
+                    break
+            if ref is None or ref == role:
+                continue
+        reading.relations.append(_Relation(role, factor, ref, tokens[first].start, last.end))
+
+
 def _split_hyphen(low: str) -> bool:
     parts = low.split("-")
     if len(parts) == 2 and parts[0] in lx.NUMBER_WORDS and parts[1] in lx.NUMBER_WORDS:
@@ -731,11 +823,50 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
     out: list[_Token] = []
     n = len(tokens)
     _tuple_labels(tokens)
+    imperial = _imperial_text(tokens)
+    letters_w = any(t.low == "w" and t.tag != "LBL" for t in tokens)
+    skip_to = -1
     for i, tok in enumerate(tokens):
         prev = out[-1] if out else None
         nxt = tokens[i + 1] if i + 1 < n else None
         prev_num = prev is not None and prev.tag in _NUMBER_TAGS
         tag = tok.tag
+        if i < skip_to:
+            continue  # the tolerance's own number and unit are dropped
+        if (
+            tok.low in lx.TOLERANCE_WORDS
+            and prev is not None
+            and (prev_num or prev.tag in _UNIT_TAGS)
+            and nxt is not None
+            and nxt.tag in _NUMBER_TAGS
+        ):
+            j = i + 1
+            while j < n and tokens[j].tag in _NUMBER_TAGS:
+                j += 1
+            if j < n and tokens[j].tag in _UNIT_TAGS | {"IN"}:
+                j += 1
+            skip_to = j  # "430 g +/- 20 g": a tolerance, not a range or a second value: dropped
+            continue
+        chained = len(out) >= 2 and out[-2].tag == "DIMN" and len(out[-2].word) == 1  # "L 30 W 20"
+        if len(tok.low) == 1 and tok.low in lx.TUPLE_LABELS and tag != "LBL" and (chained or not prev_num):
+            k = i + 1
+            if k < n and tokens[k].low in ("=", ":"):
+                k += 1
+            after = tokens[k + 1] if k + 1 < n else None
+            if after is not None and after.low == "," and k + 2 < n:
+                after = tokens[k + 2]
+            if (
+                after is not None
+                and tokens[k].tag == "CD"
+                and (after.tag in ("ULEN", "IN") or (len(after.low) == 1 and after.low in lx.TUPLE_LABELS))
+            ):
+                # "L 48 cm, dia 28 cm", "L=8cm D=3cm": a letter naming one extent (D is a depth next to a
+                # W, else a diameter)
+                role = lx.TUPLE_LABELS[tok.low]
+                tok.low = "diameter" if role == "depth" and not letters_w else role
+                tok.tag = "DIMN"
+                out.append(tok)
+                continue
         if tag == "RTO" and tok.low in ("-", "–", "—"):
             nxt_unit = nxt is not None and nxt.tag in (_UNIT_TAGS | {"DIM", "DIMN", "HS", "IN"})
             if (prev_num and nxt_unit) or (
@@ -746,8 +877,9 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
             if nxt is not None and not nxt.word[:1].isupper():
                 continue  # "approx. 5 cm", "3 in. long": an abbreviation, not a sentence end
         if tag == "IN" and prev_num:
-            if nxt is None or nxt.low not in lx.DIMENSION_NOUNS:
-                tag = "ULEN"  # "4 in long", "3 in." ; "7 in diameter" stays a preposition
+            if nxt is None or nxt.low not in lx.DIMENSION_NOUNS or imperial:
+                tag = "ULEN"  # "4 in long", "3 in." ; "7 in diameter" stays a preposition, unless the
+                # other units are imperial: "1.68 in diameter, 1.62 oz"
         elif tok.low in _SYMBOL_UNITS:
             tag = "ULEN" if prev_num else "CM"
         elif (
@@ -794,6 +926,18 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
                 (prev is not None and prev.low in lx.CAN_PRECEDERS) or (nxt is not None and nxt.low == "of")
             ):
                 tag = "W"  # "it can hold": a verb
+        elif (
+            tag == "DIM"
+            and nxt is not None
+            and nxt.tag == "HA"
+            and i + 2 < n
+            and tokens[i + 2].tag in _NUMBER_TAGS
+            and not (
+                prev_num or (prev is not None and (prev.tag in _UNIT_TAGS or prev.low in ("a", "an", "as")))
+            )
+            and lx.DIMENSION_WORDS.get(tok.low) in lx.LINEAR_ROLES
+        ):
+            tag = "DIMN"  # "it is long about 32 cm", "thick maybe 1.5 cm": the word before its value
         elif tag == "MH" and tok.low == "light" and nxt is not None and nxt.low in lx.COLOUR_WORDS:
             tag = "W"
         elif tag == "FRC" and tok.low in lx.ORDINAL_FRACTIONS:
@@ -807,6 +951,25 @@ def _fix_tags(tokens: list[_Token]) -> list[_Token]:
 
 
 _BY_WORDS = frozenset({"x", "×", "by", "*"})
+_IMPERIAL = frozenset({"inch", "foot", "yard", "ounce", "pound", "fluid_ounce"})
+_METRIC_LENGTH = frozenset({"millimeter", "centimeter", "meter"})
+
+
+def _imperial_text(tokens: list[_Token]) -> bool:
+    """True when the text's units are imperial (an ounce, pound, inch or foot) and none is a metric
+    length: there "7 in diameter" is seven inches."""
+    table = unit_table()
+    imperial = False
+    for tok in tokens:
+        if tok.tag in _UNIT_TAGS:
+            unit = table.get(tok.low)
+            if unit is None:
+                continue
+            if unit.pint_name in _METRIC_LENGTH:
+                return False
+            if unit.pint_name in _IMPERIAL:
+                imperial = True
+    return imperial
 
 
 def _tuple_labels(tokens: list[_Token]) -> None:
@@ -903,6 +1066,8 @@ def _hedge_qualifier(toks: Sequence[_Token]) -> str:
 def _negated(segment: list[_Token], i: int) -> bool:
     for j in range(i - 1, max(-1, i - 4), -1):
         tag = segment[j].tag
+        if segment[j].low in ("or", "nor") and j >= 1 and segment[j - 1].tag in _CATEGORY_TAGS:
+            return tag == "NEG" or _negated(segment, j - 1)  # "not made of glass or ceramic"
         if tag in ("CM", "SEP", "AND"):
             return False
         if tag == "NEG":
@@ -966,6 +1131,8 @@ def _read_categories(segment: list[_Token], base: int, reading: _Reading) -> Non
             reading.mass_hints.append(hint)
             continue
         if tag == "DIM" and tok.low in ("long", "elongated") and pos not in reading.in_dim_chunk:
+            if any(t.low == "as" for t in segment[max(0, i - 3) : i]):
+                continue  # "twice as long as it is wide": a proportion, not a long shape
             if _in_part_phrase(segment, i, True):
                 continue  # "with a long stem", "a long handle": a part is long
             feature, value, rank = "shape", "long", 2
@@ -1070,6 +1237,7 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
     cylinder = bool(cues & lx.CYLINDER_WORDS)
     disc = bool(cues & lx.DISC_WORDS)
     flat = bool(cues & lx.FLAT_WORDS)
+    rod = bool(cues & lx.ROD_WORDS) and not flat and not disc
     round_cue = sphere or cylinder or bool(cues & (lx.ROUND_WORDS | (lx.DISC_WORDS - {"flat", "cap"})))
     slots: dict[str, _Dim] = {}
     abc = ("a_cm", "b_cm", "c_cm")
@@ -1079,6 +1247,20 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
         for name, dim in zip(names, ordered, strict=False):
             slots[name] = dim
 
+    for rel in reading.relations:  # "twice as long as it is wide, 11 cm wide": 22 cm long
+        if any(st.role == rel.role for st in reading.dims):
+            continue
+        if rel.ref is not None:
+            source = next((st for st in reading.dims if st.role == rel.ref), None)
+        else:
+            source = next((st for st in reversed(reading.dims) if st.start < rel.start), None)
+        if source is None or source.role == rel.role:
+            continue
+        q = source.quantities[0]
+        derived = replace(
+            q, value=q.value * rel.factor, low=None, high=None, qualifier="about", unit=_unit_for(q, reading)
+        )
+        reading.dims.append(_DimStatement(rel.role, [derived], rel.start, rel.end))
     by_role: dict[str, _Dim] = {}
     stated_width = any(stmt.role == "width" for stmt in reading.dims)  # "65 cm across and 20 cm wide"
     for stmt in reading.dims:
@@ -1145,11 +1327,17 @@ def _resolve_dims(reading: _Reading, text: str, features: dict[str, FeatureEvide
             put(abc, [d for d, _r in linear[:3]])
         elif len(linear) == 2:
             roles = {r for _d, r in linear}
-            if "thickness" in roles:
+            names: tuple[str, ...]
+            values = [d for d, _r in linear]
+            if roles in ({"length", "thickness"}, {"overall", "thickness"}) and rod:
+                values = sorted(values, key=lambda d: -d.value)
+                values.append(values[1])  # "a pencil 19 cm long and 7 mm thick": round, b = c
+                names = abc
+            elif "thickness" in roles:
                 names = ("a_cm", "c_cm") if roles & {"length", "height", "overall"} else ("b_cm", "c_cm")
             else:
                 names = ("a_cm", "b_cm")
-            put(names, [d for d, _r in linear])
+            put(names, values)
         else:
             d, role = linear[0]
             slot = {"length": "a_cm", "height": "a_cm", "overall": "a_cm", "width": "b_cm", "depth": "b_cm",
