@@ -91,7 +91,14 @@ def resolve_metric(metric: str | None, features_only: bool) -> str:
 _WORD = re.compile(r"[a-z0-9]+")
 
 
+#: Irregular plurals ("dice" is the plural of "die": a catalog's "dice" is named by "a plastic die").
+_IRREGULAR = {"dice": "die", "knives": "knife", "leaves": "leaf", "loaves": "loaf", "halves": "half",
+              "mice": "mouse", "teeth": "tooth", "shelves": "shelf"}  # fmt: skip
+
+
 def _singular(word: str) -> str:
+    if word in _IRREGULAR:
+        return _IRREGULAR[word]
     if len(word) <= 3 or word.endswith(("ss", "us", "is")):
         return word
     if word.endswith("ies") and len(word) > 4:
@@ -110,7 +117,10 @@ def normalize_words(text: str) -> list[str]:
 
 
 #: A name followed by one of these words only describes the object ("lemon-shaped", "pen-like").
-_AFTER_COMPARISON = frozenset({"like", "shaped", "shape", "style", "type", "sized", "size", "looking"})
+#: ("die-cast": made in a die, not a die).
+_AFTER_COMPARISON = frozenset(
+    {"like", "shaped", "shape", "style", "type", "sized", "size", "looking", "cast"}
+)
 #: ... or preceded by these within two words ("like a pen", "the size of a tennis ball", "as big as").
 _BEFORE_COMPARISON = frozenset({"like", "as", "than", "resemble", "resembling", "similar"})
 

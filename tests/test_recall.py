@@ -135,6 +135,14 @@ def test_a_generic_name_does_not_outrank_the_features():
     assert r.recall_text("a wood piece, 3.5 by 3 by 2 cm, 7 g").matches[0].name == "wood piece"
 
 
+def test_irregular_plurals_name_their_object():
+    index = NameIndex(["dice", "toy car", "kitchen knife"], [(), (), ()])
+    assert list(index.find("a small plastic die, 1.6 cm").exact) == [0]
+    assert list(index.find("two dice").exact) == [0]
+    assert 0 not in index.find("a die-cast toy car").rows()  # made in a die, not a die
+    assert list(index.find("a block of kitchen knives").exact) == [2]
+
+
 def test_longest_name_wins():
     index = NameIndex(["ball", "tennis ball", "ping pong ball"], [(), (), ("table tennis ball",)])
     assert list(index.find("a table tennis ball").exact) == [2]
