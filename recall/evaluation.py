@@ -144,6 +144,24 @@ def _read_descriptions(path: Path) -> list[tuple[str, str]]:
     return out
 
 
+def _loose_key(label: str) -> str:
+    """A label as words: case, underscores, hyphens, apostrophes and plurals do not matter."""
+    from recall.engine import normalize_words
+
+    return " ".join(normalize_words(label))
+
+
+def _loose_labels(names: list[str], aliases: list[tuple[str, ...]]) -> dict[str, str]:
+    """Loose key -> catalog name, for description labels written differently from the catalog's names
+    ("wood_cylinder", "Rubik's cube" for "rubiks cube"); a key shared by two objects is left out."""
+    out: dict[str, str | None] = {}
+    for name, alias in zip(names, aliases, strict=True):
+        for label in (name, *alias):
+            key = _loose_key(label)
+            out[key] = name if out.get(key, name) == name else None
+    return {k: v for k, v in out.items() if v is not None}
+
+
 def _recaller_from_catalog(catalog_csv: Path, workdir: Path) -> Recaller:
     """A temporary knowledge base (DuckDB file) holding the catalog, and a recaller over it."""
     from kb.catalog import KnowledgeBase
@@ -250,6 +268,7 @@ def evaluate(
     snap = recaller.snapshot
     index = {n: i for i, n in enumerate(snap.names)}
     alias_of = {a: n for n, aliases in zip(snap.names, snap.aliases, strict=True) for a in aliases}
+    loose = _loose_labels(snap.names, snap.aliases)
     hits = {(m, True): [0, 0] for m in METRICS}
     hits.update({(m, False): [0, 0] for m in HYBRID_METRICS})
     false_flags = dict.fromkeys(FLAG_MODES.values(), 0)
@@ -260,7 +279,7 @@ def evaluate(
     cases: list[Case] = []
     n = 0
     for obj, text in pairs:
-        obj = obj if obj in index else alias_of.get(obj, obj)
+        obj = obj if obj in index else alias_of.get(obj, loose.get(_loose_key(obj), obj))
         if obj not in index:
             unknown.append(obj)
             continue

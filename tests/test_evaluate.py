@@ -135,3 +135,26 @@ def test_a_second_catalog_of_near_twins():
     assert report.score("jp", features_only=False).top1_pct >= 93.0
     assert report.false_flags["jplog+names"] == 0
     assert report.open_set_n == 12 and report.open_set["jplog+names"] >= 4
+
+
+def test_labels_written_differently_from_the_catalog_names_still_count(tmp_path):
+    cat, desc = tmp_path / "c.csv", tmp_path / "d.csv"
+    cat.write_text(
+        "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\n"
+        "Wood_Cylinder,8,2.9,2.9,21,prism,rough,sturdy,wood,rigid\n"
+        "rubiks cube,5.7,5.7,5.7,90,compact,smooth,sturdy,plastic,rigid\n"
+        "wood-cylinders,30,30,30,2000,prism,rough,sturdy,wood,rigid\n"
+    )
+    desc.write_text(
+        "object,description\n"
+        'wood cylinder,"a wooden cylinder, 8 cm long, 3 cm across"\n'
+        'Rubik\'s Cube,"a puzzle cube, 5.5 cm, 85 g"\n'
+        'unicorn,"a unicorn, 2 m tall"\n'
+    )
+    report = evaluate(cat, desc)
+    # "wood cylinder" is ambiguous loosely (Wood_Cylinder, wood-cylinders): it stays unknown
+    assert report.n == 1 and report.score("jp").top1 == 1
+    assert sorted(report.unknown_objects) == ["unicorn", "wood cylinder"]
+    cat.write_text("\n".join(cat.read_text().splitlines()[:3]) + "\n")
+    report = evaluate(cat, desc)
+    assert report.n == 2 and report.score("jp").top1 == 2 and report.unknown_objects == ["unicorn"]
