@@ -381,6 +381,14 @@ ROD_WORDS: frozenset[str] = CYLINDER_WORDS - {"jar", "mug", "cup", "tumbler", "v
 #: A tolerance after a value ("430 g +/- 20 g"): the tolerance is not a second value or a range.
 TOLERANCE_WORDS: frozenset[str] = frozenset({"+/-", "+-", "±", "plus or minus", "plus minus", "give or take"})
 
+#: A quantity right after one of these is another object's ("my 2 kg dumbbell") ...
+POSSESSIVES: frozenset[str] = frozenset({"my", "your", "our", "their", "his", "her", "mum's", "dad's"})
+#: ... and surely so when its sentence compares or places the two ("next to my 2 kg dumbbell").
+COMPARISON_WORDS: frozenset[str] = frozenset(
+    {"next", "beside", "besides", "than", "compared", "comparison", "heavier", "lighter", "bigger", "smaller",
+     "larger", "taller", "shorter", "longer", "wider", "thinner", "thicker", "near", "behind", "versus", "vs"}
+)  # fmt: skip
+
 #: Compound nouns whose first word is not what the object is made of (merged, tagged W).
 COMPOUND_NOUNS: frozenset[str] = frozenset({"paper clip", "paper clips", "glass cleaner"})
 

@@ -342,6 +342,7 @@ class _Reading:
     multis: list[_DimStatement] = field(default_factory=list)
     sizes: list[_DimStatement] = field(default_factory=list)
     masses: list[tuple[_Quantity, bool]] = field(default_factory=list)  # (quantity, is contents)
+    other_masses: list[_Quantity] = field(default_factory=list)  # "my 2 kg dumbbell": used only alone
     contents: list[_Quantity] = field(default_factory=list)
     length_units: list[tuple[int, Unit]] = field(default_factory=list)  # (token index, unit)
     categories: dict[str, list[tuple[int, int, str, _Token]]] = field(default_factory=dict)
@@ -669,6 +670,12 @@ class DescriptionParser:
     ) -> None:
         """A quantity outside any dimension chunk: a mass, contents, or an unlabelled length."""
         if q.unit is None:
+            return
+        other = _other_object(segment, k)
+        if other == "compared":
+            return  # "it sits next to my 2 kg dumbbell": another object's mass or size
+        if other == "owned" and q.unit.kind == "mass":
+            reading.other_masses.append(q)  # "my 2 kg dumbbell": the object itself only if nothing else
             return
         contents = fill is not None and (fill < k or segment[fill].low not in lx.WEAK_FILL_WORDS)
         if q.unit.kind == "mass":
@@ -1009,6 +1016,17 @@ def _smaller_unit_after(out: list[_Token], tok: _Token) -> bool:
         and first.kind == second.kind
         and second.factor < first.factor
     )
+
+
+def _other_object(segment: list[_Token], k: int) -> str | None:
+    """For a quantity at ``k`` right after a possessive ("my 2 kg dumbbell", "my old 30 cm ruler"):
+    "compared" when its sentence compares or places ("next to", "than", "beside", "heavier"), else
+    "owned"; None without a possessive."""
+    if not any(t.low in lx.POSSESSIVES for t in segment[max(0, k - 2) : k]):
+        return None
+    if any(w in lx.COMPARISON_WORDS for t in segment for w in t.low.split()):  # also "lighter than"
+        return "compared"
+    return "owned"
 
 
 def _number_before_of(out: list[_Token]) -> bool:
@@ -1361,7 +1379,8 @@ def _r(value: float | None) -> float | None:
 
 
 def _resolve_mass(reading: _Reading, text: str, features: dict[str, FeatureEvidence]) -> None:
-    for q, in_contents in reading.masses:
+    masses = reading.masses or [(q, False) for q in reading.other_masses]
+    for q, in_contents in masses:
         assert q.unit is not None
         grams = q.value * q.unit.factor
         if not 0 < grams <= MAX_MASS_G:

@@ -731,3 +731,23 @@ def test_a_tolerance_never_changes_the_value(value: int, tolerance: int) -> None
     got = parse(f"about {value} cm +/- {tolerance} cm long, {value * 10} g ± {tolerance} g").values()
     assert got["a_cm"] == approx(value)
     assert got["mass_g"] == approx(value * 10)
+
+
+@pytest.mark.parametrize(
+    ("text", "grams"),
+    [
+        ("next to my 3 kg kettlebell sits a pear of 150 g", 150),
+        ("it is lighter than my 1 kg bag of rice, about 250 g", 250),
+        ("my 5 lb sack of flour is heavier; the jar is 400 g", 400),
+        ("This is my 2 kg dumbbell, cast iron", 2000),  # no comparison: the object itself
+        ("my 2 kg dumbbell, 22 cm long; it weighs 2.1 kg", 2100),  # a plain mass wins over an owned one
+    ],
+)
+def test_another_objects_mass_is_not_the_mass(text: str, grams: float) -> None:
+    assert parse(text).values()["mass_g"] == approx(grams)
+
+
+def test_a_compared_objects_mass_alone_states_no_mass() -> None:
+    parsed = parse("a bowl, much lighter than my 2 kg dumbbell, 15 cm across")
+    assert "mass_g" not in parsed.values()
+    assert parsed.values()["a_cm"] == approx(15)
