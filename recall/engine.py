@@ -41,6 +41,7 @@ __all__ = [
     "NameIndex",
     "RecallResult",
     "Recaller",
+    "name_core",
     "normalize_words",
     "resolve_metric",
 ]
@@ -114,6 +115,20 @@ def normalize_words(text: str) -> list[str]:
     """Lower-case word tokens, apostrophes dropped (rubik's -> rubiks), hyphens split, plurals singular."""
     text = text.lower().replace("'", "").replace("\u2019", "")
     return [_singular(w) for w in _WORD.findall(text)]
+
+
+#: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
+_VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})
+
+
+def name_core(name: str) -> tuple[str, ...]:
+    """The words of a catalog name without what tells variants apart: parentheses ("tennis ball (small)")
+    and trailing numbers or labels ("wood block 2", "cup no. 3", "box b"), so that its head noun is the
+    noun ("block", not "2") and the text "a wood block" names every numbered wood block."""
+    words = normalize_words(re.sub(r"\([^)]*\)|\[[^\]]*\]", " ", name)) or normalize_words(name)
+    while len(words) > 1 and (words[-1].isdigit() or len(words[-1]) == 1 or words[-1] in _VARIANT_WORDS):
+        words.pop()
+    return tuple(words)
 
 
 #: A name followed by one of these words only describes the object ("lemon-shaped", "pen-like").
@@ -236,8 +251,11 @@ class NameIndex:
         for row, (name, alias) in enumerate(zip(names, aliases, strict=True)):
             for phrase in (name, *alias):
                 words = tuple(normalize_words(phrase))
+                core = name_core(phrase)
                 if words:
                     self.phrases.setdefault(words, set()).add(row)
+                    self.phrases.setdefault(core, set()).add(row)  # "wood block 2" is a "wood block"
+                    words = core
                     head = _head(words)
                     stated = {MATERIAL_WORDS[w] for w in words if w in MATERIAL_WORDS and w != head}
                     if (

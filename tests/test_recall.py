@@ -135,6 +135,18 @@ def test_a_generic_name_does_not_outrank_the_features():
     assert r.recall_text("a wood piece, 3.5 by 3 by 2 cm, 7 g").matches[0].name == "wood piece"
 
 
+def test_numbered_and_qualified_names_have_a_noun_head():
+    """Catalogs number or qualify variants ("wood block 2", "tennis ball (small)"): the head noun is the
+    noun, a number in the text names nothing, and the name without its label names every variant."""
+    index = NameIndex(["wood block 1", "wood block 2", "tennis ball (small)", "cup no. 3"], [(), (), (), ()])
+    assert set(index.heads) >= {"block", "ball", "cup"} and "2" not in index.heads
+    assert index.find("it has 2 holes").rows() == []
+    assert set(index.find("a wood block, 5 cm").rows()) == {0, 1}
+    assert list(index.find("a tennis ball").exact) == [2]
+    assert list(index.find("a small cup").exact) == [3]
+    assert list(index.find("wood block 2").exact) == [1]
+
+
 def test_irregular_plurals_name_their_object():
     index = NameIndex(["dice", "toy car", "kitchen knife"], [(), (), ()])
     assert list(index.find("a small plastic die, 1.6 cm").exact) == [0]
