@@ -116,7 +116,8 @@ class EvaluationReport:
 
 
 def read_descriptions(path: str | Path) -> list[tuple[str, str]]:
-    """(object, description) pairs of a CSV with columns ``object,description`` (others ignored)."""
+    """(object, description) pairs of a CSV with columns ``object,description`` (any case; ``name`` for
+    ``object`` also; others ignored)."""
     path = Path(path)
     try:
         return _read_descriptions(path)
@@ -129,7 +130,9 @@ def read_descriptions(path: str | Path) -> list[tuple[str, str]]:
 def _read_descriptions(path: Path) -> list[tuple[str, str]]:
     with path.open(encoding="utf-8-sig", newline="") as fh:
         reader = csv.DictReader(fh)
-        header = [h.strip() for h in reader.fieldnames or []]
+        header = [h.strip().lower() for h in reader.fieldnames or []]
+        if "object" not in header and "name" in header:  # a catalog-style label column
+            header[header.index("name")] = "object"
         missing = [c for c in ("object", "description") if c not in header]
         if missing:
             raise RecallError(f"{path}: missing column(s) {', '.join(missing)} (need object,description)")

@@ -158,3 +158,14 @@ def test_labels_written_differently_from_the_catalog_names_still_count(tmp_path)
     cat.write_text("\n".join(cat.read_text().splitlines()[:3]) + "\n")
     report = evaluate(cat, desc)
     assert report.n == 2 and report.score("jp").top1 == 2 and report.unknown_objects == ["unicorn"]
+
+
+def test_description_header_in_any_case_or_with_name(tmp_path):
+    path = tmp_path / "d.csv"
+    path.write_text('Object,Description\ncup,"a cup"\n')
+    assert read_descriptions(path) == [("cup", "a cup")]
+    path.write_text('name,description,notes\nCup,"a cup",x\n')
+    assert read_descriptions(path) == [("cup", "a cup")]
+    path.write_text('thing,text\ncup,"a cup"\n')
+    with pytest.raises(RecallError, match="missing column"):
+        read_descriptions(path)
