@@ -165,7 +165,9 @@ _PHRASE_ENDS = frozenset(
     "is are was were be been being with without of from for that which who about around roughly approximately "
     "nearly almost over under weighs weigh weighing weighed measuring measures measure measured made covered "
     "in on at into onto inside and or but has have had it its i im me my we our you your he she they their "
-    "this these those there here whose when while if so to by like maybe probably".split()
+    "this these those there here whose when while if so to by like maybe probably "
+    # irregular participles ("a wood piece cut at a slant")
+    "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
 )
 _PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
 #: Words skipped inside the subject phrase (determiners, vague size words).

@@ -214,6 +214,8 @@ def test_subject_head_and_unknown_nouns():
 
     assert subject_head("A plush dinosaur toy, about 35 cm long") == "toy"
     assert subject_head("An orange of 7 cm diameter.") == "orange"
+    assert subject_head("a wood piece cut at a slant, 6 cm") == "piece"  # an irregular participle ends it
+    assert subject_head("a cut log, 30 cm") == "log"
     assert subject_head("My daughter's teddy bears. About a foot") == "bear"
     assert subject_head("I found this toy apple in my kid's kitchen") == "apple"
     assert subject_head("12, 3") is None
