@@ -177,8 +177,14 @@ _PHRASE_SKIP = frozenset(
 
 
 def subject_head(text: str) -> str | None:
-    """The head noun of the description's subject: the last word of the first noun phrase of the first
-    sentence (words up to a comma, a number or a word of :data:`_PHRASE_ENDS`; determiners and vague size
+    """The last word of :func:`subject_phrase`, or None."""
+    phrase = subject_phrase(text)
+    return phrase[-1] if phrase else None
+
+
+def subject_phrase(text: str) -> tuple[str, ...]:
+    """The words of the description's subject noun phrase, singular; the last is its head noun: the first
+    noun phrase of the first sentence (words up to a comma, a number or a word of :data:`_PHRASE_ENDS`; determiners and vague size
     words skipped), singular. "A plush dinosaur toy, 35 cm" -> toy; "An orange of 7 cm" -> orange;
     "My daughter's teddy bear" -> bear. No part-of-speech tagger: a heuristic, used only as evidence."""
     low = text.lower().replace("\u2019", "'")
@@ -197,8 +203,8 @@ def subject_head(text: str) -> str | None:
                 phrase.append(word)
             previous = word
         if phrase:
-            return _singular(phrase[-1])
-    return None
+            return tuple(_singular(w) for w in phrase)
+    return ()
 
 
 @dataclass(frozen=True)
@@ -282,7 +288,15 @@ class NameIndex:
         """The head noun of the description's subject (:func:`subject_head`) when the catalog does not know
         it: in no name or alias, not a feature word of the parser's lexicon (materials, shapes, units,
         ...; a colour word counts as a noun here: "an orange"), not a generic noun (:data:`GENERIC_NOUNS`)."""
-        head = subject_head(text)
+        phrase = subject_phrase(text)
+        head = phrase[-1] if phrase else None
+        if (
+            len(phrase) > 1
+            and phrase[-2] in self.heads
+            and phrase[-2] not in GENERIC_NOUNS
+            and phrase[-2] not in self.not_heads
+        ):
+            return None  # a compound on a known noun: "remote control" (tv remote), "bottle cap"
         if head is None or head in self.vocabulary or head in GENERIC_NOUNS or _PARTICIPLE.search(head):
             return None
         if head in _feature_words():

@@ -226,6 +226,10 @@ def test_subject_head_and_unknown_nouns():
     assert names.unknown_noun("A small round plastic thing, 3 cm") is None  # generic
     assert names.unknown_noun("A steel bottle full of water") is None
     assert names.unknown_noun("12 cm, 40 g") is None  # a unit is no object
+    remotes = NameIndex(["tv remote", "plastic cap"], [(), ()])
+    assert remotes.unknown_noun("long black plastic remote control, 15 cm") is None  # compound on "remote"
+    assert remotes.unknown_noun("a plastic garden hose, 10 m") == "hose"
+    assert remotes.unknown_noun("a remote battery cover") == "cover"  # only the word before the head counts
 
 
 def test_open_set_needs_a_loose_match_not_only_an_unknown_noun():
