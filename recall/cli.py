@@ -57,24 +57,12 @@ def _parsed_dict(parsed, with_tree: bool) -> dict:
 
 
 def _description_rows(path) -> list[str]:
-    """The ``description`` column of a CSV file, in order."""
-    import csv
+    """The ``description`` column of a CSV file, in order (shared with ``objrecall recall --file``)."""
+    from pathlib import Path
 
-    from kb.errors import DescriptionError
+    from recall.cli_recall import read_description_column
 
-    try:
-        with open(path, newline="", encoding="utf-8-sig") as fh:
-            reader = csv.DictReader(fh)
-            fields = [f.strip() for f in (reader.fieldnames or [])]
-            if "description" not in fields:
-                columns = ", ".join(fields) or "none"
-                raise DescriptionError(f"{path}: no 'description' column (columns: {columns})")
-            key = (reader.fieldnames or [])[fields.index("description")]
-            return [row.get(key) or "" for row in reader]
-    except UnicodeDecodeError as err:
-        raise DescriptionError(f"{path}: not UTF-8 text ({err.reason})") from None
-    except csv.Error as err:
-        raise DescriptionError(f"{path}: not a CSV file ({err})") from None
+    return read_description_column(Path(path))
 
 
 def _fmt_value(value) -> str:
