@@ -15,6 +15,7 @@ trivial one) and the same worker runs on one core, on all local cores, or on a R
 
 from __future__ import annotations
 
+import itertools
 import multiprocessing
 import os
 from collections.abc import Callable, Iterable, Iterator
@@ -36,6 +37,31 @@ __all__ = [
 T = TypeVar("T")
 R = TypeVar("R")
 
+
+
+def _bounded_map(
+    items: Iterable[T],
+    limit: int,
+    submit: Callable[[T], Any],
+    wait_some: Callable[[list[Any]], tuple[Iterable[Any], list[Any]]],
+    result: Callable[[Any], R],
+    cancel: Callable[[Any], Any],
+) -> Iterator[R]:
+    """Keep at most ``limit`` tasks in flight, yield each result as its task finishes, and cancel the
+    tasks still pending when the consumer stops early (shared by the process-pool and Ray executors)."""
+    pending: list[Any] = []
+    it = iter(items)
+    try:
+        while True:
+            pending.extend(submit(item) for item in itertools.islice(it, limit - len(pending)))
+            if not pending:
+                return
+            done, pending = wait_some(pending)
+            for task in done:
+                yield result(task)
+    finally:
+        for task in pending:
+            cancel(task)
 
 class Executor(Protocol):
     """Runs ``fn`` over ``items``; results come back in completion order. Use as a context manager."""
@@ -102,26 +128,13 @@ class LocalProcessExecutor(_Base):
         return self._pool
 
     def map(self, fn: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
-        pool = self._get_pool()
-        pending: set[Future] = set()
-        it = iter(items)
-        limit = 2 * self.workers
-        try:
-            while True:
-                while len(pending) < limit:
-                    try:
-                        item = next(it)
-                    except StopIteration:
-                        break
-                    pending.add(pool.submit(fn, item))
-                if not pending:
-                    return
-                done, pending = wait(pending, return_when=FIRST_COMPLETED)
-                for fut in done:
-                    yield fut.result()
-        finally:
-            for fut in pending:
-                fut.cancel()
+        def first_done(pending: list[Future]) -> tuple[Iterable[Future], list[Future]]:
+            done, rest = wait(pending, return_when=FIRST_COMPLETED)
+            return done, list(rest)
+
+        return _bounded_map(
+            items, 2 * self.workers, lambda item: self._get_pool().submit(fn, item), first_done, Future.result, Future.cancel
+        )
 
     def close(self) -> None:
         if self._pool is not None:
@@ -156,25 +169,9 @@ class RayExecutor(_Base):
     def map(self, fn: Callable[[T], R], items: Iterable[T]) -> Iterator[R]:
         ray = self._ray
         remote = ray.remote(num_cpus=1)(fn)
-        pending: list[Any] = []
-        it = iter(items)
-        limit = 2 * self.workers
-        try:
-            while True:
-                while len(pending) < limit:
-                    try:
-                        item = next(it)
-                    except StopIteration:
-                        break
-                    pending.append(remote.remote(item))
-                if not pending:
-                    return
-                done, pending = ray.wait(pending, num_returns=1)
-                for ref in done:
-                    yield ray.get(ref)
-        finally:
-            for ref in pending:
-                ray.cancel(ref)
+        return _bounded_map(
+            items, 2 * self.workers, remote.remote, lambda pending: ray.wait(pending, num_returns=1), ray.get, ray.cancel
+        )
 
     def close(self) -> None:
         if self._owns and self._ray.is_initialized():
