@@ -541,7 +541,7 @@ class Recaller:
         self.snapshot = snapshot
         from kb.features import CATEGORICAL_FEATURES, CATEGORIES
 
-        codes = snapshot.cat[:, CATEGORICAL_FEATURES.index("material")]
+        codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
         materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
         self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
@@ -580,7 +580,7 @@ class Recaller:
         names = NameEvidence() if features_only else self.names.find(text, spans, material)
         soft = noun = None
         if not features_only:  # the paper's method uses the stated features only
-            soft = soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num)
+            soft = soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols)
             noun = self.described(text)
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun
@@ -673,7 +673,7 @@ class Recaller:
         matches = self._matches(rows, score, order, query, metric, set(names.exact))
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         best = int(rows[0])
-        errors = relative_errors(snap.num[best], snap.cat[best], query)
+        errors = relative_errors(snap.num_rows(best), snap.cat_rows(best), query)
         closeness = float(np.mean(list(errors.values()))) if errors else None
         not_in_catalog = not_in_catalog and not matches[0].matched_by_name
         open_set = not_in_catalog or is_open_set(closeness, matches[0].matched_by_name, names.unknown_noun)
@@ -729,9 +729,9 @@ class Recaller:
         """:class:`Match` es of ``rows`` in order; ``parts``: row -> (distance, name part, vague part)."""
         snap = self.snapshot
         if metric == "jplog":
-            terms = feature_terms(snap.log_scaled.num[rows], snap.cat[rows], query.log_scaled())
+            terms = feature_terms(snap.log_scaled.num_rows(rows), snap.cat_rows(rows), query.log_scaled())
         else:  # the paper's JP terms (also shown for the baselines: why this object, in nats)
-            terms = feature_terms(snap.num[rows], snap.cat[rows], query)
+            terms = feature_terms(snap.num_rows(rows), snap.cat_rows(rows), query)
         out = []
         for i, row in enumerate(rows.tolist()):
             rec = snap.record(row)

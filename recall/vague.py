@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -70,9 +70,9 @@ class SoftEvidence:
 
 
 def soft_evidence(
-    text: str, stated: Mapping[str, object], mass_hint: str | None, num: np.ndarray
+    text: str, stated: Mapping[str, object], mass_hint: str | None, columns: Sequence[np.ndarray]
 ) -> SoftEvidence | None:
-    """The soft evidence of ``text`` over the catalog's numeric columns ``num`` (rows x
+    """The soft evidence of ``text`` over the catalog's numeric ``columns`` (one array per feature of
     :data:`kb.features.NUMERIC_FEATURES`, NaN unknown), or None when there is none. ``stated``: the
     features the description states; ``mass_hint``: the parser's "light"/"heavy"."""
     low = _NOT_SIZE.sub(" ", text.lower())
@@ -89,11 +89,11 @@ def soft_evidence(
     ]
     if not found:
         return None
-    penalty = np.zeros(num.shape[0])
+    penalty = np.zeros(len(columns[0]))
     words = []
     limits = []
     for word, feature, q, side in found:
-        col = num[:, NUMERIC_FEATURES.index(feature)]
+        col = np.asarray(columns[NUMERIC_FEATURES.index(feature)], dtype=np.float64)
         known = np.isfinite(col) & (col > 0)
         if not known.any():
             continue

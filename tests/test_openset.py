@@ -106,7 +106,9 @@ def test_vague_size_word_is_ignored_when_a_dimension_is_stated():
 
 
 def _num(a, m):
-    return np.array([[x, x, x, y] for x, y in zip(a, m, strict=True)], dtype=float)
+    """Numeric columns (a, b, c, mass) with b = c = a."""
+    a, m = np.asarray(a, dtype=float), np.asarray(m, dtype=float)
+    return [a, a, a, m]
 
 
 def test_soft_range_boundaries():
