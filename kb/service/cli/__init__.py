@@ -1,4 +1,10 @@
-"""The ``objrecall`` command line: a thin layer over the Python API (see README)."""
+"""The ``objrecall`` command line: a thin layer over the Python API (see README).
+
+One Typer app; each command group lives in its own module here (``catalog``: init, catalog, sql;
+``parse``; ``recall``: recall, evaluate; ``ingest``: extract, ingest, demo-store; ``grasp``; ``serve``;
+``demo``), whose ``register(app)`` adds its commands. Every module imports its heavy dependencies inside
+the command bodies, so ``objrecall --help`` imports no numpy, NLTK, MuJoCo or FastAPI.
+"""
 
 from __future__ import annotations
 
@@ -6,7 +12,9 @@ import importlib
 
 import typer
 
-from kb.cli_common import ObjrecallGroup
+from kb.service.cli.common import ObjrecallGroup
+
+__all__ = ["COMMAND_MODULES", "app", "main"]
 
 app = typer.Typer(
     cls=ObjrecallGroup,
@@ -15,19 +23,15 @@ app = typer.Typer(
     help="objrecall: recall household objects from descriptions and validate their grasps.",
 )
 
-#: Modules whose ``register(app)`` adds commands; each imports its heavy dependencies lazily.
-COMMAND_MODULES = ("kb.commands", "recall.cli", "recall.cli_recall", "scrapers.cli", "sim.cli", "kb.service")
+#: Modules whose ``register(app)`` adds commands, in the order ``--help`` lists them.
+COMMAND_MODULES = tuple(
+    f"kb.service.cli.{name}" for name in ("catalog", "demo", "parse", "recall", "ingest", "grasp", "serve")
+)
 
 
 def _register() -> None:
     for module in COMMAND_MODULES:
-        try:
-            mod = importlib.import_module(module)
-        except ModuleNotFoundError as err:
-            if err.name == module:
-                continue
-            raise
-        mod.register(app)
+        importlib.import_module(module).register(app)
 
 
 _register()
@@ -35,7 +39,3 @@ _register()
 
 def main() -> None:
     app()
-
-
-if __name__ == "__main__":
-    main()
