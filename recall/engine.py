@@ -508,7 +508,7 @@ class Recaller:
         self.snapshot = snapshot
         from kb.features import CATEGORICAL_FEATURES, CATEGORIES
 
-        codes = snapshot.cat[:, CATEGORICAL_FEATURES.index("material")]
+        codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
         materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
         self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
         self._kdtrees: dict = {}
@@ -620,9 +620,9 @@ class Recaller:
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         named_set = set(names.exact)
         if metric == "jplog":
-            terms = feature_terms(snap.log_scaled.num[rows], snap.cat[rows], query.log_scaled())
+            terms = feature_terms(snap.log_scaled.num_rows(rows), snap.cat_rows(rows), query.log_scaled())
         else:  # the paper's JP terms (also shown for the baselines: why this object, in nats)
-            terms = feature_terms(snap.num[rows], snap.cat[rows], query)
+            terms = feature_terms(snap.num_rows(rows), snap.cat_rows(rows), query)
         matches = []
         for i, row in enumerate(rows):
             row = int(row)
@@ -639,7 +639,7 @@ class Recaller:
             )
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         best = int(rows[0])
-        errors = relative_errors(snap.num[best], snap.cat[best], query)
+        errors = relative_errors(snap.num_rows(best), snap.cat_rows(best), query)
         closeness = float(np.mean(list(errors.values()))) if errors else None
         open_set = is_open_set(closeness, matches[0].matched_by_name, names.unknown_noun)
         confidence = confidence_of(margin, closeness, names.unknown_noun is not None, metric)

@@ -199,9 +199,9 @@ def miss_reason(
     t, g = index[true_name], index[got_name]
     rows = np.array([t, g])
     if metric == "jplog":
-        terms = feature_terms(snap.log_scaled.num[rows], snap.cat[rows], query.log_scaled())
+        terms = feature_terms(snap.log_scaled.num_rows(rows), snap.cat_rows(rows), query.log_scaled())
     else:
-        terms = feature_terms(snap.num[rows], snap.cat[rows], query)
+        terms = feature_terms(snap.num_rows(rows), snap.cat_rows(rows), query)
     true_rec, got_rec = snap.record(t), snap.record(g)
     values = query.values()
     names = result.evidence if result is not None else None

@@ -20,6 +20,8 @@ Probability distance while scoring only a small part of the catalog:
 from __future__ import annotations
 
 import math
+import threading
+import weakref
 from functools import cached_property
 
 import numpy as np
@@ -35,7 +37,7 @@ from recall.metrics import (
 )
 from recall.snapshot import CatalogSnapshot
 
-__all__ = ["JPIndex", "brute_force_top_k", "score_rows", "select_top_k", "top_k"]
+__all__ = ["JPIndex", "brute_force_top_k", "index_for", "score_rows", "select_top_k", "top_k"]
 
 #: Catalogs up to this size are simply scanned.
 SCAN_BELOW = 2048
@@ -72,7 +74,7 @@ def _score(num_cols, cat_cols, query: FeatureQuery, rows) -> np.ndarray:
     total = None
     for cond in query.numeric:
         col = num_cols[_NUM_INDEX[cond.feature]]
-        x = col if rows is None else col[rows]
+        x = (col if rows is None else col[rows]).astype(np.float64)  # float32 values, float64 arithmetic
         term = np.log1p(cond.differences(x))
         total = term if total is None else np.add(total, term, out=total)
     for feat, value in query.categorical:
@@ -108,9 +110,9 @@ def top_k(
 ):
     """Exact top-k rows and distances under ``metric`` (JP and JP in log units through the pruned index)."""
     if metric == "jp":
-        return snap.index.top_k(query, k)
+        return index_for(snap).top_k(query, k)
     if metric == "jplog":
-        return snap.log_scaled.index.top_k(query.log_scaled(), k)
+        return index_for(snap.log_scaled).top_k(query.log_scaled(), k)
     k = min(k, len(snap))
     if k <= 0:
         return np.empty(0, dtype=np.int64), np.empty(0)
@@ -132,25 +134,39 @@ def _radius(s: float) -> float:
     return math.expm1(s) * (1.0 + 1e-9) + 1e-12
 
 
+_INDEXES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+_INDEX_LOCK = threading.Lock()
+
+
+def index_for(snap: CatalogSnapshot) -> JPIndex:
+    """The :class:`JPIndex` of ``snap``, built on first use and kept while the snapshot lives."""
+    with _INDEX_LOCK:
+        index = _INDEXES.get(snap)
+        if index is None:
+            index = _INDEXES[snap] = JPIndex(snap)
+        return index
+
+
 class JPIndex:
-    """Sorted numeric columns and per-category row lists of a snapshot, for exact pruned JP top-k."""
+    """Sorted numeric columns and per-category row lists of a snapshot, for exact pruned JP top-k.
+    Holds the snapshot's columns (not the snapshot, so :func:`index_for` can cache it weakly)."""
 
     def __init__(self, snap: CatalogSnapshot):
-        self.snap = snap
+        self.num_cols, self.cat_cols = snap.num_cols, snap.cat_cols
         self.n = len(snap)
         self.num_order: list[np.ndarray] = []
         self.num_keys: list[np.ndarray] = []
         self.num_unknown: list[np.ndarray] = []
-        for col in snap.num_cols:
+        for col in self.num_cols:
             missing = np.isnan(col)
             known = np.flatnonzero(~missing)
             order = known[np.argsort(col[known], kind="stable")].astype(np.int32)
             self.num_order.append(order)
-            self.num_keys.append(col[order].astype(np.float32))
+            self.num_keys.append(col[order])
             self.num_unknown.append(np.flatnonzero(missing).astype(np.int32))
         self.cat_order: list[np.ndarray] = []
         self.cat_starts: list[np.ndarray] = []
-        for feat, col in zip(CATEGORICAL_FEATURES, snap.cat_cols, strict=True):
+        for feat, col in zip(CATEGORICAL_FEATURES, self.cat_cols, strict=True):
             self.cat_order.append(np.argsort(col, kind="stable").astype(np.int32))
             counts = np.bincount(col.astype(np.intp) + 1, minlength=len(CATEGORY_CODES[feat]) + 1)
             self.cat_starts.append(np.concatenate(([0], np.cumsum(counts))))
@@ -161,7 +177,7 @@ class JPIndex:
 
     @cached_property
     def cells(self) -> CellIndex:
-        return CellIndex(self.snap)
+        return CellIndex(self.num_cols, self.cat_cols)
 
     @property
     def nbytes(self) -> int:
@@ -169,6 +185,10 @@ class JPIndex:
         arrays = [*self.num_order, *self.num_keys, *self.num_unknown, *self.cat_order, *self.cat_starts]
         cells = self.__dict__.get("cells")
         return int(sum(a.nbytes for a in arrays)) + (cells.nbytes if cells is not None else 0)
+
+    def score(self, query: FeatureQuery, rows=None) -> np.ndarray:
+        """JP distances of ``rows`` (all when None), as :func:`score_rows`."""
+        return _score(self.num_cols, self.cat_cols, query, rows)
 
     # -- category groups -------------------------------------------------------------------------
     def _group(self, feat: str, code: int) -> np.ndarray:
@@ -241,14 +261,14 @@ class JPIndex:
         counts as 1: optimistic, so the filter never drops a row it should keep)."""
         kind, obj = item
         if kind == "num":
-            col = self.snap.num_cols[_NUM_INDEX[obj.feature]]
-            x = col if rows is None else col[rows]
+            col = self.num_cols[_NUM_INDEX[obj.feature]]
+            x = (col if rows is None else col[rows]).astype(np.float64)
             d = np.maximum(obj.low - x, x - obj.high)
             np.fmax(d, 0.0, out=d)
             d += 1.0
             return d
         feat, value = obj
-        col = self.snap.cat_cols[_CAT_INDEX[feat]]
+        col = self.cat_cols[_CAT_INDEX[feat]]
         codes = col if rows is None else col[rows]
         return np.where(codes == CATEGORY_CODES[feat][value], 1.0, np.where(codes < 0, 2.0, 4.0))
 
@@ -279,11 +299,10 @@ class JPIndex:
         if len(query) == 0:
             return np.arange(k, dtype=np.int64), np.zeros(k)
         if self.n <= SCAN_BELOW:
-            return brute_force_top_k(self.snap, query, k)
-        snap = self.snap
+            return select_top_k(np.arange(self.n), self.score(query), k)
         items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
-        best_rows, best_scores = select_top_k(pool, score_rows(snap, query, pool), k)
+        best_rows, best_scores = select_top_k(pool, self.score(query, pool), k)
         s = float(best_scores[-1])
         sizes = [self._window_size(it, s) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
@@ -311,7 +330,7 @@ class JPIndex:
             rows = self._survivors(items, order, chunk, s)
             if len(rows):
                 best_rows, best_scores = _merge(
-                    best_rows, best_scores, rows, score_rows(snap, query, rows), k
+                    best_rows, best_scores, rows, self.score(query, rows), k
                 )
                 s = float(best_scores[-1])
             start, step = stop, min(step * 2, MAX_CHUNK)
@@ -336,11 +355,11 @@ class CellIndex:
     k-th best distance found. Rows of a cell are contiguous in copies of the columns sorted by cell.
     """
 
-    def __init__(self, snap: CatalogSnapshot):
-        n = len(snap)
+    def __init__(self, num_cols: list[np.ndarray], cat_cols: list[np.ndarray]):
+        n = len(num_cols[0])
         cell = np.zeros(n, dtype=np.int64)
         for feat, split in CELL_LEVELS:
-            col = snap.num_cols[_NUM_INDEX[feat]]
+            col = num_cols[_NUM_INDEX[feat]]
             key = np.where(np.isnan(col), np.inf, col)
             order = np.lexsort((key, cell))
             sorted_cell = cell[order]
@@ -355,8 +374,8 @@ class CellIndex:
         self.perm = perm.astype(np.int32)
         self.starts = np.append(first, n).astype(np.int64)
         m = len(ids)
-        self.num_cols = [np.ascontiguousarray(c[perm]) for c in snap.num_cols]
-        self.cat_cols = [np.ascontiguousarray(c[perm]) for c in snap.cat_cols]
+        self.num_cols = [np.ascontiguousarray(c[perm]) for c in num_cols]
+        self.cat_cols = [np.ascontiguousarray(c[perm]) for c in cat_cols]
         self.cmin = np.empty((len(self.num_cols), m))
         self.cmax = np.empty((len(self.num_cols), m))
         self.cnan = np.empty((len(self.num_cols), m), dtype=bool)

@@ -7,7 +7,9 @@ grasp literature and observation, not a measured data set: see ``sim/PLANNER.md`
 people".
 
 ``python -m sim.human_eval`` prints the agreement (top-1 type, top-1 family, type within the top 3) and
-the objects where the planner and people differ; ``--json`` prints one JSON object instead.
+the objects where the planner and people differ, then, clearly apart, the family agreement on the shared
+real data (the Yale human grasping dataset, ``sim/human_families.py``; ``--part check`` by default, the
+blind part only with ``--part blind``); ``--json`` prints one JSON object instead.
 """
 
 from __future__ import annotations
@@ -125,30 +127,59 @@ def evaluate(rows: Sequence[HumanGrasp] | None = None) -> Agreement:
     )
 
 
+def _real_data_lines(path: str, part: str) -> tuple[list[str], dict | None]:
+    """The shared real data's lines (or a note that it is absent) and its JSON summary."""
+    from sim.human_families import evaluate_families, read_yale_families
+
+    if not Path(path).is_file():
+        return [f"REAL DATA (Yale human grasping dataset): not found at {path}: skipped"], None
+    result = evaluate_families(read_yale_families(path), part)
+    lines = [
+        f"REAL DATA (Yale human grasping dataset, {result.part} part, {result.n} objects): planner family "
+        f"= people's majority {result.family_agreement:.1%} (always power {result.always_power:.1%})"
+    ]
+    lines += [f"  {o:24s} people {m:13s} planner {f}" for o, m, f in result.misses]
+    return lines, {**result.summary(), "misses": [list(x) for x in result.misses]}
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    from sim.human_families import YALE_DEV_CSV
+
     parser = argparse.ArgumentParser(prog="python -m sim.human_eval", description=__doc__.split("\n")[0])
     parser.add_argument(
-        "--csv", default=str(HUMAN_GRASPS_CSV), help="labelled objects (default: %(default)s)"
+        "--csv", default=str(HUMAN_GRASPS_CSV), help="labels written here (default: %(default)s)"
+    )
+    parser.add_argument(
+        "--human-data", default=str(YALE_DEV_CSV), help="shared real data (default: %(default)s)"
+    )
+    parser.add_argument(
+        "--part",
+        choices=("check", "blind", "all"),
+        default="check",
+        help="part of the real data to score (blind: once, at the end of a change; sim/PLANNER.md)",
     )
     parser.add_argument("--json", action="store_true", help="print one JSON object")
     args = parser.parse_args(argv)
     try:
         result = evaluate(read_human_grasps(args.csv))
+        real_lines, real = _real_data_lines(args.human_data, args.part)
     except (OSError, InvalidFeature) as exc:
         print(f"Error: {exc}", file=sys.stderr)
         return 1
     if args.json:
         misses = [asdict(r) for r in result.results if not r.type_match]
-        print(json.dumps({**result.summary(), "type_misses": misses}))
+        print(json.dumps({**result.summary(), "type_misses": misses, "real_data": real}))
         return 0
     print(
-        f"planner {result.planner_version}, {result.n} objects: top-1 type {result.top1_type:.1%}, "
+        f"LABELS WRITTEN HERE ({args.csv}): planner {result.planner_version}, {result.n} objects: "
+        f"top-1 type {result.top1_type:.1%}, "
         f"top-1 family {result.top1_family:.1%}, type in top 3 {result.top3_type:.1%}"
     )
     for r in result.results:
         if not r.type_match:
             mark = "family ok" if r.family_match else "FAMILY"
             print(f"  {r.object:24s} people {r.human_type:26s} planner {r.planned_types[0]:26s} {mark}")
+    print("\n".join(real_lines))
     return 0
 
 

@@ -1,0 +1,96 @@
+"""The shared real human-grasp data (Yale dataset): the blind split rule, feature mapping, the report.
+
+The data are read from ``../shared/human-grasps`` (or ``OBJRECALL_HUMAN_GRASPS``), never copied here;
+tests that need them skip when they are absent. Only the *check* part is scored here: the blind part is
+looked at once, at the end of a change (sim/PLANNER.md).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+
+import pytest
+
+from kb.errors import InvalidFeature
+from sim.human_families import (
+    YALE_DEV_CSV,
+    YaleObject,
+    evaluate_families,
+    is_blind,
+    planner_features,
+    read_yale_families,
+)
+
+needs_data = pytest.mark.skipif(not YALE_DEV_CSV.is_file(), reason="shared human grasp data absent")
+
+
+def _obj(**kw) -> YaleObject:
+    base = dict(
+        object="thing", a_cm=10.0, b_cm=3.0, c_cm=3.0, mass_g=100.0, rigidity="rigid", roundness="a",
+        n_grasps=3, shares={"power": 1.0, "intermediate": 0.0, "precision": 0.0}, majority="power",
+    )
+    base.update(kw)
+    return YaleObject(**base)
+
+
+def test_blind_rule_is_the_written_sha1_rule():
+    for name in ("mug", "Spray Bottle ", "cord", "a", "x" * 40):
+        value = int(hashlib.sha1(name.strip().lower().encode()).hexdigest()[:8], 16) % 100
+        assert is_blind(name) == (value < 30)
+    assert is_blind("Mug") == is_blind(" mug")  # case and spaces do not move an object between parts
+
+
+@needs_data
+def test_split_keeps_about_a_third_blind_and_parts_partition_the_file():
+    objs = read_yale_families()
+    blind = [o for o in objs if is_blind(o.object)]
+    assert len(objs) == 126 and len(blind) == 46
+    check = evaluate_families(objs, "check")
+    assert check.n == 80 and check.n + len(blind) == len(objs)
+    assert 0.0 <= check.family_agreement <= 1.0
+    assert all(m[0] not in {o.object for o in blind} for m in check.misses)
+
+
+def test_roundness_and_rigidity_map_onto_planner_features():
+    assert planner_features(_obj(roundness="abc", a_cm=7, b_cm=7, c_cm=7))["shape"] == "radial"
+    assert planner_features(_obj(roundness="a", a_cm=20, b_cm=3, c_cm=3))["shape"] == "long"
+    assert planner_features(_obj(roundness="a", a_cm=10, b_cm=6, c_cm=6))["shape"] == "prism"
+    assert planner_features(_obj(roundness="c", a_cm=10, b_cm=10, c_cm=2))["shape"] == "radial"  # disk
+    assert planner_features(_obj(roundness="c", a_cm=10, b_cm=10, c_cm=8))["shape"] == "prism"
+    assert planner_features(_obj(roundness="non-round"))["shape"] is None  # inferred by the planner
+    f = planner_features(_obj(rigidity="fragile"))
+    assert (f["rigidity"], f["fragility"]) == ("rigid", "fragile")
+    assert planner_features(_obj(a_cm=2, b_cm=9, c_cm=5))["a_cm"] == 9  # extents sorted largest first
+
+
+def test_bad_rows_are_refused_with_their_line(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text(
+        "object,a_cm,b_cm,c_cm,mass_g,rigidity,roundness,n_grasps,power,intermediate,precision,majority\n"
+        "cup,10,8,8,200,rigid,c,3,1,0,0,wrap\n"
+    )
+    with pytest.raises(InvalidFeature, match="bad.csv:2"):
+        read_yale_families(bad)
+    bad.write_text(bad.read_text().replace(",10,8,8,", ",ten,8,8,").replace("wrap", "power"))
+    with pytest.raises(InvalidFeature, match="bad.csv:2"):
+        read_yale_families(bad)
+
+
+@needs_data
+def test_human_eval_reports_labels_written_here_beside_the_real_data(capsys):
+    from sim.human_eval import main
+
+    assert main([]) == 0
+    out = capsys.readouterr().out
+    assert "LABELS WRITTEN HERE" in out and "REAL DATA (Yale human grasping dataset, check part, 80 objects)" in out
+    assert main(["--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["real_data"]["part"] == "check" and data["real_data"]["n"] == 80
+
+
+def test_human_eval_says_when_the_real_data_is_absent(capsys, tmp_path):
+    from sim.human_eval import main
+
+    assert main(["--human-data", str(tmp_path / "none.csv")]) == 0
+    assert "not found" in capsys.readouterr().out
