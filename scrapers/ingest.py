@@ -58,7 +58,15 @@ from scrapers.fusion import Observation, fuse
 from scrapers.records import ProductRecord
 from scrapers.sources import Sources, StoreSource
 
-__all__ = ["IngestionReport", "PageOutcome", "ProgressFn", "discover_urls", "run_ingestion"]
+__all__ = [
+    "LOCAL_HOSTS",
+    "IngestionReport",
+    "PageOutcome",
+    "ProgressFn",
+    "discover_urls",
+    "page_identity",
+    "run_ingestion",
+]
 
 #: progress(done, total, url): called after each page (and once with done=0 when the total is known).
 ProgressFn = Callable[[int, int, str], None]
@@ -96,12 +104,36 @@ class PageOutcome:
 
     @property
     def source(self) -> str:
-        """The page's identity as a source: its canonical URL when on the same host, else the final URL."""
+        """The page's identity as a source: its canonical URL when on the same host, else the final URL
+        (:func:`page_identity`: a local server's port is not part of it)."""
         final = self.final_url or self.url
         canonical = self.record.canonical_url if self.record is not None else None
         if canonical and urlsplit(canonical).netloc == urlsplit(final).netloc:
-            return canonical
-        return final
+            return page_identity(canonical)
+        return page_identity(final)
+
+    @property
+    def key(self) -> str:
+        """The page's row in the ``pages`` table (its URL as listed, without a local server's port)."""
+        return page_identity(self.url)
+
+
+#: Hosts of servers on this machine: their port changes from run to run (the demo store picks a free one).
+LOCAL_HOSTS = frozenset({"localhost", "127.0.0.1", "::1", "[::1]"})
+
+
+def page_identity(url: str) -> str:
+    """``url`` as a page's identity: a loopback server's port removed (``http://127.0.0.1:53211/p/x`` ->
+    ``http://127.0.0.1/p/x``), anything else unchanged. A page served by a local server on another port
+    next run is the same page; a real store's port is part of its address and kept."""
+    parts = urlsplit(url)
+    host = (parts.hostname or "").lower()
+    if parts.port is None or not (host in LOCAL_HOSTS or host.startswith("127.")):
+        return url
+    netloc = f"[{host}]" if ":" in host else host
+    if parts.username or parts.password:
+        return url
+    return parts._replace(netloc=netloc).geturl()
 
 
 @dataclass
@@ -634,7 +666,7 @@ def _write(
             page_rows = []
             for p in outcomes:
                 row = {
-                    "url": p.url,
+                    "url": p.key,
                     "canonical_url": p.source if p.record is not None else None,
                     "etag": p.etag,
                     "last_modified": p.last_modified,
@@ -803,7 +835,7 @@ def _fetch_all(
         nonlocal done
         for i in indices:
             store, url = plan[i]
-            outcomes[i] = _process_page(fetcher, store, url, previous.get(url), extract)
+            outcomes[i] = _process_page(fetcher, store, url, previous.get(page_identity(url)), extract)
             with lock:
                 done += 1
                 if progress:
