@@ -65,7 +65,10 @@ __all__ = [
     "ProgressFn",
     "discover_urls",
     "page_identity",
+    "previous_pages",
+    "process_page",
     "run_ingestion",
+    "write_run",
 ]
 
 #: progress(done, total, url): called after each page (and once with done=0 when the total is known).
@@ -296,11 +299,25 @@ def _default_extractor() -> Extractor:
     return extract_page
 
 
-def _previous_pages(kb) -> dict[str, dict[str, Any]]:
+class PreviousPages(dict):
+    """The ``pages`` rows by page identity; looked up by any URL of the page (a local server's port
+    does not matter: :func:`page_identity`)."""
+
+    def __getitem__(self, url: str) -> dict[str, Any]:
+        return super().__getitem__(page_identity(url))
+
+    def __contains__(self, url: object) -> bool:
+        return isinstance(url, str) and super().__contains__(page_identity(url))
+
+    def get(self, url: str, default: Any = None) -> Any:
+        return super().get(page_identity(url), default)
+
+
+def _previous_pages(kb) -> PreviousPages:
     with kb.connect() as con:
         cur = con.execute("SELECT url, etag, last_modified, content_sha256, object_id, error FROM pages")
         cols = [d[0] for d in cur.description]
-        return {row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()}
+        return PreviousPages({row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()})
 
 
 def _process_page(
@@ -502,8 +519,8 @@ def _write(
             old_obs: dict[int, list[dict[str, Any]]] = {}
             if matched:
                 cur = con.execute(
-                    "SELECT id, object_id, feature, value_num, value_text, role, source, fetched_at, run_id "
-                    "FROM observations WHERE list_contains(?, object_id)",
+                    "SELECT id, object_id, feature, value_num, value_text, role, source, adapter, fetched_at, "
+                    "run_id FROM observations WHERE list_contains(?, object_id)",
                     [list(matched)],
                 )
                 cols = [d[0] for d in cur.description]
@@ -794,6 +811,7 @@ def _as_observations(rows: Iterable[dict[str, Any]]) -> list[Observation]:
                 role=r["role"],
                 fetched_at=_naive(r.get("fetched_at")),
                 id=r.get("id") or 0,
+                adapter=r.get("adapter"),
             )
         )
     return out
@@ -835,7 +853,7 @@ def _fetch_all(
         nonlocal done
         for i in indices:
             store, url = plan[i]
-            outcomes[i] = _process_page(fetcher, store, url, previous.get(page_identity(url)), extract)
+            outcomes[i] = _process_page(fetcher, store, url, previous.get(url), extract)
             with lock:
                 done += 1
                 if progress:
@@ -901,6 +919,21 @@ def run_ingestion(
     if events:
         report.status = "ok_with_errors"
     report.duration_s = clock.monotonic() - t0  # the write adds its own time (real clock) in _write
+    write_run(kb, outcomes, report, events, clock)
+    return report
+
+
+#: The stages for other jobs that read pages one by one (the on-demand lookup, scrapers.lookup).
+previous_pages = _previous_pages
+process_page = _process_page
+
+
+def write_run(
+    kb, outcomes: list[PageOutcome], report: IngestionReport, events: list[tuple[str, str, str]], clock: Clock
+) -> None:
+    """Stages 5-7 for pages already fetched, extracted and validated: one short write transaction that
+    records ``report`` as a run (its ``run_id``, counts and ``write_s`` are filled in). Raises
+    :class:`~kb.errors.IngestionError`, leaving the catalog unchanged, when it cannot be written."""
     now = _naive(clock.now())
     try:
         _write(kb, outcomes, report, events, now)
@@ -908,4 +941,3 @@ def run_ingestion(
         raise
     except Exception as err:
         raise IngestionError(f"the run could not be written; the catalog is unchanged ({err})") from None
-    return report
