@@ -142,7 +142,7 @@ def test_a_lookup_page_never_moves_a_curated_or_crawled_value():
     wrong = lookup_obs("mass_g", 9000.0, "https://b/y")
     assert fuse([curated, wrong]).values["mass_g"] == 900.0
     assert fuse([crawled, wrong]).values["mass_g"] == 880.0
-    assert fuse([curated, crawled, wrong]).values["mass_g"] == 890.0
+    assert fuse([curated, crawled, wrong]).values["mass_g"] == 900.0  # rule 3: the curated value stands
     assert fuse([curated, wrong]).support["mass_g"] == 1
 
 
