@@ -16,7 +16,11 @@ this rule, the same for every object:
    source's values are sorted); the catalog sorts them again in case a source stated fewer.
 4. **Words** (material, shape, ...): the value most sources state; a tie goes to the curated source
    (anything that is not a web page) and then to the most recent observation.
-5. **Disagreement is reported, not hidden:** when the largest and smallest latest values of a number
+5. **A lookup's values are provisional.** Observations made by an on-demand lookup (adapter
+   ``lookup:<extractor>``, see :func:`is_provisional`) count for a feature only when no other source states
+   it: one page found by one search must not move a curated value or one the nightly crawl observes
+   again every night. When only lookup pages state a feature, they are fused like any other sources.
+6. **Disagreement is reported, not hidden:** when the largest and smallest latest values of a number
    differ by more than :data:`DISAGREEMENT_RATIO`, or sources state different words, a warning names the
    feature, the values and their sources.
 
@@ -34,10 +38,13 @@ from typing import Any
 
 from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
 
-__all__ = ["DISAGREEMENT_RATIO", "FusedValues", "Observation", "fuse", "is_curated"]
+__all__ = ["DISAGREEMENT_RATIO", "LOOKUP_ADAPTER_PREFIX", "FusedValues", "Observation", "fuse", "is_curated",
+           "is_provisional"]
 
 #: Largest/smallest ratio above which sources are said to disagree about a number.
 DISAGREEMENT_RATIO = 1.10
+#: The adapter of an observation made by an on-demand lookup starts with this (``lookup:jsonld``).
+LOOKUP_ADAPTER_PREFIX = "lookup:"
 
 
 @dataclass(frozen=True)
@@ -67,6 +74,11 @@ def is_curated(source: str) -> bool:
     return not source.startswith(("http://", "https://"))
 
 
+def is_provisional(obs: Observation) -> bool:
+    """Observed by an on-demand lookup (rule 5): outranked by any curated or crawled observation."""
+    return (obs.adapter or "").startswith(LOOKUP_ADAPTER_PREFIX)
+
+
 def _order(o: Observation) -> tuple:
     return (o.fetched_at or datetime.min, o.id)
 
@@ -89,6 +101,8 @@ def fuse(observations: Iterable[Observation]) -> FusedValues:
     out = FusedValues()
     for feature, by_source in latest_per_source(observations).items():
         votes = list(by_source.values())
+        settled = [o for o in votes if not is_provisional(o)]
+        votes = settled or votes  # rule 5: lookup values only where nothing else is known
         if feature in NUMERIC_FEATURES:
             numbers = [float(o.value) for o in votes]
             out.values[feature] = statistics.median(numbers)

@@ -58,7 +58,16 @@ from scrapers.fusion import Observation, fuse
 from scrapers.records import ProductRecord
 from scrapers.sources import Sources, StoreSource
 
-__all__ = ["IngestionReport", "PageOutcome", "ProgressFn", "discover_urls", "run_ingestion"]
+__all__ = [
+    "IngestionReport",
+    "PageOutcome",
+    "ProgressFn",
+    "discover_urls",
+    "previous_pages",
+    "process_page",
+    "run_ingestion",
+    "write_run",
+]
 
 #: progress(done, total, url): called after each page (and once with done=0 when the total is known).
 ProgressFn = Callable[[int, int, str], None]
@@ -470,8 +479,8 @@ def _write(
             old_obs: dict[int, list[dict[str, Any]]] = {}
             if matched:
                 cur = con.execute(
-                    "SELECT id, object_id, feature, value_num, value_text, role, source, fetched_at, run_id "
-                    "FROM observations WHERE list_contains(?, object_id)",
+                    "SELECT id, object_id, feature, value_num, value_text, role, source, adapter, fetched_at, "
+                    "run_id FROM observations WHERE list_contains(?, object_id)",
                     [list(matched)],
                 )
                 cols = [d[0] for d in cur.description]
@@ -762,6 +771,7 @@ def _as_observations(rows: Iterable[dict[str, Any]]) -> list[Observation]:
                 role=r["role"],
                 fetched_at=_naive(r.get("fetched_at")),
                 id=r.get("id") or 0,
+                adapter=r.get("adapter"),
             )
         )
     return out
@@ -869,6 +879,21 @@ def run_ingestion(
     if events:
         report.status = "ok_with_errors"
     report.duration_s = clock.monotonic() - t0  # the write adds its own time (real clock) in _write
+    write_run(kb, outcomes, report, events, clock)
+    return report
+
+
+#: The stages for other jobs that read pages one by one (the on-demand lookup, scrapers.lookup).
+previous_pages = _previous_pages
+process_page = _process_page
+
+
+def write_run(
+    kb, outcomes: list[PageOutcome], report: IngestionReport, events: list[tuple[str, str, str]], clock: Clock
+) -> None:
+    """Stages 5-7 for pages already fetched, extracted and validated: one short write transaction that
+    records ``report`` as a run (its ``run_id``, counts and ``write_s`` are filled in). Raises
+    :class:`~kb.errors.IngestionError`, leaving the catalog unchanged, when it cannot be written."""
     now = _naive(clock.now())
     try:
         _write(kb, outcomes, report, events, now)
@@ -876,4 +901,3 @@ def run_ingestion(
         raise
     except Exception as err:
         raise IngestionError(f"the run could not be written; the catalog is unchanged ({err})") from None
-    return report

@@ -148,3 +148,41 @@ def test_extract_json_gives_stated_extents_and_explain(tmp_path):
     assert data["candidates"][0]["decision"].startswith("chosen")
     plain = CliRunner().invoke(app, ["extract", str(page), "--json"])
     assert "candidates" not in json.loads(plain.output)
+
+
+# ---------------------------------------------------------------------------------- ranges
+def _height(value: str):
+    body = f"<table><tr><th>Height</th><td>{value}</td></tr><tr><th>Width</th><td>20 cm</td></tr></table>"
+    return extract_page(_page(body), "https://s.example/p")
+
+
+@pytest.mark.parametrize(
+    ("value", "height", "bound"),
+    [
+        ("30-32 cm", 32.0, "upper"),
+        ("adjustable from 90 to 110 cm", 110.0, "upper"),
+        ("40 - 60 cm", 60.0, "upper"),  # exactly 1.5 x: still narrow
+        ("40 - 60.1 cm", 40.0, "lower"),  # just wider: the object's own extent
+        ('15.5" - 116.5"', 39.37, "lower"),  # a pendant's hanging reach
+    ],
+)
+def test_a_range_of_one_axis_gives_a_bound_and_says_which(value, height, bound):
+    record = _height(value)
+    assert max(record.dims_cm) == pytest.approx(height)
+    assert any("range" in w and f"{bound} bound" in w for w in record.warnings), record.warnings
+
+
+# ------------------------------------------------------------------------ whose block is it
+def test_a_spec_block_with_a_layout_word_in_its_class_is_read():
+    body = ("<section class='tab-specs accordion banner-margin-small'><div>Weight</div><div>23.98 oz. (680.00 g)"
+            "</div></section>")  # fmt: skip
+    assert extract_page(_page(body), "https://s.example/p").mass_g == pytest.approx(679.82, rel=1e-4)
+
+
+@pytest.mark.parametrize("classes", ["banner-margin-small", "product-slider", "similar-specs", "comparison-details"])
+def test_other_products_blocks_stay_out(classes):
+    body = ("<table><tr><th>Weight</th><td>2 kg</td></tr></table>"
+            f"<div class='{classes}'><table><tr><th>Weight</th><td>9 kg</td></tr></table></div>")
+    record = extract_page(_page(body), "https://s.example/p")
+    assert record.mass_g == 2000.0
+    assert not any("9000" in w or "9 kg" in w for w in record.warnings)

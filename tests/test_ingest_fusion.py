@@ -8,7 +8,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from scrapers.fusion import Observation, fuse, is_curated
+from scrapers.fusion import Observation, fuse, is_curated, is_provisional
 
 T0 = datetime(2026, 11, 1)
 
@@ -99,3 +99,37 @@ def test_a_source_repeating_itself_does_not_outvote_others(others, repeated):
     once = fuse([*base, obs("mass_g", repeated, "https://loud")]).values["mass_g"]
     many = fuse([*base, *(obs("mass_g", repeated, "https://loud", id=k) for k in range(10))]).values["mass_g"]
     assert once == pytest.approx(many)
+
+
+# -- rule 5: a lookup's values are provisional -------------------------------------------------------
+def lookup_obs(feature, value, source, **kw):
+    return Observation(feature, value, source, fetched_at=T0 + timedelta(days=9), adapter="lookup:jsonld", **kw)
+
+
+def test_a_lookup_page_never_moves_a_curated_or_crawled_value():
+    curated = obs("mass_g", 900.0, "csv:seed_catalog.csv")
+    crawled = Observation("mass_g", 880.0, "https://a/x", fetched_at=T0, adapter="jsonld")
+    wrong = lookup_obs("mass_g", 9000.0, "https://b/y")
+    assert fuse([curated, wrong]).values["mass_g"] == 900.0
+    assert fuse([crawled, wrong]).values["mass_g"] == 880.0
+    assert fuse([curated, crawled, wrong]).values["mass_g"] == 890.0
+    assert fuse([curated, wrong]).support["mass_g"] == 1
+
+
+def test_lookup_words_never_outvote_a_settled_word_even_as_a_majority():
+    votes = [lookup_obs("material", "metal", f"https://s{i}") for i in range(3)]
+    assert fuse([*votes, obs("material", "glass", "csv:s")]).values["material"] == "glass"
+
+
+def test_lookup_values_count_where_nothing_else_is_known():
+    only = [lookup_obs("mass_g", 800.0, "https://a"), lookup_obs("mass_g", 1000.0, "https://b")]
+    assert fuse(only).values["mass_g"] == 900.0
+    # a feature the settled sources do not state is still filled from the lookup
+    mixed = fuse([obs("a_cm", 22.0, "csv:s"), lookup_obs("mass_g", 800.0, "https://a")])
+    assert mixed.values == {"a_cm": 22.0, "mass_g": 800.0}
+
+
+def test_only_the_lookup_prefix_makes_a_value_provisional():
+    assert is_provisional(lookup_obs("mass_g", 1.0, "https://a"))
+    for adapter in (None, "jsonld", "catalog", "lookup", "jsonld:lookup"):
+        assert not is_provisional(Observation("mass_g", 1.0, "https://a", adapter=adapter))

@@ -225,11 +225,22 @@ def observations_from_pairs(
                 rng = parse_length_range(pair.value, info.unit, decimal_comma)
                 if rng is None:
                     continue
-                length = rng[0]
-                note = f"{info.kind} given as a range ({raw}); took the lower bound"
+                length, note = range_extent(info.kind, rng, raw)
             axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
     obs.extend(_group_axes(axes))
     return obs
+
+
+def range_extent(kind: str, rng: tuple[float, float], raw: str) -> tuple[float, str]:
+    """The extent a range of one axis gives, with the note saying so. A narrow range (high at most
+    :data:`NARROW_RANGE` x low: ``30-32 cm``, ``adjustable from 90 to 110 cm``, a tolerance or the
+    object's own adjustment) gives its **upper** bound, the most room the object needs; a wide one
+    (``15.5" - 116.5"``: a pendant's hanging reach, variants of different sizes) gives its lower bound,
+    the object's own extent."""
+    low, high = rng
+    if high <= NARROW_RANGE * low:
+        return high, f"{kind} given as a range ({raw}); took the upper bound {high:g} cm"
+    return low, f"{kind} given as a wide range ({raw}); took the lower bound {low:g} cm (the object's own)"
 
 
 def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterator[Observation]:
