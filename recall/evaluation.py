@@ -373,7 +373,7 @@ def open_set_results(
     recaller: Recaller, path: str | Path, features_only: bool = False, metric: str | None = None
 ) -> list[RecallResult]:
     """Recall every ``description`` of an open-set CSV (objects not in the catalog)."""
-    from recall.cli_recall import read_description_column
+    from recall.descriptions import read_description_column
 
     texts = read_description_column(Path(path))
     return [recaller.recall_text(t, features_only=features_only, metric=metric) for t in texts]

@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from kb.cli import app
 from kb.errors import RecallError
+from kb.service.cli import app
 from recall.evaluation import DEV_SET, SEED_CATALOG, evaluate, read_descriptions
 
 runner = CliRunner()
