@@ -180,7 +180,9 @@ def recall_with_lookup(
     out.looked_up = True
     from kb.catalog import KnowledgeBase
 
+    t0 = time.perf_counter()
     kb = KnowledgeBase.open(db)
+    out.seconds["open"] = time.perf_counter() - t0
     deadline = start + budget_s - min(RESERVE_S, budget_s / 2)
     own_session = session is None
     session = session or requests.Session()
@@ -193,7 +195,8 @@ def recall_with_lookup(
     finally:
         if own_session:
             session.close()
-    out.seconds.update(fetch=out.stores.fetch_s, extract=out.stores.extract_s, write=out.stores.write_s)
+    s = out.stores
+    out.seconds.update(fetch=s.fetch_s, extract=s.extract_s, judge=s.judge_s, write=s.write_s)
     t0 = time.perf_counter()
     changed = out.stores.new_objects or out.stores.updated_objects
     out.after = Recaller.from_db(db).recall_parsed(parsed, **options) if changed else before
