@@ -10,7 +10,7 @@ length. Everything read is collected, in text order, in a :class:`Reading` that 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -88,6 +88,16 @@ class Stated:
     end: int
 
 
+@dataclass(frozen=True, slots=True)
+class _Sentence:
+    """The sentence being read: its tokens, the index of its contents word (None without one) and the
+    reading it adds to."""
+
+    segment: list[Token]
+    fill: int | None
+    reading: Reading
+
+
 class QuantityReader:
     """Reads chunk trees into a :class:`Reading`, with the unit table (built once); thread-safe."""
 
@@ -96,7 +106,7 @@ class QuantityReader:
 
     def read(self, tree: Tree, segment: list[Token], base: int, reading: Reading) -> None:
         """Read one sentence's chunks (``segment`` its tokens, ``base`` the index of its first token)."""
-        fill = _fill_context(segment)
+        sent = _Sentence(segment, _fill_context(segment), reading)
         k = 0
         for idx, child in enumerate(tree):
             if isinstance(child, Tree):
@@ -115,36 +125,27 @@ class QuantityReader:
                         self._add_dim(reading, role, [q], segment[k : k + n + 1], base + k)
                         k += n
                         continue
-                self._read_chunk(child, toks, base + k, reading, fill, segment, k)
+                self._read_chunk(child, toks, base + k, sent, k)
                 k += n
             else:
                 k += 1
 
-    def _read_chunk(
-        self,
-        chunk: Tree,
-        toks: list[Token],
-        pos: int,
-        reading: Reading,
-        fill: int | None,
-        segment: list[Token],
-        k: int,
-    ) -> None:
+    def _read_chunk(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
         label = chunk.label()
         if label == "QUANT":
             q = self._quantity(chunk, toks, pos)
             if q is not None:
-                self._free_quantity(q, toks, reading, fill, segment, k)
+                self._free_quantity(q, toks, sent, k)
             return
         if label == "MULTI":
-            self._read_multi(chunk, toks, pos, reading, fill, segment, k)
+            self._read_multi(chunk, toks, pos, sent, k)
             return
-        if label != "DIM":
-            return
-        quants: list[Quantity] = []
-        role = "size"
-        dim_word: Token | None = None
-        dim_first = False
+        if label == "DIM":
+            self._read_dim(chunk, toks, pos, sent, k)
+
+    def _children(self, chunk: Tree, toks: list[Token], pos: int) -> Iterator[tuple[Any, int, int]]:
+        """The parts of a DIM or MULTI chunk in order: (its :class:`Quantity`, start, end) for each QUANT
+        read, (the :class:`Token`, j, j + 1) for each word (token indexes within ``toks``)."""
         j = 0
         for sub in chunk:
             if isinstance(sub, Tree):
@@ -152,21 +153,38 @@ class QuantityReader:
                 if sub.label() == "QUANT":
                     q = self._quantity(sub, toks[j : j + n], pos + j)
                     if q is not None:
-                        quants.append(q)
+                        yield q, j, j + n
                 j += n
             else:
-                tok = toks[j]
-                if tok.tag in ("DIM", "DIMN"):
-                    dim_word = tok
-                    dim_first = not quants
-                    role = lx.DIMENSION_WORDS.get(tok.low, "size")
+                yield toks[j], j, j + 1
                 j += 1
-        if not quants:
-            return
-        if any(q.unit is not None and q.unit.kind != "length" for q in quants):
-            for q in quants:  # "tall, about 300 g": not a dimension
-                if q.unit is not None:
-                    self._free_quantity(q, toks, reading, fill, segment, k)
+
+    def _not_extents(self, quants: list[Quantity], toks: list[Token], sent: _Sentence, k: int) -> bool:
+        """True (and each quantity with a unit read on its own) when one of them is not a length: "tall,
+        about 300 g" is not a dimension."""
+        if not any(q.unit is not None and q.unit.kind != "length" for q in quants):
+            return False
+        for q in quants:
+            if q.unit is not None:
+                self._free_quantity(q, toks, sent, k)
+        return True
+
+    def _read_dim(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
+        """A dimension chunk: "<dimension noun> [is|of|:] <quantity>" or "<quantity> [in|of] <dimension
+        word>"."""
+        reading, segment = sent.reading, sent.segment
+        quants: list[Quantity] = []
+        role = "size"
+        dim_word: Token | None = None
+        dim_first = False
+        for part, _a, _b in self._children(chunk, toks, pos):
+            if isinstance(part, Quantity):
+                quants.append(part)
+            elif part.tag in ("DIM", "DIMN"):
+                dim_word = part
+                dim_first = not quants
+                role = lx.DIMENSION_WORDS.get(part.low, "size")
+        if not quants or self._not_extents(quants, toks, sent, k):
             return
         if dim_word is not None and dim_word.low in lx.WEAK_DIMENSION_WORDS:
             if dim_first or quants[0].unit is None:
@@ -196,60 +214,35 @@ class QuantityReader:
         else:
             reading.dims.append(stmt)
 
-    def _read_multi(
-        self,
-        chunk: Tree,
-        toks: list[Token],
-        pos: int,
-        reading: Reading,
-        fill: int | None,
-        segment: list[Token],
-        k: int,
-    ) -> None:
+    def _read_multi(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
         """A tuple ("10 x 5 x 2 cm", "7.5 cm long by 5 by 5", "L 20 x W 10 x H 5 cm") or a list ("20, 10
         and 5 cm"). Numbers without a unit take the unit of the next one in the tuple that has one, else
         of the previous one. A tuple whose every value has its own dimension word ("10 cm long by 3 cm in
         diameter") is read as those dimensions; a list counts only when its last value has a length
         unit, otherwise its values are read one by one."""
+        reading = sent.reading
         quants: list[Quantity] = []
         roles: list[str | None] = []
         spans: list[tuple[int, int]] = []
         is_list = False
-        j = 0
-        for sub in chunk:
-            if isinstance(sub, Tree):
-                n = size(sub)
-                if sub.label() == "QUANT":
-                    q = self._quantity(sub, toks[j : j + n], pos + j)
-                    if q is not None:
-                        quants.append(q)
-                        roles.append(None)
-                        spans.append((j, j + n))
-                j += n
-            else:
-                tok = toks[j]
-                if tok.tag in ("DIM", "DIMN") and quants and roles[-1] is None:
-                    roles[-1] = lx.DIMENSION_WORDS.get(tok.low, "size")
-                    spans[-1] = (spans[-1][0], j + 1)
-                elif tok.tag in ("CM", "AND"):
-                    is_list = True
-                j += 1
+        for part, a, b in self._children(chunk, toks, pos):
+            if isinstance(part, Quantity):
+                quants.append(part)
+                roles.append(None)
+                spans.append((a, b))
+            elif part.tag in ("DIM", "DIMN") and quants and roles[-1] is None:
+                roles[-1] = lx.DIMENSION_WORDS.get(part.low, "size")
+                spans[-1] = (spans[-1][0], b)
+            elif part.tag in ("CM", "AND"):
+                is_list = True
         if not quants:
             return
         if is_list and (quants[-1].unit is None or quants[-1].unit.kind != "length"):
             for q in quants:  # "300 g, 20 cm and 5": not one list of extents
-                self._free_quantity(q, toks, reading, fill, segment, k)
+                self._free_quantity(q, toks, sent, k)
             return
-        stated = [q.unit for q in quants]
-        for i, q in enumerate(quants):
-            if q.unit is None:
-                after = next((u for u in stated[i + 1 :] if u is not None), None)
-                before = next((u for u in reversed(stated[:i]) if u is not None), None)
-                q.unit = after or before
-        if any(q.unit is not None and q.unit.kind != "length" for q in quants):
-            for q in quants:  # "tall, about 300 g": not a dimension
-                if q.unit is not None:
-                    self._free_quantity(q, toks, reading, fill, segment, k)
+        _inherit_units(quants)
+        if self._not_extents(quants, toks, sent, k):
             return
         if len(quants) < 2:
             return
@@ -263,16 +256,9 @@ class QuantityReader:
             return
         self._add_dim(reading, "multi", quants, toks, pos)
 
-    def _free_quantity(
-        self,
-        q: Quantity,
-        toks: list[Token],
-        reading: Reading,
-        fill: int | None,
-        segment: list[Token],
-        k: int,
-    ) -> None:
+    def _free_quantity(self, q: Quantity, toks: list[Token], sent: _Sentence, k: int) -> None:
         """A quantity outside any dimension chunk: a mass, contents, or an unlabelled length."""
+        reading, fill, segment = sent.reading, sent.fill, sent.segment
         if q.unit is None:
             return
         other = _other_object(segment, k)
@@ -361,6 +347,17 @@ class QuantityReader:
         low = value if qualifier == "at_least" else None
         high = value if qualifier == "at_most" else None
         return Quantity(value, low, high, qualifier, unit, start, end, pos)
+
+
+def _inherit_units(quants: list[Quantity]) -> None:
+    """In a tuple, a number without a unit takes the unit of the next one that has one, else of the
+    previous one ("7.5 x 7 x 4 cm")."""
+    stated = [q.unit for q in quants]
+    for i, q in enumerate(quants):
+        if q.unit is None:
+            after = next((u for u in stated[i + 1 :] if u is not None), None)
+            before = next((u for u in reversed(stated[:i]) if u is not None), None)
+            q.unit = after or before
 
 
 _NOUN_ROLES = frozenset({*lx.LINEAR_ROLES, "diameter", "radius"})

@@ -1,14 +1,14 @@
 """What every ``objrecall`` command shares: the ``--db`` and ``--json`` options, output and error handling.
 
-Command modules (``kb/cli.py``, ``recall/cli.py``, ``scrapers/cli.py``, ``sim/cli.py``) each expose a
-``register(app)`` function that adds their commands to the one Typer app; heavy libraries (MuJoCo,
-scikit-learn, matplotlib) are imported inside the command bodies so ``objrecall --help`` stays fast.
+Each command-group module of this package (``catalog``, ``parse``, ``recall``, ``ingest``, ``grasp``,
+``serve``, ``demo``) exposes a ``register(app)`` function that adds its commands to the one Typer app in
+``kb/service/cli/__init__.py``; heavy libraries (MuJoCo, NLTK, scikit-learn, FastAPI) are imported inside
+the command bodies so ``objrecall --help`` stays fast.
 """
 
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 from collections.abc import Iterable
@@ -19,8 +19,9 @@ import typer
 from typer.core import TyperGroup
 
 from kb.errors import ObjrecallError
+from kb.jsonable import to_jsonable
 
-__all__ = ["DbOption", "JsonOption", "ObjrecallGroup", "default_db_path", "emit", "emit_lines", "to_jsonable"]
+__all__ = ["DbOption", "JsonOption", "ObjrecallGroup", "default_db_path", "emit", "emit_lines", "resolve_db"]
 
 ENV_DB = "OBJRECALL_DB"
 
@@ -43,32 +44,6 @@ JsonOption = Annotated[bool, typer.Option("--json", help="Machine output: JSON (
 
 def resolve_db(db: Path | None) -> Path:
     return Path(db) if db is not None else default_db_path()
-
-
-def to_jsonable(value: Any) -> Any:
-    """Plain JSON types for dataclasses, numpy scalars/arrays, paths, datetimes; NaN becomes null."""
-    import dataclasses
-    import datetime as _dt
-
-    if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        if hasattr(value, "to_dict"):
-            return to_jsonable(value.to_dict())
-        return to_jsonable(dataclasses.asdict(value))
-    if isinstance(value, dict):
-        return {str(k): to_jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple, set, frozenset)):
-        return [to_jsonable(v) for v in value]
-    if isinstance(value, float):
-        return None if math.isnan(value) or math.isinf(value) else value
-    if isinstance(value, (str, int, bool)) or value is None:
-        return value
-    if isinstance(value, (_dt.datetime, _dt.date)):
-        return value.isoformat()
-    if isinstance(value, Path):
-        return str(value)
-    if hasattr(value, "tolist"):  # numpy scalars and arrays
-        return to_jsonable(value.tolist())
-    return str(value)
 
 
 def emit(data: Any) -> None:
