@@ -59,10 +59,12 @@ from scrapers.records import ProductRecord
 from scrapers.sources import Sources, StoreSource
 
 __all__ = [
+    "LOCAL_HOSTS",
     "IngestionReport",
     "PageOutcome",
     "ProgressFn",
     "discover_urls",
+    "page_identity",
     "previous_pages",
     "process_page",
     "run_ingestion",
@@ -105,12 +107,36 @@ class PageOutcome:
 
     @property
     def source(self) -> str:
-        """The page's identity as a source: its canonical URL when on the same host, else the final URL."""
+        """The page's identity as a source: its canonical URL when on the same host, else the final URL
+        (:func:`page_identity`: a local server's port is not part of it)."""
         final = self.final_url or self.url
         canonical = self.record.canonical_url if self.record is not None else None
         if canonical and urlsplit(canonical).netloc == urlsplit(final).netloc:
-            return canonical
-        return final
+            return page_identity(canonical)
+        return page_identity(final)
+
+    @property
+    def key(self) -> str:
+        """The page's row in the ``pages`` table (its URL as listed, without a local server's port)."""
+        return page_identity(self.url)
+
+
+#: Hosts of servers on this machine: their port changes from run to run (the demo store picks a free one).
+LOCAL_HOSTS = frozenset({"localhost", "127.0.0.1", "::1", "[::1]"})
+
+
+def page_identity(url: str) -> str:
+    """``url`` as a page's identity: a loopback server's port removed (``http://127.0.0.1:53211/p/x`` ->
+    ``http://127.0.0.1/p/x``), anything else unchanged. A page served by a local server on another port
+    next run is the same page; a real store's port is part of its address and kept."""
+    parts = urlsplit(url)
+    host = (parts.hostname or "").lower()
+    if parts.port is None or not (host in LOCAL_HOSTS or host.startswith("127.")):
+        return url
+    netloc = f"[{host}]" if ":" in host else host
+    if parts.username or parts.password:
+        return url
+    return parts._replace(netloc=netloc).geturl()
 
 
 @dataclass
@@ -273,11 +299,25 @@ def _default_extractor() -> Extractor:
     return extract_page
 
 
-def _previous_pages(kb) -> dict[str, dict[str, Any]]:
+class PreviousPages(dict):
+    """The ``pages`` rows by page identity; looked up by any URL of the page (a local server's port
+    does not matter: :func:`page_identity`)."""
+
+    def __getitem__(self, url: str) -> dict[str, Any]:
+        return super().__getitem__(page_identity(url))
+
+    def __contains__(self, url: object) -> bool:
+        return isinstance(url, str) and super().__contains__(page_identity(url))
+
+    def get(self, url: str, default: Any = None) -> Any:
+        return super().get(page_identity(url), default)
+
+
+def _previous_pages(kb) -> PreviousPages:
     with kb.connect() as con:
         cur = con.execute("SELECT url, etag, last_modified, content_sha256, object_id, error FROM pages")
         cols = [d[0] for d in cur.description]
-        return {row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()}
+        return PreviousPages({row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()})
 
 
 def _process_page(
@@ -643,7 +683,7 @@ def _write(
             page_rows = []
             for p in outcomes:
                 row = {
-                    "url": p.url,
+                    "url": p.key,
                     "canonical_url": p.source if p.record is not None else None,
                     "etag": p.etag,
                     "last_modified": p.last_modified,
