@@ -136,7 +136,7 @@ def test_a_disagreeing_value_is_an_alternative_not_the_choice():
 
 
 def test_extract_json_gives_stated_extents_and_explain(tmp_path):
-    from kb.cli import app
+    from kb.service.cli import app
 
     page = tmp_path / "shade.html"
     page.write_text(_page("<table><tr><th>Diameter</th><td>45 cm</td></tr></table>"), encoding="utf-8")

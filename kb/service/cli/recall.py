@@ -1,4 +1,4 @@
-"""`objrecall recall` and `objrecall evaluate` (registered by kb/cli.py through COMMAND_MODULES)."""
+"""`objrecall recall` and `objrecall evaluate`: descriptions to ranked catalog objects, and their scores."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import Annotated, Any
 
 import typer
 
-from kb.cli_common import DbOption, JsonOption
+from kb.service.cli.common import DbOption, JsonOption
 
 METRIC_HELP = (
     "Distance: jp (the paper's Joint Probability), euclidean, minkowski (p=4), cosine, kdtree, jplog (JP with "
@@ -35,8 +35,9 @@ def register(app: typer.Typer) -> None:
         json_out: JsonOption = False,
     ) -> None:
         """Recall the catalog objects a description is about, nearest first, with the reasons."""
-        from kb.cli_common import emit, emit_lines, resolve_db
         from kb.errors import DescriptionError, RecallError
+        from kb.service.cli.common import emit, emit_lines, resolve_db
+        from recall.descriptions import read_description_column
         from recall.engine import Recaller
         from recall.metrics import METRICS
 
@@ -75,7 +76,7 @@ def register(app: typer.Typer) -> None:
         json_out: JsonOption = False,
     ) -> None:
         """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss."""
-        from kb.cli_common import emit
+        from kb.service.cli.common import emit
         from recall.evaluation import evaluate
 
         for path in (catalog, descriptions, open_set):
@@ -86,27 +87,6 @@ def register(app: typer.Typer) -> None:
             emit(report.to_dict())
         else:
             _print_report(report)
-
-
-def read_description_column(path: Path) -> list[str]:
-    """The ``description`` column of a CSV, in order (blank cells kept: they give empty results)."""
-    import csv
-
-    from kb.errors import DescriptionError
-
-    try:
-        with path.open(newline="", encoding="utf-8-sig") as fh:
-            reader = csv.DictReader(fh)
-            fields = [f.strip() for f in (reader.fieldnames or [])]
-            if "description" not in fields:
-                columns = ", ".join(fields) or "none"
-                raise DescriptionError(f"{path}: no 'description' column (columns: {columns})")
-            key = (reader.fieldnames or [])[fields.index("description")]
-            return [row.get(key) or "" for row in reader]
-    except UnicodeDecodeError as err:
-        raise DescriptionError(f"{path}: not UTF-8 text ({err.reason})") from None
-    except csv.Error as err:
-        raise DescriptionError(f"{path}: not a CSV file ({err})") from None
 
 
 def _fmt(value: Any) -> str:

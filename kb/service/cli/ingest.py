@@ -1,4 +1,4 @@
-"""`objrecall` commands of the scrapers package (registered by kb/cli.py)."""
+"""`objrecall extract`, `objrecall ingest` and `objrecall demo-store`: product pages into the catalog."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from typing import Annotated, Any
 
 import typer
 
-from kb.cli_common import DbOption, JsonOption, emit, resolve_db
+from kb.service.cli.common import DbOption, JsonOption, emit, resolve_db
 
 #: Fields ``objrecall extract`` prints, in this order.
 EXTRACT_FIELDS = (
@@ -124,15 +124,15 @@ def ingest_command(
 
     plan = load_sources(sources, base_url=base_url, delay_s=delay)
     kb = KnowledgeBase.open(resolve_db(db))
-    with requests.Session() as session, _progress(enabled=not json_out and sys.stderr.isatty()) as progress:
+    with requests.Session() as session, IngestProgress(enabled=not json_out and sys.stderr.isatty()) as progress:
         report = run_ingestion(kb, plan, session=session, progress=progress)
     if json_out:
         emit(report)
         return
-    _print_ingest_summary(report)
+    print_ingest_summary(report)
 
 
-class _progress:
+class IngestProgress:
     """A rich progress bar on stderr (a no-op when disabled), used as the ``progress`` callback."""
 
     def __init__(self, *, enabled: bool):
@@ -166,7 +166,7 @@ class _progress:
             self.bar.__exit__(*exc)
 
 
-def _print_ingest_summary(report) -> None:
+def print_ingest_summary(report) -> None:
     from rich.console import Console
     from rich.table import Table
 
