@@ -106,7 +106,7 @@ class IngestLoop:
     """``objrecall ingest`` of the demo store, restarted until stopped (at most ``max_runs`` runs)."""
 
     def __init__(self, db: Path, sources: Path, env: dict[str, str], max_runs: int = 5):
-        self.command = [sys.executable, "-m", "kb.cli", "ingest", "--sources", str(sources), "--db", str(db)]
+        self.command = [sys.executable, "-m", "kb.service.cli", "ingest", "--sources", str(sources), "--db", str(db)]
         self.env = env
         self.max_runs = max_runs
         self.runs = 0
@@ -140,8 +140,8 @@ def main(argv: list[str] | None = None) -> int:
     texts = descriptions(n)
 
     from kb.catalog import KnowledgeBase
-    from kb.commands import seed_catalog_path
-    from kb.service import serve_subprocess
+    from kb.service.bootstrap import seed_catalog_path
+    from kb.service.http import serve_subprocess
     from scrapers.demo_store import DemoStore
 
     env = dict(os.environ)

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import hashlib
 import threading
-import time
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -33,17 +32,12 @@ from typing import Any, Literal
 import duckdb
 
 from kb.csvio import SkippedRow, read_catalog_csv, write_catalog_csv
-from kb.errors import (
-    DatabaseBusy,
-    DatabaseError,
-    ObjectNotFound,
-    QueryFailed,
-    QueryRefused,
-    QueryTimeout,
-)
+from kb.errors import DatabaseError, ObjectNotFound, QueryFailed
 from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES, ObjectRecord, normalize_name
+from kb.sandbox import ALLOWED_STATEMENTS, SANDBOX_CONFIG, retry_while_locked, run_user_sql
 
 __all__ = [
+    "ALLOWED_STATEMENTS",
     "ARROW_TYPES",
     "DEFAULT_BUSY_TIMEOUT",
     "ImportReport",
@@ -57,21 +51,6 @@ __all__ = [
 DEFAULT_BUSY_TIMEOUT = 30.0
 DEFAULT_MAX_ROWS = 10_000
 DEFAULT_SQL_TIMEOUT = 10.0
-
-#: Settings of every read connection, and so of user SQL: read-only, no file or network access, no
-#: extensions, configuration locked so a query cannot undo any of it, and a memory cap.
-SANDBOX_CONFIG: dict[str, Any] = {
-    "enable_external_access": False,
-    "autoinstall_known_extensions": False,
-    "autoload_known_extensions": False,
-    "allow_community_extensions": False,
-    "allow_unsigned_extensions": False,
-    "max_memory": "2GB",
-    "lock_configuration": True,
-}
-
-#: Statement types user SQL may run.
-ALLOWED_STATEMENTS = frozenset({"SELECT", "EXPLAIN"})
 
 _OBJECT_COLUMNS = ("id", "name", *FEATURES, "source")
 
@@ -162,11 +141,6 @@ def _lock_for(path: Path) -> _ReadWriteLock:
         return _LOCKS.setdefault(key, _ReadWriteLock())
 
 
-def _is_lock_conflict(err: Exception) -> bool:
-    text = str(err).lower()
-    return "lock" in text and ("conflict" in text or "could not set" in text)
-
-
 class KnowledgeBase:
     """The object catalog in one DuckDB file. Open it with :meth:`open`."""
 
@@ -217,20 +191,7 @@ class KnowledgeBase:
             return self._retry(lambda: migrate.current_revision(self.path))
 
     def _retry(self, fn):
-        deadline = time.monotonic() + self.busy_timeout
-        delay = 0.01
-        while True:
-            try:
-                return fn()
-            except Exception as err:  # duckdb.IOException, or wrapped by SQLAlchemy / MigrationError
-                if not _is_lock_conflict(err):
-                    raise
-                if time.monotonic() >= deadline:
-                    raise DatabaseBusy(
-                        f"{self.path}: another process has held the database for over {self.busy_timeout:g} s"
-                    ) from None
-                time.sleep(delay)
-                delay = min(delay * 2, 0.25)
+        return retry_while_locked(fn, path=self.path, busy_timeout=self.busy_timeout)
 
     @contextmanager
     def connect(self, *, write: bool = False) -> Iterator[duckdb.DuckDBPyConnection]:
@@ -457,43 +418,27 @@ class KnowledgeBase:
         timeout_s: float = DEFAULT_SQL_TIMEOUT,
         output: Literal["rows", "arrow", "pandas"] = "rows",
     ) -> Any:
-        """Run one read-only statement in the sandbox and return its rows.
+        """Run one read-only statement in the SQL sandbox (:mod:`kb.sandbox`: a separate worker process
+        with a hard memory cap) and return its rows.
 
-        Only SELECT (and EXPLAIN) statements run; writes, COPY, ATTACH, INSTALL/LOAD and file or network
-        access raise :class:`~kb.errors.QueryRefused`. At most ``max_rows`` rows come back (``truncated``
-        says when more were there); a statement running longer than ``timeout_s`` is interrupted
-        (:class:`~kb.errors.QueryFailed`). ``output="arrow"`` / ``"pandas"`` return a pyarrow Table /
+        Only SELECT (and EXPLAIN of a SELECT) statements run; any other statement type, file or network
+        access and the functions that reveal server paths raise :class:`~kb.errors.QueryRefused`, as does a
+        query needing more memory than the sandbox allows. At most ``max_rows`` rows come back
+        (``truncated`` says when more were there); a statement running longer than ``timeout_s`` is
+        stopped (:class:`~kb.errors.QueryTimeout`). Repeated column names come back renamed
+        (``a``, ``a (2)``). ``output="arrow"`` / ``"pandas"`` return a pyarrow Table /
         pandas DataFrame instead of a :class:`QueryResult`.
         """
         if not isinstance(query, str) or not query.strip():
             raise QueryFailed("empty query")
-        with self.connect() as con:
-            try:
-                statements = con.extract_statements(query)
-            except duckdb.Error as err:
-                raise QueryFailed(f"SQL error: {_first_line(err)}") from None
-            if len(statements) != 1:
-                raise QueryRefused(f"one statement at a time, got {len(statements)}")
-            kind = statements[0].type.name
-            if kind not in ALLOWED_STATEMENTS:
-                raise QueryRefused(f"refused: {kind} statements are not allowed; the catalog is read-only (SELECT only)")
-            timer = threading.Timer(timeout_s, con.interrupt)
-            timer.start()
-            try:
-                cur = con.execute(query, list(params) if params is not None else None)
-                columns = [d[0] for d in cur.description]
-                rows = cur.fetchmany(max_rows + 1)
-            except duckdb.PermissionException as err:
-                raise QueryRefused(f"refused: {_first_line(err)}") from None
-            except duckdb.InterruptException:
-                raise QueryTimeout(f"query interrupted after the {timeout_s:g} s time limit") from None
-            except duckdb.Error as err:
-                if "read-only" in str(err).lower():
-                    raise QueryRefused(f"refused: {_first_line(err)}") from None
-                raise QueryFailed(f"SQL error: {_first_line(err)}") from None
-            finally:
-                timer.cancel()
-        result = QueryResult(columns=columns, rows=rows[:max_rows], truncated=len(rows) > max_rows)
+        if not self.path.exists():
+            raise DatabaseError(f"{self.path}: no catalog there (create it with `objrecall init --db {self.path}`)")
+        with self._lock.read():  # in-process writers wait for the worker, as for any reader
+            answer = run_user_sql(
+                self.path, query, params, max_rows=max_rows, timeout_s=timeout_s, busy_timeout=self.busy_timeout
+            )
+        result = QueryResult(columns=answer.columns, rows=answer.rows, truncated=answer.truncated)
+        columns = result.columns
         if output == "rows":
             return result
         import pyarrow as pa

@@ -26,7 +26,7 @@ clear line (CLI, exit code 1) or a JSON body (HTTP 4xx). Anything else is a bug.
     ├── SourcesError              a sources.toml file is malformed
     ├── SimulationError           a grasp trial could not be run
     │   └── PhysicsError          the simulation diverged (NaN, MuJoCo warnings): an error, never a result
-    └── ServiceError              the HTTP service refuses a request as a whole (kb/service.py)
+    └── ServiceError              the HTTP service refuses a request as a whole (kb/service/http/)
         ├── WritesDisabled        a write, but no API token is configured (403)
         ├── IngestionBusy         an ingestion job started by the service is still running (409)
         ├── JobNotFound           no ingestion job with that id (404)

@@ -21,6 +21,12 @@ rigidity   stiffness (the paper's "stiffness": soft -> squeezable) rigid squeeza
 
 Dimensions given in any order are sorted so that ``a >= b >= c``. Any feature may be unknown (None).
 
+**Partial sizes.** A page often states fewer than three extents (only a diameter, a height and a diameter,
+one length). Each stated extent has a role (:data:`EXTENT_ROLES`); :func:`axes_from_extents` says exactly
+which roles fill which axes: every stated extent fills one axis, a diameter fills two when nothing else
+names the horizontal extents (a round object: width = depth = diameter), and the axes nobody states stay
+unknown (None, after the known ones). Nothing is invented.
+
 Encoding for distance metrics (the paper's section III): the four numeric features as they are, in catalog
 units, and each categorical feature one-hot, with no normalisation. :data:`VECTOR_COLUMNS` names the
 columns; :func:`encode` returns the vector and a mask of the columns that are known.
@@ -43,6 +49,7 @@ __all__ = [
     "CATEGORICAL_FEATURES",
     "CSV_COLUMNS",
     "DIMENSIONS",
+    "EXTENT_ROLES",
     "FEATURES",
     "FRAGILITIES",
     "MATERIALS",
@@ -54,6 +61,7 @@ __all__ = [
     "SHAPES",
     "TEXTURES",
     "VECTOR_COLUMNS",
+    "axes_from_extents",
     "encode",
     "normalize_category",
     "normalize_name",
@@ -80,6 +88,12 @@ CATEGORICAL_FEATURES: tuple[str, ...] = tuple(CATEGORIES)
 FEATURES: tuple[str, ...] = (*NUMERIC_FEATURES, *CATEGORICAL_FEATURES)
 #: The canonical catalog CSV header, in this order.
 CSV_COLUMNS: tuple[str, ...] = ("name", *FEATURES)
+
+#: What a stated extent measures. "extent" is an extent the page does not name (``30 x 20 x 10 cm``).
+EXTENT_ROLES: tuple[str, ...] = ("length", "width", "height", "depth", "diameter", "thickness", "extent")
+#: Roles that name a horizontal extent of the object (a diameter beside one of them is not the object's
+#: width and depth at once).
+_HORIZONTAL_ROLES = frozenset({"length", "width", "depth"})
 
 #: Values past these are refused as absurd for a household object (5 m, 500 kg).
 MAX_DIM_CM = 500.0
@@ -144,6 +158,8 @@ def _number(feature: str, value: Any) -> float | None:
             value = float(text)
         except ValueError:
             raise InvalidFeature(feature, value, "not a number") from None
+        if math.isnan(value):  # the text "nan" is a mistake in a data file, not "unknown" (that is blank)
+            raise InvalidFeature(feature, text, "not a number (write unknown values as a blank cell)")
     if isinstance(value, bool):
         raise InvalidFeature(feature, value, "not a number")
     try:
@@ -169,6 +185,40 @@ def sort_dims(*dims: float | None) -> tuple[float | None, float | None, float | 
         raise InvalidFeature("dimensions", dims, "at most three dimensions")
     padded = known + [None] * (3 - len(known))
     return padded[0], padded[1], padded[2]
+
+
+def axes_from_extents(extents: Iterable[tuple[str, float]]) -> tuple[float, ...]:
+    """The known catalog axes, largest first (1 to 3 values), from the ``(role, cm)`` extents a page states.
+
+    The rule (in this order):
+
+    1. Every stated extent fills one axis, whatever its role (length, width, height, depth, thickness,
+       or an unnamed ``extent``).
+    2. A ``diameter`` fills **two** axes (the width and depth of a round object) when no length, width or
+       depth is stated besides it and there is room (at most three axes): ``diameter 12`` gives
+       ``(12, 12)``, ``diameter 7.2, height 21.5`` gives ``(21.5, 7.2, 7.2)``.
+    3. With more than three extents, diameters are dropped (a pan's ``Diameter 26 cm`` beside its length,
+       width and height measures a part); more than three remaining is refused.
+    4. Axes no extent fills stay unknown: the caller stores None for them (see :func:`sort_dims`).
+
+    Raises :class:`InvalidFeature` for an unknown role, a value that is not a positive number, or more than
+    three extents left by rule 3.
+    """
+    pairs = [(str(role), float(value)) for role, value in extents]
+    for role, value in pairs:
+        if role not in EXTENT_ROLES:
+            raise InvalidFeature("extent role", role, f"unknown; expected one of {', '.join(EXTENT_ROLES)}")
+        if not value > 0 or math.isinf(value):
+            raise InvalidFeature(role, value, "must be a positive finite number")
+    if len(pairs) > 3:
+        pairs = [(r, v) for r, v in pairs if r != "diameter"]
+    if len(pairs) > 3 or not pairs:
+        raise InvalidFeature("dimensions", tuple(v for _, v in pairs), "expected 1 to 3 extents")
+    roles = {r for r, _ in pairs}
+    values = [v for _, v in pairs]
+    if "diameter" in roles and not roles & _HORIZONTAL_ROLES and len(values) < 3:
+        values.append(next(v for r, v in pairs if r == "diameter"))
+    return tuple(sorted(values, reverse=True))
 
 
 def validate_features(values: Mapping[str, Any]) -> dict[str, Any]:

@@ -83,6 +83,12 @@ CATEGORY_CODES: dict[str, dict[str, int]] = {
 _QUALIFIERS = ("about", "exact", "at_least", "at_most", "range")
 
 
+def as_stored(x: float) -> float:
+    """``x`` rounded to float32, the precision of the engine's columns (``recall.snapshot``): a stated
+    value equal to a catalog value stays equal (distance 0), and the ranking is unchanged otherwise."""
+    return float(np.float32(x)) if math.isfinite(x) else x
+
+
 def log_units(x: np.ndarray | float) -> np.ndarray | float:
     """Positive values in log units of :data:`LOG_STEP` (ln x / ln 1.1); 0 -> -inf, inf -> inf, NaN stays."""
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -119,9 +125,9 @@ class NumericCondition:
         off by UNKNOWN_NUMERIC_FRACTION (a factor 1.5)."""
         return NumericCondition(
             self.feature,
-            float(log_units(self.value)),
-            float(log_units(max(self.low, LOG_FLOOR))),  # "at most" keeps a finite lower end
-            float(log_units(max(self.high, LOG_FLOOR))),
+            as_stored(float(log_units(self.value))),
+            as_stored(float(log_units(max(self.low, LOG_FLOOR)))),  # "at most" keeps a finite lower end
+            as_stored(float(log_units(max(self.high, LOG_FLOOR)))),
             self.qualifier,
             float(log_units(1.0 + UNKNOWN_NUMERIC_FRACTION)),
         )
@@ -201,7 +207,9 @@ class FeatureQuery:
                     low, high = high, low
             else:
                 low, high = number * (1.0 - ABOUT_TOLERANCE), number * (1.0 + ABOUT_TOLERANCE)
-            numeric.append(NumericCondition(feat, float(number), float(low), float(high), qual))
+            numeric.append(
+                NumericCondition(feat, as_stored(number), as_stored(low), as_stored(high), qual)
+            )
         categorical = []
         clean = validate_features({f: values.get(f) for f in CATEGORICAL_FEATURES})
         for feat in CATEGORICAL_FEATURES:

@@ -1,18 +1,23 @@
 """A NumPy column snapshot of the catalog: what the recall engine searches.
 
-A :class:`CatalogSnapshot` holds the object names and aliases, the numeric features as float64 columns
-(NaN = unknown) and the categorical features as int8 codes (-1 = unknown; codes follow the order of
-``kb.features`` tuples). The paper's one-hot matrix over ``VECTOR_COLUMNS`` is derived on demand.
+A :class:`CatalogSnapshot` holds the object names and aliases, one float32 column per numeric feature
+(NaN = unknown) and one int8 column of codes per categorical feature (-1 = unknown; codes follow the order
+of ``kb.features`` tuples). That is the only copy of the values: 4 × 4 + 5 × 1 = 21 B per object. The
+(n, 4) / (n, 5) matrices (:attr:`num`, :attr:`cat`) and the paper's one-hot matrix (:attr:`matrix`) are
+derived on demand; :meth:`num_rows` / :meth:`cat_rows` give a few rows. float32 keeps 24 bits: a catalog
+value is stored to 6e-8 of itself (1.2e-6 cm at 20 cm), and read back as the shortest decimal that rounds
+to it (15.4 stays 15.4).
 
-:func:`load_snapshot` reads a knowledge base once and caches the snapshot; it is rebuilt only when the
-database changed (the catalog's version when ``kb.catalog`` provides one, else the file's mtime and size).
+The snapshot knows nothing of search: the indexes over it are built by :mod:`recall.search`.
+:func:`load_snapshot` reads a knowledge base once (columns straight from DuckDB, no per-object Python)
+and caches the snapshot; it is rebuilt only when the database changed (the catalog's version when
+``kb.catalog`` provides one, else the file's mtime and size).
 """
 
 from __future__ import annotations
 
 import threading
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
 from typing import Any
@@ -22,40 +27,80 @@ import numpy as np
 from kb.errors import RecallError
 from kb.features import (
     CATEGORICAL_FEATURES,
+    CATEGORIES,
     MAX_DIM_CM,
     MAX_MASS_G,
     NUMERIC_FEATURES,
     VECTOR_COLUMNS,
     ObjectRecord,
 )
-from recall.metrics import CATEGORY_CODES
+from recall.metrics import CATEGORY_CODES, log_units
 
 __all__ = ["CatalogSnapshot", "load_snapshot", "records_from_csv"]
 
 
-@dataclass(eq=False)
+def _stored(x: float) -> float:
+    """A float32 catalog value as the shortest decimal that rounds to it (what the catalog held)."""
+    return float(str(np.float32(x)))
+
+
 class CatalogSnapshot:
-    """Column arrays of a catalog. ``num`` is (n, 4) float64 C-contiguous by column (see :attr:`num_cols`),
-    ``cat`` (n, 5) int8."""
+    """Column arrays of a catalog: :attr:`num_cols` (4 float32), :attr:`cat_cols` (5 int8).
 
-    names: list[str]
-    aliases: list[tuple[str, ...]]
-    num: np.ndarray
-    cat: np.ndarray
-    records: list[ObjectRecord] | None = field(default=None, repr=False)
-    version: Any = None
+    Built from ``num`` (n, 4) and ``cat`` (n, 5) arrays (copied once into the columns) or, without a
+    copy, by :meth:`from_columns`. Identity is the object (no value equality)."""
 
-    def __post_init__(self) -> None:
-        n = len(self.names)
-        if self.num.shape != (n, len(NUMERIC_FEATURES)) or self.cat.shape != (n, len(CATEGORICAL_FEATURES)):
+    def __init__(
+        self,
+        names: Sequence[str],
+        aliases: Sequence[tuple[str, ...]],
+        num: np.ndarray,
+        cat: np.ndarray,
+        version: Any = None,
+    ) -> None:
+        num, cat = np.asarray(num), np.asarray(cat)
+        n = len(names)
+        if num.shape != (n, len(NUMERIC_FEATURES)) or cat.shape != (n, len(CATEGORICAL_FEATURES)):
             raise RecallError("snapshot arrays do not match the number of names")
-        # Contiguous per-column copies: gathers on one column touch one array.
-        self.num_cols = [
-            np.ascontiguousarray(self.num[:, j], dtype=np.float64) for j in range(self.num.shape[1])
-        ]
-        self.cat_cols = [
-            np.ascontiguousarray(self.cat[:, j], dtype=np.int8) for j in range(self.cat.shape[1])
-        ]
+        self._init(
+            names,
+            aliases,
+            [np.ascontiguousarray(num[:, j], dtype=np.float32) for j in range(num.shape[1])],
+            [np.ascontiguousarray(cat[:, j], dtype=np.int8) for j in range(cat.shape[1])],
+            version,
+        )
+
+    def _init(self, names, aliases, num_cols, cat_cols, version) -> None:
+        n = len(names)
+        if len(num_cols) != len(NUMERIC_FEATURES) or len(cat_cols) != len(CATEGORICAL_FEATURES):
+            raise RecallError("snapshot columns do not match the catalog's features")
+        if any(len(c) != n for c in (*num_cols, *cat_cols)):
+            raise RecallError("snapshot arrays do not match the number of names")
+        self.names = names
+        self.aliases = aliases
+        self.num_cols: list[np.ndarray] = list(num_cols)
+        self.cat_cols: list[np.ndarray] = list(cat_cols)
+        self.version = version
+
+    @classmethod
+    def from_columns(
+        cls,
+        names: Sequence[str],
+        aliases: Sequence[tuple[str, ...]],
+        num_cols: Sequence[np.ndarray],
+        cat_cols: Sequence[np.ndarray],
+        version: Any = None,
+    ) -> CatalogSnapshot:
+        """A snapshot over existing float32 / int8 columns (no copy when they already are)."""
+        snap = cls.__new__(cls)
+        snap._init(
+            names,
+            aliases,
+            [np.ascontiguousarray(c, dtype=np.float32) for c in num_cols],
+            [np.ascontiguousarray(c, dtype=np.int8) for c in cat_cols],
+            version,
+        )
+        return snap
 
     def __len__(self) -> int:
         return len(self.names)
@@ -79,19 +124,37 @@ class CatalogSnapshot:
             aliases=[tuple(r.aliases) for r in records],
             num=num,
             cat=cat,
-            records=list(records),
             version=version,
         )
 
+    # -- derived views (copies: for a few rows, tests and tools, not per query over the catalog)
+    def num_rows(self, rows) -> np.ndarray:
+        """(len(rows), 4) float64 numeric values of ``rows`` (an index array or an int)."""
+        return np.stack([c[rows] for c in self.num_cols], axis=-1).astype(np.float64)
+
+    def cat_rows(self, rows) -> np.ndarray:
+        """(len(rows), 5) int8 category codes of ``rows``."""
+        return np.stack([c[rows] for c in self.cat_cols], axis=-1)
+
+    @property
+    def num(self) -> np.ndarray:
+        """(n, 4) float64 copy of the numeric columns."""
+        return self.num_rows(slice(None))
+
+    @property
+    def cat(self) -> np.ndarray:
+        """(n, 5) int8 copy of the category codes."""
+        return self.cat_rows(slice(None))
+
     @cached_property
     def matrix(self) -> np.ndarray:
-        """The paper's encoding: (n, len(VECTOR_COLUMNS)) float64, numeric then one-hot, NaN = unknown."""
+        """The paper's encoding: (n, len(VECTOR_COLUMNS)) float64, numeric then one-hot, NaN = unknown
+        (kept once built: the baselines and the k-d tree use it)."""
         n = len(self)
         out = np.full((n, len(VECTOR_COLUMNS)), np.nan)
         out[:, : len(NUMERIC_FEATURES)] = self.num
         col = len(NUMERIC_FEATURES)
-        for j, feat in enumerate(CATEGORICAL_FEATURES):
-            codes = self.cat[:, j]
+        for feat, codes in zip(CATEGORICAL_FEATURES, self.cat_cols, strict=True):
             width = len(CATEGORY_CODES[feat])
             known = codes >= 0
             block = np.full((n, width), np.nan)
@@ -103,41 +166,30 @@ class CatalogSnapshot:
 
     @cached_property
     def log_scaled(self) -> CatalogSnapshot:
-        """The same catalog with the numeric columns in log units (``recall.metrics.log_units``): what the
-        ``jplog`` metric searches, with its own pruned index."""
-        from recall.metrics import log_units
-
-        return CatalogSnapshot(
-            names=self.names,
-            aliases=self.aliases,
-            num=log_units(self.num),
-            cat=self.cat,
-            records=self.records,
+        """The same catalog with the numeric columns in log units (``recall.metrics.log_units``, float32):
+        what the ``jplog`` metric searches. Shares the names and the category columns (16 B per object)."""
+        return CatalogSnapshot.from_columns(
+            self.names,
+            self.aliases,
+            [log_units(c.astype(np.float64)).astype(np.float32) for c in self.num_cols],
+            self.cat_cols,
             version=self.version,
         )
 
-    @cached_property
-    def index(self):  # -> recall.search.JPIndex
-        """The pruned-search index (sorted columns, rows per category), built on first use."""
-        from recall.search import JPIndex
-
-        return JPIndex(self)
-
     def record(self, i: int) -> ObjectRecord:
-        if self.records is not None:
-            return self.records[i]
+        """Object ``i`` rebuilt from the columns (features, name, aliases; not its source)."""
         values: dict[str, Any] = {}
-        for j, feat in enumerate(NUMERIC_FEATURES):
-            x = self.num[i, j]
-            values[feat] = None if np.isnan(x) else float(x)
-        for j, feat in enumerate(CATEGORICAL_FEATURES):
-            c = int(self.cat[i, j])
-            values[feat] = None if c < 0 else list(CATEGORY_CODES[feat])[c]
-        return ObjectRecord(name=self.names[i], aliases=self.aliases[i], **values)
+        for feat, col in zip(NUMERIC_FEATURES, self.num_cols, strict=True):
+            x = col[i]
+            values[feat] = None if np.isnan(x) else _stored(x)
+        for feat, col in zip(CATEGORICAL_FEATURES, self.cat_cols, strict=True):
+            c = int(col[i])
+            values[feat] = None if c < 0 else CATEGORIES[feat][c]
+        return ObjectRecord(name=self.names[i], aliases=tuple(self.aliases[i]), **values)
 
     @property
     def nbytes(self) -> int:
-        """Bytes of the feature arrays (without names and the search index)."""
+        """Bytes of the feature columns (without names, aliases and any index)."""
         return int(sum(a.nbytes for a in self.num_cols) + sum(a.nbytes for a in self.cat_cols))
 
 
@@ -166,6 +218,37 @@ def _db_version(path: Path) -> Any:
     return ("stat", st.st_mtime_ns, st.st_size)
 
 
+def _read_db(path: Path, version: Any) -> CatalogSnapshot:
+    """The catalog's columns read by DuckDB into NumPy (objects ordered by name, as ``list_objects``;
+    a category value outside the vocabulary reads as unknown)."""
+    from kb.catalog import KnowledgeBase
+
+    codes = ", ".join(
+        f"coalesce(list_position([{', '.join(repr(v) for v in CATEGORIES[f])}], {f}), 0) - 1 AS {f}"
+        for f in CATEGORICAL_FEATURES
+    )
+    numbers = ", ".join(f"coalesce({f}, 'NaN'::DOUBLE) AS {f}" for f in NUMERIC_FEATURES)
+    kb = KnowledgeBase.open(path, read_only=True)
+    with kb.connect() as con:
+        cols = con.execute(f"SELECT name, {numbers}, {codes} FROM objects ORDER BY name").fetchnumpy()
+        named = con.execute(
+            "SELECT r.i, list(a.alias ORDER BY a.alias) FROM object_aliases a JOIN "
+            "(SELECT id, row_number() OVER (ORDER BY name) - 1 AS i FROM objects) r ON r.id = a.object_id "
+            "GROUP BY r.i"
+        ).fetchall()
+    names = cols["name"].tolist()
+    aliases: list[tuple[str, ...]] = [()] * len(names)
+    for i, alias in named:
+        aliases[i] = tuple(alias)
+    return CatalogSnapshot.from_columns(
+        names,
+        aliases,
+        [np.asarray(cols[f], dtype=np.float32) for f in NUMERIC_FEATURES],
+        [np.asarray(cols[f], dtype=np.int8) for f in CATEGORICAL_FEATURES],
+        version=version,
+    )
+
+
 def load_snapshot(db: str | Path) -> CatalogSnapshot:
     """The snapshot of the knowledge base at ``db`` (a DuckDB file; a ``.csv`` path reads a catalog CSV),
     cached until the database changes."""
@@ -179,12 +262,9 @@ def load_snapshot(db: str | Path) -> CatalogSnapshot:
         if cached is not None and cached.version == version:
             return cached
     if path.suffix.lower() == ".csv":
-        records = records_from_csv(path)
+        snap = CatalogSnapshot.from_records(records_from_csv(path), version=version)
     else:
-        from kb.catalog import KnowledgeBase
-
-        records = KnowledgeBase.open(path, read_only=True).list_objects()
-    snap = CatalogSnapshot.from_records(records, version=version)
+        snap = _read_db(path, version)
     with _LOCK:
         _CACHE[key] = snap
     return snap
@@ -247,8 +327,9 @@ def synthetic_description(
     from recall.metrics import FeatureQuery
 
     i = int(rng.integers(len(snap)))
-    known = [f for j, f in enumerate(NUMERIC_FEATURES) if not np.isnan(snap.num[i, j])]
-    known += [f for j, f in enumerate(CATEGORICAL_FEATURES) if snap.cat[i, j] >= 0]
+    num, cat = snap.num_rows(i), snap.cat_rows(i)
+    known = [f for j, f in enumerate(NUMERIC_FEATURES) if not np.isnan(num[j])]
+    known += [f for j, f in enumerate(CATEGORICAL_FEATURES) if cat[j] >= 0]
     if features is not None:  # a fixed description pattern (those of its features the object has)
         chosen = [f for f in features if f in known]
     else:
@@ -258,7 +339,7 @@ def synthetic_description(
     qualifiers: dict[str, str] = {}
     for feat in chosen:
         if feat in NUMERIC_FEATURES:
-            x = float(snap.num[i, NUMERIC_FEATURES.index(feat)])
+            x = float(num[NUMERIC_FEATURES.index(feat)])
             if feat == "mass_g":
                 y = x * rng.lognormal(0.0, 0.2)
                 digits = max(0, 1 - int(np.floor(np.log10(max(y, 1e-9)))))
@@ -275,6 +356,6 @@ def synthetic_description(
                 qualifiers[feat] = "at_most"
         else:
             words = list(CATEGORY_CODES[feat])
-            code = int(snap.cat[i, CATEGORICAL_FEATURES.index(feat)])
+            code = int(cat[CATEGORICAL_FEATURES.index(feat)])
             values[feat] = words[code] if rng.random() < 0.9 else words[int(rng.integers(len(words)))]
     return i, FeatureQuery.from_values(values, qualifiers)

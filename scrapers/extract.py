@@ -18,7 +18,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from kb.errors import ExtractionError
-from kb.features import MATERIALS
+from kb.features import MATERIALS, axes_from_extents
 
 # Importing an adapter module registers its adapters (in priority order, whatever the import order).
 from scrapers.adapters import (  # noqa: F401
@@ -37,7 +37,6 @@ from scrapers.normalize import (
     material_from_text,
     shape_from_dims,
     shape_from_name,
-    sort_desc,
 )
 from scrapers.page import MAX_LINES, Page
 from scrapers.records import ProductRecord
@@ -138,8 +137,30 @@ def _fmt(value) -> str:
     return f"{value:g} g"
 
 
-def _choose(cands: list[Observation], agree, feature: str, warnings: list[str]) -> Observation | None:
-    """The winning observation among valid candidates (see the module doc); others become warnings."""
+def _candidate(o: Observation, decision: str) -> dict:
+    """One candidate value as ``extract --explain`` shows it."""
+    out = {
+        "feature": o.feature,
+        "value": list(o.value) if isinstance(o.value, tuple) else o.value,
+        "role": "package" if o.package else "product",
+        "adapter": o.source,
+        "rank": o.rank,
+        "order": o.order,
+        "text": o.raw[:120],
+        "decision": decision,
+    }
+    if o.feature == "dims":
+        out["extents"] = [{"role": r, "cm": v} for r, v in o.extents()]
+    if o.note:
+        out["note"] = o.note
+    return out
+
+
+def _choose(
+    cands: list[Observation], agree, feature: str, warnings: list[str], decisions: list[dict] | None = None
+) -> Observation | None:
+    """The winning observation among valid candidates (see the module doc); others become warnings.
+    Each candidate's fate is appended to ``decisions`` (``extract --explain``)."""
     if not cands:
         return None
     clusters: list[list[Observation]] = []
@@ -155,6 +176,18 @@ def _choose(cands: list[Observation], agree, feature: str, warnings: list[str]) 
         chosen = sorted(best, key=lambda o: (-len(o.value), _priority(o)))[0]
     else:
         chosen = best[0]
+    if decisions is not None:
+        for i, cluster in enumerate(clusters[:MAX_CANDIDATES]):
+            for o in cluster:
+                if o is chosen:
+                    why = "chosen: highest-priority cluster (adapter, rank, page order)"
+                    if feature == "dims" and len(best) > 1:
+                        why += ", most complete member"
+                elif i == 0:
+                    why = "agrees with the chosen value"
+                else:
+                    why = f"alternative: disagrees with the chosen value (cluster {i + 1}, lower priority)"
+                decisions.append(_candidate(o, why))
     for other in clusters[1 : 1 + MAX_DISAGREEMENTS]:
         o = other[0]
         warnings.append(
@@ -179,6 +212,7 @@ def _collapse_repeats(values: list) -> list:
 def fuse(observations: list[Observation], url: str) -> ProductRecord:
     """One record from all adapters' observations (the rule is in the module doc)."""
     warnings: list[str] = []
+    decisions: list[dict] = []
     raw: dict[str, str] = {}
     for o in observations:
         if o.feature == "warning" and len(warnings) < MAX_CANDIDATES:
@@ -190,10 +224,13 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
             if o.feature != feature or o.package != package:
                 continue
             if feature == "dims":
-                o.value = sort_desc(o.value)
+                extents = sorted(o.extents(), key=lambda e: -e[1])
+                o.value, o.roles = tuple(v for _, v in extents), tuple(r for r, _ in extents)
                 reason = check_dims(o.value)
             else:
                 reason = check_mass(o.value)
+            if reason and len(decisions) < MAX_CANDIDATES:
+                decisions.append(_candidate(o, f"refused: {reason}"))
             if reason and len(warnings) < MAX_CANDIDATES:
                 warnings.append(
                     f"{'package ' if package else ''}{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})"
@@ -202,8 +239,8 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
                 out.append(o)
         return out
 
-    dims_obs = _choose(valid("dims", False), _dims_agree, "dims", warnings)
-    mass_obs = _choose(valid("mass", False), _close, "mass", warnings)
+    dims_obs = _choose(valid("dims", False), _dims_agree, "dims", warnings, decisions)
+    mass_obs = _choose(valid("mass", False), _close, "mass", warnings, decisions)
 
     package_dims: list[tuple[float, ...]] = []
     package_mass: list[float] = []
@@ -212,6 +249,11 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         if cands:
             best_source = min(cands, key=_priority).source
             chosen = sorted((o for o in cands if o.source == best_source), key=lambda o: o.order)
+            decisions.extend(
+                _candidate(o, "package value, kept apart" if o.source == best_source else
+                           f"package value not listed: {best_source} lists the packages")
+                for o in cands[:MAX_CANDIDATES]
+            )  # fmt: skip
             target.extend(_collapse_repeats([o.value for o in chosen[:MAX_CANDIDATES]]))
             raw[f"package_{feature}"] = " | ".join(o.raw for o in chosen)[:500]
 
@@ -241,7 +283,8 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
             raw["dims" if o.feature == "dims" else "mass"] = o.raw
             if o.note:
                 warnings.append(f"{o.feature}: {o.note}")
-    dims = tuple(round(v, 4) for v in dims_obs.value) if dims_obs else None
+    dims = tuple(round(v, 4) for v in axes_from_extents(dims_obs.extents())) if dims_obs else None
+    extents = [{"role": r, "cm": round(v, 4)} for r, v in dims_obs.extents()] if dims_obs else []
     shape = shape_from_name(name) or shape_from_dims(dims)
     used = dims_obs or mass_obs
     adapter = (
@@ -255,6 +298,7 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         canonical_url=urls[0].value if urls else None,
         gtin=gtins[0].value if gtins else None,
         dims_cm=dims,
+        dims=extents,
         mass_g=round(mass_obs.value, 4) if mass_obs else None,
         package_dims_cm=[tuple(round(v, 4) for v in p) for p in package_dims],
         package_mass_g=[round(m, 4) for m in package_mass],
@@ -263,4 +307,5 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         adapter=adapter,
         warnings=list(dict.fromkeys(warnings)),
         raw=raw,
+        candidates=decisions,
     )

@@ -58,7 +58,18 @@ from scrapers.fusion import Observation, fuse
 from scrapers.records import ProductRecord
 from scrapers.sources import Sources, StoreSource
 
-__all__ = ["IngestionReport", "PageOutcome", "ProgressFn", "discover_urls", "run_ingestion"]
+__all__ = [
+    "LOCAL_HOSTS",
+    "IngestionReport",
+    "PageOutcome",
+    "ProgressFn",
+    "discover_urls",
+    "page_identity",
+    "previous_pages",
+    "process_page",
+    "run_ingestion",
+    "write_run",
+]
 
 #: progress(done, total, url): called after each page (and once with done=0 when the total is known).
 ProgressFn = Callable[[int, int, str], None]
@@ -96,12 +107,36 @@ class PageOutcome:
 
     @property
     def source(self) -> str:
-        """The page's identity as a source: its canonical URL when on the same host, else the final URL."""
+        """The page's identity as a source: its canonical URL when on the same host, else the final URL
+        (:func:`page_identity`: a local server's port is not part of it)."""
         final = self.final_url or self.url
         canonical = self.record.canonical_url if self.record is not None else None
         if canonical and urlsplit(canonical).netloc == urlsplit(final).netloc:
-            return canonical
-        return final
+            return page_identity(canonical)
+        return page_identity(final)
+
+    @property
+    def key(self) -> str:
+        """The page's row in the ``pages`` table (its URL as listed, without a local server's port)."""
+        return page_identity(self.url)
+
+
+#: Hosts of servers on this machine: their port changes from run to run (the demo store picks a free one).
+LOCAL_HOSTS = frozenset({"localhost", "127.0.0.1", "::1", "[::1]"})
+
+
+def page_identity(url: str) -> str:
+    """``url`` as a page's identity: a loopback server's port removed (``http://127.0.0.1:53211/p/x`` ->
+    ``http://127.0.0.1/p/x``), anything else unchanged. A page served by a local server on another port
+    next run is the same page; a real store's port is part of its address and kept."""
+    parts = urlsplit(url)
+    host = (parts.hostname or "").lower()
+    if parts.port is None or not (host in LOCAL_HOSTS or host.startswith("127.")):
+        return url
+    netloc = f"[{host}]" if ":" in host else host
+    if parts.username or parts.password:
+        return url
+    return parts._replace(netloc=netloc).geturl()
 
 
 @dataclass
@@ -264,11 +299,25 @@ def _default_extractor() -> Extractor:
     return extract_page
 
 
-def _previous_pages(kb) -> dict[str, dict[str, Any]]:
+class PreviousPages(dict):
+    """The ``pages`` rows by page identity; looked up by any URL of the page (a local server's port
+    does not matter: :func:`page_identity`)."""
+
+    def __getitem__(self, url: str) -> dict[str, Any]:
+        return super().__getitem__(page_identity(url))
+
+    def __contains__(self, url: object) -> bool:
+        return isinstance(url, str) and super().__contains__(page_identity(url))
+
+    def get(self, url: str, default: Any = None) -> Any:
+        return super().get(page_identity(url), default)
+
+
+def _previous_pages(kb) -> PreviousPages:
     with kb.connect() as con:
         cur = con.execute("SELECT url, etag, last_modified, content_sha256, object_id, error FROM pages")
         cols = [d[0] for d in cur.description]
-        return {row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()}
+        return PreviousPages({row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()})
 
 
 def _process_page(
@@ -470,8 +519,8 @@ def _write(
             old_obs: dict[int, list[dict[str, Any]]] = {}
             if matched:
                 cur = con.execute(
-                    "SELECT id, object_id, feature, value_num, value_text, role, source, fetched_at, run_id "
-                    "FROM observations WHERE list_contains(?, object_id)",
+                    "SELECT id, object_id, feature, value_num, value_text, role, source, adapter, fetched_at, "
+                    "run_id FROM observations WHERE list_contains(?, object_id)",
                     [list(matched)],
                 )
                 cols = [d[0] for d in cur.description]
@@ -634,7 +683,7 @@ def _write(
             page_rows = []
             for p in outcomes:
                 row = {
-                    "url": p.url,
+                    "url": p.key,
                     "canonical_url": p.source if p.record is not None else None,
                     "etag": p.etag,
                     "last_modified": p.last_modified,
@@ -762,6 +811,7 @@ def _as_observations(rows: Iterable[dict[str, Any]]) -> list[Observation]:
                 role=r["role"],
                 fetched_at=_naive(r.get("fetched_at")),
                 id=r.get("id") or 0,
+                adapter=r.get("adapter"),
             )
         )
     return out
@@ -869,6 +919,21 @@ def run_ingestion(
     if events:
         report.status = "ok_with_errors"
     report.duration_s = clock.monotonic() - t0  # the write adds its own time (real clock) in _write
+    write_run(kb, outcomes, report, events, clock)
+    return report
+
+
+#: The stages for other jobs that read pages one by one (the on-demand lookup, scrapers.lookup).
+previous_pages = _previous_pages
+process_page = _process_page
+
+
+def write_run(
+    kb, outcomes: list[PageOutcome], report: IngestionReport, events: list[tuple[str, str, str]], clock: Clock
+) -> None:
+    """Stages 5-7 for pages already fetched, extracted and validated: one short write transaction that
+    records ``report`` as a run (its ``run_id``, counts and ``write_s`` are filled in). Raises
+    :class:`~kb.errors.IngestionError`, leaving the catalog unchanged, when it cannot be written."""
     now = _naive(clock.now())
     try:
         _write(kb, outcomes, report, events, now)
@@ -876,4 +941,3 @@ def run_ingestion(
         raise
     except Exception as err:
         raise IngestionError(f"the run could not be written; the catalog is unchanged ({err})") from None
-    return report

@@ -11,7 +11,9 @@ null in the record or accompanied by a warning.
 
 from __future__ import annotations
 
+import hashlib
 import json
+import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,10 +21,23 @@ from typing import Any
 
 from scrapers.records import ProductRecord
 
-__all__ = ["ENV_PAGES", "TOLERANCE", "LabelledPage", "Verdict", "default_pages_dir", "judge", "load_labels"]
+__all__ = [
+    "BLIND_FRACTION",
+    "ENV_PAGES",
+    "TOLERANCE",
+    "LabelledPage",
+    "Verdict",
+    "blind_split",
+    "default_pages_dir",
+    "judge",
+    "load_labels",
+    "within",
+]
 
 ENV_PAGES = "OBJRECALL_STOREFRONT_PAGES"
 TOLERANCE = 0.01
+#: Share of each folder's pages held back as the blind split (see :func:`blind_split`).
+BLIND_FRACTION = 0.25
 
 
 def default_pages_dir() -> Path:
@@ -53,6 +68,33 @@ def load_labels(folder: Path | None = None) -> list[LabelledPage]:
     return pages
 
 
+def blind_split(pages: list[LabelledPage]) -> tuple[list[LabelledPage], list[LabelledPage]]:
+    """(dev, blind): the rule fixed before any page was read closely. Sort a folder's pages by the sha1 of
+    the file name; the first ``ceil(BLIND_FRACTION * n)`` are blind, the rest are development pages."""
+    ranked = sorted(pages, key=lambda p: hashlib.sha1(p.truth["file"].encode()).hexdigest())
+    n_blind = math.ceil(BLIND_FRACTION * len(ranked))
+    blind = {p.truth["file"] for p in ranked[:n_blind]}
+    return [p for p in pages if p.truth["file"] not in blind], [p for p in pages if p.truth["file"] in blind]
+
+
+def within(a: float, b: float, tolerance: float) -> bool:
+    """Whether ``a`` and ``b`` differ by at most ``tolerance`` of the larger."""
+    return abs(a - b) <= tolerance * max(abs(a), abs(b))
+
+
+def dims_within(got, want, tolerance: float) -> bool:
+    """Every true dimension matched by a different extracted one within ``tolerance``."""
+    if got is None or len(got) < len(want):
+        return False
+    remaining = list(got)
+    for w in sorted(want, reverse=True):
+        hit = next((i for i, g in enumerate(remaining) if within(g, w, tolerance)), None)
+        if hit is None:
+            return False
+        remaining.pop(hit)
+    return True
+
+
 @dataclass
 class Verdict:
     right: bool
@@ -60,21 +102,13 @@ class Verdict:
 
 
 def _close(a: float, b: float) -> bool:
-    return abs(a - b) <= TOLERANCE * max(abs(a), abs(b))
+    return within(a, b, TOLERANCE)
 
 
 def _dims_match(got, want) -> bool:
     """Every true dimension is matched by a different extracted one (an extra extracted value, e.g. a
     diameter counted as both width and depth, is allowed)."""
-    if got is None or len(got) < len(want):
-        return False
-    remaining = list(got)
-    for w in sorted(want, reverse=True):
-        hit = next((i for i, g in enumerate(remaining) if _close(g, w)), None)
-        if hit is None:
-            return False
-        remaining.pop(hit)
-    return True
+    return dims_within(got, want, TOLERANCE)
 
 
 def judge(record: ProductRecord, truth: dict[str, Any]) -> Verdict:

@@ -36,6 +36,14 @@ FOREIGN_CONTAINER = re.compile(
     r"sims[-_]|_sims|fbt|bought[-_]together|reco[-_]|[-_]reco\b|advert|banner)",
     re.IGNORECASE,
 )
+#: Layout words that often show other products (a slider, a banner) but are also used as styling names of
+#: the product's own blocks (``tab-specs accordion banner-margin-small``): such a block is foreign only when
+#: its names do not also say it holds the product's specification (:data:`SPEC_CONTAINER`).
+_WEAK_FOREIGN = re.compile(r"(?:carousel|swiper|slick|slider|sponsor|advert|banner)", re.IGNORECASE)
+#: id/class words of the product's own specification or description blocks.
+SPEC_CONTAINER = re.compile(
+    r"(?:spec|techn|detail|descri|attribute|propert|merkmal|caracter|характер|feature)", re.IGNORECASE
+)
 #: id/class words of blocks that describe the package rather than the product.
 PACKAGE_CONTAINER = re.compile(
     r"(?:packag|verpack|shipping|versand|embala|emballa|imball|colis|упаков)", re.IGNORECASE
@@ -254,7 +262,13 @@ def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]
     names = f"{ident or ''} {classes or ''}".strip()
     if not names:
         return False, False
-    return bool(FOREIGN_CONTAINER.search(names)), bool(PACKAGE_CONTAINER.search(names))
+    foreign = False
+    for token in names.split():
+        m = FOREIGN_CONTAINER.search(token)
+        if m and not (_WEAK_FOREIGN.fullmatch(m.group(0)) and SPEC_CONTAINER.search(names)):
+            foreign = True
+            break
+    return foreign, bool(PACKAGE_CONTAINER.search(names))
 
 
 def _html_parser():

@@ -363,6 +363,9 @@ def clean_text(text: object) -> str:
     if _HAS_VULGAR.search(text):
         text = _VULGAR_RE.sub(_vulgar, text)  # before NFKC, which would write "23½" as "231⁄2"
     text = unicodedata.normalize("NFKC", text).replace("\u2032\u2032", '"')  # NFKC writes ″ as ′′
+    if "\\" in text or "\u201d" in text or "\u201c" in text:
+        # an inch mark escaped inside embedded JSON (12\" x 8\") or written as a curly quote (40” x 28”)
+        text = _QUOTED_INCH.sub('"', text.replace('\\"', '"'))
     if "/" in text or "\u2044" in text:
         text = _MIXED_FRACTION.sub(_mixed, text)
         text = _FRACTION.sub(_fraction, text)
@@ -404,6 +407,9 @@ _FEET_INCHES = re.compile(
     r"(\d{1,2}(?:\.\d+)?) ?(?:''|\"|in\b\.?|inch(?:es)?\b)"
 )
 
+
+# A curly closing (or opening) double quote right after a number is an inch mark.
+_QUOTED_INCH = re.compile(r"(?<=\d)\s?[\u201c\u201d]")
 
 _BY = re.compile(r"(\d(?:\s?(?:''|[\"″]|[a-zA-Z]{1,6}\.?))?) by (?=\d)")
 
@@ -535,6 +541,39 @@ class Dims:
 
     values_cm: tuple[float, ...]
     text: str
+    #: What each value measures (:data:`kb.features.EXTENT_ROLES`), from axis letters or a diameter mark;
+    #: "extent" where the text does not say.
+    roles: tuple[str, ...] = ()
+
+    def extents(self) -> tuple[tuple[str, float], ...]:
+        """``(role, cm)`` per stated value."""
+        roles = self.roles or ("extent",) * len(self.values_cm)
+        return tuple(zip(roles, self.values_cm, strict=True))
+
+
+#: Axis letters (en, de: B = Breite, T = Tiefe) and diameter marks, by role.
+AXIS_LETTER_ROLES = {
+    "L": "length", "W": "width", "B": "width", "H": "height", "D": "depth", "T": "depth",
+    "Ø": "diameter", "⌀": "diameter",
+}  # fmt: skip
+
+
+_CJK_AXIS_ROLES = {
+    "長": "length", "长": "length", "長さ": "length", "寬": "width", "宽": "width", "幅": "width",
+    "高": "height", "高さ": "height", "深": "depth", "奥行": "depth", "奥行き": "depth", "厚": "thickness",
+}  # fmt: skip
+
+
+def _letter_role(letter: str | None) -> str:
+    """The role an axis letter (or CJK axis word) names; "extent" when none."""
+    if not letter:
+        return "extent"
+    letter = letter.strip("()")
+    if letter in _CJK_AXIS_ROLES:
+        return _CJK_AXIS_ROLES[letter]
+    if letter in ("Ø", "⌀"):
+        return "diameter"
+    return AXIS_LETTER_ROLES.get(letter.upper(), "extent")
 
 
 def _find_unit(tokens: list[str | None], convert, default: str | None) -> list[float | None]:
@@ -588,10 +627,7 @@ def _lettered_dims(s: str, default_unit: str | None, decimal_comma: bool | None)
         return None
     text = s[run[0].start() : run[-1].end()]
     cm = [round(v * f, 6) for v, f in zip(values, factors, strict=True)]
-    axes = [t["axis"] for t in run]
-    if len(cm) == 2 and set(axes) & {"Ø", "⌀"} and not set(axes) & {"W", "D", "L", "B"}:
-        cm.append(cm[axes.index("Ø" if "Ø" in axes else "⌀")])  # "Ø 12 cm, H 20 cm": d x d x h
-    return Dims(tuple(cm), text)
+    return Dims(tuple(cm), text, tuple(_letter_role(t["axis"]) for t in run))
 
 
 # "(L) 30 cm x (W) 20 cm", "30(W) x 20(D) x 10(H) mm": bracketed axis letters carry no value.
@@ -616,7 +652,9 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
     if _DIAMETER_PREFIX.search(s):  # "直径12cm × 高さ6.5cm", "Ø 12 x 6,5 cm": a round object, d x d x h
         diameters = {m.group("n") for m in _DIAMETER_PREFIX.finditer(s)}
         s = _DIAMETER_PREFIX.sub(lambda m: m.group("n"), s)
+    prefixed: list[str] = []
     if _AXIS_PREFIX.search(s):
+        prefixed = [p.group(0).strip(" .:=") for p in _AXIS_PREFIX.finditer(s)]
         s = clean_text(_AXIS_PREFIX.sub("", s))  # "H 30 cm x W 20 cm", "長37.5*寬26*高13.5cm"
     found: list[Dims] = []
     for m in _DIMS_RE.finditer(s):
@@ -626,9 +664,15 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
         nums, units = nums[:n], units[:n]
         # A one-letter "unit" like the L/W/H suffix of "23L" is a letter, not a unit; a trailing unit
         # may follow a suffix letter ("30H centímetros"): look past it.
+        letters = [m.group("l1"), m.group("l2"), None][:n]
+        for i in range(n - 1):  # "23L x 13,8W x ...": a suffix letter read as a unit
+            if letters[i] is None and units[i] and len(units[i]) == 1 and length_unit(units[i]) is None:
+                letters[i] = units[i]
         if n == 3 and units[2] and len(units[2]) == 1 and length_unit(units[2]) is None:
-            units[2] = None
+            letters[2], units[2] = units[2], None
         tail = s[m.end() :]
+        if n == 3 and letters[2] is None and (after := re.match(r"\s?([a-zA-Z])\b", tail)):
+            letters[2] = after.group(1)  # 20"w x 4"d x 16"h
         if units[-1] is None or length_unit(units[-1]) is None:
             t = re.match(rf"\s*(?:\b[a-zA-Z]\b\s*)?({_UNIT})", tail)
             if t and length_unit(t.group(1)) is not None:
@@ -641,9 +685,13 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
         if any(v is None or v <= 0 for v in values):
             continue
         cm = [round(v * f, 6) for v, f in zip(values, factors, strict=True)]
-        if n == 2 and diameters:
-            cm += [c for x, c in zip(nums, cm, strict=True) if x in diameters][:1]
-        found.append(Dims(tuple(cm), m.group(0)))
+        if len(prefixed) == n and all(letter is None for letter in letters):
+            letters = prefixed
+        roles = tuple(
+            "diameter" if x in diameters else _letter_role(letter)
+            for x, letter in zip(nums, letters, strict=True)
+        )
+        found.append(Dims(tuple(cm), m.group(0), roles))
     return found
 
 

@@ -12,7 +12,11 @@ __all__ = ["ProductRecord"]
 class ProductRecord:
     """What one page says about one product, normalised to catalog units.
 
-    dims_cm: the product's own dimensions, largest first (1 to 3 values), or None.
+    dims_cm: the product's own dimensions, largest first (1 to 3 values), or None: only the axes the page
+    states, filled from ``dims`` by :func:`kb.features.axes_from_extents` (a diameter of a round object
+    fills two; nothing is invented).
+    dims: the extents the page states, each ``{"role": ..., "cm": ...}`` (roles in
+    :data:`kb.features.EXTENT_ROLES`; "extent" where the page does not name the axis), largest first.
     mass_g: the product's own mass, or None.
     package_dims_cm / package_mass_g: package or shipping values, one entry per package, kept apart.
     material / shape: catalog words (kb.features) or None; shape may be inferred from dims (documented).
@@ -26,6 +30,7 @@ class ProductRecord:
     canonical_url: str | None = None
     gtin: str | None = None
     dims_cm: tuple[float, ...] | None = None
+    dims: list[dict[str, Any]] = field(default_factory=list)
     mass_g: float | None = None
     package_dims_cm: list[tuple[float, ...]] = field(default_factory=list)
     package_mass_g: list[float] = field(default_factory=list)
@@ -34,6 +39,9 @@ class ProductRecord:
     adapter: str | None = None
     warnings: list[str] = field(default_factory=list)
     raw: dict[str, str] = field(default_factory=dict)
+    #: Every dims and mass value the adapters proposed, with its role, adapter, rank, page text and what
+    #: the chooser decided about it (``objrecall extract --json --explain``).
+    candidates: list[dict[str, Any]] = field(default_factory=list, repr=False, compare=False)
 
     def to_dict(self) -> dict[str, Any]:
         d = asdict(self)

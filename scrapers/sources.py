@@ -16,7 +16,12 @@ A ``sources.toml`` lists stores under ``[[stores]]``; ``[defaults]`` holds setti
     exclude = ["/cart"]
     adapter = "auto"                        # or "shopify": fetch /products/<handle>.json instead of the page
     max_pages = 1000
+    search = "{base_url}/search?q={query}"  # optional: the store's search, for on-demand lookups
+    search_results = 3                      # product pages a lookup reads from one store's results
 
+``search`` is a URL template with ``{query}`` where the search words go (URL-encoded); its answer may be
+an HTML results page (product links, ``rel="next"`` pagination) or JSON (objects with a ``url``), see
+:mod:`scrapers.store_search`. Only ``objrecall recall --lookup`` uses it; the nightly job never searches.
 ``{base_url}`` in any URL is replaced by the store's ``base_url`` (which ``objrecall ingest --base-url``
 overrides, so one file serves a demo store on any port). Every key is checked: an unknown key, a wrong type
 or an impossible value is a :class:`~kb.errors.SourcesError` naming the file, the store and the key.
@@ -29,17 +34,28 @@ import tomllib
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
-from urllib.parse import urlsplit
+from urllib.parse import quote_plus, urlsplit
 
 from kb.errors import SourcesError
 from scrapers.fetcher import FetchPolicy
 
-__all__ = ["ADAPTER_HINTS", "DEFAULT_MAX_PAGES", "Sources", "StoreSource", "load_sources", "parse_sources"]
+__all__ = [
+    "ADAPTER_HINTS",
+    "DEFAULT_MAX_PAGES",
+    "DEFAULT_SEARCH_RESULTS",
+    "Sources",
+    "StoreSource",
+    "load_sources",
+    "parse_sources",
+]
 
 #: What ``adapter`` may say: "auto" lets the extractors recognise the page; "shopify" fetches each
 #: ``/products/<handle>`` page's JSON twin ``/products/<handle>.json`` instead.
 ADAPTER_HINTS = ("auto", "shopify")
 DEFAULT_MAX_PAGES = 1000
+DEFAULT_SEARCH_RESULTS = 3
+#: Where the search words go in a ``search`` template.
+QUERY_FIELD = "{query}"
 
 _POLICY_KEYS = {
     "delay_s": float,
@@ -62,9 +78,13 @@ _STORE_KEYS = {
     "exclude": list,
     "adapter": str,
     "max_pages": int,
+    "search": str,
+    "search_results": int,
     **_POLICY_KEYS,
 }
-_DEFAULT_KEYS = {k: v for k, v in _STORE_KEYS.items() if k not in ("name", "base_url", "sitemaps", "urls")}
+_DEFAULT_KEYS = {
+    k: v for k, v in _STORE_KEYS.items() if k not in ("name", "base_url", "sitemaps", "urls", "search")
+}
 
 
 @dataclass(frozen=True)
@@ -80,6 +100,14 @@ class StoreSource:
     adapter: str = "auto"
     max_pages: int = DEFAULT_MAX_PAGES
     policy: FetchPolicy = field(default_factory=FetchPolicy)
+    search: str | None = None
+    search_results: int = DEFAULT_SEARCH_RESULTS
+
+    def search_url(self, query: str) -> str:
+        """The store's search URL for ``query`` (words URL-encoded); the store must have a ``search``."""
+        if self.search is None:
+            raise SourcesError(f"store {self.name!r} has no search")
+        return self.search.replace(QUERY_FIELD, quote_plus(query))
 
     def wants(self, url: str) -> bool:
         """True if ``url`` passes the include/exclude patterns (matched against the URL's path+query)."""
@@ -97,6 +125,7 @@ class StoreSource:
             "urls": list(self.urls),
             "adapter": self.adapter,
             "delay_s": self.policy.delay_s,
+            "search": self.search,
         }
 
 
@@ -205,6 +234,15 @@ def parse_sources(
         max_pages = values.get("max_pages", DEFAULT_MAX_PAGES)
         if max_pages <= 0:
             raise _fail(origin, where, "max_pages must be > 0")
+        search = values.get("search")
+        if search is not None:
+            if QUERY_FIELD not in search:
+                raise _fail(origin, where, f"search: {search!r} has no {QUERY_FIELD} for the search words")
+            _check_url(origin, where, "search", expand(search.replace(QUERY_FIELD, "q"), "search"))
+            search = search.replace("{base_url}", base)
+        search_results = values.get("search_results", DEFAULT_SEARCH_RESULTS)
+        if search_results <= 0:
+            raise _fail(origin, where, "search_results must be > 0")
         policy_values = {k: values[k] for k in _POLICY_KEYS if k in values}
         if delay_s is not None:
             policy_values["delay_s"] = delay_s
@@ -223,6 +261,8 @@ def parse_sources(
                 adapter=adapter,
                 max_pages=max_pages,
                 policy=policy,
+                search=search,
+                search_results=search_results,
             )
         )
     return Sources(tuple(stores), origin)

@@ -27,7 +27,7 @@ from pathlib import Path
 from string import Template
 from typing import Any
 
-from kb.cli_common import to_jsonable
+from kb.jsonable import to_jsonable
 
 __all__ = ["CSV_FIELDS", "success_rates", "write_report"]
 

@@ -80,7 +80,7 @@ def test_nothing_secret_is_committed():
 def test_service_commands_are_real_objrecall_commands(service):
     """Parse each service's command with the objrecall CLI itself: the subcommand exists, its --help works,
     and every option given is one of its options with a valid value."""
-    from kb.cli import app
+    from kb.service.cli import app
 
     argv = objrecall_argv(compose_file()["services"][service]["command"])
     group = typer.main.get_command(app)
@@ -96,7 +96,7 @@ def test_service_commands_are_real_objrecall_commands(service):
             assert word in options, f"{service}: {word} is not an option of `objrecall {' '.join(argv[:2])}`"
     cmd.make_context(cmd.name, list(words))  # raises on an unknown option, a missing value or a bad type
     help_run = subprocess.run(
-        [sys.executable, "-m", "kb.cli", *argv[: len(argv) - len(words)], "--help"],
+        [sys.executable, "-m", "kb.service.cli", *argv[: len(argv) - len(words)], "--help"],
         capture_output=True,
         text=True,
         timeout=120,

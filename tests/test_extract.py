@@ -248,7 +248,7 @@ def test_extract_page_never_raises_anything_but_extraction_error(body):
 
 
 def test_cli_extract_json_one_line():
-    from kb.cli import app
+    from kb.service.cli import app
 
     result = CliRunner().invoke(app, ["extract", str(PAGES / "ikea_packages.html"), "--json"])
     assert result.exit_code == 0, result.output
@@ -264,7 +264,7 @@ def test_cli_extract_json_one_line():
 
 
 def test_cli_extract_text_and_errors():
-    from kb.cli import app
+    from kb.service.cli import app
 
     runner = CliRunner()
     result = runner.invoke(app, ["extract", str(PAGES / "otto_separate_lines.html")])
@@ -282,7 +282,7 @@ def test_cli_extract_url_over_loopback_http():
     import http.server
     import threading
 
-    from kb.cli import app
+    from kb.service.cli import app
 
     class QuietHandler(http.server.SimpleHTTPRequestHandler):
         def log_message(self, *args):  # keep the command's output clean

@@ -8,7 +8,7 @@ import pytest
 from typer.testing import CliRunner
 
 from kb.catalog import KnowledgeBase
-from kb.cli import app
+from kb.service.cli import app
 
 runner = CliRunner()
 

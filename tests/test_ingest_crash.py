@@ -100,7 +100,7 @@ def _env(extra: dict[str, str] | None = None) -> dict[str, str]:
 
 def _ingest(db: Path, sources: Path, store: DemoStore, env: dict[str, str] | None = None) -> subprocess.Popen:
     exe = shutil.which("objrecall", path=_env()["PATH"])
-    cmd = [exe] if exe else [sys.executable, "-m", "kb.cli"]
+    cmd = [exe] if exe else [sys.executable, "-m", "kb.service.cli"]
     return subprocess.Popen(
         [*cmd, "ingest", "--sources", str(sources), "--db", str(db), "--base-url", store.base_url, "--json"],
         stdout=subprocess.PIPE,

@@ -3,9 +3,9 @@ import subprocess
 
 from typer.testing import CliRunner
 
-from kb.cli import app
 from kb.csvio import write_catalog_csv
 from kb.features import ObjectRecord
+from kb.service.cli import app
 
 runner = CliRunner()
 

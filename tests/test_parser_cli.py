@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from kb.cli import app
 from kb.features import FEATURES
+from kb.service.cli import app
 
 BOTTLE = (
     "A metallic water bottle of about seven and quarter centimeters in diameter and twenty one and half "
@@ -98,7 +98,7 @@ def test_real_subprocess_with_empty_nltk_data(tmp_path: Path, cli_env: dict[str,
     env = {**cli_env, "NLTK_DATA": str(empty)}
     path = _write_csv(tmp_path / "d.csv", [{"description": BOTTLE}, {"description": "a 3 cm cube, 12 g"}])
     proc = subprocess.run(
-        [sys.executable, "-m", "kb.cli", "parse", "--file", str(path), "--json"],
+        [sys.executable, "-m", "kb.service.cli", "parse", "--file", str(path), "--json"],
         capture_output=True,
         text=True,
         env=env,

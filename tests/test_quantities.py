@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from kb.features import axes_from_extents
 from scrapers.quantities import (
     clean_text,
     decimal_comma_for,
@@ -287,10 +288,39 @@ def test_fraction_like_things_that_are_not_fractions_are_left_alone():
     assert clean_text("5' 13\"") == "5' 13\""  # 13 inches is not the rest of a foot
 
 
-def test_diameter_prefix_makes_a_round_object():
-    assert parse_dims("直径12cm × 高さ6.5cm")[0].values_cm == (12.0, 6.5, 12.0)
-    assert parse_dims("Ø 12 x 6,5 cm", None, True)[0].values_cm == (12.0, 6.5, 12.0)
-    assert parse_dims("12 x 6 cm")[0].values_cm == (12.0, 6.0)
+def test_diameter_prefix_states_a_diameter_that_fills_two_axes():
+    found = parse_dims("直径12cm × 高さ6.5cm")[0]
+    assert found.values_cm == (12.0, 6.5) and found.roles[0] == "diameter"
+    assert axes_from_extents(found.extents()) == (12.0, 12.0, 6.5)
+    found = parse_dims("Ø 12 x 6,5 cm", None, True)[0]
+    assert found.extents() == (("diameter", 12.0), ("extent", 6.5))
+    assert parse_dims("12 x 6 cm")[0].extents() == (("extent", 12.0), ("extent", 6.0))
+
+
+@pytest.mark.parametrize(
+    ("text", "extents"),
+    [
+        ('24"x36"', (("extent", 60.96), ("extent", 91.44))),
+        ("40\u201d x 28\u201d", (("extent", 101.6), ("extent", 71.12))),  # curly inch marks
+        ("\u201c12\u201d x 8\u201d", (("extent", 30.48), ("extent", 20.32))),
+        ('20\\"W x 4\\"D x 16\\"H', (("width", 50.8), ("depth", 10.16), ("height", 40.64))),  # escaped
+        ('20"w x 4"d x 16"h', (("width", 50.8), ("depth", 10.16), ("height", 40.64))),
+        ("H 30 cm x W 20 cm", (("height", 30.0), ("width", 20.0))),
+        ("23L x 13,8W x 30H centímetros", (("length", 23.0), ("width", 13.8), ("height", 30.0))),
+        ("H21.6, W9.1, D1.5cm", (("height", 21.6), ("width", 9.1), ("depth", 1.5))),
+        ("長37.5*寬26*高13.5cm", (("length", 37.5), ("width", 26.0), ("height", 13.5))),
+        ("Ø 12 cm, H 20 cm", (("diameter", 12.0), ("height", 20.0))),
+    ],
+)
+def test_dimensions_keep_the_role_the_page_gives_each_extent(text, extents):
+    found = parse_dims(text, None, "," in text)
+    assert found, text
+    assert found[0].roles == tuple(r for r, _ in extents)
+    assert found[0].values_cm == pytest.approx(tuple(v for _, v in extents))
+
+
+def test_a_quote_after_a_word_is_no_inch_mark():
+    assert parse_dims("the \u201cbig\u201d x 2 model") == []
 
 
 _FRACTIONS = st.sampled_from(
@@ -330,7 +360,7 @@ def test_swiss_thousands_round_trip(value, mark):
         ("30/20/10 cm", (30.0, 20.0, 10.0)),
         ("30 by 20 by 10 cm", (30.0, 20.0, 10.0)),
         ("8 by 10 inches", (20.32, 25.4)),
-        ("Ø 12 cm, H 20 cm", (12.0, 20.0, 12.0)),
+        ("Ø 12 cm, H 20 cm", (12.0, 20.0)),
         ('10.5"L x 5.25"W x 3"H', (26.67, 13.335, 7.62)),
     ],
 )

@@ -7,7 +7,7 @@ import json
 import pytest
 from typer.testing import CliRunner
 
-from kb.cli import app
+from kb.service.cli import app
 
 runner = CliRunner()
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from fastapi.testclient import TestClient
 
-from kb.service import ERROR_STATUS, MAX_PAGE, create_app, load_token
+from kb.service.http import ERROR_STATUS, MAX_PAGE, create_app, load_token
 
 TOKEN = "test-token-not-secret"
 AUTH = {"Authorization": f"Bearer {TOKEN}"}
@@ -18,7 +18,7 @@ AUTH = {"Authorization": f"Bearer {TOKEN}"}
 def shared_db(tmp_path_factory) -> Path:
     """One seeded catalog for the read-only tests of this module."""
     from kb.catalog import KnowledgeBase
-    from kb.commands import seed_catalog_path
+    from kb.service.bootstrap import seed_catalog_path
 
     path = tmp_path_factory.mktemp("service") / "catalog.duckdb"
     KnowledgeBase.open(path).import_csv(seed_catalog_path())

@@ -17,7 +17,7 @@ schemathesis = pytest.importorskip(
 
 from hypothesis import HealthCheck, settings  # noqa: E402
 
-from kb.service import create_app  # noqa: E402
+from kb.service.http import create_app  # noqa: E402
 
 TOKEN = "fuzz-token"
 MAX_EXAMPLES = int(os.environ.get("OBJRECALL_FUZZ_EXAMPLES", "20"))
@@ -25,7 +25,7 @@ MAX_EXAMPLES = int(os.environ.get("OBJRECALL_FUZZ_EXAMPLES", "20"))
 
 def _catalog() -> Path:
     from kb.catalog import KnowledgeBase
-    from kb.commands import seed_catalog_path
+    from kb.service.bootstrap import seed_catalog_path
 
     path = Path(tempfile.mkdtemp(prefix="objrecall-fuzz-")) / "catalog.duckdb"
     KnowledgeBase.open(path).import_csv(seed_catalog_path())

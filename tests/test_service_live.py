@@ -17,7 +17,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from kb.service import serve_subprocess
+from kb.service.http import serve_subprocess
 
 pytestmark = pytest.mark.slow
 
@@ -72,7 +72,7 @@ def live(tmp_path_factory, store):
     import os
 
     from kb.catalog import KnowledgeBase
-    from kb.commands import seed_catalog_path
+    from kb.service.bootstrap import seed_catalog_path
 
     root = tmp_path_factory.mktemp("live")
     db = root / "catalog.duckdb"

@@ -23,7 +23,7 @@ from pathlib import Path
 import httpx
 import pytest
 
-from kb.service import serve_subprocess
+from kb.service.http import serve_subprocess
 
 pytestmark = pytest.mark.slow
 
@@ -53,8 +53,8 @@ CHROMIUM_FLAGS = [
 def site(tmp_path_factory):
     """A served catalog: the seed objects plus one whose name is HTML (as a scraped page could give)."""
     from kb.catalog import KnowledgeBase
-    from kb.commands import seed_catalog_path
     from kb.features import ObjectRecord
+    from kb.service.bootstrap import seed_catalog_path
 
     db = tmp_path_factory.mktemp("web") / "catalog.duckdb"
     kb = KnowledgeBase.open(db)

@@ -29,7 +29,9 @@ class Observation:
     words for the rest. package: a package or shipping value. rank: how direct the statement is within
     its adapter (0 explicit structured field, 1 labelled spec row, 2 weaker: a range bound, a title).
     order: position on the page. group: observations of one package share a group. raw: the page text
-    the value came from. note: a doubt, reported as a warning when this value is used.
+    the value came from. note: a doubt, reported as a warning when this value is used. roles: for dims,
+    what each value measures (:data:`kb.features.EXTENT_ROLES`, parallel to ``value``; empty = unnamed
+    extents). The catalog axes are filled from them by :func:`kb.features.axes_from_extents`.
     """
 
     feature: str
@@ -41,6 +43,12 @@ class Observation:
     raw: str = ""
     note: str | None = None
     source: str = ""
+    roles: tuple[str, ...] = ()
+
+    def extents(self) -> tuple[tuple[str, float], ...]:
+        """``(role, cm)`` per stated extent of a dims observation."""
+        roles = self.roles if len(self.roles) == len(self.value) else ("extent",) * len(self.value)
+        return tuple(zip(roles, self.value, strict=True))
 
 
 @dataclass(frozen=True)

@@ -117,7 +117,7 @@ def read_product(node: dict, order: int, decimal_comma: bool | None) -> list[Obs
         if axis in node:
             value, raw = quantity(node.get(axis), "length")
             if value is not None:
-                axes.append((value, f"{axis}: {raw}"))
+                axes.append((value, f"{axis}: {raw}", axis))
             elif raw:
                 obs.append(
                     Observation("warning", f"JSON-LD {axis} {raw!r} unreadable; not used", order=order)
@@ -125,20 +125,30 @@ def read_product(node: dict, order: int, decimal_comma: bool | None) -> list[Obs
     if len(axes) >= 2:
         obs.append(
             Observation(
-                "dims", tuple(v for v, _ in axes), rank=0, order=order, raw="; ".join(r for _, r in axes)
+                "dims",
+                tuple(v for v, _, _ in axes),
+                rank=0,
+                order=order,
+                raw="; ".join(r for _, r, _ in axes),
+                roles=tuple(a for _, _, a in axes),
             )
         )
     else:
         size = _text(node.get("size")) if isinstance(node.get("size"), str) else None
         found = parse_dims(size, None, decimal_comma) if size else []
         if found:  # "size": "30 x 20 x 10 cm" (schema.org's size is free text; a clothing size is no dims)
-            obs.append(Observation("dims", found[0].values_cm, rank=1, order=order, raw=f"size: {size[:80]}"))
-        elif len(axes) == 1:
             obs.append(
                 Observation(
-                    "warning", f"JSON-LD states only {axes[0][1]}; not used as dimensions", order=order
+                    "dims", found[0].values_cm, rank=1, order=order, raw=f"size: {size[:80]}",
+                    roles=found[0].roles,
                 )
-            )
+            )  # fmt: skip
+        elif len(axes) == 1:  # a partial size: the one extent stated, one rank weaker
+            obs.append(
+                Observation(
+                    "dims", (axes[0][0],), rank=2, order=order, raw=axes[0][1], roles=(axes[0][2],)
+                )
+            )  # fmt: skip
     if "weight" in node:
         value, raw = quantity(node.get("weight"), "mass")
         if value is not None:

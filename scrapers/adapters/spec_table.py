@@ -188,12 +188,14 @@ def observations_from_pairs(
                     if again and max(again[0].values_cm) <= MAX_DIM_CM:
                         d, note = again[0], "read with a decimal comma (the other reading is absurd)"
                 rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
-                values = d.values_cm
+                values, roles = d.values_cm, d.roles
                 if len(values) == 2:
                     extra = third_axis(rest, decimal_comma)  # "8\" x 10\" and is 3/4\" thick"
                     if extra is not None:
-                        values = (*values, extra)
-                obs.append(Observation("dims", values, package, rank, pair.order, pair.group, raw, note))
+                        values, roles = (*values, extra), (*roles, "extent")
+                obs.append(
+                    Observation("dims", values, package, rank, pair.order, pair.group, raw, note, roles=roles)
+                )
             if info.kind == "dimensions":
                 mass, note = _plausible_mass(rest, None, decimal_comma)
                 if mass is not None:
@@ -223,11 +225,22 @@ def observations_from_pairs(
                 rng = parse_length_range(pair.value, info.unit, decimal_comma)
                 if rng is None:
                     continue
-                length = rng[0]
-                note = f"{info.kind} given as a range ({raw}); took the lower bound"
+                length, note = range_extent(info.kind, rng, raw)
             axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
     obs.extend(_group_axes(axes))
     return obs
+
+
+def range_extent(kind: str, rng: tuple[float, float], raw: str) -> tuple[float, str]:
+    """The extent a range of one axis gives, with the note saying so. A narrow range (high at most
+    :data:`NARROW_RANGE` x low: ``30-32 cm``, ``adjustable from 90 to 110 cm``, a tolerance or the
+    object's own adjustment) gives its **upper** bound, the most room the object needs; a wide one
+    (``15.5" - 116.5"``: a pendant's hanging reach, variants of different sizes) gives its lower bound,
+    the object's own extent."""
+    low, high = rng
+    if high <= NARROW_RANGE * low:
+        return high, f"{kind} given as a range ({raw}); took the upper bound {high:g} cm"
+    return low, f"{kind} given as a wide range ({raw}); took the lower bound {low:g} cm (the object's own)"
 
 
 def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterator[Observation]:
@@ -250,19 +263,18 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
     multi = [r for r in rows if len(r) >= 2]
     for row in multi or rows[:1]:
         first = row[0][2]
-        values = [v for _, v, *_ in row]
-        kinds = {k for k, *_ in row}
-        if "diameter" in kinds and not kinds & {"width", "depth", "length"} and len(values) < 3:
-            # a round object: the diameter is both its width and its depth (a bottle: d x d x h)
-            values.append(next(v for k, v, *_ in row if k == "diameter"))
-        elif "diameter" in kinds and len(values) > 3:
+        extents = [(k, v) for k, v, *_ in row]
+        if len(extents) > 3:
             # a pan's "Diameter 26 cm" next to its length, width and height: the diameter is a part's
-            values = [v for k, v, *_ in row if k != "diameter"]
+            extents = [(k, v) for k, v in extents if k != "diameter"]
         raw = "; ".join(f"{p.label}: {p.value}" for _, _, p, _, _ in row)[:300]
         notes = "; ".join(n for *_, n in row if n) or None
         package = any(p.package or p.info.package for _, _, p, _, _ in row)
         rank = max(r for *_, r, _ in row) + (0 if multi else 1)
-        yield Observation("dims", tuple(values), package, rank, first.order, first.group, raw, notes)
+        yield Observation(
+            "dims", tuple(v for _, v in extents), package, rank, first.order, first.group, raw, notes,
+            roles=tuple(k for k, _ in extents),
+        )  # fmt: skip
 
 
 _MATERIAL_HINT = re.compile(

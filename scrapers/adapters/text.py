@@ -38,6 +38,7 @@ def text(page: Page) -> list[Observation]:
                     dims[0].values_cm,
                     rank=2,
                     raw=title,
+                    roles=dims[0].roles,
                     note=f"dimensions read from the product name ({title!r})",
                 )
             )
@@ -115,10 +116,11 @@ def free_text(page: Page) -> list[Observation]:
         if _MEASURES.search(text):
             dims = parse_dims(text, None, dc)
             if dims:
-                values = dims[0].values_cm
+                values, roles = dims[0].values_cm, dims[0].roles
                 extra = third_axis(text.split(dims[0].text, 1)[-1], dc) if len(values) == 2 else None
-                values = (*values, extra) if extra is not None else values
-                obs.append(Observation("dims", values, rank=2, order=line.index, raw=raw, note=note))
+                if extra is not None:
+                    values, roles = (*values, extra), (*roles, "extent")
+                obs.append(Observation("dims", values, rank=2, order=line.index, raw=raw, note=note, roles=roles))
         axes: dict[str, float] = {}
         for m in _AXIS_PHRASE.finditer(text):
             kind = _AXIS_WORDS[m.group("axis").lower()]
@@ -126,10 +128,12 @@ def free_text(page: Page) -> list[Observation]:
             if value is not None and kind not in axes:
                 axes[kind] = value
         if len(axes) >= 2:
-            values = list(axes.values())
-            if "diameter" in axes and not set(axes) & {"width", "depth", "length"}:
-                values.append(axes["diameter"])
-            obs.append(Observation("dims", tuple(values), rank=2, order=line.index, raw=raw, note=note))
+            obs.append(
+                Observation(
+                    "dims", tuple(axes.values()), rank=2, order=line.index, raw=raw, note=note,
+                    roles=tuple(axes),
+                )
+            )  # fmt: skip
         weighs = _WEIGHS.search(text)
         if weighs:
             mass = parse_mass(weighs.group("q"), None, dc)

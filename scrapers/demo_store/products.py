@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["BROKEN_PAGES", "DemoProduct", "PRODUCTS", "BrokenPage", "product_by_handle"]
+__all__ = ["BROKEN_PAGES", "DemoProduct", "PRODUCTS", "SEARCH_ONLY_PRODUCTS", "BrokenPage", "product_by_handle"]
 
 _TO_CM = {"cm": 1.0, "mm": 0.1, "m": 100.0, "in": 2.54}
 _TO_G = {"g": 1.0, "kg": 1000.0, "oz": 28.349523125, "lb": 453.59237}
@@ -251,7 +251,20 @@ TWIN_PRODUCTS: tuple[DemoProduct, ...] = (
 
 
 def product_by_handle(handle: str) -> DemoProduct:
-    for prod in (*PRODUCTS, FLAKY_PRODUCT, *TWIN_PRODUCTS):
+    for prod in (*PRODUCTS, FLAKY_PRODUCT, *TWIN_PRODUCTS, *SEARCH_ONLY_PRODUCTS):
         if prod.handle == handle:
             return prod
     raise KeyError(handle)
+
+
+#: Products the store sells but lists in no sitemap and on no page: only its search finds them (what an
+#: on-demand lookup, ``scrapers.lookup``, is for). Two teapots, so a search for "teapot" returns one that
+#: does not fit a description of the other.
+SEARCH_ONLY_PRODUCTS: tuple[DemoProduct, ...] = (
+    P("glazed-ceramic-teapot", "jsonld", "en", "Glazed Ceramic Teapot 1.2 L", (22.0, 15.0, 14.0), "cm", 900, "g",
+      "other", "glazed stoneware ceramic", extra={"keywords": "tea pot kettle"}),
+    P("cast-iron-teapot", "microdata", "en", "Cast Iron Teapot 0.9 L", (18.5, 15.0, 13.0), "cm", 1.6, "kg",
+      "metal", "enamelled cast iron", extra={"keywords": "tea pot tetsubin"}),
+    P("copper-mixing-bowl", "spec_table", "en", "Copper Mixing Bowl 30 cm", (30.0, 30.0, 13.0), "cm", 1.1, "kg",
+      "metal", "hammered copper", extra={"keywords": "bowl baking"}),
+)  # fmt: skip

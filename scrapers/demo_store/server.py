@@ -4,7 +4,10 @@ Routes: ``/`` (links to everything), ``/robots.txt`` (a Disallow and a Crawl-del
 each product's page (see :attr:`DemoProduct.path`), ``/products/<handle>.json`` for the Shopify-style ones,
 a duplicate route with a canonical link, a 301 from an old URL, a page that answers 503 with Retry-After
 once, and the broken pages of :data:`BROKEN_PAGES` (malformed JSON-LD, 500, slow, 50 MB, absurd values,
-not a product, disallowed).
+not a product, disallowed). ``/search?q=&page=`` and ``/search.json?q=`` search every product, including
+:data:`SEARCH_ONLY_PRODUCTS`, which no sitemap or page lists (see :mod:`scrapers.demo_store.search`);
+``search_fault`` makes the search slow or answer 500, ``disallow_search`` puts it under a robots.txt
+Disallow, so tests can meet the stores a lookup must skip.
 
 Every 200 page has an ``ETag`` (hash of the body) and a ``Last-Modified`` (the product's ``updated``), and
 conditional requests get ``304 Not Modified``. :meth:`DemoStore.update_product` changes a product while the
@@ -22,15 +25,16 @@ import time
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
-from urllib.parse import urlsplit
+from urllib.parse import parse_qs, urlsplit
 
-from scrapers.demo_store import templates
+from scrapers.demo_store import search, templates
 from scrapers.demo_store.products import (
     BROKEN_PAGES,
     DUPLICATE_ROUTES,
     FLAKY_PATH,
     FLAKY_PRODUCT,
     PRODUCTS,
+    SEARCH_ONLY_PRODUCTS,
     TWIN_PRODUCTS,
     BrokenPage,
     DemoProduct,
@@ -39,6 +43,8 @@ from scrapers.demo_store.products import (
 __all__ = ["DemoStore", "RequestLogEntry"]
 
 HUGE_BYTES = 50 * 1024 * 1024
+#: What ``search_fault`` may be: the search answers after ``slow_s`` seconds, or always with a 500.
+SEARCH_FAULTS = ("slow", "http_500")
 
 
 @dataclass(frozen=True)
@@ -127,7 +133,9 @@ class DemoStore:
 
     ``port=0`` picks a free port (see :attr:`port`). ``crawl_delay`` is what robots.txt asks of crawlers
     (None leaves the line out); ``slow_s`` is how long the slow page takes; ``huge_bytes`` the size of the
-    huge page, generated while streaming (never held in memory).
+    huge page, generated while streaming (never held in memory). ``search_fault`` (one of
+    :data:`SEARCH_FAULTS`) breaks the search; ``disallow_search`` disallows it in robots.txt;
+    ``search_only`` are the products only the search finds.
     """
 
     def __init__(
@@ -139,7 +147,12 @@ class DemoStore:
         slow_s: float = 3.0,
         huge_bytes: int = HUGE_BYTES,
         products: tuple[DemoProduct, ...] = PRODUCTS,
+        search_only: tuple[DemoProduct, ...] = SEARCH_ONLY_PRODUCTS,
+        search_fault: str | None = None,
+        disallow_search: bool = False,
     ):
+        if search_fault is not None and search_fault not in SEARCH_FAULTS:
+            raise ValueError(f"search_fault must be one of {', '.join(SEARCH_FAULTS)}, not {search_fault!r}")
         self.host = host
         self.requested_port = port
         self.crawl_delay = crawl_delay
@@ -148,6 +161,9 @@ class DemoStore:
         self.products: dict[str, DemoProduct] = {
             p.handle: p for p in (*products, FLAKY_PRODUCT, *TWIN_PRODUCTS)
         }
+        self.search_only: dict[str, DemoProduct] = {p.handle: p for p in search_only}
+        self.search_fault = search_fault
+        self.disallow_search = disallow_search
         self.broken: dict[str, BrokenPage] = {b.path: b for b in BROKEN_PAGES}
         self.log: list[RequestLogEntry] = []
         self.max_in_flight = 0
@@ -229,7 +245,7 @@ class DemoStore:
         """(body, content type, last-modified) of a cacheable 200 page, or None."""
         base = self.base_url
         pages = self.product_pages()
-        prod = pages.get(path)
+        prod = pages.get(path) or next((p for p in self.search_only.values() if p.path == path), None)
         if prod is None and path in DUPLICATE_ROUTES and not path.startswith("/old/"):
             prod = self.products[DUPLICATE_ROUTES[path]]
         if prod is not None:
@@ -246,6 +262,8 @@ class DemoStore:
             return None
         if path == "/robots.txt":
             lines = ["User-agent: *", "Disallow: /private/", "Disallow: /cart"]
+            if self.disallow_search:
+                lines.append("Disallow: /search")
             if self.crawl_delay is not None:
                 lines.append(f"Crawl-delay: {self.crawl_delay:g}")
             lines += ["", f"Sitemap: {base}/sitemap.xml", ""]
@@ -261,8 +279,35 @@ class DemoStore:
             return templates.render_broken(broken, base).encode(), "text/html; charset=utf-8", _EPOCH
         return None
 
+    def searchable(self) -> list[DemoProduct]:
+        """Every product the search looks through: the listed ones and the search-only ones."""
+        return [*self.products.values(), *self.search_only.values()]
+
+    def _search(self, h: _Handler, path: str, query: str, *, head: bool) -> int:
+        """The search routes (never cached: every query is its own page)."""
+        if self.search_fault == "http_500":
+            return _send(h, 500, b"<h1>Search is unavailable</h1>", "text/html", head=head)
+        if self.search_fault == "slow":
+            time.sleep(self.slow_s)
+        params = parse_qs(query)
+        q = (params.get("q") or [""])[0]
+        with self._lock:
+            hits = search.find(self.searchable(), q)
+        if path == "/search.json":
+            body = search.render_results_json(hits, q, self.base_url).encode()
+            return _send(h, 200, body, "application/json; charset=utf-8", head=head)
+        try:
+            page = int((params.get("page") or ["1"])[0])
+        except ValueError:
+            page = 1
+        body = search.render_results(hits, q, page, self.base_url).encode()
+        return _send(h, 200, body, "text/html; charset=utf-8", head=head)
+
     def _respond(self, h: _Handler, *, head: bool) -> int:
-        path = urlsplit(h.path).path
+        parts = urlsplit(h.path)
+        path = parts.path
+        if path in ("/search", "/search.json"):
+            return self._search(h, path, parts.query, head=head)
         broken = self.broken.get(path)
         if broken is not None and broken.kind == "http_500":
             return _send(h, 500, b"<h1>Internal Server Error</h1>", "text/html", head=head)

@@ -6,7 +6,6 @@ table, or one JSON document with ``--json``).
 
 from __future__ import annotations
 
-import importlib.resources
 from pathlib import Path
 from typing import Annotated
 
@@ -15,35 +14,12 @@ from rich.console import Console
 from rich.table import Table
 
 from kb.catalog import DEFAULT_MAX_ROWS, DEFAULT_SQL_TIMEOUT, KnowledgeBase
-from kb.cli_common import DbOption, JsonOption, emit, resolve_db
 from kb.features import FEATURES
+from kb.service.bootstrap import init_db
+from kb.service.cli.common import DbOption, JsonOption, emit, resolve_db
 
 console = Console()
 catalog_app = typer.Typer(no_args_is_help=True, help="Import, export and browse the object catalog.")
-
-
-def seed_catalog_path() -> Path:
-    """The seed catalog CSV shipped in the package."""
-    return Path(str(importlib.resources.files("kb") / "data" / "seed_catalog.csv"))
-
-
-def install_sql_extras(kb: KnowledgeBase) -> bool:
-    """Install the recall macros (``jp_distance`` ...) when the recall package provides them."""
-    try:
-        from recall.sql import install_macros
-    except ImportError:
-        return False
-    with kb.connect(write=True) as con:
-        install_macros(con)
-    return True
-
-
-def init_db(db: Path, *, seed: bool) -> KnowledgeBase:
-    kb = KnowledgeBase.open(db)
-    install_sql_extras(kb)
-    if seed:
-        kb.import_csv(seed_catalog_path())
-    return kb
 
 
 def _fmt(value: object) -> str:
@@ -191,21 +167,7 @@ def sql(
 
 
 def register(app: typer.Typer) -> None:
+    """Add ``init``, ``sql`` and the ``catalog`` group."""
     app.command("init")(init)
-    app.command("demo")(demo)
     app.command("sql")(sql)
     app.add_typer(catalog_app, name="catalog")
-
-
-def demo(
-    db: DbOption = None,
-    out: Annotated[Path, typer.Option("--out", help="Where to write the report.")] = Path("reports/demo"),
-    workers: Annotated[int, typer.Option(help="Simulation worker processes.")] = 2,
-    json_out: JsonOption = False,
-) -> None:
-    """The main job, offline: seed catalog -> ingest the demo storefront -> recall -> validate grasps -> report."""
-    from kb.mainjob import run_demo
-
-    result = run_demo(resolve_db(db), out, workers=workers)
-    if json_out:
-        emit(result.to_dict())

@@ -16,8 +16,8 @@ from typing import Annotated, Any
 
 import typer
 
-from kb.cli_common import DbOption, JsonOption, emit, emit_lines, resolve_db
 from kb.errors import CatalogError, DatabaseError, InvalidFeature, ObjectNotFound, ObjrecallError, RecallError
+from kb.service.cli.common import DbOption, JsonOption, emit, emit_lines, resolve_db
 
 grasp_app = typer.Typer(no_args_is_help=True, help="Plan grasps for objects and validate them in MuJoCo.")
 

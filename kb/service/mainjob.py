@@ -2,7 +2,8 @@
 descriptions -> validate their grasps in MuJoCo -> report. Runs with no network: the demo storefront is
 served on 127.0.0.1 by this process.
 
-Like the CLI and the HTTP service, this module is part of the service face and may import every package.
+Like the CLI and the HTTP service, this module is part of the service face (``kb/service/``) and may import
+every package.
 """
 
 from __future__ import annotations
@@ -20,7 +21,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from kb.catalog import KnowledgeBase
-from kb.cli_common import to_jsonable
+from kb.jsonable import to_jsonable
+from kb.service.bootstrap import demo_descriptions_path, init_db
 
 __all__ = ["DemoResult", "run_demo"]
 
@@ -36,8 +38,6 @@ class DemoResult:
 
 
 def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers: int = 2) -> DemoResult:
-    from kb.commands import init_db
-
     console = console or Console(stderr=True)
     out_dir.mkdir(parents=True, exist_ok=True)
     result = DemoResult(db=db, out_dir=out_dir)
@@ -71,14 +71,10 @@ def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers
     return result
 
 
-def demo_descriptions_path() -> Path:
-    return Path(str(importlib.resources.files("kb") / "data" / "demo_descriptions.csv"))
-
-
 def _ingest_demo_store(kb: KnowledgeBase, console: Console) -> dict[str, Any]:
     import requests
 
-    from scrapers.cli import _print_ingest_summary, _progress
+    from kb.service.cli.ingest import IngestProgress, print_ingest_summary
     from scrapers.demo_store import DemoStore
     from scrapers.ingest import run_ingestion
     from scrapers.sources import load_sources
@@ -86,9 +82,9 @@ def _ingest_demo_store(kb: KnowledgeBase, console: Console) -> dict[str, Any]:
     sources_file = Path(str(importlib.resources.files("scrapers") / "demo_sources.toml"))
     with DemoStore(port=0, crawl_delay=0, slow_s=3.0) as store:
         sources = load_sources(sources_file, base_url=store.base_url, delay_s=0)
-        with requests.Session() as session, _progress(enabled=console.is_terminal) as progress:
+        with requests.Session() as session, IngestProgress(enabled=console.is_terminal) as progress:
             report = run_ingestion(kb, sources, session=session, progress=progress)
-    _print_ingest_summary(report)
+    print_ingest_summary(report)
     out = report.to_dict()
     return {k: out[k] for k in ("fetched", "not_modified", "extracted", "rejected", "new", "updated") if k in out}
 

@@ -1,4 +1,4 @@
-"""`objrecall recall` and `objrecall evaluate` (registered by kb/cli.py through COMMAND_MODULES)."""
+"""`objrecall recall` and `objrecall evaluate`: descriptions to ranked catalog objects, and their scores."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import Annotated, Any
 
 import typer
 
-from kb.cli_common import DbOption, JsonOption
+from kb.service.cli.common import DbOption, JsonOption
 
 METRIC_HELP = (
     "Distance: jp (the paper's Joint Probability), euclidean, minkowski (p=4), cosine, kdtree, jplog (JP with "
@@ -31,12 +31,37 @@ def register(app: typer.Typer) -> None:
             bool,
             typer.Option("--features-only", help="Ignore object names in the text (the paper's method)."),
         ] = False,
+        lookup: Annotated[
+            bool,
+            typer.Option("--lookup", help="When the catalog does not know it (open set, or confidence below "
+                         "0.5), search the stores of --sources, add what fits, and recall again."),
+        ] = False,
+        force_lookup: Annotated[
+            bool, typer.Option("--force-lookup", help="Like --lookup, but ask the stores even after a good recall.")
+        ] = False,
+        sources: Annotated[
+            Path | None,
+            typer.Option("--sources", help=f"Stores for --lookup (TOML; stores with a 'search') [env {ENV_SOURCES}; "
+                         "default: the bundled demo store's]"),
+        ] = None,
+        base_url: Annotated[
+            str | None, typer.Option("--base-url", help="Point every store of --sources at this URL.")
+        ] = None,
+        budget: Annotated[
+            float, typer.Option("--budget", help="Seconds a lookup may take (default 10).")
+        ] = 10.0,
+        max_pages: Annotated[
+            int, typer.Option("--max-pages", help="Requests a lookup may make, over all stores (default 12).")
+        ] = 12,
         db: DbOption = None,
         json_out: JsonOption = False,
     ) -> None:
-        """Recall the catalog objects a description is about, nearest first, with the reasons."""
-        from kb.cli_common import emit, emit_lines, resolve_db
+        """Recall the catalog objects a description is about, nearest first, with the reasons.
+
+        With --lookup, an object the catalog does not know is looked up in the stores' search first."""
         from kb.errors import DescriptionError, RecallError
+        from kb.service.cli.common import emit, emit_lines, resolve_db
+        from recall.descriptions import read_description_column
         from recall.engine import Recaller
         from recall.metrics import METRICS
 
@@ -44,8 +69,13 @@ def register(app: typer.Typer) -> None:
             raise DescriptionError("give either a description TEXT or --file D.csv (not both)")
         if metric is not None and metric not in METRICS:
             raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
-        recaller = Recaller.from_db(resolve_db(db))
         options = dict(top=top, metric=metric, features_only=features_only)
+        if lookup or force_lookup:
+            plan = _lookup_sources(sources, base_url)
+            limits = dict(budget_s=budget, max_pages=max_pages, force=force_lookup)
+            _lookup_command(resolve_db(db), text, file, plan, {**options, **limits}, json_out)
+            return
+        recaller = Recaller.from_db(resolve_db(db))
         if file is not None:
             rows = read_description_column(file)
             results = (recaller.recall_text(row, **options) for row in rows)
@@ -75,7 +105,7 @@ def register(app: typer.Typer) -> None:
         json_out: JsonOption = False,
     ) -> None:
         """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss."""
-        from kb.cli_common import emit
+        from kb.service.cli.common import emit
         from recall.evaluation import evaluate
 
         for path in (catalog, descriptions, open_set):
@@ -88,25 +118,58 @@ def register(app: typer.Typer) -> None:
             _print_report(report)
 
 
-def read_description_column(path: Path) -> list[str]:
-    """The ``description`` column of a CSV, in order (blank cells kept: they give empty results)."""
-    import csv
+ENV_SOURCES = "OBJRECALL_SOURCES"
 
-    from kb.errors import DescriptionError
 
-    try:
-        with path.open(newline="", encoding="utf-8-sig") as fh:
-            reader = csv.DictReader(fh)
-            fields = [f.strip() for f in (reader.fieldnames or [])]
-            if "description" not in fields:
-                columns = ", ".join(fields) or "none"
-                raise DescriptionError(f"{path}: no 'description' column (columns: {columns})")
-            key = (reader.fieldnames or [])[fields.index("description")]
-            return [row.get(key) or "" for row in reader]
-    except UnicodeDecodeError as err:
-        raise DescriptionError(f"{path}: not UTF-8 text ({err.reason})") from None
-    except csv.Error as err:
-        raise DescriptionError(f"{path}: not a CSV file ({err})") from None
+def _lookup_sources(path: Path | None, base_url: str | None):
+    """The sources a lookup asks: --sources, else $OBJRECALL_SOURCES, else the bundled demo store's."""
+    import os
+
+    from scrapers.demo_store import DEMO_SOURCES
+    from scrapers.sources import load_sources
+
+    chosen = path or (Path(os.environ[ENV_SOURCES]) if os.environ.get(ENV_SOURCES) else DEMO_SOURCES)
+    return load_sources(chosen, base_url=base_url)
+
+
+def _lookup_command(db: Path, text: str | None, file: Path | None, plan, options: dict, json_out: bool) -> None:
+    """``recall --lookup``: each description recalled, looked up when needed, and recalled again."""
+    import requests
+
+    from kb.service.cli.common import emit, emit_lines
+    from recall.descriptions import read_description_column
+    from recall.lookup import recall_with_lookup
+
+    rows = read_description_column(file) if file is not None else [text or ""]
+    with requests.Session() as session:
+        results = (recall_with_lookup(db, row, sources=plan, session=session, **options) for row in rows)
+        if json_out and file is None:
+            emit(next(results).to_dict())
+        elif json_out:
+            emit_lines(r.to_dict() for r in results)
+        else:
+            for row, result in zip(rows, results, strict=True):
+                _print_lookup(result)
+                _print_result(result.result, title=row if file is not None else None)
+
+
+def _print_lookup(result) -> None:
+    """What a lookup did, before the recall it led to."""
+    from rich.console import Console
+    from rich.markup import escape
+
+    console = Console()
+    if not result.looked_up:
+        console.print(escape(f"Lookup: not needed ({result.message})"))
+        return
+    console.print(escape(f"Lookup ({result.why}): {result.message}"))
+    stores = result.stores
+    for answer in stores.stores if stores else []:
+        said = answer.status + (f": {answer.reason}" if answer.reason else "")
+        console.print(escape(f"  store {answer.store}: {said}; searched {', '.join(answer.queries) or '-'}"))
+    for cand in stores.candidates if stores else []:
+        console.print(escape(f"  page {cand.url}: {cand.name or '?'} -> {cand.outcome}"
+                             + (f" ({cand.reason})" if cand.reason else "")))  # fmt: skip
 
 
 def _fmt(value: Any) -> str:

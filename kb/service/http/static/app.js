@@ -26,12 +26,10 @@ function busy(delta) {
   document.body.dataset.state = pending > 0 ? "loading" : "idle";
 }
 
-async function api(path, body) {
-  const init = body === undefined ? {} : {
-    method: "POST",
-    headers: { "Content-Type": "application/json" },
-    body: JSON.stringify(body),
-  };
+async function api(path, body, token) {
+  const headers = { "Content-Type": "application/json" };
+  if (token) headers.Authorization = `Bearer ${token}`;
+  const init = body === undefined ? {} : { method: "POST", headers, body: JSON.stringify(body) };
   busy(1);
   try {
     const response = await fetch(path, init);
@@ -124,9 +122,22 @@ async function runRecall(text) {
   const top = Number(document.getElementById("top").value) || 5;
   const metric = document.getElementById("metric").value;
   const featuresOnly = document.getElementById("features-only").checked;
-  setStatus("recall-status", "Recalling...");
+  const lookup = document.getElementById("lookup").checked;
+  const lookupSummary = document.getElementById("lookup-summary");
+  lookupSummary.hidden = true;
+  setStatus("recall-status", lookup ? "Recalling, and asking the stores if the catalog does not know it..." : "Recalling...");
   try {
-    const answer = await api("/recall", { text, top, metric: metric || null, features_only: featuresOnly });
+    const request = { text, top, metric: metric || null, features_only: featuresOnly };
+    let answer;
+    if (lookup) {
+      const looked = await api("/recall/lookup", request, document.getElementById("token").value.trim());
+      answer = looked.result;
+      lookupSummary.textContent = looked.looked_up ? `Lookup: ${looked.message}` : "Lookup not needed: the catalog knows it.";
+      lookupSummary.dataset.found = String(looked.found);
+      lookupSummary.hidden = false;
+    } else {
+      answer = await api("/recall", request);
+    }
     const body = document.querySelector("#matches tbody");
     body.replaceChildren();
     answer.matches.forEach((m, i) => {

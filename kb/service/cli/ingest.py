@@ -1,4 +1,4 @@
-"""`objrecall` commands of the scrapers package (registered by kb/cli.py)."""
+"""`objrecall extract`, `objrecall ingest` and `objrecall demo-store`: product pages into the catalog."""
 
 from __future__ import annotations
 
@@ -8,11 +8,11 @@ from typing import Annotated, Any
 
 import typer
 
-from kb.cli_common import DbOption, JsonOption, emit, resolve_db
+from kb.service.cli.common import DbOption, JsonOption, emit, resolve_db
 
 #: Fields ``objrecall extract`` prints, in this order.
 EXTRACT_FIELDS = (
-    "name", "dims_cm", "mass_g", "package_dims_cm", "package_mass_g", "material", "shape", "adapter",
+    "name", "dims_cm", "dims", "mass_g", "package_dims_cm", "package_mass_g", "material", "shape", "adapter",
     "url", "canonical_url", "gtin", "warnings",
 )  # fmt: skip
 
@@ -35,8 +35,9 @@ def _fetch(url: str):
     return result.body or b"", result.content_type, result.final_url or url
 
 
-def extract_record(page_or_url: str) -> dict[str, Any]:
-    """The normalised record of a saved page or a URL, as the plain dict ``extract`` prints."""
+def extract_record(page_or_url: str, explain: bool = False) -> dict[str, Any]:
+    """The normalised record of a saved page or a URL, as the plain dict ``extract`` prints (with every
+    candidate value and the chooser's decision about it under ``candidates`` when ``explain``)."""
     from scrapers.extract import extract_file, extract_page
 
     if re.match(r"https?://", page_or_url, re.IGNORECASE):
@@ -45,7 +46,10 @@ def extract_record(page_or_url: str) -> dict[str, Any]:
     else:
         record = extract_file(page_or_url)
     data = record.to_dict()
-    return {key: data.get(key) for key in EXTRACT_FIELDS}
+    out = {key: data.get(key) for key in EXTRACT_FIELDS}
+    if explain:
+        out["candidates"] = data.get("candidates", [])
+    return out
 
 
 def _fmt(key: str, value: Any) -> str:
@@ -55,6 +59,8 @@ def _fmt(key: str, value: Any) -> str:
         return f"{value:g} g"
     if key == "dims_cm":
         return " x ".join(f"{v:g}" for v in value) + " cm"
+    if key == "dims":
+        return ", ".join(f"{e['role']} {e['cm']:g} cm" for e in value)
     if key == "package_dims_cm":
         return "; ".join(" x ".join(f"{v:g}" for v in p) + " cm" for p in value)
     if key == "package_mass_g":
@@ -70,10 +76,13 @@ def extract_command(
         ),
     ],
     json_out: JsonOption = False,
+    explain: Annotated[
+        bool, typer.Option("--explain", help="Also show every candidate value and why it was or was not chosen.")
+    ] = False,
 ) -> None:
-    """Print the normalised product record of one page: dimensions (cm, largest first), mass (g),
-    package values, material, shape, the adapter used and warnings."""
-    data = extract_record(page)
+    """Print the normalised product record of one page: dimensions (cm, largest first; the stated extents
+    with their roles), mass (g), package values, material, shape, the adapter used and warnings."""
+    data = extract_record(page, explain)
     if json_out:
         emit(data)
         return
@@ -82,6 +91,10 @@ def extract_command(
             typer.echo(f"{key:16} {_fmt(key, data[key])}")
     for warning in data["warnings"]:
         typer.echo(f"warning          {warning}")
+    for cand in data.get("candidates", []):
+        value = _fmt("dims_cm" if cand["feature"] == "dims" else "mass_g", cand["value"])
+        typer.echo(f"candidate        {cand['feature']} {value} [{cand['role']}, {cand['adapter']}] "
+                   f"{cand['decision']} ({cand['text'][:60]!r})")
 
 
 # ---------------------------------------------------------------------------------------------- ingest, demo-store
@@ -111,15 +124,15 @@ def ingest_command(
 
     plan = load_sources(sources, base_url=base_url, delay_s=delay)
     kb = KnowledgeBase.open(resolve_db(db))
-    with requests.Session() as session, _progress(enabled=not json_out and sys.stderr.isatty()) as progress:
+    with requests.Session() as session, IngestProgress(enabled=not json_out and sys.stderr.isatty()) as progress:
         report = run_ingestion(kb, plan, session=session, progress=progress)
     if json_out:
         emit(report)
         return
-    _print_ingest_summary(report)
+    print_ingest_summary(report)
 
 
-class _progress:
+class IngestProgress:
     """A rich progress bar on stderr (a no-op when disabled), used as the ``progress`` callback."""
 
     def __init__(self, *, enabled: bool):
@@ -153,7 +166,7 @@ class _progress:
             self.bar.__exit__(*exc)
 
 
-def _print_ingest_summary(report) -> None:
+def print_ingest_summary(report) -> None:
     from rich.console import Console
     from rich.table import Table
 

@@ -1,4 +1,4 @@
-"""`objrecall` commands of the recall package (registered by kb/cli.py)."""
+"""`objrecall parse`: a description (or a CSV of them) to catalog features (recall/PARSER.md)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from kb.cli_common import JsonOption
+from kb.service.cli.common import JsonOption
 
 
 def register(app: typer.Typer) -> None:
@@ -28,14 +28,15 @@ def _register_parse(app: typer.Typer) -> None:
         tree: Annotated[bool, typer.Option("--tree", help="Also print the chunk tree.")] = False,
     ) -> None:
         """Parse an object description into catalog features (cm, g, categories) with their evidence."""
-        from kb.cli_common import emit, emit_lines
         from kb.errors import DescriptionError
+        from kb.service.cli.common import emit, emit_lines
+        from recall.descriptions import read_description_column
         from recall.parser import parse
 
         if (text is None) == (file is None):
             raise DescriptionError("give either a description TEXT or --file D.csv (not both)")
         if file is not None:
-            rows = _description_rows(file)
+            rows = read_description_column(file)
             if json_out:
                 emit_lines(_parsed_dict(parse(row), tree) for row in rows)
             else:
@@ -54,15 +55,6 @@ def _parsed_dict(parsed, with_tree: bool) -> dict:
     if with_tree:
         out["tree"] = parsed.tree.pformat()
     return out
-
-
-def _description_rows(path) -> list[str]:
-    """The ``description`` column of a CSV file, in order (shared with ``objrecall recall --file``)."""
-    from pathlib import Path
-
-    from recall.cli_recall import read_description_column
-
-    return read_description_column(Path(path))
 
 
 def _fmt_value(value) -> str:

@@ -1,6 +1,7 @@
 """The knowledge service: the catalog, the parser, recall and the grasp planner over HTTP (FastAPI).
 
-``objrecall serve [--host 127.0.0.1] [--port 8000] [--db PATH]`` runs :func:`create_app` on uvicorn. The
+``objrecall serve [--host 127.0.0.1] [--port 8000] [--db PATH]`` (:mod:`kb.service.cli.serve`) runs
+:func:`create_app` on uvicorn. The
 endpoints, authentication and deployment are described in ``kb/SERVICE.md``; the OpenAPI document is at
 ``/openapi.json`` (browsable at ``/docs``) and a small web page at ``/``.
 
@@ -21,323 +22,52 @@ Design notes
   token configured, writes are disabled (403). Reads are open; the default host is loopback.
 
 Like the CLI, this module is part of the service face and imports the recall, scrapers and sim packages
-(lazily, inside the endpoints).
+(lazily, inside the endpoints). No ``from __future__ import annotations`` here: FastAPI reads the route
+signatures, whose models are defined inside :func:`create_app`.
 """
 
-import asyncio
 import hmac
 import json
 import os
-import secrets
-import shutil
-import socket
-import subprocess
-import sys
 import tempfile
 import threading
 import time
-from collections.abc import Iterator
-from contextlib import asynccontextmanager, contextmanager
-from dataclasses import dataclass, field, replace
-from datetime import UTC, datetime
+from contextlib import asynccontextmanager
+from dataclasses import replace
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-import typer
-
-from kb.cli_common import DbOption, resolve_db, to_jsonable
 from kb.errors import (
-    CatalogError,
-    CatalogImportError,
     DatabaseBusy,
     DatabaseError,
-    DescriptionError,
-    IngestionBusy,
-    InvalidFeature,
-    JobNotFound,
     ObjectNotFound,
     ObjrecallError,
     QueryFailed,
-    QueryRefused,
     QueryTimeout,
     RecallError,
     RequestTimeout,
     WritesDisabled,
 )
-
-__all__ = [
-    "ENV_SOURCES",
-    "ENV_TOKEN",
-    "ENV_TOKEN_FILE",
-    "ERROR_STATUS",
-    "MAX_PAGE",
-    "ServiceSettings",
-    "create_app",
-    "free_port",
-    "load_token",
-    "register",
-    "serve_subprocess",
-]
-
-ENV_TOKEN = "OBJRECALL_API_TOKEN"
-ENV_TOKEN_FILE = "OBJRECALL_API_TOKEN_FILE"
-ENV_SOURCES = "OBJRECALL_SOURCES"
-
-#: Largest page of any list endpoint.
-MAX_PAGE = 500
-DEFAULT_PAGE = 50
-#: Caps of the SQL endpoint (a request may ask for less, never more).
-SQL_MAX_ROWS = 5_000
-SQL_MAX_TIMEOUT_S = 10.0
-SQL_MAX_RESPONSE_BYTES = 8 * 1024 * 1024
-MAX_TEXT_CHARS = 5_000
-MAX_TOP = 50
-
-#: HTTP status of each error class (the most specific class listed wins).
-ERROR_STATUS: dict[type[ObjrecallError], int] = {
-    ObjectNotFound: 404,
-    CatalogImportError: 400,
-    CatalogError: 400,
-    InvalidFeature: 400,
-    QueryRefused: 400,
-    QueryFailed: 400,
-    DescriptionError: 400,
-    RecallError: 400,
-    DatabaseBusy: 503,
-    DatabaseError: 503,
-    WritesDisabled: 403,
-    IngestionBusy: 409,
-    JobNotFound: 404,
-    RequestTimeout: 504,
-    ObjrecallError: 400,
-}
-
-
-def _status_for(err: ObjrecallError) -> int:
-    for cls in type(err).__mro__:
-        if cls in ERROR_STATUS:
-            return ERROR_STATUS[cls]
-    return 400
-
-
-# ----------------------------------------------------------------------------------------- settings
-@dataclass
-class ServiceSettings:
-    """How the service runs; the defaults are the ones ``objrecall serve`` uses."""
-
-    db: Path
-    token: str | None = None
-    sources: Path | None = None
-    max_body_bytes: int = 64 * 1024
-    request_timeout: float = 30.0
-    sql_max_rows: int = SQL_MAX_ROWS
-    sql_max_timeout: float = SQL_MAX_TIMEOUT_S
-    snapshot_ttl: float = 1.0
-    busy_timeout: float = 30.0
-    ingest_command: list[str] = field(default_factory=list)
-
-
-def load_token(environ: dict[str, str] | None = None) -> str | None:
-    """The write token from ``$OBJRECALL_API_TOKEN``, else from the file ``$OBJRECALL_API_TOKEN_FILE``
-    (a docker secret, say); None when neither is set (writes disabled). Blank tokens count as none."""
-    env = os.environ if environ is None else environ
-    token = (env.get(ENV_TOKEN) or "").strip()
-    if token:
-        return token
-    path = (env.get(ENV_TOKEN_FILE) or "").strip()
-    if path:
-        try:
-            token = Path(path).read_text(encoding="utf-8").strip()
-        except OSError as err:
-            raise ObjrecallError(f"{path}: cannot read the API token file ({err.strerror})") from None
-        return token or None
-    return None
-
-
-def objrecall_command() -> list[str]:
-    """How to run ``objrecall`` from here: the console script beside this interpreter, else ``-m kb.cli``."""
-    script = Path(sys.executable).parent / "objrecall"
-    if script.exists():
-        return [str(script)]
-    found = shutil.which("objrecall")
-    return [found] if found else [sys.executable, "-m", "kb.cli"]
-
-
-# ------------------------------------------------------------------------------------ ingestion jobs
-@dataclass
-class IngestionJob:
-    """An ``objrecall ingest`` child process started by ``POST /ingestion/runs``."""
-
-    id: str
-    command: list[str]
-    started_at: str
-    process: "subprocess.Popen | None" = None
-    log_path: Path | None = None
-    returncode: int | None = None
-    finished_at: str | None = None
-
-    @property
-    def status(self) -> str:
-        if self.returncode is None:
-            return "running"
-        return "succeeded" if self.returncode == 0 else "failed"
-
-    def to_dict(self) -> dict[str, Any]:
-        log = ""
-        if self.log_path is not None and self.log_path.exists():
-            log = self.log_path.read_text(encoding="utf-8", errors="replace")[-4000:]
-        return {
-            "id": self.id,
-            "status": self.status,
-            "command": self.command,
-            "started_at": self.started_at,
-            "finished_at": self.finished_at,
-            "returncode": self.returncode,
-            "log_tail": log,
-        }
-
-
-class IngestionJobs:
-    """At most one ingestion child process at a time; finished jobs are kept for status queries."""
-
-    def __init__(self, log_dir: Path):
-        self.log_dir = log_dir
-        self.jobs: dict[str, IngestionJob] = {}
-        self._lock = threading.Lock()
-
-    def running(self) -> IngestionJob | None:
-        return next((j for j in self.jobs.values() if j.returncode is None), None)
-
-    def start(self, command: list[str]) -> IngestionJob:
-        with self._lock:
-            busy = self.running()
-            if busy is not None:
-                raise IngestionBusy(
-                    f"ingestion job {busy.id} is still running; try again when it has finished"
-                )
-            job_id = secrets.token_hex(6)
-            self.log_dir.mkdir(parents=True, exist_ok=True)
-            log_path = self.log_dir / f"ingest-{job_id}.log"
-            job = IngestionJob(id=job_id, command=command, started_at=_now(), log_path=log_path)
-            with log_path.open("wb") as log:
-                job.process = subprocess.Popen(
-                    command, stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL
-                )
-            self.jobs[job_id] = job
-        threading.Thread(target=self._reap, args=(job,), daemon=True).start()
-        return job
-
-    def _reap(self, job: IngestionJob) -> None:
-        assert job.process is not None
-        rc = job.process.wait()
-        job.finished_at = _now()
-        job.returncode = rc
-
-    def get(self, job_id: str) -> IngestionJob:
-        job = self.jobs.get(job_id)
-        if job is None:
-            raise JobNotFound(f"no ingestion job {job_id!r} started by this service")
-        return job
-
-
-def _now() -> str:
-    return datetime.now(UTC).isoformat(timespec="seconds")
-
-
-# -------------------------------------------------------------------------------------- middlewares
-#: Headers on every response.
-SECURITY_HEADERS = ((b"x-content-type-options", b"nosniff"), (b"referrer-policy", b"no-referrer"))
-#: The web page's content security policy: its own script and style only, fetches to itself only.
-PAGE_CSP = (
-    "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data:; "
-    "connect-src 'self'; frame-ancestors 'none'; base-uri 'none'; form-action 'self'"
+from kb.jsonable import to_jsonable
+from kb.service.http.jobs import IngestionJobs, objrecall_command
+from kb.service.http.limits import LimitsWrapped
+from kb.service.http.settings import (
+    DEFAULT_PAGE,
+    ENV_SOURCES,
+    ENV_TOKEN,
+    ENV_TOKEN_FILE,
+    MAX_PAGE,
+    MAX_TEXT_CHARS,
+    MAX_TOP,
+    SQL_MAX_RESPONSE_BYTES,
+    ServiceSettings,
+    load_token,
+    status_for,
 )
 
-
-def _json_bytes(status: int, error: str, detail: str) -> tuple[list[tuple[bytes, bytes]], bytes]:
-    body = json.dumps({"error": error, "detail": detail}).encode()
-    headers = [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]
-    return headers, body
+__all__ = ["create_app"]
 
 
-async def _send_error(send, status: int, error: str, detail: str) -> None:
-    headers, body = _json_bytes(status, error, detail)
-    await send({"type": "http.response.start", "status": status, "headers": headers})
-    await send({"type": "http.response.body", "body": body})
-
-
-class LimitsMiddleware:
-    """Pure ASGI middleware: refuse bodies over ``max_body_bytes`` (413) and answer 504 when the app has not
-    started its response within ``timeout`` seconds (the worker thread finishes in the background; user
-    SQL has its own, shorter, interrupting timeout)."""
-
-    def __init__(self, app, *, max_body_bytes: int, timeout: float):
-        self.app = app
-        self.max_body_bytes = max_body_bytes
-        self.timeout = timeout
-
-    async def __call__(self, scope, receive, send):
-        if scope["type"] != "http":
-            await self.app(scope, receive, send)
-            return
-        declared = dict(scope.get("headers") or []).get(b"content-length")
-        too_big = f"request body too large: at most {self.max_body_bytes} bytes"
-        if declared is not None:
-            try:
-                if int(declared) > self.max_body_bytes:
-                    await _send_error(send, 413, "PayloadTooLarge", too_big)
-                    return
-            except ValueError:
-                await _send_error(send, 400, "BadRequest", "invalid Content-Length header")
-                return
-        # read the whole (small) body first, so a chunked upload cannot exceed the limit either
-        chunks: list[bytes] = []
-        size = 0
-        more = True
-        while more:
-            message = await receive()
-            if message["type"] == "http.disconnect":
-                return
-            chunk = message.get("body", b"")
-            size += len(chunk)
-            if size > self.max_body_bytes:
-                await _send_error(send, 413, "PayloadTooLarge", too_big)
-                return
-            chunks.append(chunk)
-            more = message.get("more_body", False)
-        body = b"".join(chunks)
-        replayed = False
-
-        async def replay():
-            nonlocal replayed
-            if not replayed:
-                replayed = True
-                return {"type": "http.request", "body": body, "more_body": False}
-            return await receive()
-
-        started = False
-        extra = list(SECURITY_HEADERS)
-        path = scope.get("path", "")
-        if path == "/" or path.startswith("/static/"):
-            extra.append((b"content-security-policy", PAGE_CSP.encode()))
-
-        async def tracking_send(message):
-            nonlocal started
-            if message["type"] == "http.response.start":
-                started = True
-                message = {**message, "headers": [*message.get("headers", []), *extra]}
-            await send(message)
-
-        try:
-            await asyncio.wait_for(self.app(scope, replay, tracking_send), timeout=self.timeout)
-        except TimeoutError:
-            if not started:
-                await _send_error(
-                    send, 504, "RequestTimeout", f"the request took longer than the {self.timeout:g} s limit"
-                )
-
-
-# --------------------------------------------------------------------------------------- the app
 def create_app(
     db_path: str | Path,
     *,
@@ -449,7 +179,7 @@ def create_app(
         headers = {"Retry-After": "5"} if isinstance(err, DatabaseBusy) else None
         return JSONResponse(
             {"error": type(err).__name__, "detail": " ".join(str(err).split())},
-            status_code=_status_for(err),
+            status_code=status_for(err),
             headers=headers,
         )
 
@@ -516,6 +246,11 @@ def create_app(
             "with features_only (recall/RECALL.md).",
         )
         features_only: bool = Field(False, description="Ignore object names in the text (features only).")
+
+    class LookupIn(RecallIn):
+        budget_s: float = Field(10.0, gt=0, le=60, description="Seconds the lookup may take.")
+        max_pages: int = Field(12, ge=1, le=50, description="Requests the lookup may make, over all stores.")
+        force: bool = Field(False, description="Ask the stores even when the catalog recall is good.")
 
     class PlanIn(BaseModel):
         model_config = ConfigDict(extra="forbid")
@@ -727,6 +462,31 @@ def create_app(
         job = app.state.jobs.start(command)
         return {"id": job.id, "status": job.status, "status_url": f"/ingestion/jobs/{job.id}"}
 
+    @app.post("/recall/lookup", tags=["recall"], dependencies=[Depends(require_token)])
+    def recall_lookup(body: LookupIn) -> dict[str, Any]:
+        """Recall, and when the catalog does not know the object (open set, or confidence below 0.5, or
+        ``force``), search the configured stores, add the products that fit, and recall again
+        (``recall.lookup``). A write: it needs the token. The answer's ``result`` is the recall to act on;
+        ``looked_up``, ``found``, ``message`` and ``stores`` say what the lookup did."""
+        import requests
+
+        from recall.lookup import recall_with_lookup
+        from scrapers.sources import load_sources
+
+        if settings.sources is None:
+            raise ObjrecallError(
+                f"no sources file configured on the server (start it with --sources FILE or set {ENV_SOURCES})"
+            )
+        plan = load_sources(settings.sources)
+        with requests.Session() as session:
+            result = recall_with_lookup(
+                settings.db, body.text, sources=plan, session=session,
+                budget_s=min(body.budget_s, max(0.5, 0.8 * settings.request_timeout)),
+                max_pages=body.max_pages, force=body.force, top=body.top, metric=body.metric,
+                features_only=body.features_only,
+            )  # fmt: skip
+        return to_jsonable(result.to_dict())
+
     @app.put("/objects/{name}", tags=["catalog"], dependencies=[Depends(require_token)])
     def put_object(name: name_p, body: ObjectIn) -> JSONResponse:
         """Insert or edit an object: given values replace stored ones (validated like the CSV import),
@@ -761,27 +521,6 @@ def create_app(
     return LimitsWrapped(app, settings)
 
 
-class LimitsWrapped:
-    """The FastAPI app behind :class:`LimitsMiddleware`; ``.app`` is the FastAPI instance (OpenAPI, state)."""
-
-    def __init__(self, app, settings: ServiceSettings):
-        self.app = app
-        self.settings = settings
-        self._asgi = LimitsMiddleware(
-            app, max_body_bytes=settings.max_body_bytes, timeout=settings.request_timeout
-        )
-
-    async def __call__(self, scope, receive, send):
-        await self._asgi(scope, receive, send)
-
-    def openapi(self) -> dict[str, Any]:
-        return self.app.openapi()
-
-    @property
-    def state(self):
-        return self.app.state
-
-
 def _package_version() -> str:
     from importlib.metadata import PackageNotFoundError, version
 
@@ -789,98 +528,3 @@ def _package_version() -> str:
         return version("objrecall")
     except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
         return "0+unknown"
-
-
-# ------------------------------------------------------------------------------------- running it
-def free_port(host: str = "127.0.0.1") -> int:
-    """A TCP port free on ``host`` right now."""
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind((host, 0))
-        return s.getsockname()[1]
-
-
-@contextmanager
-def serve_subprocess(
-    db: str | Path,
-    *,
-    port: int | None = None,
-    env: dict[str, str] | None = None,
-    extra_args: list[str] | None = None,
-    startup_timeout: float = 60.0,
-) -> Iterator[str]:
-    """Run ``objrecall serve --db DB`` on 127.0.0.1 in a child process and yield its base URL once
-    ``/health`` answers (for tests, benchmarks and demos); the child is stopped on exit."""
-    import httpx
-
-    port = port or free_port()
-    command = [*objrecall_command(), "serve", "--host", "127.0.0.1", "--port", str(port), "--db", str(db)]
-    log = tempfile.TemporaryFile()
-    proc = subprocess.Popen(
-        [*command, *(extra_args or [])],
-        env=env,
-        stdout=log,
-        stderr=subprocess.STDOUT,
-        stdin=subprocess.DEVNULL,
-    )
-    base = f"http://127.0.0.1:{port}"
-    try:
-        deadline = time.monotonic() + startup_timeout
-        while True:
-            if proc.poll() is not None:
-                log.seek(0)
-                raise RuntimeError(
-                    f"objrecall serve exited with {proc.returncode}: {log.read().decode()[-2000:]}"
-                )
-            try:
-                if httpx.get(f"{base}/health", timeout=1.0).status_code == 200:
-                    break
-            except httpx.HTTPError:
-                pass
-            if time.monotonic() > deadline:
-                raise RuntimeError(f"objrecall serve did not answer on {base} within {startup_timeout:g} s")
-            time.sleep(0.1)
-        yield base
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
-        log.close()
-
-
-def serve(
-    host: Annotated[
-        str, typer.Option("--host", help="Interface to listen on (0.0.0.0 exposes it).")
-    ] = "127.0.0.1",
-    port: Annotated[int, typer.Option("--port", min=1, max=65535, help="TCP port.")] = 8000,
-    db: DbOption = None,
-    sources: Annotated[
-        Path | None,
-        typer.Option(
-            "--sources", help=f"Sources file that POST /ingestion/runs ingests (env {ENV_SOURCES})."
-        ),
-    ] = None,
-    request_timeout: Annotated[
-        float, typer.Option("--request-timeout", min=1.0, help="Answer 504 after this many seconds.")
-    ] = 30.0,
-    log_level: Annotated[str, typer.Option("--log-level", help="uvicorn log level.")] = "info",
-) -> None:
-    """Serve the catalog over HTTP: the JSON API (OpenAPI at /docs) and the web page at /.
-
-    Reads are open; writes need the bearer token from $OBJRECALL_API_TOKEN or the file named by
-    $OBJRECALL_API_TOKEN_FILE (without one, writes are disabled).
-    """
-    import uvicorn
-
-    path = resolve_db(db)
-    app = create_app(path, sources=sources, request_timeout=request_timeout, warm=True)
-    if app.settings.token is None:
-        sys.stderr.write("objrecall serve: no API token configured; writes are disabled\n")
-    uvicorn.run(app, host=host, port=port, log_level=log_level, access_log=log_level == "debug")
-
-
-def register(app: typer.Typer) -> None:
-    """Add ``objrecall serve``."""
-    app.command("serve")(serve)

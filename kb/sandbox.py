@@ -1,0 +1,403 @@
+"""The SQL sandbox: user SQL runs in a separate, hard-limited worker process.
+
+DuckDB's own limits do not bound every query: ``memory_limit`` does not cover one huge list or string
+(``SELECT len(range(0, 3000000000))`` grew a process to 24 GB) and its interrupt is not checked inside
+one scalar function call (``repeat('x', 2000000000)`` ran on for seconds after it). So user SQL never runs
+in the caller's process. A small pool of worker processes (``python -m kb.sandbox``) runs it:
+
+* each worker's address space is capped with ``RLIMIT_AS`` (:data:`WORKER_MEMORY_BYTES`), so an allocation
+  past it fails at once inside DuckDB and the query is refused ("needs more memory than ...");
+* DuckDB runs with one thread, ``max_memory`` under that cap and no temporary files, on a read-only
+  connection with no file or network access and its configuration locked (:data:`USER_SQL_CONFIG`);
+* the caller waits at most ``timeout_s`` (plus a short grace for DuckDB's own interrupt): past that the
+  worker is killed, so no query outlives its caller's deadline, and a new worker starts on the next call;
+* only plain reads run: an allow-list of statement types (SELECT, and EXPLAIN of a SELECT); any other
+  type, including one this DuckDB version cannot name (``UPDATE EXTENSIONS``), is refused; so are the
+  table functions that reveal the server's files (:data:`HIDDEN_FUNCTIONS`);
+* result columns with the same name are renamed visibly (``a``, ``a (2)``), never merged.
+
+The worker (``kb.sandbox._worker_main``) speaks length-prefixed pickle frames on its stdin/stdout with its parent only.
+"""
+
+from __future__ import annotations
+
+import atexit
+import os
+import pickle
+import re
+import select
+import struct
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from kb.errors import DatabaseBusy, DatabaseError, ObjrecallError, QueryFailed, QueryRefused, QueryTimeout
+
+__all__ = [
+    "ALLOWED_STATEMENTS",
+    "HIDDEN_FUNCTIONS",
+    "SANDBOX_CONFIG",
+    "USER_SQL_CONFIG",
+    "WORKER_MEMORY_BYTES",
+    "SqlAnswer",
+    "is_lock_conflict",
+    "retry_while_locked",
+    "run_user_sql",
+    "unique_columns",
+]
+
+#: Settings of every read connection: read-only, no file or network access, no extensions, configuration
+#: locked so a query cannot undo any of it, and a memory cap.
+SANDBOX_CONFIG: dict[str, Any] = {
+    "enable_external_access": False,
+    "autoinstall_known_extensions": False,
+    "autoload_known_extensions": False,
+    "allow_community_extensions": False,
+    "allow_unsigned_extensions": False,
+    "max_memory": "2GB",
+    "lock_configuration": True,
+}
+
+#: Address-space cap of a user-SQL worker process (python + DuckDB need about 0.1 GB of it).
+WORKER_MEMORY_BYTES = 1536 * 1024 * 1024
+#: Settings of a user-SQL connection: the sandbox, one thread, memory well under the process cap, no
+#: temporary files (nothing spills to disk).
+USER_SQL_CONFIG: dict[str, Any] = {
+    **SANDBOX_CONFIG,
+    "max_memory": "512MB",
+    "threads": 1,
+    "max_temp_directory_size": "0KB",
+}
+#: Statement types user SQL may run (EXPLAIN only of a statement that is itself allowed).
+ALLOWED_STATEMENTS = frozenset({"SELECT", "EXPLAIN"})
+#: Table functions refused in user SQL because they reveal the server's file paths or settings.
+HIDDEN_FUNCTIONS: tuple[str, ...] = (
+    "duckdb_databases", "duckdb_settings", "current_setting", "duckdb_extensions", "duckdb_temporary_files",
+    "duckdb_secrets", "which_secret", "duckdb_logs", "duckdb_log_contexts", "duckdb_external_file_cache",
+    "duckdb_memory", "pragma_[a-z_]+",
+)
+_HIDDEN_RE = re.compile(r"(?<![a-z0-9_])(" + "|".join(HIDDEN_FUNCTIONS) + r")(?![a-z0-9_])", re.IGNORECASE)
+#: A worker's answer may be at most this large (pickled); a bigger one is refused inside the worker.
+MAX_ANSWER_BYTES = 64 * 1024 * 1024
+#: Worker processes that may run at once (more callers wait for a free one, within their time limit).
+POOL_SIZE = 2
+_STARTUP_TIMEOUT_S = 60.0
+_HEADER = struct.Struct("!Q")
+
+
+@dataclass
+class SqlAnswer:
+    """What the worker returns: column names (made unique), rows, and whether rows were cut at max_rows."""
+
+    columns: list[str]
+    rows: list[tuple]
+    truncated: bool
+
+
+# ---------------------------------------------------------------------------------------------- shared
+def is_lock_conflict(err: Exception) -> bool:
+    """True when ``err`` says another process holds the database file."""
+    text = str(err).lower()
+    return "lock" in text and ("conflict" in text or "could not set" in text)
+
+
+def retry_while_locked(fn: Callable[[], Any], *, path: Path, busy_timeout: float) -> Any:
+    """``fn()``, retried with a short backoff while another process holds the database file, for up to
+    ``busy_timeout`` seconds; then :class:`~kb.errors.DatabaseBusy`."""
+    deadline = time.monotonic() + busy_timeout
+    delay = 0.01
+    while True:
+        try:
+            return fn()
+        except Exception as err:  # duckdb.IOException, or wrapped by SQLAlchemy / MigrationError
+            if not is_lock_conflict(err):
+                raise
+            if time.monotonic() >= deadline:
+                raise DatabaseBusy(
+                    f"{path}: another process has held the database for over {busy_timeout:g} s"
+                ) from None
+            time.sleep(delay)
+            delay = min(delay * 2, 0.25)
+
+
+def unique_columns(names: Sequence[str]) -> list[str]:
+    """Column names with repeats renamed ``name (2)``, ``name (3)``, ... so that no column is lost."""
+    seen: set[str] = set()
+    out = []
+    for name in names:
+        candidate, n = name, 1
+        while candidate in seen:
+            n += 1
+            candidate = f"{name} ({n})"
+        seen.add(candidate)
+        out.append(candidate)
+    return out
+
+
+# ---------------------------------------------------------------------------------------------- worker side
+def _statement_kind(con, query: str) -> str:
+    """The one statement's type name; refuses several statements and any type not allowed."""
+    import duckdb
+
+    try:
+        statements = con.extract_statements(query)
+    except duckdb.Error as err:
+        raise QueryFailed(f"SQL error: {_first_line(err)}") from None
+    if len(statements) != 1:
+        raise QueryRefused(f"one statement at a time, got {len(statements)}")
+    try:
+        kind = statements[0].type.name
+    except ValueError:  # a statement type this DuckDB's Python API cannot name (UPDATE EXTENSIONS, ...)
+        kind = "UNKNOWN"  # refused below like any other type not on the allow-list
+    if kind == "EXPLAIN":
+        inner = re.sub(r"^\s*explain(\s+analy[sz]e)?\s", "", query, count=1, flags=re.IGNORECASE)
+        if inner != query and _statement_kind(con, inner) == "SELECT":
+            return kind
+        kind = "EXPLAIN (of a statement that is not a SELECT)"
+    if kind not in ALLOWED_STATEMENTS:
+        what = "statements of this type are" if kind == "UNKNOWN" else f"{kind} statements are"
+        raise QueryRefused(f"refused: {what} not allowed; the catalog is read-only (SELECT only)")
+    return kind
+
+
+def _execute(con, request: dict[str, Any]) -> SqlAnswer:
+    import duckdb
+
+    query = request["query"]
+    _statement_kind(con, query)
+    hidden = _HIDDEN_RE.search(query)
+    if hidden:
+        raise QueryRefused(f"refused: {hidden.group(1)} reveals server settings and is not available")
+    timer = threading.Timer(request["timeout_s"], con.interrupt)
+    timer.start()
+    try:
+        cur = con.execute(query, request["params"])
+        columns = unique_columns([d[0] for d in cur.description])
+        rows = cur.fetchmany(request["max_rows"] + 1)
+    except duckdb.PermissionException as err:
+        raise QueryRefused(f"refused: {_first_line(err)}") from None
+    except duckdb.InterruptException:
+        raise QueryTimeout(f"query interrupted after the {request['timeout_s']:g} s time limit") from None
+    except (duckdb.OutOfMemoryException, MemoryError):
+        raise QueryRefused(_memory_refusal()) from None
+    except duckdb.Error as err:
+        if "read-only" in str(err).lower():
+            raise QueryRefused(f"refused: {_first_line(err)}") from None
+        if "out of memory" in str(err).lower() or "bad allocation" in str(err).lower():
+            raise QueryRefused(_memory_refusal()) from None
+        raise QueryFailed(f"SQL error: {_first_line(err)}") from None
+    finally:
+        timer.cancel()
+    max_rows = request["max_rows"]
+    return SqlAnswer(columns=columns, rows=rows[:max_rows], truncated=len(rows) > max_rows)
+
+
+def _answer(request: dict[str, Any]) -> tuple:
+    import duckdb
+
+    path = Path(request["path"])
+    try:
+        if not path.exists():
+            raise DatabaseError(f"{path}: no catalog there (create it with `objrecall init --db {path}`)")
+        con = retry_while_locked(
+            lambda: duckdb.connect(str(path), read_only=True, config=USER_SQL_CONFIG),
+            path=path, busy_timeout=request["busy_timeout"],
+        )
+        try:
+            answer = _execute(con, request)
+        finally:
+            con.close()
+        try:
+            data = pickle.dumps(("ok", (answer.columns, answer.rows, answer.truncated)), protocol=pickle.HIGHEST_PROTOCOL)
+        except (TypeError, AttributeError, pickle.PicklingError) as err:
+            raise QueryFailed(f"a result value cannot be returned: {_first_line(err)}") from None
+    except ObjrecallError as err:
+        return ("error", type(err).__name__, _mask(str(err), path))
+    except (MemoryError, duckdb.OutOfMemoryException):
+        return ("error", "QueryRefused", _memory_refusal())
+    if len(data) > MAX_ANSWER_BYTES:
+        return ("error", "QueryRefused",
+                f"refused: result too large ({len(data):,} bytes; at most {MAX_ANSWER_BYTES:,}); "
+                "select fewer rows or columns")
+    return ("raw", data)
+
+
+def _memory_refusal() -> str:
+    return (f"refused: the query needs more memory than the SQL sandbox allows "
+            f"({WORKER_MEMORY_BYTES / 2**30:g} GiB); select less")
+
+
+def _mask(text: str, path: Path) -> str:
+    """``text`` with the catalog's directory replaced, so an error message does not reveal it."""
+    for folder in {str(path.resolve().parent), str(path.parent)}:
+        if folder not in ("", "."):
+            text = text.replace(folder + os.sep, "")
+    return text
+
+
+def _worker_main() -> None:
+    """Serve requests on stdin/stdout until stdin closes."""
+    import resource
+
+    resource.setrlimit(resource.RLIMIT_AS, (WORKER_MEMORY_BYTES, WORKER_MEMORY_BYTES))
+    inp, out = sys.stdin.buffer, sys.stdout.buffer
+    sys.stdout = sys.stderr  # nothing but frames on the real stdout
+    import duckdb  # noqa: F401  (loaded before the ready frame, so start-up is not query time)
+
+    _write_frame(out, pickle.dumps(("ready",)))
+    while True:
+        header = inp.read(_HEADER.size)
+        if len(header) < _HEADER.size:
+            return
+        request = pickle.loads(inp.read(_HEADER.unpack(header)[0]))
+        try:
+            reply = _answer(request)
+        except Exception as err:  # a bug, not the user's query: say so instead of dying
+            reply = ("error", "QueryFailed", f"SQL worker error: {type(err).__name__}: {_first_line(err)}")
+        _write_frame(out, reply[1] if reply[0] == "raw" else pickle.dumps(reply))
+
+
+def _write_frame(out, data: bytes) -> None:
+    out.write(_HEADER.pack(len(data)) + data)
+    out.flush()
+
+
+# ---------------------------------------------------------------------------------------------- parent side
+class _Worker:
+    def __init__(self) -> None:
+        env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+        self.proc = subprocess.Popen(
+            [sys.executable, "-c", "from kb.sandbox import _worker_main; _worker_main()"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, env=env,
+            cwd=str(Path(__file__).resolve().parent.parent),
+        )
+        self.ready = False
+
+    def kill(self) -> None:
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
+        for stream in (self.proc.stdin, self.proc.stdout):
+            try:
+                stream.close()
+            except OSError:
+                pass
+
+    def _read_exact(self, n: int, deadline: float) -> bytes:
+        fd = self.proc.stdout.fileno()
+        chunks, got = [], 0
+        while got < n:
+            remaining = deadline - time.monotonic()
+            if remaining <= 0 or not select.select([fd], [], [], remaining)[0]:
+                raise TimeoutError
+            chunk = os.read(fd, min(n - got, 1 << 20))
+            if not chunk:
+                raise EOFError
+            chunks.append(chunk)
+            got += len(chunk)
+        return b"".join(chunks)
+
+    def read_frame(self, deadline: float) -> tuple:
+        size = _HEADER.unpack(self._read_exact(_HEADER.size, deadline))[0]
+        return pickle.loads(self._read_exact(size, deadline))
+
+    def wait_ready(self) -> None:
+        """Wait for the worker's start-up (python and DuckDB loading), which is not query time."""
+        if not self.ready:
+            self.read_frame(time.monotonic() + _STARTUP_TIMEOUT_S)
+            self.ready = True
+
+    def ask(self, request: dict[str, Any], deadline: float) -> tuple:
+        data = pickle.dumps(request)
+        self.proc.stdin.write(_HEADER.pack(len(data)) + data)
+        self.proc.stdin.flush()
+        return self.read_frame(deadline)
+
+
+class _Pool:
+    def __init__(self, size: int) -> None:
+        self.size = size
+        self.idle: list[_Worker] = []
+        self.busy = 0
+        self.cond = threading.Condition()
+
+    def acquire(self, deadline: float) -> _Worker:
+        with self.cond:
+            while not self.idle and self.busy >= self.size:
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    raise QueryTimeout(f"all {self.size} SQL workers stayed busy for the whole time limit")
+                self.cond.wait(remaining)
+            self.busy += 1
+            worker = self.idle.pop() if self.idle else None
+        if worker is not None and worker.proc.poll() is None:
+            return worker
+        try:
+            return _Worker()
+        except BaseException:
+            self.release(None)
+            raise
+
+    def release(self, worker: _Worker | None) -> None:
+        with self.cond:
+            self.busy -= 1
+            if worker is not None:
+                self.idle.append(worker)
+            self.cond.notify()
+
+    def close(self) -> None:
+        with self.cond:
+            idle, self.idle = self.idle, []
+        for worker in idle:
+            worker.kill()
+
+
+_POOL = _Pool(POOL_SIZE)
+atexit.register(_POOL.close)
+_ERRORS: dict[str, type[ObjrecallError]] = {
+    cls.__name__: cls for cls in (QueryRefused, QueryFailed, QueryTimeout, DatabaseBusy, DatabaseError)
+}
+
+
+def run_user_sql(
+    path: Path, query: str, params: Sequence[Any] | None, *, max_rows: int, timeout_s: float, busy_timeout: float
+) -> SqlAnswer:
+    """Run one user statement on the catalog at ``path`` in a sandbox worker (see the module docstring).
+
+    Raises :class:`~kb.errors.QueryRefused`, :class:`~kb.errors.QueryFailed`,
+    :class:`~kb.errors.QueryTimeout` (the worker is killed at the deadline) or a database error.
+    """
+    if not (timeout_s > 0 and max_rows >= 1):
+        raise QueryFailed(f"timeout_s must be > 0 and max_rows >= 1, got {timeout_s!r} and {max_rows!r}")
+    request = {"path": str(Path(path).resolve()), "query": query, "params": list(params) if params else None,
+               "max_rows": int(max_rows), "timeout_s": float(timeout_s), "busy_timeout": float(busy_timeout)}
+    worker = _POOL.acquire(time.monotonic() + timeout_s)
+    keep = False
+    try:
+        worker.wait_ready()
+        reply = worker.ask(request, time.monotonic() + timeout_s + min(0.5, 0.25 * timeout_s))
+        keep = True
+    except TimeoutError:
+        raise QueryTimeout(f"query stopped at the {timeout_s:g} s time limit") from None
+    except (EOFError, OSError, pickle.UnpicklingError):
+        raise QueryRefused(
+            f"refused: the query ended its SQL worker (exit code {worker.proc.poll()}); it may need more memory "
+            f"than the sandbox allows ({WORKER_MEMORY_BYTES / 2**30:g} GiB)"
+        ) from None
+    finally:
+        if keep:
+            _POOL.release(worker)
+        else:
+            worker.kill()
+            _POOL.release(None)
+    if reply[0] == "ok":
+        return SqlAnswer(*reply[1])
+    raise _ERRORS.get(reply[1], QueryFailed)(reply[2])
+
+
+def _first_line(err: Exception) -> str:
+    return str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__

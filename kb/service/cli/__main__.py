@@ -1,0 +1,5 @@
+"""``python -m kb.service.cli`` runs the ``objrecall`` command line."""
+
+from kb.service.cli import main
+
+main()

@@ -1,0 +1,106 @@
+"""What every ``objrecall`` command shares: the ``--db`` and ``--json`` options, output and error handling.
+
+Each command-group module of this package (``catalog``, ``parse``, ``recall``, ``ingest``, ``grasp``,
+``serve``, ``demo``) exposes a ``register(app)`` function that adds its commands to the one Typer app in
+``kb/service/cli/__init__.py``; heavy libraries (MuJoCo, NLTK, scikit-learn, FastAPI) are imported inside
+the command bodies so ``objrecall --help`` stays fast.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from typer.core import TyperGroup
+
+from kb.errors import ObjrecallError
+from kb.jsonable import to_jsonable
+
+__all__ = ["DbOption", "JsonOption", "ObjrecallGroup", "default_db_path", "emit", "emit_lines", "resolve_db"]
+
+ENV_DB = "OBJRECALL_DB"
+
+
+def default_db_path() -> Path:
+    """``$OBJRECALL_DB``, else ``$XDG_DATA_HOME/objrecall/catalog.duckdb`` (``~/.local/share/...``)."""
+    env = os.environ.get(ENV_DB)
+    if env:
+        return Path(env)
+    base = Path(os.environ.get("XDG_DATA_HOME") or Path.home() / ".local" / "share")
+    return base / "objrecall" / "catalog.duckdb"
+
+
+DbOption = Annotated[
+    Path | None,
+    typer.Option("--db", help=f"DuckDB catalog file [env {ENV_DB}; default ~/.local/share/objrecall/catalog.duckdb]"),
+]
+JsonOption = Annotated[bool, typer.Option("--json", help="Machine output: JSON (JSON Lines for batches).")]
+
+
+def resolve_db(db: Path | None) -> Path:
+    return Path(db) if db is not None else default_db_path()
+
+
+def emit(data: Any) -> None:
+    """Print one JSON document on one line."""
+    sys.stdout.write(json.dumps(to_jsonable(data), ensure_ascii=False) + "\n")
+
+
+def emit_lines(items: Iterable[Any]) -> None:
+    """Print JSON Lines, one object per item, flushing as it goes."""
+    for item in items:
+        sys.stdout.write(json.dumps(to_jsonable(item), ensure_ascii=False) + "\n")
+        sys.stdout.flush()
+
+
+class ObjrecallGroup(TyperGroup):
+    """Root command group: an :class:`ObjrecallError`, and any usage error (a missing file, a bad option or
+    value, an unknown command), becomes one ``Error: ...`` line on stderr and exit code 1."""
+
+    def main(self, args: Any = None, prog_name: Any = None, complete_var: Any = None,
+             standalone_mode: bool = True, **extra: Any) -> Any:
+        try:
+            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        except typer.TyperException as err:  # click's UsageError, BadParameter, NoSuchOption, FileError, ...
+            if not standalone_mode:
+                raise
+            if type(err).__name__ == "NoArgsIsHelpError":  # a bare `objrecall` or group: the help, exit 0
+                sys.stdout.write(err.format_message() + "\n")
+                sys.exit(0)
+            ctx = getattr(err, "ctx", None)
+            hint = f" (see `{ctx.command_path} --help`)" if ctx is not None else ""
+            _fail(f"{err.format_message()}{hint}", exit_now=True)
+        except typer.Abort:
+            if not standalone_mode:
+                raise
+            _fail("aborted", exit_now=True)
+        if not standalone_mode:
+            return rv
+        sys.exit(rv if isinstance(rv, int) else 0)
+
+    def invoke(self, ctx: Any) -> Any:
+        try:
+            return super().invoke(ctx)
+        except ObjrecallError as err:
+            _fail(str(err))
+        except (FileNotFoundError, IsADirectoryError, NotADirectoryError, PermissionError) as err:
+            _fail(f"{err.filename}: {err.strerror}")
+        except Exception as err:
+            if "duckdb" not in type(err).__module__:
+                raise
+            # a DuckDB file that is not an objrecall catalog, or one damaged: say so in one line
+            first = (str(err).strip().splitlines() or [type(err).__name__])[0]
+            _fail(f"database error (is this an objrecall catalog?): {first}")
+
+
+def _fail(message: str, *, exit_now: bool = False) -> None:
+    """One line on stderr and exit code 1 (no traceback); ``exit_now`` outside a running command."""
+    sys.stderr.write(f"Error: {' '.join(message.split())}\n")
+    if exit_now:
+        sys.exit(1)
+    raise typer.Exit(1)

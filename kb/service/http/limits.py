@@ -1,0 +1,124 @@
+"""The service's outer layer (pure ASGI): request body and time limits, security headers on every response,
+the web page's content security policy."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+from typing import Any
+
+from kb.service.http.settings import ServiceSettings
+
+__all__ = ["PAGE_CSP", "SECURITY_HEADERS", "LimitsMiddleware", "LimitsWrapped"]
+
+#: Headers on every response.
+SECURITY_HEADERS = ((b"x-content-type-options", b"nosniff"), (b"referrer-policy", b"no-referrer"))
+#: The web page's content security policy: its own script and style only, fetches to itself only.
+PAGE_CSP = (
+    "default-src 'self'; script-src 'self'; style-src 'self'; img-src 'self' data:; "
+    "connect-src 'self'; frame-ancestors 'none'; base-uri 'none'; form-action 'self'"
+)
+
+
+def _json_bytes(status: int, error: str, detail: str) -> tuple[list[tuple[bytes, bytes]], bytes]:
+    body = json.dumps({"error": error, "detail": detail}).encode()
+    headers = [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode())]
+    return headers, body
+
+
+async def _send_error(send, status: int, error: str, detail: str) -> None:
+    headers, body = _json_bytes(status, error, detail)
+    await send({"type": "http.response.start", "status": status, "headers": headers})
+    await send({"type": "http.response.body", "body": body})
+
+
+class LimitsMiddleware:
+    """Pure ASGI middleware: refuse bodies over ``max_body_bytes`` (413) and answer 504 when the app has not
+    started its response within ``timeout`` seconds (the worker thread finishes in the background; user
+    SQL has its own, shorter, interrupting timeout)."""
+
+    def __init__(self, app, *, max_body_bytes: int, timeout: float):
+        self.app = app
+        self.max_body_bytes = max_body_bytes
+        self.timeout = timeout
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        declared = dict(scope.get("headers") or []).get(b"content-length")
+        too_big = f"request body too large: at most {self.max_body_bytes} bytes"
+        if declared is not None:
+            try:
+                if int(declared) > self.max_body_bytes:
+                    await _send_error(send, 413, "PayloadTooLarge", too_big)
+                    return
+            except ValueError:
+                await _send_error(send, 400, "BadRequest", "invalid Content-Length header")
+                return
+        # read the whole (small) body first, so a chunked upload cannot exceed the limit either
+        chunks: list[bytes] = []
+        size = 0
+        more = True
+        while more:
+            message = await receive()
+            if message["type"] == "http.disconnect":
+                return
+            chunk = message.get("body", b"")
+            size += len(chunk)
+            if size > self.max_body_bytes:
+                await _send_error(send, 413, "PayloadTooLarge", too_big)
+                return
+            chunks.append(chunk)
+            more = message.get("more_body", False)
+        body = b"".join(chunks)
+        replayed = False
+
+        async def replay():
+            nonlocal replayed
+            if not replayed:
+                replayed = True
+                return {"type": "http.request", "body": body, "more_body": False}
+            return await receive()
+
+        started = False
+        extra = list(SECURITY_HEADERS)
+        path = scope.get("path", "")
+        if path == "/" or path.startswith("/static/"):
+            extra.append((b"content-security-policy", PAGE_CSP.encode()))
+
+        async def tracking_send(message):
+            nonlocal started
+            if message["type"] == "http.response.start":
+                started = True
+                message = {**message, "headers": [*message.get("headers", []), *extra]}
+            await send(message)
+
+        try:
+            await asyncio.wait_for(self.app(scope, replay, tracking_send), timeout=self.timeout)
+        except TimeoutError:
+            if not started:
+                await _send_error(
+                    send, 504, "RequestTimeout", f"the request took longer than the {self.timeout:g} s limit"
+                )
+
+
+class LimitsWrapped:
+    """The FastAPI app behind :class:`LimitsMiddleware`; ``.app`` is the FastAPI instance (OpenAPI, state)."""
+
+    def __init__(self, app, settings: ServiceSettings):
+        self.app = app
+        self.settings = settings
+        self._asgi = LimitsMiddleware(
+            app, max_body_bytes=settings.max_body_bytes, timeout=settings.request_timeout
+        )
+
+    async def __call__(self, scope, receive, send):
+        await self._asgi(scope, receive, send)
+
+    def openapi(self) -> dict[str, Any]:
+        return self.app.openapi()
+
+    @property
+    def state(self):
+        return self.app.state

@@ -1,0 +1,136 @@
+"""Categories of a description (material, shape, rigidity, texture, fragility) and its mass hint.
+
+:func:`read_categories` collects, per sentence, every category word with its rank (the object's own
+material beats a part's, a geometric shape word beats an object-kind noun; rules in
+``recall/PARSER.md``, "Categories"), drops negated ones (fragility flips), and the mass hints ("light",
+"heavy") and cue words the dimension rules use (ball, cylinder, flat, ...). :func:`resolve_categories`
+picks one word per feature: the highest rank, then the first.
+"""
+
+from __future__ import annotations
+
+from recall import lexicon as lx
+from recall.quantities import Reading
+from recall.tags import CATEGORY_TAGS, NUMBER_TAGS
+from recall.tokens import Token
+
+__all__ = ["read_categories", "resolve_categories"]
+
+
+def _negated(segment: list[Token], i: int) -> bool:
+    for j in range(i - 1, max(-1, i - 4), -1):
+        tag = segment[j].tag
+        if segment[j].low in ("or", "nor") and j >= 1 and segment[j - 1].tag in CATEGORY_TAGS:
+            return tag == "NEG" or _negated(segment, j - 1)  # "not made of glass or ceramic"
+        if tag in ("CM", "SEP", "AND"):
+            return False
+        if tag == "NEG":
+            return True
+    return False
+
+
+def _in_part_phrase(segment: list[Token], i: int, through_and: bool = False) -> bool:
+    """True when the word at ``i`` describes a part or a container, not the object: a part noun follows it
+    ("rubber grip", "plastic bag", "long stem") or it is in a phrase opened by "with"/"in"/"on" ("with a
+    rubber grip", "in a tin cup"; a comma, a sentence end or, unless ``through_and``, "and" closes the
+    phrase: a material after "and" may be the object's, a shape noun after "and" is still a part)."""
+    if i + 1 < len(segment) and segment[i + 1].low in lx.PART_NOUNS:
+        return True
+    for j in range(i - 1, max(-1, i - (7 if through_and else 4)), -1):
+        t = segment[j]
+        if t.tag in ("CM", "SEP") or (t.tag == "AND" and not through_and):
+            return False
+        if t.low in lx.PART_PREPOSITIONS and segment[j + 1].tag not in ("DIM", "DIMN", *NUMBER_TAGS):
+            return True  # not "7 cm in diameter and round", "with 500 ml"
+    return False
+
+
+def _material_rank(segment: list[Token], i: int) -> int:
+    """2: the object's own material ("made of X", "X body", "the body is X"); 0: a part's ("with a
+    rubber grip"); 1: any other mention."""
+    if i >= 2 and segment[i - 1].low in ("of", "from"):
+        if segment[i - 2].low in ("made", "out", "built", "constructed", "consists"):
+            return 2  # "made of plastic" beats a material in a name
+    if i + 1 < len(segment) and segment[i + 1].low in lx.BODY_WORDS:
+        return 2  # "a plastic body", "clear plastic barrel"
+    for j in range(i - 1, max(-1, i - 4), -1):
+        if segment[j].low in lx.BODY_WORDS:
+            return 2  # "the body is aluminium", "body: steel"
+        if segment[j].tag in ("CM", "SEP", "AND"):
+            break
+    return 0 if _in_part_phrase(segment, i) else 1
+
+
+def read_categories(segment: list[Token], base: int, reading: Reading) -> None:
+    n = len(segment)
+    for i, tok in enumerate(segment):
+        pos = base + i
+        tag = tok.tag
+        nxt = segment[i + 1].low if i + 1 < n else ""
+        if tag not in NUMBER_TAGS and not (tok.low == "can" and tag != "SHP"):
+            if nxt in lx.BALL_COMPOUND_HEADS and (
+                tok.low in lx.SPHERE_WORDS or tok.low.endswith(lx.BALL_SUFFIX)
+            ):
+                pass  # "baseball cap", "ball bearing": not a ball
+            elif tok.low in lx.VESSEL_WORDS and i and segment[i - 1].low in ("the", "its", "at"):
+                pass  # "wide at the bowl": a part
+            else:
+                reading.cue_words.add(tok.low)
+                if tok.low.endswith(lx.BALL_SUFFIX) and len(tok.low) > len(lx.BALL_SUFFIX):
+                    reading.cue_words.add(lx.BALL_SUFFIX)  # "softball", "basketball"
+        if tag == "MH":
+            hint = lx.MASS_HINT_WORDS[tok.low]
+            if _negated(segment, i):
+                hint = "heavy" if hint == "light" else "light"
+            reading.mass_hints.append(hint)
+            continue
+        if tag == "DIM" and tok.low in ("long", "elongated") and pos not in reading.in_dim_chunk:
+            if any(t.low == "as" for t in segment[max(0, i - 3) : i]):
+                continue  # "twice as long as it is wide": a proportion, not a long shape
+            if _in_part_phrase(segment, i, True):
+                continue  # "with a long stem", "a long handle": a part is long
+            feature, value, rank = "shape", "long", 2
+        elif tag in CATEGORY_TAGS:
+            feature = CATEGORY_TAGS[tag]
+            if feature == "shape":
+                value, rank = lx.SHAPE_WORDS[tok.low]
+                if nxt in lx.MODIFIED_HEADS and tok.low not in lx.MODIFIED_HEADS:
+                    continue  # "bottle opener", "pen holder": the shape of something else
+                if tok.low == "thin" and i + 1 < n and segment[i + 1].tag == "MAT":
+                    continue  # "thin plastic", "thin glass": the wall, not the object's shape
+                if nxt == "of" and tok.low in lx.MEASURE_NOUNS:
+                    continue  # "a bar of soap"
+                if (nxt == "of" and tok.low in lx.CONTAINER_NOUNS) or _in_part_phrase(segment, i, True):
+                    rank = 0  # "a bar of soap", "with a long stem", "in a tin cup"
+            else:
+                table = lx.TABLES[feature]
+                value = table[tok.low]
+                rank = _material_rank(segment, i) if feature == "material" else 1
+                if feature in ("texture", "fragility") and i >= 1 and segment[i - 1].low in lx.MEDIUM_WORDS:
+                    value = "medium"
+        elif tok.low in lx.MEDIUM_WORDS and i + 1 < len(segment):
+            nxt = segment[i + 1].low
+            if nxt in ("texture", "surface", "roughness", "finish"):
+                feature, value, rank = "texture", "medium", 1
+            elif nxt in ("fragility", "fragile", "strength"):
+                feature, value, rank = "fragility", "medium", 1
+            else:
+                continue
+        else:
+            continue
+        if _negated(segment, i):
+            if feature == "fragility":
+                value = lx.NEGATED_FRAGILITY[value]
+            else:
+                continue
+        reading.categories.setdefault(feature, []).append((rank, pos, value, tok))
+
+
+def resolve_categories(reading: Reading) -> dict[str, tuple[str, Token]]:
+    """Feature -> (value, the token that states it): the highest rank, then the first."""
+    out: dict[str, tuple[str, Token]] = {}
+    for feature, cands in reading.categories.items():
+        best = max(cands, key=lambda c: (c[0], -c[1]))
+        _rank, _pos, value, tok = best
+        out[feature] = (value, tok)
+    return out

@@ -1,0 +1,229 @@
+"""Look it up: when the catalog does not know the described object, ask the stores, add it, recall again.
+
+>>> result = recall_with_lookup("catalog.duckdb", "a glazed ceramic teapot about 22 cm wide, 900 g",
+...                             sources=load_sources("scrapers/demo_sources.toml"))   # doctest: +SKIP
+>>> result.found, result.result.best.name, result.message                             # doctest: +SKIP
+
+1. **Recall** the description from the catalog. A lookup is needed (:func:`lookup_reason`) when nothing is
+   recalled, the recall says the object is not in the catalog (``not_in_catalog``: a noun the catalog does
+   not have; or ``open_set``: nothing close), or its confidence is below
+   ``threshold`` (:data:`LOOKUP_BELOW_CONFIDENCE`); ``force`` looks it up anyway.
+2. **Search words** (:func:`search_terms`): the description's subject phrase ("glazed ceramic teapot"),
+   then its head noun alone ("teapot"); each store gets the first that lists products.
+3. **The stores** (:func:`scrapers.lookup.search_stores`): the top results of every store with a search,
+   fetched politely, extracted and validated like the nightly job's pages; a page **fits** when the
+   description, recalled over that product alone, is a close match (not open set, mean relative error
+   at most :data:`FIT_CLOSENESS`; with no stated feature, when the description names the product). The
+   pages that fit are written as one ingestion run (provenance ``lookup``, provisional values).
+4. **Recall again** from the catalog, and say what happened (:class:`LookupResult`).
+
+Bounded by ``budget_s`` (default 10 s) on the clock passed in, counted from the end of the first recall:
+the stores get the budget minus a reserve for writing and recalling again (:data:`RESERVE_S`, at most half
+of the budget); ``max_pages`` bounds the requests.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import requests
+
+from kb.errors import RecallError
+from kb.features import ObjectRecord
+from recall.engine import GENERIC_NOUNS, Recaller, RecallResult, subject_phrase
+from scrapers.fetcher import Clock, SystemClock
+from scrapers.lookup import DEFAULT_MAX_PAGES, StoresLookup, search_stores
+from scrapers.sources import Sources
+
+__all__ = [
+    "DEFAULT_BUDGET_S",
+    "FIT_CLOSENESS",
+    "LOOKUP_BELOW_CONFIDENCE",
+    "LookupResult",
+    "lookup_reason",
+    "recall_with_lookup",
+    "search_terms",
+]
+
+DEFAULT_BUDGET_S = 10.0
+#: A recall less confident than this is looked up.
+LOOKUP_BELOW_CONFIDENCE = 0.5
+#: A store's product fits the description when its mean relative error over the stated features is at most
+#: this (the recall's open-set threshold for an unnamed match: a name in a store's title is no evidence).
+FIT_CLOSENESS = 0.30
+#: Seconds of the budget kept for judging the pages, writing and recalling again (at most half the budget).
+RESERVE_S = 2.0
+NOT_FOUND = "not found in the catalog or the stores"
+
+
+@dataclass
+class LookupResult:
+    """A recall with (perhaps) a lookup: the recall ``before``, whether and why it was looked up, the
+    stores' side (:class:`scrapers.lookup.StoresLookup`), the recall ``after`` (None when not looked up),
+    whether the object was found, a one-line message, and the seconds spent per stage."""
+
+    text: str
+    before: RecallResult
+    looked_up: bool = False
+    why: str | None = None
+    stores: StoresLookup | None = None
+    after: RecallResult | None = None
+    found: bool = True
+    message: str = ""
+    seconds: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def result(self) -> RecallResult:
+        """The recall to act on: after the lookup when there was one."""
+        return self.after if self.after is not None else self.before
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "text": self.text,
+            "looked_up": self.looked_up,
+            "why": self.why,
+            "found": self.found,
+            "message": self.message,
+            "result": self.result.to_dict(),
+            "before": _summary(self.before),
+            "after": _summary(self.after) if self.after is not None else None,
+            "stores": self.stores.to_dict() if self.stores is not None else None,
+            "seconds": {k: round(v, 4) for k, v in self.seconds.items()},
+        }
+
+
+def _summary(result: RecallResult) -> dict[str, Any]:
+    best = result.best
+    return {"match": best.name if best else None, "confidence": result.confidence, "open_set": result.open_set}
+
+
+def lookup_reason(result: RecallResult, threshold: float = LOOKUP_BELOW_CONFIDENCE) -> str | None:
+    """Why ``result`` needs a lookup, or None when it does not (see the module docstring)."""
+    if not result.matches:
+        return "nothing in the catalog was recalled"
+    if result.not_in_catalog and result.described is not None:
+        return f"the catalog has no {result.described.english} (nearest: {result.best.name})"
+    if result.open_set:
+        return f"not in the catalog (nearest: {result.best.name}, not a close match)"
+    if result.confidence < threshold:
+        return f"confidence {result.confidence:.2f} is below {threshold:g}"
+    return None
+
+
+def search_terms(result: RecallResult) -> tuple[str, ...]:
+    """The search words to try, most specific first: the subject phrase, then its head noun (in English
+    when the recall recognised the noun, ``described``). Units and
+    generic nouns ("5 grams", "something") name nothing to search for."""
+    from recall.units import unit_table
+
+    units = unit_table()
+    phrase = tuple(w for w in subject_phrase(result.text or "") if w not in units and w not in GENERIC_NOUNS)
+    described = result.described.english if result.described is not None else None
+    noun = described or result.unknown_noun or (phrase[-1] if phrase else None)
+    terms = [" ".join(phrase)] if phrase else []
+    if noun and noun not in terms:
+        terms.append(noun)
+    return tuple(terms)
+
+
+def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str]:
+    """Whether the product ``record`` is the object described, and why (module docstring, 3). ``text`` is
+    the description or its parse (``recall.parser.parse``), so that many records cost one parse."""
+    recaller = Recaller.from_records([record])
+    if isinstance(text, str):
+        result = recaller.recall_text(text, top=1)
+    else:
+        result = recaller.recall_parsed(text, top=1)
+    if not result.matches:
+        return False, "the description states nothing to compare"
+    if result.closeness is None:
+        named = result.matches[0].matched_by_name
+        return named, "named by the description" if named else "no stated feature and not named"
+    close = not result.open_set and result.closeness <= FIT_CLOSENESS
+    verdict = "fits" if close else "does not fit"
+    return close, f"{verdict}: mean relative error {result.closeness:.2f} (at most {FIT_CLOSENESS:g})"
+
+
+def recall_with_lookup(
+    db: str | Path,
+    text: str,
+    *,
+    sources: Sources,
+    session: requests.Session | None = None,
+    clock: Clock | None = None,
+    budget_s: float = DEFAULT_BUDGET_S,
+    max_pages: int = DEFAULT_MAX_PAGES,
+    threshold: float = LOOKUP_BELOW_CONFIDENCE,
+    force: bool = False,
+    top: int = 5,
+    metric: str | None = None,
+    features_only: bool = False,
+) -> LookupResult:
+    """Recall ``text`` from the catalog at ``db`` and, when needed (or ``force``), look it up in the stores
+    of ``sources`` (see the module docstring). The network (``session``) and the clock are passed in."""
+    if not budget_s > 0 or budget_s > 600:
+        raise RecallError(f"the lookup time budget must be more than 0 and at most 600 s, not {budget_s}")
+    if max_pages < 1 or max_pages > 200:
+        raise RecallError(f"the lookup page budget must be 1 to 200 pages, not {max_pages}")
+    clock = clock or SystemClock()
+    options = dict(top=top, metric=metric, features_only=features_only)
+    t0 = time.perf_counter()
+    before = Recaller.from_db(db).recall_text(text, **options)
+    out = LookupResult(text=text, before=before, seconds={"recall": time.perf_counter() - t0})
+    start = clock.monotonic()
+    out.why = lookup_reason(before, threshold) or ("forced" if force else None)
+    if out.why is None:
+        out.message = f"recalled from the catalog: {before.best.name} (confidence {before.confidence:.2f})"
+        return out
+    terms = search_terms(before)
+    if not terms:
+        out.found, out.message = False, f"{NOT_FOUND}: the description names no object to search for"
+        return out
+    out.looked_up = True
+    from kb.catalog import KnowledgeBase
+
+    t0 = time.perf_counter()
+    kb = KnowledgeBase.open(db)
+    out.seconds["open"] = time.perf_counter() - t0
+    deadline = start + budget_s - min(RESERVE_S, budget_s / 2)
+    own_session = session is None
+    session = session or requests.Session()
+    from recall.parser import parse
+
+    parsed = parse(text)
+    try:
+        out.stores = search_stores(kb, sources, terms, description=text, fits=lambda r: fits(parsed, r),
+                                   session=session, deadline=deadline, clock=clock, max_pages=max_pages)  # fmt: skip
+    finally:
+        if own_session:
+            session.close()
+    s = out.stores
+    out.seconds.update(fetch=s.fetch_s, extract=s.extract_s, judge=s.judge_s, write=s.write_s)
+    t0 = time.perf_counter()
+    changed = out.stores.new_objects or out.stores.updated_objects
+    out.after = Recaller.from_db(db).recall_parsed(parsed, **options) if changed else before
+    out.seconds["recall"] += time.perf_counter() - t0
+    out.seconds["total"] = clock.monotonic() - start
+    _conclude(out)
+    return out
+
+
+def _conclude(out: LookupResult) -> None:
+    """found and message, from what the stores did and the recall after."""
+    stores, after = out.stores, out.after
+    assert stores is not None and after is not None
+    added = set(stores.new_objects) | set(stores.updated_objects)
+    known = any(c.outcome == "known" for c in stores.candidates)
+    best = after.best
+    if not stores.answered:
+        out.found = False
+        out.message = f"{NOT_FOUND}: {stores.message}"
+    elif not added and not known:
+        out.found = False
+        out.message = f"{NOT_FOUND} ({stores.message})"
+    else:
+        out.found = best is not None and not after.open_set
+        out.message = f"{stores.message}; recalled {best.name if best else '-'} (confidence {after.confidence:.2f})"

@@ -1,0 +1,425 @@
+"""Stage 4 of the description parser (the paper's Fig. 2): reading the chunks into quantities.
+
+:class:`QuantityReader` walks one sentence's chunk tree: a QUANT chunk is read into a
+:class:`Quantity` (hedge, number or range by :mod:`recall.numbers`, unit by :mod:`recall.units`); a DIM
+chunk gives a dimension statement (a role and its quantity), a MULTI chunk a tuple or list of extents;
+a quantity outside them is a mass, contents (in a sentence with a contents word) or an unlabelled
+length. Everything read is collected, in text order, in a :class:`Reading` that the resolution stages
+(:mod:`recall.dimensions`, :mod:`recall.mass`, :mod:`recall.categories`) turn into features.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from recall import lexicon as lx
+from recall.chunks import size
+from recall.numbers import number_value
+from recall.tags import UNIT_TAGS
+from recall.tokens import Token
+from recall.toolkit import Tree
+from recall.units import Unit, unit_table
+
+__all__ = ["DimStatement", "Quantity", "QuantityReader", "Reading", "Relation", "Stated"]
+
+
+@dataclass(slots=True)
+class Quantity:
+    value: float
+    low: float | None
+    high: float | None
+    qualifier: str
+    unit: Unit | None
+    start: int
+    end: int
+    pos: int  # token index in the text (for unit inheritance)
+
+
+@dataclass
+class DimStatement:
+    role: str
+    quantities: list[Quantity]
+    start: int
+    end: int
+
+
+@dataclass
+class Relation:
+    """An extent stated relative to another ("twice as long as it is wide"): ``role`` is ``factor``
+    times ``ref`` (None: the extent stated last before it, as in "6 cm wide and three times as long")."""
+
+    role: str
+    factor: float
+    ref: str | None
+    start: int
+    end: int
+
+
+@dataclass
+class Reading:
+    """Everything read from the chunks, in text order, before the features are resolved."""
+
+    dims: list[DimStatement] = field(default_factory=list)
+    multis: list[DimStatement] = field(default_factory=list)
+    sizes: list[DimStatement] = field(default_factory=list)
+    masses: list[tuple[Quantity, bool]] = field(default_factory=list)  # (quantity, is contents)
+    other_masses: list[Quantity] = field(default_factory=list)  # "my 2 kg dumbbell": used only alone
+    contents: list[Quantity] = field(default_factory=list)
+    length_units: list[tuple[int, Unit]] = field(default_factory=list)  # (token index, unit)
+    categories: dict[str, list[tuple[int, int, str, Token]]] = field(default_factory=dict)
+    mass_hints: list[str] = field(default_factory=list)
+    cue_words: set[str] = field(default_factory=set)
+    in_dim_chunk: set[int] = field(default_factory=set)
+    relations: list[Relation] = field(default_factory=list)
+
+
+@dataclass
+class Stated:
+    """A resolved value in catalog units (cm, g), its bounds and qualifier, and its character span."""
+
+    value: float
+    low: float | None
+    high: float | None
+    qualifier: str
+    start: int
+    end: int
+
+
+@dataclass(frozen=True, slots=True)
+class _Sentence:
+    """The sentence being read: its tokens, the index of its contents word (None without one) and the
+    reading it adds to."""
+
+    segment: list[Token]
+    fill: int | None
+    reading: Reading
+
+
+class QuantityReader:
+    """Reads chunk trees into a :class:`Reading`, with the unit table (built once); thread-safe."""
+
+    def __init__(self) -> None:
+        self._units = unit_table()
+
+    def read(self, tree: Tree, segment: list[Token], base: int, reading: Reading) -> None:
+        """Read one sentence's chunks (``segment`` its tokens, ``base`` the index of its first token)."""
+        sent = _Sentence(segment, _fill_context(segment), reading)
+        k = 0
+        for idx, child in enumerate(tree):
+            if isinstance(child, Tree):
+                n = size(child)
+                toks = segment[k : k + n]
+                if child.label() == "QUANT" and idx + 1 < len(tree) and _noun_took_other_unit(tree[idx + 1]):
+                    # "~ 10cm diameter ~ 0.8 kg": the noun's value is the length before it, not the mass
+                    q = self._quantity(child, toks, base + k)
+                    role = lx.DIMENSION_WORDS.get(segment[k + n].low, "size")
+                    if (
+                        q is not None
+                        and q.unit is not None
+                        and q.unit.kind == "length"
+                        and role in _NOUN_ROLES
+                    ):
+                        self._add_dim(reading, role, [q], segment[k : k + n + 1], base + k)
+                        k += n
+                        continue
+                self._read_chunk(child, toks, base + k, sent, k)
+                k += n
+            else:
+                k += 1
+
+    def _read_chunk(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
+        label = chunk.label()
+        if label == "QUANT":
+            q = self._quantity(chunk, toks, pos)
+            if q is not None:
+                self._free_quantity(q, toks, sent, k)
+            return
+        if label == "MULTI":
+            self._read_multi(chunk, toks, pos, sent, k)
+            return
+        if label == "DIM":
+            self._read_dim(chunk, toks, pos, sent, k)
+
+    def _children(self, chunk: Tree, toks: list[Token], pos: int) -> Iterator[tuple[Any, int, int]]:
+        """The parts of a DIM or MULTI chunk in order: (its :class:`Quantity`, start, end) for each QUANT
+        read, (the :class:`Token`, j, j + 1) for each word (token indexes within ``toks``)."""
+        j = 0
+        for sub in chunk:
+            if isinstance(sub, Tree):
+                n = size(sub)
+                if sub.label() == "QUANT":
+                    q = self._quantity(sub, toks[j : j + n], pos + j)
+                    if q is not None:
+                        yield q, j, j + n
+                j += n
+            else:
+                yield toks[j], j, j + 1
+                j += 1
+
+    def _not_extents(self, quants: list[Quantity], toks: list[Token], sent: _Sentence, k: int) -> bool:
+        """True (and each quantity with a unit read on its own) when one of them is not a length: "tall,
+        about 300 g" is not a dimension."""
+        if not any(q.unit is not None and q.unit.kind != "length" for q in quants):
+            return False
+        for q in quants:
+            if q.unit is not None:
+                self._free_quantity(q, toks, sent, k)
+        return True
+
+    def _read_dim(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
+        """A dimension chunk: "<dimension noun> [is|of|:] <quantity>" or "<quantity> [in|of] <dimension
+        word>"."""
+        reading, segment = sent.reading, sent.segment
+        quants: list[Quantity] = []
+        role = "size"
+        dim_word: Token | None = None
+        dim_first = False
+        for part, _a, _b in self._children(chunk, toks, pos):
+            if isinstance(part, Quantity):
+                quants.append(part)
+            elif part.tag in ("DIM", "DIMN"):
+                dim_word = part
+                dim_first = not quants
+                role = lx.DIMENSION_WORDS.get(part.low, "size")
+        if not quants or self._not_extents(quants, toks, sent, k):
+            return
+        if dim_word is not None and dim_word.low in lx.WEAK_DIMENSION_WORDS:
+            if dim_first or quants[0].unit is None:
+                return  # "a large bottle, 2": no dimension
+            role = "size"
+        if dim_word is not None and dim_word.low in lx.UNIT_ONLY_DIMENSION_WORDS:
+            if dim_first or quants[0].unit is None:
+                return  # "10 square", "square 5": not "9 cm square"
+        end = k + len(toks)
+        if role in ("length", "height") and end < len(segment) and segment[end].tag == "DIM":
+            if lx.DIMENSION_WORDS.get(segment[end].low) == "overall":
+                role = "overall"  # "30 cm long overall", "48 cm long with the handle"
+        self._add_dim(reading, role, quants, toks, pos)
+
+    @staticmethod
+    def _add_dim(reading: Reading, role: str, quants: list[Quantity], toks: list[Token], pos: int) -> None:
+        for i in range(pos, pos + len(toks)):
+            reading.in_dim_chunk.add(i)
+        for q in quants:
+            if q.unit is not None:
+                reading.length_units.append((q.pos, q.unit))
+        stmt = DimStatement(role, quants, toks[0].start, toks[-1].end)
+        if role == "multi":
+            reading.multis.append(stmt)
+        elif role == "size":
+            reading.sizes.append(stmt)
+        else:
+            reading.dims.append(stmt)
+
+    def _read_multi(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
+        """A tuple ("10 x 5 x 2 cm", "7.5 cm long by 5 by 5", "L 20 x W 10 x H 5 cm") or a list ("20, 10
+        and 5 cm"). Numbers without a unit take the unit of the next one in the tuple that has one, else
+        of the previous one. A tuple whose every value has its own dimension word ("10 cm long by 3 cm in
+        diameter") is read as those dimensions; a list counts only when its last value has a length
+        unit, otherwise its values are read one by one."""
+        reading = sent.reading
+        quants: list[Quantity] = []
+        roles: list[str | None] = []
+        spans: list[tuple[int, int]] = []
+        is_list = False
+        for part, a, b in self._children(chunk, toks, pos):
+            if isinstance(part, Quantity):
+                quants.append(part)
+                roles.append(None)
+                spans.append((a, b))
+            elif part.tag in ("DIM", "DIMN") and quants and roles[-1] is None:
+                roles[-1] = lx.DIMENSION_WORDS.get(part.low, "size")
+                spans[-1] = (spans[-1][0], b)
+            elif part.tag in ("CM", "AND"):
+                is_list = True
+        if not quants:
+            return
+        if is_list and (quants[-1].unit is None or quants[-1].unit.kind != "length"):
+            for q in quants:  # "300 g, 20 cm and 5": not one list of extents
+                self._free_quantity(q, toks, sent, k)
+            return
+        _inherit_units(quants)
+        if self._not_extents(quants, toks, sent, k):
+            return
+        if len(quants) < 2:
+            return
+        weak = lx.WEAK_DIMENSION_WORDS | lx.UNIT_ONLY_DIMENSION_WORDS
+        if not is_list and len(quants) == 2 and set(roles) in ({"diameter", None}, {"radius", None}):
+            roles = [r or "length" for r in roles]  # "7 cm dia x 12 cm": the other extent of a cylinder
+        if not is_list and all(r is not None and r != "size" for r in roles):
+            for q, role, (a, b) in zip(quants, roles, spans, strict=True):
+                if role is not None and role not in weak:
+                    self._add_dim(reading, role, [q], toks[a:b], pos + a)
+            return
+        self._add_dim(reading, "multi", quants, toks, pos)
+
+    def _free_quantity(self, q: Quantity, toks: list[Token], sent: _Sentence, k: int) -> None:
+        """A quantity outside any dimension chunk: a mass, contents, or an unlabelled length."""
+        reading, fill, segment = sent.reading, sent.fill, sent.segment
+        if q.unit is None:
+            return
+        other = _other_object(segment, k)
+        if other == "compared":
+            return  # "it sits next to my 2 kg dumbbell": another object's mass or size
+        if other == "owned" and q.unit.kind == "mass":
+            reading.other_masses.append(q)  # "my 2 kg dumbbell": the object itself only if nothing else
+            return
+        contents = fill is not None and (fill < k or segment[fill].low not in lx.WEAK_FILL_WORDS)
+        if q.unit.kind == "mass":
+            if contents:
+                # "filled with 16 oz of water" is contents; "full of water, about a pound and a half" is
+                # the stated total: only a mass right after the contents word or before "of" is contents
+                end = k + len(toks)
+                after_of = end < len(segment) and segment[end].low == "of"
+                right_after = fill is not None and 0 < k - fill <= 2
+                contents = after_of or right_after
+            reading.masses.append((q, contents))
+        elif q.unit.kind == "volume":
+            if contents:
+                reading.contents.append(q)
+        elif q.unit.kind == "length":
+            reading.length_units.append((q.pos, q.unit))
+            reading.sizes.append(DimStatement("size", [q], q.start, q.end))
+
+    def _quantity(self, chunk: Tree, toks: list[Token], pos: int) -> Quantity | None:
+        """Read a QUANT chunk: hedge, number or range, unit."""
+        qualifier = "exact"
+        plus = False
+        numbers: list[float] = []
+        unit: Unit | None = None
+        j = 0
+        for sub in chunk:
+            if isinstance(sub, Tree):
+                n = size(sub)
+                part = toks[j : j + n]
+                label = sub.label()
+                if label == "HEDGE":
+                    qualifier = _hedge_qualifier(part)
+                elif label == "NUM":
+                    value = _num(part)
+                    if value is None:
+                        return None
+                    if plus and numbers:
+                        numbers[-1] += value  # "an inch and a half"
+                    else:
+                        numbers.append(value)
+                elif label == "RANGE":
+                    r = 0
+                    for rsub in sub:
+                        if isinstance(rsub, Tree):
+                            rn = size(rsub)
+                            if rsub.label() == "NUM":
+                                value = _num(part[r : r + rn])
+                                if value is None:
+                                    return None
+                                numbers.append(value)
+                            elif rsub.label() == "UNIT":
+                                unit = self._units.get(part[r].low)
+                            r += rn
+                        else:
+                            r += 1
+                elif label == "UNIT":
+                    unit = self._units.get(part[0].low)
+                elif label == "SUB":  # "1 lb 2 oz", "5 ft 3 in": one quantity in two units
+                    sub_unit = self._units.get(part[0].low)
+                    if unit is not None and sub_unit is not None and len(numbers) == 2:
+                        numbers = [numbers[0] + numbers[1] * sub_unit.factor / unit.factor]
+                j += n
+            else:
+                if toks[j].tag == "HS":
+                    qualifier = "about"
+                plus = toks[j].tag == "UAND"
+                j += 1
+        if not numbers:
+            return None
+        start, end = toks[0].start, toks[-1].end
+        if len(numbers) >= 2:
+            lo, hi = sorted(numbers[:2])
+            if lo <= 0:
+                return None
+            return Quantity((lo + hi) / 2, lo, hi, "range", unit, start, end, pos)
+        value = numbers[0]
+        if value <= 0:
+            return None
+        low = value if qualifier == "at_least" else None
+        high = value if qualifier == "at_most" else None
+        return Quantity(value, low, high, qualifier, unit, start, end, pos)
+
+
+def _inherit_units(quants: list[Quantity]) -> None:
+    """In a tuple, a number without a unit takes the unit of the next one that has one, else of the
+    previous one ("7.5 x 7 x 4 cm")."""
+    stated = [q.unit for q in quants]
+    for i, q in enumerate(quants):
+        if q.unit is None:
+            after = next((u for u in stated[i + 1 :] if u is not None), None)
+            before = next((u for u in reversed(stated[:i]) if u is not None), None)
+            q.unit = after or before
+
+
+_NOUN_ROLES = frozenset({*lx.LINEAR_ROLES, "diameter", "radius"})
+
+
+def _noun_took_other_unit(node: Any) -> bool:
+    """True for a DIM chunk "<dimension noun> <quantity>" whose quantity is a mass or a volume."""
+    if (
+        not isinstance(node, Tree)
+        or node.label() != "DIM"
+        or isinstance(node[0], Tree)
+        or node[0][1] != "DIMN"
+    ):
+        return False
+    for sub in node:
+        if isinstance(sub, Tree) and sub.label() == "QUANT":
+            return any(
+                isinstance(u, Tree) and u.label() == "UNIT" and u[0][1] in ("UMASS", "UVOL") for u in sub
+            )
+    return False
+
+
+def _other_object(segment: list[Token], k: int) -> str | None:
+    """For a quantity at ``k`` right after a possessive ("my 2 kg dumbbell", "my old 30 cm ruler"):
+    "compared" when its sentence compares or places ("next to", "than", "beside", "heavier"), else
+    "owned"; None without a possessive."""
+    if not any(t.low in lx.POSSESSIVES for t in segment[max(0, k - 2) : k]):
+        return None
+    if any(w in lx.COMPARISON_WORDS for t in segment for w in t.low.split()):  # also "lighter than"
+        return "compared"
+    return "owned"
+
+
+def _fill_context(segment: list[Token]) -> int | None:
+    """Index in the segment of a contents word ("filled", "full", "contains": anywhere in the sentence;
+    "with": before the volume, as "with 500 ml of ..."), or None; a capacity word ("capacity", "empty",
+    "can hold") anywhere in the sentence cancels it."""
+    found: int | None = None
+    for i, tok in enumerate(segment):
+        if tok.low in lx.CAPACITY_WORDS:
+            return None
+        if found is None and tok.low in lx.FILL_WORDS:
+            if tok.low in lx.WEAK_FILL_WORDS:
+                # "with 500 ml of water": only with "of" after the unit
+                if not any(
+                    t.low == "of" and segment[j - 1].tag in UNIT_TAGS
+                    for j, t in enumerate(segment[i + 1 :], start=i + 1)
+                ):
+                    continue
+            found = i
+    return found
+
+
+def _num(toks: Sequence[Token]) -> float | None:
+    words = [t.low for t in toks]
+    if len(words) == 1 and words[0] in ("a", "an"):
+        return 1.0
+    return number_value(words)
+
+
+def _hedge_qualifier(toks: Sequence[Token]) -> str:
+    quals = [lx.HEDGES.get(t.low, "about") for t in toks]
+    for q in ("at_least", "at_most", "about"):
+        if q in quals:
+            return q
+    return "exact"

@@ -1,0 +1,344 @@
+"""The store side of an on-demand lookup: search the stores, read the top results, keep what fits, write it.
+
+:func:`search_stores` asks every store of a sources file that declares a ``search`` (see
+:mod:`scrapers.sources`) for the given words, reads the first results (:mod:`scrapers.store_search`,
+``rel="next"`` pages followed while a store has listed fewer than its ``search_results``), fetches those
+product pages and extracts and validates them exactly as the nightly job does
+(:func:`scrapers.ingest.process_page`), keeps the pages that ``fits`` accepts, and writes them as one
+small ingestion run through the nightly job's own short write transaction (:func:`scrapers.ingest.write_run`):
+observations with adapter ``lookup:<extractor>`` (provisional under the fusion rule, :mod:`scrapers.fusion`)
+and an ``ingestion_runs`` row whose ``sources`` is ``lookup {"query": ..., "description": ..., ...}``.
+
+Bounded: stores are searched at the same time (one thread each; each host still gets one request at a
+time and its delay); every request's connect and read timeouts are clamped to the time left before
+``deadline`` and there are no retries, so a slow store costs at most the time budget; ``max_pages`` counts
+every request (search pages and product pages) over all stores. A store that fails (HTTP error, timeout,
+robots.txt disallowing its search, a robots Crawl-delay longer than the time left) is skipped with its
+reason. Nothing is written when no page fits, so the same lookup again adds nothing (its pages answer
+304 and the objects are already there).
+
+Knows nothing of recall: what "fits" means is the caller's (:mod:`recall.lookup` passes a recall of the
+description over each candidate alone).
+"""
+
+from __future__ import annotations
+
+import json
+import threading
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor, wait
+from dataclasses import asdict, dataclass, field, replace
+from typing import Any
+from urllib.parse import urlsplit
+
+import requests
+
+from kb.errors import ExtractionError, FetchError
+from kb.features import ObjectRecord
+from scrapers.fetcher import Clock, PoliteFetcher, SystemClock, fetch_error_kind
+from scrapers.fusion import LOOKUP_ADAPTER_PREFIX
+from scrapers.ingest import IngestionReport, PageOutcome, previous_pages, process_page, write_run
+from scrapers.sources import Sources, StoreSource
+from scrapers.store_search import parse_search_page
+
+__all__ = ["DEFAULT_MAX_PAGES", "Candidate", "StoreAnswer", "StoresLookup", "search_stores"]
+
+#: Requests (search pages + product pages, all stores together) one lookup may make.
+DEFAULT_MAX_PAGES = 12
+#: Stores searched at the same time.
+MAX_PARALLEL_STORES = 4
+#: fits(record) -> (fits?, why): whether a product page is the described object.
+FitFn = Callable[[ObjectRecord], "tuple[bool, str]"]
+
+
+@dataclass
+class StoreAnswer:
+    """What one store did: ``status`` is ``answered`` (listed products), ``no_results`` or ``skipped``
+    (with the ``reason``); the search pages and product pages it was asked for."""
+
+    store: str
+    status: str = "no_results"
+    reason: str | None = None
+    queries: list[str] = field(default_factory=list)
+    search_pages: list[str] = field(default_factory=list)
+    product_pages: list[str] = field(default_factory=list)
+
+
+@dataclass
+class Candidate:
+    """A product page read: its name and values, whether it fits, why, and what became of it."""
+
+    url: str
+    store: str
+    name: str | None
+    outcome: str  # added | known (not modified) | does_not_fit | rejected
+    reason: str | None = None
+    features: dict[str, Any] = field(default_factory=dict)
+
+
+@dataclass
+class StoresLookup:
+    """The store side of one lookup: per-store answers, the candidates, what the write did, and times."""
+
+    query: tuple[str, ...]
+    stores: list[StoreAnswer] = field(default_factory=list)
+    candidates: list[Candidate] = field(default_factory=list)
+    run_id: int | None = None
+    new_objects: list[str] = field(default_factory=list)
+    updated_objects: list[str] = field(default_factory=list)
+    observations_added: int = 0
+    requests: int = 0
+    fetch_s: float = 0.0
+    extract_s: float = 0.0
+    judge_s: float = 0.0
+    write_s: float = 0.0
+    message: str = ""
+
+    @property
+    def answered(self) -> list[str]:
+        return [s.store for s in self.stores if s.status in ("answered", "no_results")]
+
+    def to_dict(self) -> dict[str, Any]:
+        d = asdict(self)
+        d["answered"] = self.answered
+        return d
+
+
+class _Budget:
+    """The time left before a deadline and the requests left, shared by the store threads."""
+
+    def __init__(self, clock: Clock, deadline: float, max_pages: int):
+        self.clock, self.deadline, self.pages_left = clock, deadline, max_pages
+        self._lock = threading.Lock()
+        self.extract_s = 0.0
+
+    def remaining(self) -> float:
+        return self.deadline - self.clock.monotonic()
+
+    def take_page(self) -> bool:
+        with self._lock:
+            if self.pages_left <= 0:
+                return False
+            self.pages_left -= 1
+            return True
+
+    def policy_for(self, store: StoreSource) -> StoreSource:
+        """The store with timeouts clamped to the time left and no retries (a lookup is interactive)."""
+        left = max(self.remaining(), 0.05)
+        p = store.policy
+        policy = replace(
+            p,
+            connect_timeout_s=min(p.connect_timeout_s, left),
+            read_timeout_s=min(p.read_timeout_s, left),
+            max_page_s=min(p.max_page_s, left),
+            max_retries=0,
+        )
+        return replace(store, policy=policy)
+
+
+class _Stop(Exception):
+    """A store's search ends here, with the reason."""
+
+
+def _checked(fetcher: PoliteFetcher, budget: _Budget, store: StoreSource) -> StoreSource:
+    """The store to fetch with now; raises _Stop when the time or page budget is used up or the host's
+    delay would not leave time for the request."""
+    if budget.remaining() <= 0:
+        raise _Stop("time budget used up")
+    bounded = budget.policy_for(store)
+    delay = fetcher.crawl_delay(store.base_url + "/", bounded.policy) or 0.0
+    if max(delay, bounded.policy.delay_s) >= budget.remaining():
+        raise _Stop(f"the store's delay between requests ({max(delay, bounded.policy.delay_s):g} s) "
+                    "is longer than the time left")  # fmt: skip
+    if not budget.take_page():
+        raise _Stop("page budget used up")
+    return bounded
+
+
+def _result_urls(fetcher: PoliteFetcher, budget: _Budget, store: StoreSource, query: str, answer) -> list[str]:
+    """Up to ``store.search_results`` product URLs for ``query``, following ``rel=next`` pages."""
+    url: str | None = store.search_url(query)
+    found: list[str] = []
+    seen: set[str] = set()
+    while url and url not in seen and len(found) < store.search_results:
+        seen.add(url)
+        bounded = _checked(fetcher, budget, store)
+        answer.search_pages.append(url)
+        try:
+            result = fetcher.fetch(url, policy=bounded.policy)
+            page = parse_search_page(result.body or b"", result.final_url, result.content_type, store)
+        except FetchError as err:
+            raise _Stop(f"search failed: {fetch_error_kind(err)}: {err.reason}") from None
+        except ExtractionError as err:
+            raise _Stop(f"search answer unreadable: {err}") from None
+        found += [u for u in page.product_urls if u not in found]
+        nxt = page.next_url
+        url = nxt if nxt and urlsplit(nxt).netloc == urlsplit(store.base_url).netloc else None
+    return found[: store.search_results]
+
+
+def _timed_extractor(budget: _Budget):
+    from scrapers.extract import extract_page
+
+    def extract(body, url, content_type):
+        t0 = time.perf_counter()
+        try:
+            return extract_page(body, url, content_type)
+        finally:
+            with budget._lock:
+                budget.extract_s += time.perf_counter() - t0
+
+    return extract
+
+
+def _search_one(
+    fetcher: PoliteFetcher,
+    budget: _Budget,
+    store: StoreSource,
+    queries: Sequence[str],
+    previous: dict[str, dict[str, Any]],
+) -> tuple[StoreAnswer, list[PageOutcome]]:
+    """One store: the first query that lists products, then its top product pages."""
+    answer = StoreAnswer(store.name)
+    outcomes: list[PageOutcome] = []
+    extract = _timed_extractor(budget)
+    try:
+        urls: list[str] = []
+        for query in queries:
+            answer.queries.append(query)
+            urls = _result_urls(fetcher, budget, store, query, answer)
+            if urls:
+                break
+        if not urls:
+            return answer, outcomes
+        answer.status = "answered"
+        for url in urls:
+            bounded = _checked(fetcher, budget, store)
+            answer.product_pages.append(url)
+            outcomes.append(process_page(fetcher, bounded, url, previous.get(url), extract))
+    except _Stop as stop:
+        if not outcomes:
+            answer.status = "skipped"
+        answer.reason = str(stop)
+    return answer, outcomes
+
+
+def _judge(outcomes: list[PageOutcome], fits: FitFn) -> list[Candidate]:
+    """Mark each page: extracted pages that do not fit become rejections (recorded, never added)."""
+    out = []
+    for page in outcomes:
+        name = page.clean.name if page.clean is not None else None
+        cand = Candidate(page.url, page.store, name, "rejected", page.reason and f"{page.reason}: {page.detail}")
+        if page.outcome == "not_modified":
+            cand.outcome, cand.reason = "known", "not modified since it was last read"
+        elif page.outcome == "extracted":
+            cand.features = page.clean.known_features()
+            ok, why = fits(page.clean)
+            cand.outcome, cand.reason = ("added", why) if ok else ("does_not_fit", why)
+            if ok:
+                page.record.adapter = LOOKUP_ADAPTER_PREFIX + (page.record.adapter or "unknown")
+            else:
+                page.outcome, page.stage, page.reason, page.detail = "rejected", "lookup", "does_not_fit", why
+        out.append(cand)
+    return out
+
+
+def search_stores(
+    kb,
+    sources: Sources,
+    queries: Sequence[str],
+    *,
+    description: str,
+    fits: FitFn,
+    session: requests.Session,
+    deadline: float,
+    clock: Clock | None = None,
+    max_pages: int = DEFAULT_MAX_PAGES,
+) -> StoresLookup:
+    """Search the stores for ``queries`` (tried in order per store until one lists products), read the top
+    results, and add those ``fits`` accepts to ``kb`` (see the module docstring). ``deadline`` is a
+    ``clock.monotonic()`` time."""
+    clock = clock or SystemClock()
+    report = StoresLookup(tuple(queries))
+    stores = [s for s in sources.stores if s.search]
+    if not stores:
+        report.message = f"no store in {sources.origin} has a search (add search = \"...{{query}}\")"
+        return report
+    budget = _Budget(clock, deadline, max_pages)
+    fetcher = PoliteFetcher(session, clock=clock)
+    previous = previous_pages(kb)
+    t0 = time.perf_counter()
+    pool = ThreadPoolExecutor(max_workers=min(MAX_PARALLEL_STORES, len(stores)), thread_name_prefix="lookup")
+    futures = [pool.submit(_search_one, fetcher, budget, s, queries, previous) for s in stores]
+    done, _ = wait(futures, timeout=max(budget.remaining(), 0.0) + 0.25)
+    pool.shutdown(wait=False, cancel_futures=True)
+    outcomes: list[PageOutcome] = []
+    for store, fut in zip(stores, futures, strict=True):
+        if fut in done:
+            answer, pages = fut.result()
+        else:
+            answer, pages = StoreAnswer(store.name, "skipped", "still answering when the time ran out"), []
+        report.stores.append(answer)
+        outcomes += [p for p in pages if p.url not in {o.url for o in outcomes}]
+    report.requests = fetcher.requests_made
+    report.extract_s = budget.extract_s
+    report.fetch_s = max(time.perf_counter() - t0 - budget.extract_s, 0.0)
+    t0 = time.perf_counter()
+    report.candidates = _judge(outcomes, fits)
+    report.judge_s = time.perf_counter() - t0
+    _name_known(kb, report.candidates, previous)
+    _write(kb, report, outcomes, description, clock)
+    report.message = _message(report)
+    return report
+
+
+def _name_known(kb, candidates: list[Candidate], previous: dict[str, dict[str, Any]]) -> None:
+    """The catalog names of pages not modified since a lookup or crawl read them (one short read)."""
+    ids = {c.url: previous[c.url]["object_id"] for c in candidates if c.outcome == "known" and c.url in previous}
+    if not ids:
+        return
+    with kb.connect() as con:
+        sql = "SELECT id, name FROM objects WHERE list_contains(?, id)"
+        names = dict(con.execute(sql, [list(ids.values())]).fetchall())
+    for c in candidates:
+        if c.url in ids:
+            c.name = names.get(ids[c.url])
+
+
+def _write(kb, report: StoresLookup, outcomes: list[PageOutcome], description: str, clock: Clock) -> None:
+    """One ingestion run of the lookup's pages, only when a page fits (otherwise nothing changes)."""
+    if not any(c.outcome == "added" for c in report.candidates):
+        return
+    meta = {"query": list(report.query), "description": description,
+            "stores": [s.store for s in report.stores]}  # fmt: skip
+    run = IngestionReport(run_id=None, status="ok", sources="lookup " + json.dumps(meta), started_at=clock.now())
+    run.pages = run.fetched = len(outcomes)
+    run.extracted = sum(1 for p in outcomes if p.record is not None)
+    run.not_modified = sum(1 for p in outcomes if p.outcome == "not_modified")
+    run.rejected = sum(1 for p in outcomes if p.outcome == "rejected")
+    events = [(s.search_pages[-1] if s.search_pages else s.store, "lookup", s.reason)
+              for s in report.stores if s.status == "skipped"]  # fmt: skip
+    if events:
+        run.status = "ok_with_errors"
+        run.errors = [{"url": u, "stage": st, "reason": r} for u, st, r in events]
+    write_run(kb, outcomes, run, events, clock)
+    report.run_id, report.write_s = run.run_id, run.write_s
+    report.new_objects, report.updated_objects = run.new_objects, run.updated_objects
+    report.observations_added = run.observations_added
+
+
+def _message(report: StoresLookup) -> str:
+    asked = len(report.stores)
+    skipped = [f"{s.store} ({s.reason})" for s in report.stores if s.status == "skipped"]
+    if not report.answered:
+        return f"no store answered: {'; '.join(skipped)}"
+    added = report.new_objects + report.updated_objects
+    if added:
+        return f"added from {len(report.answered)} of {asked} store(s): {', '.join(added)}"
+    known = [c.name for c in report.candidates if c.outcome == "known"]
+    if known:
+        return f"already in the catalog from an earlier lookup: {', '.join(n or '?' for n in known)}"
+    if not report.candidates:
+        return f"no store lists anything for {' / '.join(report.query)!r}"
+    return f"{len(report.candidates)} product page(s) read, none fits the description"

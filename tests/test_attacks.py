@@ -1,0 +1,300 @@
+"""Outside attacks, replayed: hostile SQL, resource bombs, malformed CSVs, hostile descriptions, XSS in names.
+
+Everything here is loopback only and bounded: every child process has a wall-clock timeout, resource bombs
+are measured by the peak RSS of a child process (``resource.getrusage``) against a bound with a large
+margin, and no assertion is about speed.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import subprocess
+import sys
+import textwrap
+import time
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from kb.catalog import KnowledgeBase
+from kb.errors import QueryFailed, QueryRefused, QueryTimeout
+
+REPO = Path(__file__).resolve().parents[1]
+
+#: One statement of each class the outside review sent (file access, ATTACH, COPY, INSTALL/LOAD, SET,
+#: PRAGMA, writes, multi-statements, UPDATE EXTENSIONS, functions revealing server paths).
+HOSTILE_SQL = [
+    "select * from read_csv('/etc/passwd')",
+    "select * from read_text('/etc/passwd')",
+    "select * from read_blob('/etc/hostname')",
+    "select * from glob('/etc/*')",
+    "select * from 'objects.csv'",
+    "select * from read_csv('http://127.0.0.1:9/x.csv')",
+    "COPY objects TO '{tmp}/leak.csv'",
+    "COPY (select * from objects) TO '{tmp}/leak2.csv'",
+    "COPY objects FROM '/etc/passwd'",
+    "EXPORT DATABASE '{tmp}/export'",
+    "IMPORT DATABASE '{tmp}/export'",
+    "EXPLAIN ANALYZE COPY objects TO '{tmp}/leak3.csv'",
+    "ATTACH '{tmp}/other.duckdb' AS other",
+    "ATTACH ':memory:' AS m",
+    "DETACH seeded",
+    "USE memory",
+    "INSTALL httpfs",
+    "FORCE INSTALL httpfs",
+    "LOAD httpfs",
+    "LOAD '{tmp}/evil.duckdb_extension'",
+    "UPDATE EXTENSIONS",
+    "UPDATE EXTENSIONS (httpfs)",
+    "SET enable_external_access = true",
+    "SET threads = 64",
+    "RESET memory_limit",
+    "SET GLOBAL lock_configuration = false",
+    "SET VARIABLE v = 1",
+    "PRAGMA database_list",
+    "PRAGMA enable_profiling",
+    "CALL pragma_version()",
+    "CHECKPOINT",
+    "VACUUM",
+    "BEGIN TRANSACTION",
+    "INSERT INTO objects (name) VALUES ('evil')",
+    "UPDATE objects SET name = 'evil'",
+    "DELETE FROM objects",
+    "TRUNCATE objects",
+    "DROP TABLE objects",
+    "ALTER TABLE objects RENAME TO gone",
+    "CREATE TABLE t(x INT)",
+    "CREATE TEMP TABLE t AS SELECT 1",
+    "CREATE MACRO m() AS 1",
+    "CREATE SECRET s (TYPE s3, KEY_ID 'x', SECRET 'y')",
+    "select 1; delete from objects",
+    "select 1; select 2",
+    "select * from duckdb_databases()",
+    'select path from "duckdb_databases"()',
+    "select * from main.duckdb_databases()",
+    "select * from pragma_database_list",
+    "select * from duckdb_settings()",
+    "select current_setting('temp_directory')",
+    "select * from duckdb_extensions()",
+    "select * from duckdb_secrets()",
+]
+
+#: The resource bombs of the review: each grew a process past 4 GB or ran past its timeout.
+BOMBS = [
+    "SELECT len(range(0, 3000000000))",
+    "SELECT length(repeat('x', 2000000000))",
+    "SELECT len(range(0, 500000000))",
+    "select list(range) from range(300000000)",
+]
+
+
+def _sha(path: Path) -> str:
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def test_hostile_sql_is_refused_and_changes_nothing(seeded_db, tmp_path):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    before = _sha(seeded_db)
+    for template in HOSTILE_SQL:
+        query = template.format(tmp=tmp_path)
+        with pytest.raises(QueryRefused) as err:
+            kb.sql(query, timeout_s=5)
+        message = str(err.value)
+        assert "\n" not in message and "Traceback" not in message, query
+        assert "refused" in message or "one statement" in message, (query, message)
+        assert str(seeded_db.parent) not in message, (query, message)
+    assert _sha(seeded_db) == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == [seeded_db.name]  # nothing written beside it
+
+
+def test_an_unknown_statement_type_is_refused_not_a_crash(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    for query in ("UPDATE EXTENSIONS", "UPDATE EXTENSIONS (httpfs)"):
+        with pytest.raises(QueryRefused, match="not allowed"):
+            kb.sql(query)
+
+
+def test_explain_runs_only_for_a_select(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    assert kb.sql("EXPLAIN SELECT count(*) FROM objects").rows
+    with pytest.raises(QueryRefused, match="CREATE"):
+        kb.sql("EXPLAIN CREATE TABLE x(y INT)")
+
+
+def test_repeated_column_names_are_all_returned(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    res = kb.sql("SELECT 1 AS a, 2 AS a, 3 AS a, 4 AS b")
+    assert res.columns == ["a", "a (2)", "a (3)", "b"]
+    assert res.to_dicts() == [{"a": 1, "a (2)": 2, "a (3)": 3, "b": 4}]
+
+
+def test_server_paths_do_not_come_back_from_metadata(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    # the database's name is fine (SHOW DATABASES), its folder is not
+    names = kb.sql("SHOW DATABASES").rows
+    assert str(seeded_db.parent) not in repr(names)
+    with pytest.raises(QueryRefused, match="duckdb_databases"):
+        kb.sql("SELECT path FROM duckdb_databases()")
+
+
+_BOMB_RUNNER = textwrap.dedent(
+    """
+    import json, resource, sys
+    from kb.catalog import KnowledgeBase
+    from kb import sandbox
+    kb = KnowledgeBase.open(sys.argv[1], read_only=True)
+    out = []
+    for query in sys.argv[2:]:
+        try:
+            kb.sql(query, timeout_s=5)
+            out.append([query, "answered", ""])
+        except Exception as err:
+            out.append([query, type(err).__name__, str(err)])
+    sandbox._POOL.close()  # wait for the workers, so their peak RSS is counted
+    print(json.dumps({
+        "results": out,
+        "caller_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+        "workers_mb": resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024,
+    }))
+    """
+)
+
+
+def test_resource_bombs_are_refused_within_bounded_memory(seeded_db):
+    """Each bomb is refused (memory or time limit) and neither the caller nor a worker grows past its
+    bound; the review saw 4 GB to 24 GB and a kernel OOM kill for the same statements."""
+    env = {**os.environ, "PYTHONPATH": str(REPO)}
+    proc = subprocess.run(
+        [sys.executable, "-c", _BOMB_RUNNER, str(seeded_db), *BOMBS],
+        capture_output=True, text=True, timeout=180, env=env, cwd=REPO,
+    )
+    assert proc.returncode == 0, proc.stderr
+    report = json.loads(proc.stdout.strip().splitlines()[-1])
+    for query, kind, message in report["results"]:
+        assert kind in ("QueryRefused", "QueryTimeout"), (query, kind, message)
+        assert "memory" in message or "time limit" in message, (query, message)
+    assert report["caller_mb"] < 1024, report
+    assert report["workers_mb"] < 2048, report  # the worker's address space is capped at 1.5 GiB
+
+
+def _running_workers() -> list[int]:
+    """Sandbox worker processes of this process that are running (not sleeping on their next request)."""
+    running = []
+    for task in Path(f"/proc/{os.getpid()}/task").iterdir():
+        for pid in (task / "children").read_text().split():
+            try:
+                cmdline = Path(f"/proc/{pid}/cmdline").read_bytes()
+                state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+            except OSError:
+                continue
+            if b"kb.sandbox" in cmdline and state == "R":
+                running.append(int(pid))
+    return running
+
+
+def test_a_timed_out_query_leaves_no_worker_running(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    kb.sql("SELECT 1")
+    for query in ("SELECT length(repeat('x', 400000000))", "SELECT count(*) FROM range(1000000000000)"):
+        with pytest.raises(QueryTimeout, match="time limit"):
+            kb.sql(query, timeout_s=0.3)
+        deadline = time.monotonic() + 10  # a bound on settling, not a speed claim
+        while _running_workers() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert _running_workers() == []
+    assert kb.sql("SELECT count(*) FROM objects").rows[0][0] >= 100  # the sandbox works again after a kill
+
+
+def test_sql_limits_are_checked_before_running(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    for bad in ({"timeout_s": 0}, {"timeout_s": -1}, {"max_rows": 0}):
+        with pytest.raises(QueryFailed):
+            kb.sql("SELECT 1", **bad)
+
+
+# ---------------------------------------------------------------------------------------------- malformed CSVs
+_HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\n"
+_GOOD = "mug,10,8,8,300,prism,smooth,fragile,glass,rigid\n"
+
+#: (CSV text, row, column, words in the reason) of each malformed-file class the review sent.
+MALFORMED_CSV = [
+    (_HEADER + '"bowl,10,8,8,300,prism,smooth,fragile,glass,rigid\n' + _GOOD, 2, "-", "unbalanced quote"),
+    (_HEADER + '"bowl,10,8,8,300,prism,smooth,fragile,glass,rigid\nbook",2,3,4,5,thin,smooth,sturdy,paper,rigid\n',
+     2, "name", "spans several lines"),
+    (_HEADER + "bowl," + "1" * 131_073 + ",8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "-", "over 131,072"),
+    (_HEADER + _GOOD + "bowl,nan,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
+    (_HEADER + _GOOD + "bowl,NaN,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
+    (_HEADER + "bowl,10,8,8,inf,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
+    (_HEADER + "bowl,10,8,8,-Infinity,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
+    (_HEADER.strip() + ",mass_g\n" + _GOOD.strip() + ",5\n", 1, "mass_g", "more than once"),
+    (_HEADER + "bowl,10,8\n", 2, "-", "3 cells, header has 10"),
+    (_HEADER + _GOOD.strip() + ",extra\n", 2, "-", "11 cells, header has 10"),
+    (_HEADER + "bo\x00wl,10,8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "name", "NUL"),
+    (_HEADER + "bowl,10,8,8,300,prism,smooth,fragile,gla\x00ss,rigid\n", 2, "material", "NUL"),
+    (_HEADER + "bo\x07wl,10,8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "name", "control characters"),
+    (_HEADER + "x" * 201 + ",10,8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "name", "implausible name"),
+    ("", 1, "-", "empty file"),
+    ("name,a_cm\nbowl,3\n", 1, "b_cm", "missing column"),
+]
+
+
+@pytest.mark.parametrize(("text", "row", "column", "reason"), MALFORMED_CSV)
+def test_malformed_csv_is_refused_naming_row_column_reason(seeded_db, tmp_path, text, row, column, reason):
+    from kb.errors import CatalogImportError
+
+    path = tmp_path / "bad.csv"
+    path.write_text(text, encoding="utf-8")
+    kb = KnowledgeBase.open(seeded_db)
+    before = kb.export_csv()
+    with pytest.raises(CatalogImportError) as err:
+        kb.import_csv(path)
+    assert (row, column) in [(r, c) for r, c, _ in err.value.problems], err.value.problems
+    assert any(reason in why for _, _, why in err.value.problems), err.value.problems
+    assert "\n" not in str(err.value) and "nothing imported" in str(err.value)
+    assert kb.export_csv() == before
+
+
+def test_a_csv_that_cannot_be_read_is_one_clear_error(tmp_path):
+    from kb.csvio import read_catalog_csv
+    from kb.errors import CatalogImportError
+
+    for path in (tmp_path / "no-such.csv", tmp_path):
+        with pytest.raises(CatalogImportError, match="cannot read"):
+            read_catalog_csv(path)
+    (tmp_path / "latin1.csv").write_bytes(b"name\n\xe9\n")
+    with pytest.raises(CatalogImportError, match="not UTF-8"):
+        read_catalog_csv(tmp_path / "latin1.csv")
+
+
+def test_malformed_csv_via_the_cli_is_one_line_and_exit_1(tmp_path, cli_env):
+    bad = tmp_path / "bad.csv"
+    bad.write_text(MALFORMED_CSV[2][0], encoding="utf-8")  # the 131,073-character cell
+    db = tmp_path / "c.duckdb"
+    for args in (["catalog", "import", str(bad)],):
+        proc = subprocess.run(["objrecall", *args, "--db", str(db)], capture_output=True, text=True,
+                              env=cli_env, timeout=120)
+        assert proc.returncode == 1, (args, proc.stdout, proc.stderr)
+        lines = [ln for ln in (proc.stdout + proc.stderr).splitlines() if ln.strip()]
+        assert len(lines) == 1 and "Traceback" not in lines[0] and "╭" not in lines[0], lines
+
+
+_CSV_ALPHABET = st.sampled_from(list('abc ,;"\n\r\x00\t-.0123456789e') + ["nan", "inf", "mug", "prism", "glass"])
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(body=st.lists(_CSV_ALPHABET, max_size=80).map("".join))
+def test_any_csv_text_is_read_or_refused_never_a_crash(body):
+    from kb.csvio import parse_catalog_csv
+    from kb.errors import CatalogImportError
+
+    try:
+        result = parse_catalog_csv(_HEADER + body)
+    except CatalogImportError as err:
+        assert err.problems and "\n" not in str(err)
+        return
+    for record in result.records:
+        assert record.name and "\x00" not in record.name and "\n" not in record.name
