@@ -251,6 +251,11 @@ def create_app(
         )
         features_only: bool = Field(False, description="Ignore object names in the text (features only).")
 
+    class LookupIn(RecallIn):
+        budget_s: float = Field(10.0, gt=0, le=60, description="Seconds the lookup may take.")
+        max_pages: int = Field(12, ge=1, le=50, description="Requests the lookup may make, over all stores.")
+        force: bool = Field(False, description="Ask the stores even when the catalog recall is good.")
+
     class PlanIn(BaseModel):
         model_config = ConfigDict(extra="forbid")
         text: str | None = Field(None, min_length=1, max_length=MAX_TEXT_CHARS, description="A description.")
@@ -352,6 +357,17 @@ def create_app(
         )
         return to_jsonable(result.to_dict())
 
+    def _record_of(result):
+        """A catalog object of the result (its matches and closest of the same kind) by name, from the
+        snapshot the result came from (no second read of the catalog)."""
+        known = {m.name: m for m in (*result.matches, *result.same_kind)}
+
+        def get(name: str) -> ObjectRecord:
+            m = known[name]
+            return ObjectRecord.create(m.name, **{f: m.features.get(f) for f in FEATURES})
+
+        return get
+
     @app.post("/grasp/plan", tags=["grasp"])
     def grasp_plan(body: PlanIn) -> dict[str, Any]:
         """Ranked grasp plans for a catalog object (``name``) or the best match of a description (``text``)."""
@@ -363,12 +379,12 @@ def create_app(
             obj = knowledge_base().get_object(body.name)
             how: dict[str, Any] = {"method": "name"}
         else:
-            result = recaller().recall_text(body.text, top=1)
+            from recall.target import grasp_target
+
+            result = recaller().recall_text(body.text, top=3)
             if not result.matches:
                 raise RecallError("the description states no feature and names no catalog object")
-            best = result.matches[0]
-            obj = ObjectRecord.create(best.name, **{f: best.features.get(f) for f in FEATURES})
-            how = {"method": "recall", "confidence": result.confidence, "open_set": result.open_set}
+            obj, how = grasp_target(result, _record_of(result))
         plans = plan_grasps(obj, top=body.top)
         return to_jsonable(
             {
@@ -460,6 +476,31 @@ def create_app(
         ]
         job = app.state.jobs.start(command)
         return {"id": job.id, "status": job.status, "status_url": f"/ingestion/jobs/{job.id}"}
+
+    @app.post("/recall/lookup", tags=["recall"], dependencies=[Depends(require_token)])
+    def recall_lookup(body: LookupIn) -> dict[str, Any]:
+        """Recall, and when the catalog does not know the object (open set, or confidence below 0.5, or
+        ``force``), search the configured stores, add the products that fit, and recall again
+        (``recall.lookup``). A write: it needs the token. The answer's ``result`` is the recall to act on;
+        ``looked_up``, ``found``, ``message`` and ``stores`` say what the lookup did."""
+        import requests
+
+        from recall.lookup import recall_with_lookup
+        from scrapers.sources import load_sources
+
+        if settings.sources is None:
+            raise ObjrecallError(
+                f"no sources file configured on the server (start it with --sources FILE or set {ENV_SOURCES})"
+            )
+        plan = load_sources(settings.sources)
+        with requests.Session() as session:
+            result = recall_with_lookup(
+                settings.db, body.text, sources=plan, session=session,
+                budget_s=min(body.budget_s, max(0.5, 0.8 * settings.request_timeout)),
+                max_pages=body.max_pages, force=body.force, top=body.top, metric=body.metric,
+                features_only=body.features_only,
+            )  # fmt: skip
+        return to_jsonable(result.to_dict())
 
     @app.put("/objects/{name}", tags=["catalog"], dependencies=[Depends(require_token)])
     def put_object(name: name_p, body: ObjectIn) -> JSONResponse:
