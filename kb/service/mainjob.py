@@ -116,7 +116,7 @@ def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
                 "open_set": res.open_set,
                 "alternatives": [m.name for m in res.matches[1:]],
                 "looked_up": looked.looked_up,
-                "lookup": looked.message if looked.looked_up else None,
+                "lookup": looked.message if looked.why else None,
                 "added": looked.stores.new_objects if looked.stores else [],
             })
             table.add_row(
@@ -125,7 +125,7 @@ def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
                 f"{best.distance:.2f}" if best else "-",
                 f"{res.confidence:.2f}",
                 "yes" if res.open_set else "no",
-                escape(looked.message) if looked.looked_up else "-",
+                escape(looked.message) if looked.why else "-",
             )
     console.print(table)
     return rows
