@@ -61,6 +61,7 @@ from kb.service.http.settings import (
     MAX_TOP,
     SQL_MAX_RESPONSE_BYTES,
     ServiceSettings,
+    allowed_hosts_from,
     load_token,
     status_for,
 )
@@ -79,13 +80,15 @@ def create_app(
     busy_timeout: float = 30.0,
     ingest_command: list[str] | None = None,
     warm: bool = False,
+    allowed_hosts: list[str] | tuple[str, ...] | None = None,
 ):
     """The FastAPI application serving the catalog at ``db_path``.
 
     ``token`` enables writes (None: read from the environment, see :func:`load_token`; "" disables them).
     ``sources`` is the sources file ``POST /ingestion/runs`` ingests (default ``$OBJRECALL_SOURCES``).
     ``ingest_command`` replaces the command prefix that runs ``objrecall`` (tests, containers).
-    ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
+    ``allowed_hosts`` lists the Host header names answered (default ``$OBJRECALL_ALLOWED_HOSTS``, else
+    loopback only; ``["*"]`` answers any). ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
     (the first parse builds the grammar, which takes seconds), so the first requests are not slow.
     """
     from fastapi import Depends, FastAPI, Query, Request
@@ -113,6 +116,7 @@ def create_app(
         snapshot_ttl=snapshot_ttl,
         busy_timeout=busy_timeout,
         ingest_command=list(ingest_command) if ingest_command else objrecall_command(),
+        allowed_hosts=allowed_hosts_from(allowed_hosts),
     )
     try:
         from recall.metrics import METRICS
