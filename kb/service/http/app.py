@@ -394,8 +394,42 @@ def create_app(
                 "recalled": how,
                 "features": obj.features(),
                 "plans": [p.to_dict() for p in plans],
+                "validation": _latest_validation(obj.name),
             }
         )
+
+    def _latest_validation(name: str) -> dict[str, Any] | None:
+        """The stored trials of ``name`` with the current hand (``objrecall grasp validate``) as its first
+        and validated choice (sim/choice.py), or None when it was not validated with this hand."""
+        from sim.choice import choose
+        from sim.worker import current_hand_version
+
+        with knowledge_base().connect() as con:
+            cur = con.execute(
+                "SELECT object_name, grasp_type, rank, seed, success, outcome, reason FROM grasp_validations "
+                "WHERE object_name = ? AND hand_version = ? ORDER BY rank, seed",
+                [name, current_hand_version()],
+            )
+            cols = [d[0] for d in cur.description]
+            rows = [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+        return choose(rows)[0].to_dict() if rows else None
+
+    @app.get("/grasp/render", tags=["grasp"])
+    def grasp_render(
+        object: Annotated[str, Query(min_length=1, max_length=200, description="A catalog name or alias.")],
+        grasp_type: Annotated[str, Query(max_length=40, description="One of the object's planned types.")],
+    ) -> Response:
+        """A PNG of the simulated grasp (MuJoCo, to the end of the hold, seed 0) of one of the object's
+        planned grasp types: what the hand does, to look at rather than read."""
+        from sim.planner import plan_grasps
+        from sim.render import render_trial
+
+        obj = knowledge_base().get_object(object)
+        plan = next((p for p in plan_grasps(obj) if p.grasp_type == grasp_type), None)
+        if plan is None:
+            raise ObjrecallError(f"{grasp_type!r} is not a planned grasp of {obj.name!r}")
+        png = render_trial(obj, plan, seed=0, width=480, height=360)
+        return Response(content=png, media_type="image/png", headers={"Cache-Control": "max-age=300"})
 
     @app.get("/grasp/validations", tags=["grasp"], response_model=Page)
     def grasp_validations(
