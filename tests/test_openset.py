@@ -207,7 +207,7 @@ def test_three_extents_decide_a_proportion_class_over_a_shape_word():
 
 
 def test_geometry_votes_need_a_clear_majority():
-    from recall.geometry import K, MIN_VOTES, ShapeGeometry, overrides
+    from recall.geometry import MIN_VOTES, K, ShapeGeometry, overrides
 
     codes = {"thin": 0, "compact": 1, "prism": 2, "long": 3, "radial": 4}
     flat = [[20.0, 10.0, 1.0]] * K
