@@ -183,45 +183,86 @@ def _fmt(value: Any) -> str:
 def _print_result(result, title: str | None = None) -> None:
     from rich.console import Console
     from rich.markup import escape
-    from rich.table import Table
 
     console = Console()
-    stated = list(result.query["values"])
     if title:
         console.print(f"[bold]{escape(title)}[/bold]")
     if not result.matches:
-        console.print("No feature or object name found in the description: nothing to recall.")
+        if result.not_in_catalog:
+            console.print(escape(_verdict(result)))
+        else:
+            console.print("No feature or object name found in the description: nothing to recall.")
         return
     quals = result.query.get("qualifiers", {})
     described = ", ".join(
         f"{f}={_fmt(v)}" + (f" ({quals[f]})" if f in quals else "") for f, v in result.query["values"].items()
     )
     named = f"; named: {', '.join(result.named)}" if result.named else ""
-    console.print(escape(f"Described: {described or 'no features'}{named}"))
-    table = Table(
-        title=f"metric {result.metric}" + (" (features only)" if result.features_only else " + names")
-    )
+    vague = f"; vague: {', '.join(result.vague)}" if result.vague else ""
+    console.print(escape(f"Described: {described or 'no features'}{named}{vague}"))
+    title = f"metric {result.metric}" + (" (features only)" if result.features_only else " + names")
+    console.print(_match_table(result.matches, result, title))
+    if result.same_kind:
+        console.print(_match_table(result.same_kind, result, f"closest of the same kind ({result.same_kind_as})"))
+    console.print(escape(_verdict(result)))
+
+
+def _match_table(matches, result, title: str):
+    """Matches in ranking order: the score used for ranking (= features - name + vague), each stated
+    feature's part, the name part and, when vague words were used, their part."""
+    from rich.table import Table
+
+    stated = list(result.query["values"])
+    show_name = not result.features_only
+    show_vague = bool(result.vague)
+    table = Table(title=title)
     table.add_column("#", justify="right")
     table.add_column("object")
-    table.add_column("distance", justify="right")
+    table.add_column("score", justify="right")
     for feat in stated:
         table.add_column(feat, justify="right")
-    for i, m in enumerate(result.matches, 1):
+    if show_name:
+        table.add_column("name", justify="right")
+    if show_vague:
+        table.add_column("vague", justify="right")
+    for i, m in enumerate(matches, 1):
         name = m.name + (" (named)" if m.matched_by_name else "")
         cells = [f"{_fmt(m.features.get(f))} [dim]+{m.contributions.get(f, 0.0):.2f}[/dim]" for f in stated]
-        table.add_row(str(i), name, f"{m.distance:.3f}", *cells)
-    console.print(table)
+        extra = [f"-{m.name_part:.2f}"] if show_name else []
+        extra += [f"+{m.vague_part:.2f}"] if show_vague else []
+        table.add_row(str(i), name, f"{m.score:.3f}", *cells, *extra)
+    return table
+
+
+def _verdict(result) -> str:
+    """One line: not in the catalog / not a close match / close match, the confidence and why."""
+    if result.not_in_catalog:
+        noun = result.described
+        near = ", ".join(m.name for m in result.matches[:3]) or "nothing (no feature stated)"
+        kind = ", ".join(m.name for m in result.same_kind) or "none"
+        return (
+            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (a {noun.kind}) in the catalog; physically closest: {near}; "
+            f"closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}"
+        )
     verdict = (
-        "NOT a close match (open set): nothing in the catalog is near" if result.open_set else "close match"
+        "NOT a close match (open set): nothing in the catalog is near"
+        if result.open_set
+        else "a guess: many objects fit the description equally"
+        if result.competitors >= 3
+        else "close match"
     )
     why = []
     if result.closeness is not None:
         why.append(f"mean relative error of the best match {result.closeness:.2f}")
     if result.unknown_noun:
         why.append(f"'{result.unknown_noun}' is no catalog noun")
-    console.print(
-        escape(f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else ""))
-    )
+    if result.competitors >= 1.5:
+        why.append(f"{result.competitors:.1f} candidates about as good")
+    return f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else "")
+
+
+def _pct(k: int, n: int) -> str:
+    return f"{100.0 * k / n:.1f} %" if n else "-"
 
 
 def _print_report(report) -> None:
@@ -254,14 +295,20 @@ def _print_report(report) -> None:
             f"Parse: R² dimensions {_fmt(round(r2d, 3)) if r2d is not None else '-'}, "
             f"R² mass {_fmt(round(r2m, 3)) if r2m is not None else '-'}; category accuracy: {cats}"
         )
-    flags = ", ".join(f"{mode} {k}/{report.n}" for mode, k in report.false_flags.items())
-    console.print(f"Open-set flags on these in-catalog descriptions (false flags): {flags}")
+    flags = ", ".join(f"{mode} {k}/{report.n} ({_pct(k, report.n)})" for mode, k in report.false_flags.items())
+    console.print(f"Open-set flags on these in-catalog descriptions (false-flag rate): {flags}")
     if report.open_set_n:
         flagged = ", ".join(
-            f"{mode} {k}/{report.open_set_n} (confidence >= 0.9: {report.open_set_confident[mode]})"
+            f"{mode} {k}/{report.open_set_n} ({_pct(k, report.open_set_n)}; confidence >= 0.9: "
+            f"{report.open_set_confident[mode]})"
             for mode, k in report.open_set.items()
         )
-        console.print(f"Open-set descriptions flagged: {flagged}")
+        console.print(f"Open-set descriptions flagged (detection rate): {flagged}")
+    for mode in report.points:
+        cal = report.calibration(mode)
+        console.print(f"Confidence, {mode}: Brier {cal.brier:.3f}, ECE {cal.ece:.3f} over {cal.n} results")
+        for line in cal.plot():
+            console.print(f"  {line}", highlight=False)
     if report.unknown_objects:
         console.print(
             f"Skipped {len(report.unknown_objects)} description(s) of objects not in the catalog: "

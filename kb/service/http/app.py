@@ -61,6 +61,7 @@ from kb.service.http.settings import (
     MAX_TOP,
     SQL_MAX_RESPONSE_BYTES,
     ServiceSettings,
+    allowed_hosts_from,
     load_token,
     status_for,
 )
@@ -79,21 +80,24 @@ def create_app(
     busy_timeout: float = 30.0,
     ingest_command: list[str] | None = None,
     warm: bool = False,
+    allowed_hosts: list[str] | tuple[str, ...] | None = None,
 ):
     """The FastAPI application serving the catalog at ``db_path``.
 
     ``token`` enables writes (None: read from the environment, see :func:`load_token`; "" disables them).
     ``sources`` is the sources file ``POST /ingestion/runs`` ingests (default ``$OBJRECALL_SOURCES``).
     ``ingest_command`` replaces the command prefix that runs ``objrecall`` (tests, containers).
-    ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
+    ``allowed_hosts`` lists the Host header names answered (default ``$OBJRECALL_ALLOWED_HOSTS``, else
+    loopback only; ``["*"]`` answers any). ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
     (the first parse builds the grammar, which takes seconds), so the first requests are not slow.
     """
-    from fastapi import Depends, FastAPI, Query, Request
+    from fastapi import Depends, Query, Request
     from fastapi import Path as PathParam
     from fastapi.exceptions import RequestValidationError
     from fastapi.responses import FileResponse, JSONResponse, Response
     from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
     from fastapi.staticfiles import StaticFiles
+    from fastapi_offline import FastAPIOffline
     from pydantic import BaseModel, ConfigDict, Field
     from starlette.exceptions import HTTPException as StarletteHTTPException
 
@@ -113,6 +117,7 @@ def create_app(
         snapshot_ttl=snapshot_ttl,
         busy_timeout=busy_timeout,
         ingest_command=list(ingest_command) if ingest_command else objrecall_command(),
+        allowed_hosts=allowed_hosts_from(allowed_hosts),
     )
     try:
         from recall.metrics import METRICS
@@ -139,7 +144,8 @@ def create_app(
         except Exception:  # noqa: BLE001 - warming is best effort; the real request reports any error
             pass
 
-    app = FastAPI(
+    # /docs and /redoc with Swagger UI / ReDoc served by this server (fastapi-offline), not from a CDN
+    app = FastAPIOffline(
         lifespan=lifespan,
         title="objrecall knowledge service",
         version=_package_version(),
@@ -353,6 +359,17 @@ def create_app(
         )
         return to_jsonable(result.to_dict())
 
+    def _record_of(result):
+        """A catalog object of the result (its matches and closest of the same kind) by name, from the
+        snapshot the result came from (no second read of the catalog)."""
+        known = {m.name: m for m in (*result.matches, *result.same_kind)}
+
+        def get(name: str) -> ObjectRecord:
+            m = known[name]
+            return ObjectRecord.create(m.name, **{f: m.features.get(f) for f in FEATURES})
+
+        return get
+
     @app.post("/grasp/plan", tags=["grasp"])
     def grasp_plan(body: PlanIn) -> dict[str, Any]:
         """Ranked grasp plans for a catalog object (``name``) or the best match of a description (``text``)."""
@@ -364,12 +381,12 @@ def create_app(
             obj = knowledge_base().get_object(body.name)
             how: dict[str, Any] = {"method": "name"}
         else:
-            result = recaller().recall_text(body.text, top=1)
+            from recall.target import grasp_target
+
+            result = recaller().recall_text(body.text, top=3)
             if not result.matches:
                 raise RecallError("the description states no feature and names no catalog object")
-            best = result.matches[0]
-            obj = ObjectRecord.create(best.name, **{f: best.features.get(f) for f in FEATURES})
-            how = {"method": "recall", "confidence": result.confidence, "open_set": result.open_set}
+            obj, how = grasp_target(result, _record_of(result))
         plans = plan_grasps(obj, top=body.top)
         return to_jsonable(
             {
