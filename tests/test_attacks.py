@@ -448,3 +448,24 @@ def test_sql_bombs_over_http_are_refused_and_stop_with_their_request(live_server
     assert refused.status_code == 400 and "/" not in refused.json()["detail"]
     unknown = httpx.post(f"{base}/sql", json={"query": "UPDATE EXTENSIONS (httpfs)"}, timeout=60)
     assert unknown.status_code == 400 and unknown.json()["error"] == "QueryRefused"
+
+
+def test_api_docs_are_served_offline(seeded_db):
+    """/docs and /redoc load every script and style from this server (no CDN: the page works offline)."""
+    import re
+
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    client = TestClient(create_app(seeded_db, token=""), base_url="http://127.0.0.1")
+    for page in ("/docs", "/redoc"):
+        html = client.get(page).text
+        assets = re.findall(r'(?:src|href)=["\']([^"\']+\.(?:js|css))["\']', html)
+        assert assets, page
+        for url in assets:
+            assert url.startswith("/") and not url.startswith("//"), (page, url)
+            response = client.get(url)
+            assert response.status_code == 200 and len(response.content) > 1000, (page, url)
+        assert "cdn." not in html and "https://" not in html.replace("https://swagger.io", ""), page
+    assert client.get("/openapi.json").json()["paths"]

@@ -91,12 +91,13 @@ def create_app(
     loopback only; ``["*"]`` answers any). ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
     (the first parse builds the grammar, which takes seconds), so the first requests are not slow.
     """
-    from fastapi import Depends, FastAPI, Query, Request
+    from fastapi import Depends, Query, Request
     from fastapi import Path as PathParam
     from fastapi.exceptions import RequestValidationError
     from fastapi.responses import FileResponse, JSONResponse, Response
     from fastapi.security import HTTPAuthorizationCredentials, HTTPBearer
     from fastapi.staticfiles import StaticFiles
+    from fastapi_offline import FastAPIOffline
     from pydantic import BaseModel, ConfigDict, Field
     from starlette.exceptions import HTTPException as StarletteHTTPException
 
@@ -143,7 +144,8 @@ def create_app(
         except Exception:  # noqa: BLE001 - warming is best effort; the real request reports any error
             pass
 
-    app = FastAPI(
+    # /docs and /redoc with Swagger UI / ReDoc served by this server (fastapi-offline), not from a CDN
+    app = FastAPIOffline(
         lifespan=lifespan,
         title="objrecall knowledge service",
         version=_package_version(),
