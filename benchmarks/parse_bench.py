@@ -1,7 +1,7 @@
 """Description parser vs quantulum3 on the development set: speed (descriptions per second, one core) and
 accuracy of the quantities (dimensions and mass against the true objects), measured in the same run.
 
-    python benchmarks/parse_bench.py [--passes 3] [--tolerance 0.2]
+    python benchmarks/parse_bench.py [--passes 3] [--tolerance 0.2] [--startup-runs 5] [--startup-only]
 
 Quantities are scored the same way for both: a true dimension (a, b or c) is *found* when an extracted
 length is within ``tolerance`` of it; the mass when the first extracted mass is. quantulum3 (a
@@ -10,13 +10,20 @@ downloads nothing. When that pickle cannot be loaded by the installed scikit-lea
 ``sklearn._loss``), the benchmark switches quantulum3 to its no-classifier mode and says so (retraining
 would need the ``stemming`` package).
 Warm-up (loading, first parse) is timed separately and not counted in the rates.
+
+Start-up is measured by subprocess (fresh interpreters, min of ``--startup-runs``, wall and CPU time of
+the child), against a plain ``python -c pass`` measured in the same run: importing NLTK plainly and
+through ``recall/toolkit.py``, the unit table built with pint and read from its stored copy, and the
+parser's whole start (import, build, first parse) now and as it was (plain NLTK first, pint table).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import resource
 import statistics
+import subprocess
 import sys
 import time
 import warnings
@@ -117,11 +124,62 @@ def _rates(fns: dict, texts: list[str], passes: int) -> dict[str, float]:
     return {name: statistics.median(r) for name, r in rates.items()}
 
 
+_FIRST = "from recall.parser import parse; parse('a mug about 9.5 cm tall and 8 across, 350 g')"
+#: (label, code run by ``python -c``); the first is the baseline.
+STARTUP_CASES: tuple[tuple[str, str], ...] = (
+    ("python -c pass (baseline)", "pass"),
+    ("import nltk (plain)", "import nltk"),
+    ("import recall.toolkit (NLTK, no scipy/sklearn)", "import recall.toolkit"),
+    ("unit table built with pint", "from recall.units import build_unit_table; build_unit_table()"),
+    ("unit table read from units.json", "from recall.units import unit_table; unit_table()"),
+    ("parser start, as before (plain NLTK, pint)", "import nltk; from recall.units import build_unit_table; "
+     "build_unit_table(); " + _FIRST),
+    ("parser start now (import, build, 1st parse)", _FIRST),
+)  # fmt: skip
+
+
+def _run_child(code: str) -> tuple[float, float]:
+    """(wall s, CPU s) of one fresh interpreter running ``code``."""
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parent.parent)}
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-c", code], check=True, env=env)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def startup(runs: int) -> list[tuple[str, float, float]]:
+    """(label, min wall s, min CPU s) per :data:`STARTUP_CASES`; the cases take turns in each round."""
+    best: dict[str, list[float]] = {label: [float("inf"), float("inf")] for label, _c in STARTUP_CASES}
+    for _ in range(runs):
+        for label, code in STARTUP_CASES:
+            wall, cpu = _run_child(code)
+            best[label] = [min(best[label][0], wall), min(best[label][1], cpu)]
+    return [(label, *best[label]) for label, _c in STARTUP_CASES]
+
+
+def _print_startup(rows: list[tuple[str, float, float]], runs: int) -> None:
+    _label, base_wall, base_cpu = rows[0]
+    print(f"start-up (fresh interpreter, min of {runs}; 'over pass' = minus the baseline, same run)")
+    print(f"{'':46s}{'wall s':>8s}{'CPU s':>8s}{'CPU over pass':>15s}{'x pass':>8s}")
+    for label, wall, cpu in rows:
+        print(f"{label:46s}{wall:8.3f}{cpu:8.3f}{cpu - base_cpu:15.3f}{cpu / base_cpu:8.1f}")
+    before, now = rows[-2][2] - base_cpu, rows[-1][2] - base_cpu
+    print(f"parser start-up over pass: {before:.3f} s CPU before, {now:.3f} s now ({before / now:.1f}x less)")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--passes", type=int, default=5)
     ap.add_argument("--tolerance", type=float, default=0.2)
+    ap.add_argument("--startup-runs", type=int, default=5, help="fresh interpreters per start-up case")
+    ap.add_argument("--startup-only", action="store_true", help="only the start-up measurements")
     args = ap.parse_args()
+    if args.startup_runs > 0:
+        _print_startup(startup(args.startup_runs), args.startup_runs)
+    if args.startup_only:
+        return 0
     if hasattr(os, "sched_setaffinity"):
         os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})  # one core
     labeled = load_labeled()

@@ -4,12 +4,20 @@ Header: ``name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity``
 any order when read). Blank cells mean unknown. Optional extra columns: ``aliases`` (separated by ``;``)
 and ``source``; other extra columns are kept in ``ObjectRecord.extra``. Rows are numbered as a spreadsheet
 shows them: the header is row 1, the first object row 2.
+
+Refused, naming row, column and reason: a row with more or fewer cells than the header, a NUL byte in any
+cell, a name spanning lines or holding control characters (what an unbalanced quote produces), a name over
+:data:`MAX_NAME_CHARS` characters, ``nan``/``inf`` or other non-numbers in a number cell, and every value
+:mod:`kb.features` refuses. Refused as a whole file: an unbalanced quote running to the end, a cell over
+:data:`MAX_CELL_CHARS` characters, a column named twice in the header, a missing column, a file that cannot
+be read or is not UTF-8.
 """
 
 from __future__ import annotations
 
 import csv
 import io
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,6 +29,11 @@ __all__ = ["CsvReadResult", "SkippedRow", "read_catalog_csv", "write_catalog_csv
 
 ALIAS_SEPARATOR = ";"
 OPTIONAL_COLUMNS = ("aliases", "source")
+#: The longest cell read (the ``csv`` module's field limit); a longer one refuses the whole file.
+MAX_CELL_CHARS = 131_072
+#: The longest object name accepted from a CSV (a longer one is a broken row, not an object).
+MAX_NAME_CHARS = 200
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
 
 
 @dataclass(frozen=True)
@@ -51,31 +64,32 @@ def read_catalog_csv(path: str | Path, *, skip_invalid: bool = False) -> CsvRead
         text = path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError as err:
         raise CatalogImportError(str(path), [(0, "-", f"not UTF-8 text ({err.reason})")]) from None
+    except OSError as err:
+        raise CatalogImportError(str(path), [(0, "-", f"cannot read the file ({err.strerror or err})")]) from None
     return parse_catalog_csv(text, label=str(path), skip_invalid=skip_invalid)
 
 
 def parse_catalog_csv(text: str, *, label: str = "<csv>", skip_invalid: bool = False) -> CsvReadResult:
-    """Like :func:`read_catalog_csv` for CSV text already in memory (``label`` names it in errors)."""
-    reader = csv.DictReader(io.StringIO(text))
-    header = [h.strip() for h in (reader.fieldnames or [])]
-    if not header:
-        raise CatalogImportError(label, [(1, "-", "empty file: no header")])
-    reader.fieldnames = header
-    missing = [c for c in CSV_COLUMNS if c not in header]
-    if missing:
-        raise CatalogImportError(label, [(1, c, "missing column in header") for c in missing])
+    """Like :func:`read_catalog_csv` for CSV text already in memory (``label`` names it in errors).
+
+    A broken file (an unbalanced quote, a cell over :data:`MAX_CELL_CHARS`, a duplicated header column) is
+    refused as a whole, whatever ``skip_invalid`` says: nothing after the break can be trusted.
+    """
+    reader = csv.reader(io.StringIO(text), strict=True)
+    rows = _records(reader, label)
+    header = _header(next(rows, None), label)
     result = CsvReadResult()
     problems: list[SkippedRow] = []
     seen: dict[str, int] = {}
-    for offset, row in enumerate(reader):
-        rownum = offset + 2
-        if None in row:  # more cells than header columns
-            problems.append(SkippedRow(rownum, "-", f"{len(header) + len(row[None])} cells, header has {len(header)}"))
-            continue
-        if all((v or "").strip() == "" for v in row.values()):
+    for rownum, cells in rows:
+        if all(not c.strip() for c in cells):
             continue  # blank line
+        problem = _shape_problem(rownum, cells, header)
+        if problem is not None:
+            problems.append(problem)
+            continue
         try:
-            record = _row_to_record(row)
+            record = _row_to_record(dict(zip(header, cells, strict=True)))
         except InvalidFeature as err:
             problems.append(SkippedRow(rownum, err.field, err.reason))
             continue
@@ -88,6 +102,54 @@ def parse_catalog_csv(text: str, *, label: str = "<csv>", skip_invalid: bool = F
         raise CatalogImportError(label, [(p.row, p.column, p.reason) for p in problems])
     result.skipped = problems
     return result
+
+
+def _records(reader, label: str):
+    """(row number, cells) of each record; a malformed file raises :class:`CatalogImportError` naming the
+    record where the ``csv`` module gave up (an unbalanced quote is found at the end of the file)."""
+    rownum = 0
+    while True:
+        rownum += 1
+        try:
+            cells = next(reader)
+        except StopIteration:
+            return
+        except csv.Error as err:
+            reason = str(err)
+            if "field larger than field limit" in reason:
+                reason = f"a cell over {MAX_CELL_CHARS:,} characters"
+            elif "unexpected end of data" in reason or "EOF" in reason:
+                reason = "unbalanced quote: a quoted cell runs to the end of the file"
+            raise CatalogImportError(label, [(rownum, "-", f"malformed CSV ({reason})")]) from None
+        yield rownum, cells
+
+
+def _header(first: tuple[int, list[str]] | None, label: str) -> list[str]:
+    header = [h.strip() for h in (first[1] if first else [])]
+    if not any(header):
+        raise CatalogImportError(label, [(1, "-", "empty file: no header")])
+    repeated = sorted({h for h in header if header.count(h) > 1})
+    if repeated:
+        raise CatalogImportError(label, [(1, h, "column appears more than once in the header") for h in repeated])
+    missing = [c for c in CSV_COLUMNS if c not in header]
+    if missing:
+        raise CatalogImportError(label, [(1, c, "missing column in header") for c in missing])
+    return header
+
+
+def _shape_problem(rownum: int, cells: list[str], header: list[str]) -> SkippedRow | None:
+    """Why a row cannot be read as an object at all (cell count, control characters, implausible name)."""
+    if len(cells) != len(header):
+        return SkippedRow(rownum, "-", f"{len(cells)} cells, header has {len(header)}")
+    for column, cell in zip(header, cells, strict=True):
+        if "\x00" in cell:
+            return SkippedRow(rownum, column, "contains a NUL byte")
+    name = cells[header.index("name")]
+    if any(ch in name for ch in "\r\n") or _CONTROL.search(name):
+        return SkippedRow(rownum, "name", "spans several lines or holds control characters (an unbalanced quote?)")
+    if len(name.strip()) > MAX_NAME_CHARS:
+        return SkippedRow(rownum, "name", f"implausible name: {len(name.strip()):,} characters (at most {MAX_NAME_CHARS})")
+    return None
 
 
 def _row_to_record(row: dict[str, str | None]) -> ObjectRecord:

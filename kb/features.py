@@ -158,6 +158,8 @@ def _number(feature: str, value: Any) -> float | None:
             value = float(text)
         except ValueError:
             raise InvalidFeature(feature, value, "not a number") from None
+        if math.isnan(value):  # the text "nan" is a mistake in a data file, not "unknown" (that is blank)
+            raise InvalidFeature(feature, text, "not a number (write unknown values as a blank cell)")
     if isinstance(value, bool):
         raise InvalidFeature(feature, value, "not a number")
     try:

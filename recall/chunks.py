@@ -13,12 +13,9 @@ import re
 from collections.abc import Iterator
 from typing import Any
 
-from nltk.chunk import RegexpChunkParser, RegexpParser
-from nltk.chunk.regexp import ChunkString
-from nltk.tree import Tree
-
 from recall.tags import NUMBER_TAGS, UNIT_TAGS
 from recall.tokens import Token
+from recall.toolkit import ChunkString, RegexpChunkParser, RegexpParser, Tree
 
 __all__ = ["GRAMMAR", "MAX_SEGMENT_TOKENS", "Chunker", "size"]
 

@@ -21,9 +21,12 @@ import numpy as np
 
 from kb.errors import RecallError
 from kb.features import FEATURES, NUMERIC_FEATURES
+from kb.kinds import singular, words_of
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
+from recall.openset import DescribedNoun, KindIndex, described_noun
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
+from recall.vague import SoftEvidence, soft_evidence
 
 __all__ = [
     "CONFIDENCE_COEF",
@@ -52,14 +55,21 @@ __all__ = [
 #: named candidates among themselves, and a named object whose features are far off can still lose.
 NAME_WEIGHT = 0.6
 HEAD_WEIGHT = 0.4
-#: Confidence = 1 / (1 + exp(-(a + b * margin + c * closeness + d * unknown_noun))): margin = second-best
-#: minus best ranking score (nats, capped at MAX_MARGIN), closeness the best match's mean relative error,
-#: unknown_noun 1 when the subject is a noun the catalog does not know. Fitted by logistic regression on
+#: Confidence = 1 / (1 + exp(-(a + b * margin + c * closeness + d * unknown_noun + e * ln competitors))):
+#: margin = second-best minus best ranking score (nats, capped at MAX_MARGIN), closeness the best match's
+#: mean relative error, unknown_noun 1 when the subject is a noun the catalog does not know, competitors
+#: the ranking's effective number of candidates (1 / its softmax posterior of the first). Fitted by logistic regression on
 #: the development set and its open set (``python -m recall.evaluation --fit``; RECALL.md).
-CONFIDENCE_COEF: tuple[float, float, float, float] = (1.13, 1.12, -9.75, -1.89)
+CONFIDENCE_COEF: tuple[float, float, float, float, float] = (3.69, 0.39, -10.54, -1.73, -1.61)
 MAX_MARGIN = 10.0
+#: Candidates always scored, whatever ``top``, so that ``competitors`` (and the confidence) does not
+#: depend on how many matches are shown.
+COMPETITOR_POOL = 16
 #: An open-set result's confidence is at most this.
 OPEN_SET_CONFIDENCE_CAP = 0.5
+#: ... and a description naming a noun the catalog does not have at most this (its first match is the
+#: physically closest object, never the described one; measured in RECALL.md).
+NOT_IN_CATALOG_CONFIDENCE = 0.05
 #: Open set: the best match's closeness (mean relative error over the stated features, see
 #: :func:`recall.metrics.relative_errors`) above this means "not a close match" ...
 OPEN_SET_THRESHOLD = 0.30
@@ -92,29 +102,9 @@ def resolve_metric(metric: str | None, features_only: bool) -> str:
 _WORD = re.compile(r"[a-z0-9]+")
 
 
-#: Irregular plurals ("dice" is the plural of "die": a catalog's "dice" is named by "a plastic die").
-_IRREGULAR = {"dice": "die", "knives": "knife", "leaves": "leaf", "loaves": "loaf", "halves": "half",
-              "mice": "mouse", "teeth": "tooth", "shelves": "shelf"}  # fmt: skip
-
-
-def _singular(word: str) -> str:
-    if word in _IRREGULAR:
-        return _IRREGULAR[word]
-    if len(word) <= 3 or word.endswith(("ss", "us", "is")):
-        return word
-    if word.endswith("ies") and len(word) > 4:
-        return word[:-3] + "y"
-    if word.endswith(("ches", "shes", "xes", "zes", "sses")):
-        return word[:-2]
-    if word.endswith("s"):
-        return word[:-1]
-    return word
-
-
-def normalize_words(text: str) -> list[str]:
-    """Lower-case word tokens, apostrophes dropped (rubik's -> rubiks), hyphens split, plurals singular."""
-    text = text.lower().replace("'", "").replace("\u2019", "")
-    return [_singular(w) for w in _WORD.findall(text)]
+_singular = singular
+#: Lower-case word tokens, apostrophes dropped, hyphens split, plurals singular (:func:`kb.kinds.words_of`).
+normalize_words = words_of
 
 
 #: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
@@ -348,6 +338,8 @@ class NameIndex:
         heads: list[str] = []
         for i, word in enumerate(words):
             if word in self.heads and word not in self.not_heads and not _comparison(words, i, i + 1):
+                if word in _adjective_feature_words() and (word,) not in self.phrases:
+                    continue  # a feature word ("light", "heavy") is no head noun ("tea light")
                 rows = self.heads[word]
                 for row in rows:
                     implied = self.head_materials.get((word, row))
@@ -389,6 +381,16 @@ def _feature_words() -> frozenset[str]:
     return frozenset(words)
 
 
+@functools.cache
+def _adjective_feature_words() -> frozenset[str]:
+    """Single words that state a mass hint, texture, rigidity or fragility ("light", "soft"): adjectives,
+    never a head noun, although a catalog name may end in one ("tea light")."""
+    from recall import lexicon as lx
+
+    tables = (lx.MASS_HINT_WORDS, lx.TEXTURE_WORDS, lx.RIGIDITY_WORDS, lx.FRAGILITY_WORDS)
+    return frozenset(w for table in tables for w in table if " " not in w)
+
+
 #: Participles and adjectives that end a phrase ("full", "filled", "folded", "useful"): never a head.
 _PARTICIPLE = re.compile(r"^(full|play|fake|toy)$|..(ed|ful|ous|able|ible)$")
 _ADJECTIVE = re.compile(r"(al|ic|ed|y|ish|ar|shaped|like)$")
@@ -410,12 +412,19 @@ class Match:
     contributions: dict[str, float]
     matched_by_name: bool = False
     features: dict[str, Any] = field(default_factory=dict)
+    #: The parts of ``score`` besides ``distance``: score = distance - name_part + vague_part.
+    name_part: float = 0.0
+    vague_part: float = 0.0
+    kind: str | None = None
 
     def to_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
+            "kind": self.kind,
             "distance": self.distance,
             "score": self.score,
+            "name_part": self.name_part,
+            "vague_part": self.vague_part,
             "matched_by_name": self.matched_by_name,
             "contributions": dict(self.contributions),
             "features": dict(self.features),
@@ -441,6 +450,16 @@ class RecallResult:
     parsed: dict[str, Any] | None = None
     #: The name evidence used (empty for features only); not part of the JSON.
     evidence: NameEvidence = field(default_factory=NameEvidence, repr=False)
+    #: The description names a household noun the catalog does not have (``described``); the matches
+    #: are then the physically closest objects, ``same_kind`` the closest of the noun's kind.
+    not_in_catalog: bool = False
+    described: DescribedNoun | None = None
+    same_kind: list[Match] = field(default_factory=list)
+    same_kind_as: str | None = None
+    #: The vague words used as soft evidence (recall.vague), e.g. "small -> a_cm <= 9.8 cm".
+    vague: list[str] = field(default_factory=list)
+    #: The ranking's effective number of candidates (a confidence input; 1 = one clear first).
+    competitors: float = 1.0
 
     @property
     def best(self) -> Match | None:
@@ -457,6 +476,12 @@ class RecallResult:
             "named": list(self.named),
             "closeness": self.closeness,
             "unknown_noun": self.unknown_noun,
+            "not_in_catalog": self.not_in_catalog,
+            "described": self.described.to_dict() if self.described else None,
+            "same_kind": [m.to_dict() for m in self.same_kind],
+            "same_kind_as": self.same_kind_as,
+            "vague": list(self.vague),
+            "competitors": self.competitors,
             "query": dict(self.query),
             "parsed": self.parsed,
         }
@@ -475,15 +500,23 @@ def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) 
     return closeness > OPEN_SET_THRESHOLD
 
 
-def confidence_of(margin: float, closeness: float | None, unknown_noun: bool, metric: str = "jp") -> float:
+def confidence_of(
+    margin: float,
+    closeness: float | None,
+    unknown_noun: bool,
+    metric: str = "jp",
+    competitors: float = 1.0,
+) -> float:
     """The calibrated probability that the first match is the described object: a logistic model of the
-    ranking-score margin (nats, capped at :data:`MAX_MARGIN`), the closeness and whether the subject is
-    an unknown noun (:data:`CONFIDENCE_COEF`, fitted on the development sets; see RECALL.md)."""
-    a, b, c, d = CONFIDENCE_COEF
+    ranking-score margin (nats, capped at :data:`MAX_MARGIN`), the closeness, whether the subject is an
+    unknown noun and ln(``competitors``), the ranking's effective number of candidates (1 / its own
+    posterior of the first: k near-tied objects give about k; :data:`CONFIDENCE_COEF`, fitted on the
+    development sets; see RECALL.md)."""
+    a, b, c, d, e = CONFIDENCE_COEF
     if metric not in _JP_METRICS:  # the baselines' distances are on other scales: rescale the margin to nats
         margin = math.log1p(max(margin, 0.0))
     margin = min(max(margin, 0.0), MAX_MARGIN)
-    z = a + b * margin + c * (closeness or 0.0) + d * float(unknown_noun)
+    z = a + b * margin + c * (closeness or 0.0) + d * float(unknown_noun) + e * math.log(max(competitors, 1.0))
     # never above the two-candidate posterior of the ranking itself, e^m / (1 + e^m): a tie is at most 0.5
     return float(min(_sigmoid(z), _sigmoid(margin)))
 
@@ -511,6 +544,7 @@ class Recaller:
         codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
         materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
         self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
+        self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._kdtrees: dict = {}
 
     @classmethod
@@ -544,7 +578,13 @@ class Recaller:
         spans = [(ev.start, ev.end) for f, ev in parsed.features.items() if f in NUMERIC_FEATURES]
         material = parsed.values().get("material")
         names = NameEvidence() if features_only else self.names.find(text, spans, material)
-        result = self._recall(query, names, top=top, metric=metric, features_only=features_only)
+        soft = noun = None
+        if not features_only:  # the paper's method uses the stated features only
+            soft = soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols)
+            noun = self.described(text)
+        result = self._recall(
+            query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun
+        )
         result.text = text
         result.parsed = parsed.to_dict()
         result.parsed.pop("text", None)
@@ -568,9 +608,20 @@ class Recaller:
             if features_only or not text
             else self.names.find(text, (), query.values().get("material"))
         )
-        result = self._recall(query, names, top=top, metric=metric, features_only=features_only)
+        noun = self.described(text) if text and not features_only else None
+        result = self._recall(query, names, top=top, metric=metric, features_only=features_only, noun=noun)
         result.text = text
         return result
+
+    def described(self, text: str) -> DescribedNoun | None:
+        """The lexicon noun the description's subject names, and whether the catalog has it."""
+        idx = self.names
+        subject = subject_phrase(text)
+        after_of: tuple[str, ...] = ()
+        if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
+            m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
+            after_of = subject_phrase(m.group(1)) if m else ()
+        return described_noun(subject, idx.phrases, idx.heads, idx.vocabulary, GENERIC_NOUNS, after_of)
 
     # -- the ranking
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:
@@ -588,6 +639,8 @@ class Recaller:
         top: int,
         metric: str | None,
         features_only: bool,
+        soft: SoftEvidence | None = None,
+        noun: DescribedNoun | None = None,
     ) -> RecallResult:
         metric = resolve_metric(metric, features_only)
         if metric not in METRICS:
@@ -601,50 +654,35 @@ class Recaller:
         }
         base = dict(metric=metric, features_only=features_only, query=qdict)
         named = names.rows()
-        if len(query) == 0 and not named:
-            return RecallResult(matches=[], confidence=0.0, open_set=False, **base)
-        want = min(len(snap), top + 1 + len(named))
-        rows, dist = top_k(snap, query, want, metric=metric, kdtree_cache=self._kdtrees)
-        score = dist.copy()
-        if named:
-            extra = np.setdiff1d(np.asarray(named, dtype=np.int64), rows)
-            if len(extra):
-                rows = np.concatenate((rows, extra))
-                dist = np.concatenate((dist, self._distances_of(query, extra, metric)))
-            bonus = np.array([names.bonus(int(r)) for r in rows])
-            if metric in _JP_METRICS:
-                score = dist - bonus
-            else:  # other metrics have no probabilistic scale: named objects rank first, by their evidence
-                score = dist - (dist.max() + 1.0) * bonus
-        order_dist = {int(r): float(d) for r, d in zip(rows, dist, strict=True)}
+        not_in_catalog = noun is not None and not noun.in_catalog
+        if len(query) == 0 and not named and soft is None:
+            return RecallResult(
+                matches=[], confidence=0.0, open_set=not_in_catalog, not_in_catalog=not_in_catalog,
+                described=noun, **base,
+            )  # fmt: skip
+        rows, dist = self._candidates(query, named, top, metric, soft is not None)
+        bonus = np.array([names.bonus(int(r)) for r in rows]) if named else np.zeros(len(rows))
+        vague = soft.penalty[rows] if soft is not None else np.zeros(len(rows))
+        if metric in _JP_METRICS:
+            score = dist - bonus + vague
+        else:  # other metrics have no probabilistic scale: named objects rank first, by their evidence
+            score = dist - (dist.max() + 1.0) * bonus + vague
+        competitors = _competitors(score) if metric in _JP_METRICS else 1.0
+        order = {int(r): (float(d), float(b), float(v)) for r, d, b, v in zip(rows, dist, bonus, vague, strict=True)}
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
-        named_set = set(names.exact)
-        if metric == "jplog":
-            terms = feature_terms(snap.log_scaled.num_rows(rows), snap.cat_rows(rows), query.log_scaled())
-        else:  # the paper's JP terms (also shown for the baselines: why this object, in nats)
-            terms = feature_terms(snap.num_rows(rows), snap.cat_rows(rows), query)
-        matches = []
-        for i, row in enumerate(rows):
-            row = int(row)
-            rec = snap.record(row)
-            matches.append(
-                Match(
-                    name=snap.names[row],
-                    distance=order_dist[row],
-                    score=float(score[i]),
-                    contributions={f: float(terms[f][i]) for f in query.stated},
-                    matched_by_name=row in named_set,
-                    features={f: getattr(rec, f) for f in FEATURES},
-                )
-            )
+        matches = self._matches(rows, score, order, query, metric, set(names.exact))
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         best = int(rows[0])
         errors = relative_errors(snap.num_rows(best), snap.cat_rows(best), query)
         closeness = float(np.mean(list(errors.values()))) if errors else None
-        open_set = is_open_set(closeness, matches[0].matched_by_name, names.unknown_noun)
-        confidence = confidence_of(margin, closeness, names.unknown_noun is not None, metric)
+        not_in_catalog = not_in_catalog and not matches[0].matched_by_name
+        open_set = not_in_catalog or is_open_set(closeness, matches[0].matched_by_name, names.unknown_noun)
+        confidence = confidence_of(margin, closeness, names.unknown_noun is not None, metric, competitors)
         if open_set:
             confidence = min(confidence, OPEN_SET_CONFIDENCE_CAP)
+        if not_in_catalog:
+            confidence = min(confidence, NOT_IN_CATALOG_CONFIDENCE)
+        same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
         return RecallResult(
             matches=matches[:top],
             confidence=confidence,
@@ -653,5 +691,85 @@ class Recaller:
             closeness=closeness,
             unknown_noun=names.unknown_noun,
             evidence=names,
+            not_in_catalog=not_in_catalog,
+            described=noun,
+            same_kind=same_kind,
+            same_kind_as=same_kind_as,
+            vague=list(soft.words) if soft is not None else [],
+            competitors=competitors,
             **base,
         )
+
+    def _candidates(
+        self, query: FeatureQuery, named: list[int], top: int, metric: str, every_row: bool
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Rows that can rank in the first ``top`` and their distances: the pruned top-k plus the named
+        rows; every row when soft evidence can reorder them (vague words: one scan)."""
+        snap = self.snapshot
+        if every_row:
+            rows = np.arange(len(snap), dtype=np.int64)
+            return rows, self._distances_of(query, rows, metric) if len(query) else np.zeros(len(rows))
+        want = min(len(snap), max(top + 1, COMPETITOR_POOL) + len(named))
+        rows, dist = top_k(snap, query, want, metric=metric, kdtree_cache=self._kdtrees)
+        extra = np.setdiff1d(np.asarray(named, dtype=np.int64), rows)
+        if len(extra):
+            rows = np.concatenate((rows, extra))
+            dist = np.concatenate((dist, self._distances_of(query, extra, metric)))
+        return rows, dist
+
+    def _matches(
+        self,
+        rows: np.ndarray,
+        score: np.ndarray,
+        parts: Mapping[int, tuple[float, float, float]],
+        query: FeatureQuery,
+        metric: str,
+        named_exact: set[int],
+    ) -> list[Match]:
+        """:class:`Match` es of ``rows`` in order; ``parts``: row -> (distance, name part, vague part)."""
+        snap = self.snapshot
+        if metric == "jplog":
+            terms = feature_terms(snap.log_scaled.num_rows(rows), snap.cat_rows(rows), query.log_scaled())
+        else:  # the paper's JP terms (also shown for the baselines: why this object, in nats)
+            terms = feature_terms(snap.num_rows(rows), snap.cat_rows(rows), query)
+        out = []
+        for i, row in enumerate(rows.tolist()):
+            rec = snap.record(row)
+            dist, name_part, vague_part = parts[row]
+            out.append(
+                Match(
+                    name=snap.names[row],
+                    distance=dist,
+                    score=float(score[i]),
+                    contributions={f: float(terms[f][i]) for f in query.stated},
+                    matched_by_name=row in named_exact,
+                    features={f: getattr(rec, f) for f in FEATURES},
+                    name_part=name_part,
+                    vague_part=vague_part,
+                    kind=self.kinds.kinds[row],
+                )
+            )
+        return out
+
+    def _same_kind(
+        self, noun: DescribedNoun, query: FeatureQuery, metric: str, k: int = 3
+    ) -> tuple[str | None, list[Match]]:
+        """The ``k`` objects of the described noun's kind (or nearest ancestor) closest by features."""
+        kind, rows = self.kinds.rows_of_kind(noun.kind)
+        if not rows:
+            return None, []
+        arr = np.asarray(rows, dtype=np.int64)
+        dist = self._distances_of(query, arr, metric) if len(query) else np.zeros(len(arr))
+        arr, dist = select_top_k(arr, dist, min(k, len(arr)))
+        parts = {int(r): (float(d), 0.0, 0.0) for r, d in zip(arr, dist, strict=True)}
+        return kind, self._matches(arr, dist, parts, query, metric, set())
+
+
+def _competitors(score: np.ndarray) -> float:
+    """The ranking's effective number of candidates: sum of exp(-(s - s_best)) over the candidates scored
+    (nats), i.e. 1 / the softmax posterior of the best; k tied objects and nothing else give k. A lower
+    bound when not every row was scored."""
+    if len(score) < 2:
+        return 1.0
+    rel = np.asarray(score, dtype=np.float64) - float(np.min(score))
+    return float(np.sum(np.exp(-np.minimum(rel, 50.0))))

@@ -20,6 +20,7 @@ import numpy as np
 
 from kb.errors import RecallError
 from kb.features import CATEGORICAL_FEATURES, normalize_name
+from recall.calibration import Calibration, calibration
 from recall.engine import DEFAULT_METRIC, HEAD_WEIGHT, NAME_WEIGHT, Recaller, RecallResult
 from recall.metrics import METRICS, FeatureQuery, feature_terms
 
@@ -94,6 +95,13 @@ class EvaluationReport:
     open_set_n: int = 0
     open_set: dict[str, int] = field(default_factory=dict)
     open_set_confident: dict[str, int] = field(default_factory=dict)
+    #: Per mode: (confidence, right) of every in-catalog and open-set result, and their calibration.
+    points: dict[str, list[tuple[float, bool]]] = field(default_factory=dict, repr=False)
+
+    def calibration(self, mode: str) -> Calibration:
+        """Brier, ECE and reliability bins of ``mode``'s results (in-catalog and open-set)."""
+        pts = self.points.get(mode, [])
+        return calibration([c for c, _ in pts], [r for _, r in pts])
 
     def score(self, metric: str, features_only: bool = True) -> MetricScore:
         for s in self.scores:
@@ -112,6 +120,7 @@ class EvaluationReport:
             "open_set_n": self.open_set_n,
             "open_set_flagged": dict(self.open_set),
             "open_set_confident": dict(self.open_set_confident),
+            "calibration": {mode: self.calibration(mode).to_dict() for mode in self.points},
         }
 
 
@@ -280,6 +289,7 @@ def evaluate(
     unknown: list[str] = []
     parse_pairs: list[tuple[Any, ObjectRecord]] = []
     cases: list[Case] = []
+    points: dict[str, list[tuple[float, bool]]] = {}
     n = 0
     for obj, text in pairs:
         obj = obj if obj in index else alias_of.get(obj, loose.get(_loose_key(obj), obj))
@@ -298,9 +308,10 @@ def evaluate(
                 parsed, top=3, metric=metric, features_only=False
             )
         for key, res in results.items():
+            names = [m.name for m in res.matches]
             if key in FLAG_MODES:
                 false_flags[FLAG_MODES[key]] += res.open_set
-            names = [m.name for m in res.matches]
+                points.setdefault(FLAG_MODES[key], []).append((res.confidence, names[:1] == [obj]))
             hits[key][0] += bool(names[:1] == [obj])
             hits[key][1] += obj in names[:3]
             if key in explained and names[:1] != [obj]:
@@ -326,13 +337,14 @@ def evaluate(
     parse_scores = score_parses(parse_pairs) if parse_pairs else None
     parse_dict = asdict(parse_scores) if parse_scores is not None else {}
     parse_dict.pop("confusion", None)
-    report = EvaluationReport(n, scores, parse_dict, misses, unknown, cases, false_flags)
+    report = EvaluationReport(n, scores, parse_dict, misses, unknown, cases, false_flags, points=points)
     if open_set_csv is not None:
         for (metric, features_only), mode in FLAG_MODES.items():
             results = open_set_results(recaller, open_set_csv, features_only, metric)
             report.open_set_n = len(results)
             report.open_set[mode] = sum(r.open_set for r in results)
             report.open_set_confident[mode] = sum(r.confidence >= CONFIDENT for r in results)
+            points.setdefault(mode, []).extend((r.confidence, False) for r in results if r.matches)
     return report
 
 
@@ -346,23 +358,25 @@ def confidence_inputs(result: RecallResult) -> list[float]:
         min(max(margin, 0.0), MAX_MARGIN),
         result.closeness or 0.0,
         float(result.unknown_noun is not None),
+        math.log(max(result.competitors, 1.0)),
     ]
 
 
 def fit_confidence(cases: list[Case], open_set: list[RecallResult] = ()) -> tuple[tuple[float, ...], int]:
     """Logistic fit of P(first match right) on :func:`confidence_inputs`, over the features-only and the
     hybrid results of the development set and the results of the open set (never right). Returns the
-    coefficients (a, b, c, d) of ``recall.engine.CONFIDENCE_COEF`` and the number of points."""
+    coefficients (a, b, c, d, e) of ``recall.engine.CONFIDENCE_COEF`` and the number of points.
+    Results reported not in the catalog are left out: their confidence is capped by rule."""
     from sklearn.linear_model import LogisticRegression
 
     x, y = [], []
     for case in cases:
         for res in (case.features_only, case.hybrid):
-            if res.matches:
+            if res.matches and not res.not_in_catalog:  # those are capped by rule, not by the model
                 x.append(confidence_inputs(res))
                 y.append(int(res.matches[0].name == case.object))
     for res in open_set:
-        if res.matches:
+        if res.matches and not res.not_in_catalog:
             x.append(confidence_inputs(res))
             y.append(0)
     model = LogisticRegression(C=10.0).fit(np.array(x), np.array(y))

@@ -5,7 +5,8 @@
 >>> result.found, result.result.best.name, result.message                             # doctest: +SKIP
 
 1. **Recall** the description from the catalog. A lookup is needed (:func:`lookup_reason`) when nothing is
-   recalled, the recall says the object is not in the catalog (``open_set``), or its confidence is below
+   recalled, the recall says the object is not in the catalog (``not_in_catalog``: a noun the catalog does
+   not have; or ``open_set``: nothing close), or its confidence is below
    ``threshold`` (:data:`LOOKUP_BELOW_CONFIDENCE`); ``force`` looks it up anyway.
 2. **Search words** (:func:`search_terms`): the description's subject phrase ("glazed ceramic teapot"),
    then its head noun alone ("teapot"); each store gets the first that lists products.
@@ -103,6 +104,8 @@ def lookup_reason(result: RecallResult, threshold: float = LOOKUP_BELOW_CONFIDEN
     """Why ``result`` needs a lookup, or None when it does not (see the module docstring)."""
     if not result.matches:
         return "nothing in the catalog was recalled"
+    if result.not_in_catalog and result.described is not None:
+        return f"the catalog has no {result.described.english} (nearest: {result.best.name})"
     if result.open_set:
         return f"not in the catalog (nearest: {result.best.name}, not a close match)"
     if result.confidence < threshold:
@@ -111,13 +114,15 @@ def lookup_reason(result: RecallResult, threshold: float = LOOKUP_BELOW_CONFIDEN
 
 
 def search_terms(result: RecallResult) -> tuple[str, ...]:
-    """The search words to try, most specific first: the subject phrase, then its head noun. Units and
+    """The search words to try, most specific first: the subject phrase, then its head noun (in English
+    when the recall recognised the noun, ``described``). Units and
     generic nouns ("5 grams", "something") name nothing to search for."""
     from recall.units import unit_table
 
     units = unit_table()
     phrase = tuple(w for w in subject_phrase(result.text or "") if w not in units and w not in GENERIC_NOUNS)
-    noun = result.unknown_noun or (phrase[-1] if phrase else None)
+    described = result.described.english if result.described is not None else None
+    noun = described or result.unknown_noun or (phrase[-1] if phrase else None)
     terms = [" ".join(phrase)] if phrase else []
     if noun and noun not in terms:
         terms.append(noun)
@@ -180,7 +185,9 @@ def recall_with_lookup(
     out.looked_up = True
     from kb.catalog import KnowledgeBase
 
+    t0 = time.perf_counter()
     kb = KnowledgeBase.open(db)
+    out.seconds["open"] = time.perf_counter() - t0
     deadline = start + budget_s - min(RESERVE_S, budget_s / 2)
     own_session = session is None
     session = session or requests.Session()
@@ -193,7 +200,8 @@ def recall_with_lookup(
     finally:
         if own_session:
             session.close()
-    out.seconds.update(fetch=out.stores.fetch_s, extract=out.stores.extract_s, write=out.stores.write_s)
+    s = out.stores
+    out.seconds.update(fetch=s.fetch_s, extract=s.extract_s, judge=s.judge_s, write=s.write_s)
     t0 = time.perf_counter()
     changed = out.stores.new_objects or out.stores.updated_objects
     out.after = Recaller.from_db(db).recall_parsed(parsed, **options) if changed else before

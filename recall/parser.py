@@ -31,8 +31,6 @@ import threading
 from dataclasses import dataclass, field
 from typing import Any
 
-from nltk.tree import Tree
-
 from kb.errors import DescriptionError
 from kb.features import FEATURES
 from recall.categories import read_categories, resolve_categories
@@ -42,6 +40,7 @@ from recall.mass import resolve_mass
 from recall.quantities import QuantityReader, Reading, Stated
 from recall.tags import Tagger
 from recall.tokens import Tokenizer
+from recall.toolkit import Tree
 
 __all__ = [
     "GRAMMAR",

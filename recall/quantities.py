@@ -14,13 +14,12 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from nltk.tree import Tree
-
 from recall import lexicon as lx
 from recall.chunks import size
 from recall.numbers import number_value
 from recall.tags import UNIT_TAGS
 from recall.tokens import Token
+from recall.toolkit import Tree
 from recall.units import Unit, unit_table
 
 __all__ = ["DimStatement", "Quantity", "QuantityReader", "Reading", "Relation", "Stated"]

@@ -9,11 +9,10 @@ tuple labels, ...; the list is in ``recall/PARSER.md``).
 
 from __future__ import annotations
 
-from nltk.tag import RegexpTagger, UnigramTagger
-
 from recall import lexicon as lx
 from recall.numbers import DIGITS_PATTERN
 from recall.tokens import FRACTION_CHARS, Token
+from recall.toolkit import RegexpTagger, UnigramTagger
 from recall.units import unit_table
 
 __all__ = ["CATEGORY_TAGS", "NUMBER_TAGS", "UNIT_TAGS", "Tagger", "fix_tags"]

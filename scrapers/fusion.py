@@ -10,17 +10,22 @@ this rule, the same for every object:
    counts (latest ``fetched_at``, then highest id). A store that changes its page supersedes its own old
    value; a store that repeats itself does not outvote the others. A source is a page's canonical URL, or
    for curated data its file (``csv:seed_catalog.csv``).
-3. **Numbers: the median** of those latest values (the mean of the two middle ones for an even count).
+3. **Curated values stand.** When a curated source (a catalog file, a person: :func:`is_curated`)
+   states a feature, only curated sources vote on it: a store's value never replaces a curated one, it is
+   kept in ``observations`` and, when it differs by more than :data:`DISAGREEMENT_RATIO` (or names
+   another word), a warning says so. Stores fill the features no curated source states (a partial size
+   stays partial where nobody states the rest).
+5. **Numbers: the median** of those latest values (the mean of the two middle ones for an even count).
    One wrong source among three cannot move the value; with two sources the value lies between them. The
    medians of ``a``, ``b`` and ``c`` keep ``a >= b >= c`` when every source states all three (each
    source's values are sorted); the catalog sorts them again in case a source stated fewer.
-4. **Words** (material, shape, ...): the value most sources state; a tie goes to the curated source
+6. **Words** (material, shape, ...): the value most sources state; a tie goes to the curated source
    (anything that is not a web page) and then to the most recent observation.
-5. **A lookup's values are provisional.** Observations made by an on-demand lookup (adapter
+4. **A lookup's values are provisional.** Observations made by an on-demand lookup (adapter
    ``lookup:<extractor>``, see :func:`is_provisional`) count for a feature only when no other source states
    it: one page found by one search must not move a curated value or one the nightly crawl observes
    again every night. When only lookup pages state a feature, they are fused like any other sources.
-6. **Disagreement is reported, not hidden:** when the largest and smallest latest values of a number
+7. **Disagreement is reported, not hidden:** when the largest and smallest latest values of a number
    differ by more than :data:`DISAGREEMENT_RATIO`, or sources state different words, a warning names the
    feature, the values and their sources.
 
@@ -96,13 +101,35 @@ def latest_per_source(observations: Iterable[Observation]) -> dict[str, dict[str
     return latest
 
 
+def _web_disagreement(feature: str, curated: list[Observation], web: list[Observation]) -> str | None:
+    """A warning when web sources state something else than the curated value of ``feature`` (rule 3)."""
+    if not web:
+        return None
+    if feature in NUMERIC_FEATURES:
+        numbers = [float(o.value) for o in curated + web]
+        lo, hi = min(numbers), max(numbers)
+        if not (lo > 0 and hi / lo > DISAGREEMENT_RATIO):
+            return None
+    elif {str(o.value) for o in web} <= {str(o.value) for o in curated}:
+        return None
+    stated = ", ".join(f"{o.value:g}" if isinstance(o.value, float) else f"{o.value}" for o in web)
+    kept = ", ".join(f"{o.value:g}" if isinstance(o.value, float) else f"{o.value}" for o in curated)
+    return f"stores state {feature} {stated}; kept the curated {kept}"
+
+
 def fuse(observations: Iterable[Observation]) -> FusedValues:
     """The catalog values the observations support (see the module docstring for the rule)."""
     out = FusedValues()
     for feature, by_source in latest_per_source(observations).items():
         votes = list(by_source.values())
+        curated = [o for o in votes if is_curated(o.source)]
+        if curated and len(curated) < len(votes):  # rule 3: curated values stand
+            warning = _web_disagreement(feature, curated, [o for o in votes if not is_curated(o.source)])
+            if warning:
+                out.warnings.append(warning)
+            votes = curated
         settled = [o for o in votes if not is_provisional(o)]
-        votes = settled or votes  # rule 5: lookup values only where nothing else is known
+        votes = settled or votes  # rule 4: lookup values only where nothing else is known
         if feature in NUMERIC_FEATURES:
             numbers = [float(o.value) for o in votes]
             out.values[feature] = statistics.median(numbers)

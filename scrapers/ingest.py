@@ -17,6 +17,11 @@ Stages (see ``scrapers/INGESTION.md`` for the whole story):
 7. a row in ``ingestion_runs`` with the counts, ``pages`` rows (validators for the next run) and a
    ``page_events`` row per rejected page, with its reason.
 
+Stages 1-4 live here; planning stages 5-7 (which rows the run adds or changes) is
+:mod:`scrapers.write_set`, executing them in one transaction :mod:`scrapers.catalog_write`, and the fusion
+rule :mod:`scrapers.fusion`. A page's identity (:func:`page_identity`) is its URL (or same-host canonical
+URL) without a local server's port, so the demo store on another port serves the same pages.
+
 Stages 1-4 run with no database connection open. Stages 5-7 run in **one** short write transaction, with
 set-based statements over Arrow batches (no row-by-row round trips): readers wait at most that long, and a
 crash or a kill at any moment leaves the catalog as it was before the run or as it is after it. A page whose
@@ -27,42 +32,39 @@ nothing in the catalog.
 from __future__ import annotations
 
 import hashlib
-import json
-import os
 import re
-import sys
 import threading
-import time
 from collections import Counter
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import asdict, dataclass, field
-from datetime import datetime
 from typing import Any
 from urllib.parse import urlsplit
 
 import requests
 
-from kb.catalog import bulk_execute
 from kb.errors import ExtractionError, FetchError, IngestionError, InvalidFeature
 from kb.features import (
     DIMENSIONS,
-    FEATURES,
     NUMERIC_FEATURES,
     ObjectRecord,
     normalize_category,
     normalize_name,
 )
+from scrapers.catalog_write import PAUSE_ENV, write
 from scrapers.fetcher import Clock, PoliteFetcher, SystemClock, Validators, fetch_error_kind
-from scrapers.fusion import Observation, fuse
+from scrapers.outcomes import LOCAL_HOSTS, IngestionReport, PageOutcome, page_identity
 from scrapers.records import ProductRecord
 from scrapers.sources import Sources, StoreSource
+from scrapers.write_set import naive
 
 __all__ = [
+    "LOCAL_HOSTS",
+    "PAUSE_ENV",
     "IngestionReport",
     "PageOutcome",
     "ProgressFn",
     "discover_urls",
+    "page_identity",
     "previous_pages",
     "process_page",
     "run_ingestion",
@@ -73,81 +75,10 @@ __all__ = [
 ProgressFn = Callable[[int, int, str], None]
 Extractor = Callable[[bytes, str, "str | None"], ProductRecord]
 
-#: Testing hook: seconds to sleep inside the write transaction, after every statement and before COMMIT,
-#: so a test can kill the process while the transaction is open (see tests/test_ingest_crash.py).
-PAUSE_ENV = "OBJRECALL_INGEST_PAUSE_BEFORE_COMMIT"
 MAX_SITEMAPS = 50
 #: Hosts crawled at the same time (each host still gets one request at a time).
 DEFAULT_MAX_HOSTS = 4
 _SHOPIFY_PRODUCT = re.compile(r"^/products/[^/.]+/?$")
-
-
-@dataclass
-class PageOutcome:
-    """What happened to one page in this run (kept in memory until the write transaction)."""
-
-    url: str
-    store: str
-    outcome: str = "pending"  # extracted | not_modified | rejected
-    stage: str | None = None  # fetch | extract | validate (where a rejected page stopped)
-    reason: str | None = None  # short key, counted in rejected_reasons
-    detail: str | None = None
-    status: int | None = None
-    final_url: str | None = None
-    etag: str | None = None
-    last_modified: str | None = None
-    content_sha256: str | None = None
-    fetched_at: datetime | None = None
-    record: ProductRecord | None = None
-    clean: ObjectRecord | None = None
-    packages: list[dict[str, float]] = field(default_factory=list)
-    warnings: list[str] = field(default_factory=list)
-
-    @property
-    def source(self) -> str:
-        """The page's identity as a source: its canonical URL when on the same host, else the final URL."""
-        final = self.final_url or self.url
-        canonical = self.record.canonical_url if self.record is not None else None
-        if canonical and urlsplit(canonical).netloc == urlsplit(final).netloc:
-            return canonical
-        return final
-
-
-@dataclass
-class IngestionReport:
-    """The counts of one run (also stored as a row of ``ingestion_runs``)."""
-
-    run_id: int | None
-    status: str
-    sources: str
-    started_at: datetime
-    finished_at: datetime | None = None
-    duration_s: float = 0.0
-    pages: int = 0
-    fetched: int = 0
-    not_modified: int = 0
-    extracted: int = 0
-    rejected: int = 0
-    rejected_reasons: dict[str, int] = field(default_factory=dict)
-    new: int = 0
-    updated: int = 0
-    unchanged: int = 0
-    observations_added: int = 0
-    aliases_added: int = 0
-    new_objects: list[str] = field(default_factory=list)
-    updated_objects: list[str] = field(default_factory=list)
-    errors: list[dict[str, str]] = field(default_factory=list)
-    warnings: list[str] = field(default_factory=list)
-    write_s: float = 0.0
-
-    @property
-    def pages_per_s(self) -> float:
-        return self.pages / self.duration_s if self.duration_s > 0 else 0.0
-
-    def to_dict(self) -> dict[str, Any]:
-        d = asdict(self)
-        d["pages_per_s"] = round(self.pages_per_s, 2)
-        return d
 
 
 class _Rejected(Exception):
@@ -273,11 +204,25 @@ def _default_extractor() -> Extractor:
     return extract_page
 
 
-def _previous_pages(kb) -> dict[str, dict[str, Any]]:
+class PreviousPages(dict):
+    """The ``pages`` rows by page identity; looked up by any URL of the page (a local server's port
+    does not matter: :func:`page_identity`)."""
+
+    def __getitem__(self, url: str) -> dict[str, Any]:
+        return super().__getitem__(page_identity(url))
+
+    def __contains__(self, url: object) -> bool:
+        return isinstance(url, str) and super().__contains__(page_identity(url))
+
+    def get(self, url: str, default: Any = None) -> Any:
+        return super().get(page_identity(url), default)
+
+
+def _previous_pages(kb) -> PreviousPages:
     with kb.connect() as con:
         cur = con.execute("SELECT url, etag, last_modified, content_sha256, object_id, error FROM pages")
         cols = [d[0] for d in cur.description]
-        return {row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()}
+        return PreviousPages({row[0]: dict(zip(cols, row, strict=True)) for row in cur.fetchall()})
 
 
 def _process_page(
@@ -327,468 +272,6 @@ def _process_page(
         return page
     page.outcome = "extracted"
     return page
-
-
-# ---------------------------------------------------------------------------------------------- de-duplicate
-def _group_pages(pages: list[PageOutcome]) -> list[list[PageOutcome]]:
-    """Pages of one product together: union of shared canonical URL, GTIN or normalised name."""
-    parent = list(range(len(pages)))
-
-    def find(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    owner: dict[tuple[str, str], int] = {}
-    for i, page in enumerate(pages):
-        keys = [("url", page.source), ("name", page.clean.name)]
-        if page.record.gtin:
-            keys.append(("gtin", page.record.gtin.lstrip("0")))
-        for key in keys:
-            if key in owner:
-                parent[find(i)] = find(owner[key])
-            else:
-                owner[key] = i
-    groups: dict[int, list[PageOutcome]] = {}
-    for i, page in enumerate(pages):
-        groups.setdefault(find(i), []).append(page)
-    return list(groups.values())
-
-
-def _observations_of(page: PageOutcome) -> list[dict[str, Any]]:
-    """The observation rows one page contributes (without object id, run id)."""
-    rec, raw = page.clean, page.record.raw
-    rows = []
-    for feat, value in rec.known_features().items():
-        numeric = feat in NUMERIC_FEATURES
-        text = (
-            raw.get("dims") if feat in DIMENSIONS else raw.get("mass") if feat == "mass_g" else raw.get(feat)
-        )
-        rows.append(
-            {
-                "feature": feat,
-                "value_num": float(value) if numeric else None,
-                "value_text": None if numeric else str(value),
-                "role": "product",
-                "raw_text": (text or str(value))[:500],
-            }
-        )
-    for i, pkg in enumerate(page.packages, start=1):
-        for feat, value in pkg.items():
-            text = raw.get("package_dims") if feat in DIMENSIONS else raw.get("package_mass")
-            rows.append(
-                {
-                    "feature": feat,
-                    "value_num": float(value),
-                    "value_text": None,
-                    "role": "package",
-                    "raw_text": (f"package {i}: " + (text or f"{value:g}"))[:500],
-                }
-            )
-    for row in rows:
-        row.update(source=page.source, adapter=page.record.adapter, fetched_at=page.fetched_at)
-    return rows
-
-
-def _signature(rows: Iterable[dict[str, Any]]) -> tuple:
-    return tuple(
-        sorted(
-            (
-                r["feature"],
-                r["role"],
-                None if r["value_num"] is None else round(float(r["value_num"]), 6),
-                r["value_text"],
-            )
-            for r in rows
-        )
-    )
-
-
-# ---------------------------------------------------------------------------------------------- write
-def _bulk(con, view: str, columns: list[str], rows: list[dict[str, Any]], sql: str) -> None:
-    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (see kb.catalog.bulk_execute)."""
-    bulk_execute(con, view, columns, rows, sql)
-
-
-def _warm_up_arrow() -> None:
-    """Register one Arrow table on a throwaway in-memory database: DuckDB and pyarrow import what they need
-    for that (pandas and friends, seconds on a cold, busy machine) now, not while we hold the write lock."""
-    import duckdb
-    import pyarrow as pa
-
-    con = duckdb.connect()
-    try:
-        con.register("warm_up", pa.table({"x": [1]}))
-        con.execute("SELECT count(*) FROM warm_up").fetchone()
-    finally:
-        con.close()
-
-
-def _naive(ts: datetime | None) -> datetime | None:
-    return ts.replace(tzinfo=None) if ts is not None and ts.tzinfo is not None else ts
-
-
-def _write(
-    kb, outcomes: list[PageOutcome], report: IngestionReport, events: list[tuple[str, str, str]], now
-) -> None:
-    """Stages 5-7 in one write transaction (see the module docstring)."""
-    extracted = [p for p in outcomes if p.outcome == "extracted"]
-    groups = _group_pages(extracted)
-    pause = float(os.environ.get(PAUSE_ENV, "0") or 0)
-    _warm_up_arrow()
-    with kb.connect(write=True) as con:
-        t0 = time.monotonic()
-        con.begin()
-        try:
-            run_id = con.execute(
-                "INSERT INTO ingestion_runs (started_at, status, sources) VALUES (?, 'running', ?) RETURNING id",
-                [_naive(report.started_at), report.sources],
-            ).fetchone()[0]
-            report.run_id = run_id
-            object_cols = ["id", "name", *FEATURES, "source", "gtin", "canonical_url", "updated_at"]
-            existing = {
-                row[0]: dict(zip(object_cols, row, strict=True))
-                for row in con.execute(f"SELECT {', '.join(object_cols)} FROM objects").fetchall()
-            }
-            by_name = {o["name"]: oid for oid, o in existing.items()}
-            by_url = {o["canonical_url"]: oid for oid, o in existing.items() if o["canonical_url"]}
-            by_gtin = {o["gtin"].lstrip("0"): oid for oid, o in existing.items() if o["gtin"]}
-            for alias, oid in con.execute("SELECT alias, object_id FROM object_aliases").fetchall():
-                by_name.setdefault(alias, oid)
-
-            # Match each product (group of pages) to an object, or plan a new one.
-            matched: dict[int, list[PageOutcome]] = {}
-            fresh: list[list[PageOutcome]] = []
-            for group in groups:
-                oid = None
-                for look in (
-                    lambda p: by_url.get(p.source),
-                    lambda p: by_gtin.get((p.record.gtin or "").lstrip("0")) if p.record.gtin else None,
-                    lambda p: by_name.get(p.clean.name),
-                ):
-                    oid = next((o for o in map(look, group) if o is not None), None)
-                    if oid is not None:
-                        break
-                if oid is None:
-                    fresh.append(group)
-                else:
-                    matched.setdefault(oid, []).extend(group)
-
-            # Existing observations of the matched objects, for idempotency and fusion.
-            old_obs: dict[int, list[dict[str, Any]]] = {}
-            if matched:
-                cur = con.execute(
-                    "SELECT id, object_id, feature, value_num, value_text, role, source, adapter, fetched_at, "
-                    "run_id FROM observations WHERE list_contains(?, object_id)",
-                    [list(matched)],
-                )
-                cols = [d[0] for d in cur.description]
-                for row in cur.fetchall():
-                    rec = dict(zip(cols, row, strict=True))
-                    old_obs.setdefault(rec["object_id"], []).append(rec)
-
-            # New objects: values fused from their pages alone.
-            new_rows, new_obs_by_name = [], {}
-            for group in fresh:
-                first = group[0]
-                rows = _dedupe_rows(r for p in group for r in _observations_of(p))
-                fused = fuse(_as_observations(rows))
-                values = _catalog_values(fused.values, {}, report.warnings, first.clean.name)
-                report.warnings.extend(f"{first.clean.name}: {w}" for w in fused.warnings)
-                new_rows.append(
-                    {
-                        "name": first.clean.name,
-                        **values,
-                        "source": first.source,
-                        "gtin": next((p.record.gtin for p in group if p.record.gtin), None),
-                        "canonical_url": first.source,
-                        "created_at": now,
-                        "updated_at": now,
-                    }
-                )
-                new_obs_by_name[first.clean.name] = rows
-            cols = ["name", *FEATURES, "source", "gtin", "canonical_url", "created_at", "updated_at"]
-            _bulk(
-                con,
-                "ingest_new_objects",
-                cols,
-                new_rows,
-                f"INSERT INTO objects ({', '.join(cols)}) SELECT {', '.join(cols)} FROM ingest_new_objects",
-            )
-            ids: dict[str, int] = {}
-            if new_obs_by_name:
-                ids = dict(
-                    con.execute(
-                        "SELECT name, id FROM objects WHERE list_contains(?, name)", [list(new_obs_by_name)]
-                    ).fetchall()
-                )
-            obs_rows: list[dict[str, Any]] = []
-            object_of_page: dict[str, int] = {}
-            for group in fresh:
-                oid = ids[group[0].clean.name]
-                for p in group:
-                    object_of_page[p.url] = oid
-                obs_rows.extend({**r, "object_id": oid} for r in new_obs_by_name[group[0].clean.name])
-                report.new_objects.append(group[0].clean.name)
-
-            # Matched objects: keep only pages that say something new, then fuse everything.
-            update_rows = []
-            for oid, group in matched.items():
-                obj = existing[oid]
-                for p in group:
-                    object_of_page[p.url] = oid
-                history = old_obs.get(oid, [])
-                last_run_of: dict[str, Any] = {}
-                for h in history:
-                    if h["source"] not in last_run_of or (h["run_id"] or -1) > (
-                        last_run_of[h["source"]] or -1
-                    ):
-                        last_run_of[h["source"]] = h["run_id"]
-                latest_sig = {
-                    src: _signature(h for h in history if h["source"] == src and h["run_id"] == rid)
-                    for src, rid in last_run_of.items()
-                }
-                added = []
-                for rows_of_source in _rows_by_source(
-                    _dedupe_rows(r for p in group for r in _observations_of(p))
-                ):
-                    src = rows_of_source[0]["source"]
-                    if latest_sig.get(src) != _signature(rows_of_source):
-                        added.extend(rows_of_source)
-                if not added:
-                    report.unchanged += 1
-                    continue
-                # Curated values that never got an observation row become one now (rule 2's "curated source").
-                observed = {h["feature"] for h in history if h["role"] == "product"}
-                baseline = [
-                    {
-                        "feature": f,
-                        "value_num": float(obj[f]) if f in NUMERIC_FEATURES else None,
-                        "value_text": None if f in NUMERIC_FEATURES else str(obj[f]),
-                        "role": "product",
-                        "source": obj["source"] or "catalog",
-                        "adapter": "catalog",
-                        "fetched_at": obj["updated_at"],
-                        "raw_text": f"catalog value before ingestion run {run_id}",
-                    }
-                    for f in FEATURES
-                    if obj[f] is not None and f not in observed and f in {r["feature"] for r in added}
-                ]
-                added = baseline + added
-                obs_rows.extend({**r, "object_id": oid} for r in added)
-                fused = fuse(_as_observations([*history, *added]))
-                report.warnings.extend(f"{obj['name']}: {w}" for w in fused.warnings)
-                values = _catalog_values(fused.values, obj, report.warnings, obj["name"])
-                first = group[0]
-                update_rows.append(
-                    {
-                        "id": oid,
-                        **values,
-                        "gtin": obj["gtin"] or next((p.record.gtin for p in group if p.record.gtin), None),
-                        "canonical_url": obj["canonical_url"] or first.source,
-                        "updated_at": now,
-                    }
-                )
-                report.updated_objects.append(obj["name"])
-            # Other names a product goes by (a second store's title matched by URL or GTIN) become aliases.
-            alias_rows = []
-            taken = set(by_name) | set(ids)
-            owners = [(ids[g[0].clean.name], g) for g in fresh] + list(matched.items())
-            for oid, group in owners:
-                for p in group:
-                    if p.clean.name not in taken:
-                        taken.add(p.clean.name)
-                        alias_rows.append({"alias": p.clean.name, "object_id": oid})
-            _bulk(
-                con,
-                "ingest_aliases",
-                ["alias", "object_id"],
-                alias_rows,
-                "INSERT INTO object_aliases (alias, object_id) SELECT alias, object_id FROM ingest_aliases",
-            )
-            report.aliases_added = len(alias_rows)
-            sets = ", ".join(f"{c} = u.{c}" for c in [*FEATURES, "gtin", "canonical_url", "updated_at"])
-            _bulk(
-                con,
-                "ingest_updates",
-                ["id", *FEATURES, "gtin", "canonical_url", "updated_at"],
-                update_rows,
-                f"UPDATE objects SET {sets} FROM ingest_updates u WHERE objects.id = u.id",
-            )
-            obs_cols = [
-                "object_id",
-                "feature",
-                "value_num",
-                "value_text",
-                "role",
-                "source",
-                "adapter",
-                "fetched_at",
-                "raw_text",
-                "run_id",
-            ]
-            for r in obs_rows:
-                r["run_id"] = run_id
-                r["fetched_at"] = _naive(r["fetched_at"]) or now
-            _bulk(
-                con,
-                "ingest_observations",
-                obs_cols,
-                obs_rows,
-                f"INSERT INTO observations ({', '.join(obs_cols)}) SELECT {', '.join(obs_cols)} FROM ingest_observations",
-            )
-
-            # Pages: validators for next time (not-modified pages keep their object and hash).
-            page_rows = []
-            for p in outcomes:
-                row = {
-                    "url": p.url,
-                    "canonical_url": p.source if p.record is not None else None,
-                    "etag": p.etag,
-                    "last_modified": p.last_modified,
-                    "content_sha256": p.content_sha256,
-                    "status": p.status,
-                    "fetched_at": _naive(p.fetched_at) or now,
-                    "object_id": object_of_page.get(p.url),
-                    "error": f"{p.reason}: {p.detail}" if p.outcome == "rejected" else None,
-                    "run_id": run_id,
-                }
-                page_rows.append(row)
-            not_modified = [
-                r for r, p in zip(page_rows, outcomes, strict=True) if p.outcome == "not_modified"
-            ]
-            others = [r for r, p in zip(page_rows, outcomes, strict=True) if p.outcome != "not_modified"]
-            _bulk(
-                con,
-                "ingest_seen",
-                ["url", "status", "fetched_at", "run_id", "etag", "last_modified"],
-                not_modified,
-                "UPDATE pages SET status = s.status, fetched_at = s.fetched_at, run_id = s.run_id, "
-                "etag = coalesce(s.etag, pages.etag), last_modified = coalesce(s.last_modified, pages.last_modified) "
-                "FROM ingest_seen s WHERE pages.url = s.url",
-            )
-            page_cols = list(others[0]) if others else []
-            _bulk(
-                con,
-                "ingest_pages",
-                ["url"],
-                others,
-                "DELETE FROM pages WHERE url IN (SELECT url FROM ingest_pages)",
-            )
-            _bulk(
-                con,
-                "ingest_pages",
-                page_cols,
-                others,
-                f"INSERT INTO pages ({', '.join(page_cols)}) SELECT {', '.join(page_cols)} FROM ingest_pages",
-            )
-            event_rows = [
-                {
-                    "run_id": run_id,
-                    "url": p.url,
-                    "stage": p.stage,
-                    "reason": f"{p.reason}: {p.detail}",
-                    "occurred_at": _naive(p.fetched_at) or now,
-                }
-                for p in outcomes
-                if p.outcome == "rejected"
-            ] + [
-                {"run_id": run_id, "url": url, "stage": stage, "reason": reason, "occurred_at": now}
-                for url, stage, reason in events
-            ]
-            _bulk(
-                con,
-                "ingest_events",
-                ["run_id", "url", "stage", "reason", "occurred_at"],
-                event_rows,
-                "INSERT INTO page_events (run_id, url, stage, reason, occurred_at) "
-                "SELECT run_id, url, stage, reason, occurred_at FROM ingest_events",
-            )
-            report.new = len(report.new_objects)
-            report.updated = len(report.updated_objects)
-            report.observations_added = len(obs_rows)
-            report.finished_at = now
-            report.duration_s += time.monotonic() - t0
-            con.execute(
-                "UPDATE ingestion_runs SET finished_at = ?, status = ?, fetched = ?, not_modified = ?, "
-                "extracted = ?, rejected = ?, new = ?, updated = ?, rejected_reasons = ?, errors = ?, "
-                "duration_s = ? WHERE id = ?",
-                [
-                    _naive(now),
-                    report.status,
-                    report.fetched,
-                    report.not_modified,
-                    report.extracted,
-                    report.rejected,
-                    report.new,
-                    report.updated,
-                    json.dumps(report.rejected_reasons, sort_keys=True),
-                    json.dumps(report.errors[:100]),
-                    report.duration_s,
-                    run_id,
-                ],
-            )
-            if pause > 0:
-                print("ingest: write transaction open, pausing before commit", file=sys.stderr, flush=True)
-                time.sleep(pause)
-            con.commit()
-        except BaseException:
-            con.rollback()
-            raise
-        report.write_s = time.monotonic() - t0
-
-
-def _dedupe_rows(rows: Iterable[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Drop exact repeats (the same source stating the same value twice, e.g. a duplicate route)."""
-    seen, out = set(), []
-    for r in rows:
-        key = (r["source"], r["feature"], r["role"], r["value_num"], r["value_text"])
-        if key not in seen:
-            seen.add(key)
-            out.append(r)
-    return out
-
-
-def _rows_by_source(rows: list[dict[str, Any]]) -> list[list[dict[str, Any]]]:
-    groups: dict[str, list[dict[str, Any]]] = {}
-    for r in rows:
-        groups.setdefault(r["source"], []).append(r)
-    return list(groups.values())
-
-
-def _as_observations(rows: Iterable[dict[str, Any]]) -> list[Observation]:
-    out = []
-    for r in rows:
-        value = r["value_num"] if r["value_num"] is not None else r["value_text"]
-        if value is None:
-            continue
-        out.append(
-            Observation(
-                feature=r["feature"],
-                value=value,
-                source=r["source"],
-                role=r["role"],
-                fetched_at=_naive(r.get("fetched_at")),
-                id=r.get("id") or 0,
-                adapter=r.get("adapter"),
-            )
-        )
-    return out
-
-
-def _catalog_values(
-    fused: dict[str, Any], current: dict[str, Any], warnings: list[str], name: str
-) -> dict[str, Any]:
-    """Fused values over the current ones, checked and sorted by the catalog's rules. A fused value the
-    catalog refuses (it cannot happen with validated observations, but old rows may predate a rule) keeps
-    the current value, with a warning."""
-    merged = {f: fused.get(f, current.get(f)) for f in FEATURES}
-    try:
-        return ObjectRecord.create("x", **merged).features()
-    except InvalidFeature as err:
-        warnings.append(f"{name}: fused {err}; kept the catalog's values")
-        return ObjectRecord.create("x", **{f: current.get(f) for f in FEATURES}).features()
 
 
 # ---------------------------------------------------------------------------------------------- the job
@@ -894,9 +377,9 @@ def write_run(
     """Stages 5-7 for pages already fetched, extracted and validated: one short write transaction that
     records ``report`` as a run (its ``run_id``, counts and ``write_s`` are filled in). Raises
     :class:`~kb.errors.IngestionError`, leaving the catalog unchanged, when it cannot be written."""
-    now = _naive(clock.now())
+    now = naive(clock.now())
     try:
-        _write(kb, outcomes, report, events, now)
+        write(kb, outcomes, report, events, now)
     except IngestionError:
         raise
     except Exception as err:

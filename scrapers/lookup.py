@@ -91,6 +91,7 @@ class StoresLookup:
     requests: int = 0
     fetch_s: float = 0.0
     extract_s: float = 0.0
+    judge_s: float = 0.0
     write_s: float = 0.0
     message: str = ""
 
@@ -283,7 +284,9 @@ def search_stores(
     report.requests = fetcher.requests_made
     report.extract_s = budget.extract_s
     report.fetch_s = max(time.perf_counter() - t0 - budget.extract_s, 0.0)
+    t0 = time.perf_counter()
     report.candidates = _judge(outcomes, fits)
+    report.judge_s = time.perf_counter() - t0
     _name_known(kb, report.candidates, previous)
     _write(kb, report, outcomes, description, clock)
     report.message = _message(report)

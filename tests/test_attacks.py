@@ -17,6 +17,8 @@ import time
 from pathlib import Path
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from kb.catalog import KnowledgeBase
 from kb.errors import QueryFailed, QueryRefused, QueryTimeout
@@ -212,3 +214,87 @@ def test_sql_limits_are_checked_before_running(seeded_db):
     for bad in ({"timeout_s": 0}, {"timeout_s": -1}, {"max_rows": 0}):
         with pytest.raises(QueryFailed):
             kb.sql("SELECT 1", **bad)
+
+
+# ---------------------------------------------------------------------------------------------- malformed CSVs
+_HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\n"
+_GOOD = "mug,10,8,8,300,prism,smooth,fragile,glass,rigid\n"
+
+#: (CSV text, row, column, words in the reason) of each malformed-file class the review sent.
+MALFORMED_CSV = [
+    (_HEADER + '"bowl,10,8,8,300,prism,smooth,fragile,glass,rigid\n' + _GOOD, 2, "-", "unbalanced quote"),
+    (_HEADER + '"bowl,10,8,8,300,prism,smooth,fragile,glass,rigid\nbook",2,3,4,5,thin,smooth,sturdy,paper,rigid\n',
+     2, "name", "spans several lines"),
+    (_HEADER + "bowl," + "1" * 131_073 + ",8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "-", "over 131,072"),
+    (_HEADER + _GOOD + "bowl,nan,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
+    (_HEADER + _GOOD + "bowl,NaN,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
+    (_HEADER + "bowl,10,8,8,inf,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
+    (_HEADER + "bowl,10,8,8,-Infinity,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
+    (_HEADER.strip() + ",mass_g\n" + _GOOD.strip() + ",5\n", 1, "mass_g", "more than once"),
+    (_HEADER + "bowl,10,8\n", 2, "-", "3 cells, header has 10"),
+    (_HEADER + _GOOD.strip() + ",extra\n", 2, "-", "11 cells, header has 10"),
+    (_HEADER + "bo\x00wl,10,8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "name", "NUL"),
+    (_HEADER + "bowl,10,8,8,300,prism,smooth,fragile,gla\x00ss,rigid\n", 2, "material", "NUL"),
+    (_HEADER + "bo\x07wl,10,8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "name", "control characters"),
+    (_HEADER + "x" * 201 + ",10,8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "name", "implausible name"),
+    ("", 1, "-", "empty file"),
+    ("name,a_cm\nbowl,3\n", 1, "b_cm", "missing column"),
+]
+
+
+@pytest.mark.parametrize(("text", "row", "column", "reason"), MALFORMED_CSV)
+def test_malformed_csv_is_refused_naming_row_column_reason(seeded_db, tmp_path, text, row, column, reason):
+    from kb.errors import CatalogImportError
+
+    path = tmp_path / "bad.csv"
+    path.write_text(text, encoding="utf-8")
+    kb = KnowledgeBase.open(seeded_db)
+    before = kb.export_csv()
+    with pytest.raises(CatalogImportError) as err:
+        kb.import_csv(path)
+    assert (row, column) in [(r, c) for r, c, _ in err.value.problems], err.value.problems
+    assert any(reason in why for _, _, why in err.value.problems), err.value.problems
+    assert "\n" not in str(err.value) and "nothing imported" in str(err.value)
+    assert kb.export_csv() == before
+
+
+def test_a_csv_that_cannot_be_read_is_one_clear_error(tmp_path):
+    from kb.csvio import read_catalog_csv
+    from kb.errors import CatalogImportError
+
+    for path in (tmp_path / "no-such.csv", tmp_path):
+        with pytest.raises(CatalogImportError, match="cannot read"):
+            read_catalog_csv(path)
+    (tmp_path / "latin1.csv").write_bytes(b"name\n\xe9\n")
+    with pytest.raises(CatalogImportError, match="not UTF-8"):
+        read_catalog_csv(tmp_path / "latin1.csv")
+
+
+def test_malformed_csv_via_the_cli_is_one_line_and_exit_1(tmp_path, cli_env):
+    bad = tmp_path / "bad.csv"
+    bad.write_text(MALFORMED_CSV[2][0], encoding="utf-8")  # the 131,073-character cell
+    db = tmp_path / "c.duckdb"
+    for args in (["catalog", "import", str(bad)],):
+        proc = subprocess.run(["objrecall", *args, "--db", str(db)], capture_output=True, text=True,
+                              env=cli_env, timeout=120)
+        assert proc.returncode == 1, (args, proc.stdout, proc.stderr)
+        lines = [ln for ln in (proc.stdout + proc.stderr).splitlines() if ln.strip()]
+        assert len(lines) == 1 and "Traceback" not in lines[0] and "╭" not in lines[0], lines
+
+
+_CSV_ALPHABET = st.sampled_from(list('abc ,;"\n\r\x00\t-.0123456789e') + ["nan", "inf", "mug", "prism", "glass"])
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(body=st.lists(_CSV_ALPHABET, max_size=80).map("".join))
+def test_any_csv_text_is_read_or_refused_never_a_crash(body):
+    from kb.csvio import parse_catalog_csv
+    from kb.errors import CatalogImportError
+
+    try:
+        result = parse_catalog_csv(_HEADER + body)
+    except CatalogImportError as err:
+        assert err.problems and "\n" not in str(err)
+        return
+    for record in result.records:
+        assert record.name and "\x00" not in record.name and "\n" not in record.name

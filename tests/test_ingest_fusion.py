@@ -31,9 +31,41 @@ def test_median_of_the_latest_value_per_source():
     assert any("disagree on mass_g" in w for w in fused.warnings)
 
 
-def test_two_sources_meet_in_the_middle_and_agreeing_sources_do_not_warn():
-    fused = fuse([obs("a_cm", 10.0, "csv:seed.csv"), obs("a_cm", 10.5, "https://a/x")])
+def test_two_web_sources_meet_in_the_middle_and_agreeing_sources_do_not_warn():
+    fused = fuse([obs("a_cm", 10.0, "https://b/y"), obs("a_cm", 10.5, "https://a/x")])
     assert fused.values["a_cm"] == 10.25 and not fused.warnings
+
+
+def test_a_curated_value_stands_against_any_number_of_stores():
+    stores = [obs("a_cm", 12.0, f"https://s{i}/p") for i in range(5)]
+    fused = fuse([obs("a_cm", 10.0, "csv:seed.csv"), *stores])
+    assert fused.values["a_cm"] == 10.0 and fused.support["a_cm"] == 1
+    assert any("kept the curated" in w and "a_cm" in w for w in fused.warnings)
+
+
+def test_stores_fill_what_no_curated_source_states():
+    fused = fuse([obs("a_cm", 10.0, "csv:seed.csv"), obs("mass_g", 250.0, "https://s/p")])
+    assert fused.values == {"a_cm": 10.0, "mass_g": 250.0}
+    assert not fused.warnings
+
+
+@pytest.mark.parametrize(("web", "warned"), [(11.0, False), (11.0001, True), (9.091, False), (9.09, True)])
+def test_a_store_disagreeing_with_a_curated_value_is_warned_past_the_ratio(web, warned):
+    fused = fuse([obs("mass_g", 10.0, "csv:seed.csv"), obs("mass_g", web, "https://s/p")])
+    assert fused.values["mass_g"] == 10.0
+    assert any("kept the curated" in w for w in fused.warnings) is warned
+
+
+def test_two_curated_sources_still_take_their_median_and_words_their_majority():
+    fused = fuse([obs("a_cm", 10.0, "csv:a.csv"), obs("a_cm", 12.0, "csv:b.csv"), obs("a_cm", 50.0, "https://s")])
+    assert fused.values["a_cm"] == 11.0
+    words = [obs("material", "wood", "csv:a"), obs("material", "metal", "https://s"),
+             obs("material", "metal", "https://t")]  # fmt: skip
+    fused = fuse(words)
+    assert fused.values["material"] == "wood"
+    assert any("stores state material metal" in w for w in fused.warnings)
+    same = fuse([obs("material", "wood", "csv:a"), obs("material", "wood", "https://s")])
+    assert not same.warnings
 
 
 def test_package_values_never_become_catalog_values():
@@ -41,15 +73,13 @@ def test_package_values_never_become_catalog_values():
     assert "a_cm" not in fused.values and fused.values["mass_g"] == 5.0
 
 
-def test_words_by_majority_ties_to_curated_then_newest():
+def test_words_by_majority_ties_to_the_newest():
     three = [
         obs("material", "metal", "https://a"),
         obs("material", "metal", "https://b"),
-        obs("material", "wood", "csv:s"),
+        obs("material", "wood", "https://c", days=5),
     ]
     assert fuse(three).values["material"] == "metal"
-    tie = [obs("shape", "compact", "https://a", days=3), obs("shape", "prism", "csv:seed.csv")]
-    assert fuse(tie).values["shape"] == "prism"
     web_tie = [obs("shape", "compact", "https://a", days=3), obs("shape", "prism", "https://b", days=1)]
     assert fuse(web_tie).values["shape"] == "compact"
     assert any("disagree on shape" in w for w in fuse(web_tie).warnings)
@@ -112,7 +142,7 @@ def test_a_lookup_page_never_moves_a_curated_or_crawled_value():
     wrong = lookup_obs("mass_g", 9000.0, "https://b/y")
     assert fuse([curated, wrong]).values["mass_g"] == 900.0
     assert fuse([crawled, wrong]).values["mass_g"] == 880.0
-    assert fuse([curated, crawled, wrong]).values["mass_g"] == 890.0
+    assert fuse([curated, crawled, wrong]).values["mass_g"] == 900.0  # rule 3: the curated value stands
     assert fuse([curated, wrong]).support["mass_g"] == 1
 
 

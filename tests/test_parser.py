@@ -9,12 +9,12 @@ import random
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from nltk.tree import Tree
 
 from kb.errors import DescriptionError
 from kb.features import CATEGORIES, FEATURES
 from recall import lexicon
 from recall.parser import MAX_TEXT_CHARS, QUALIFIERS, FeatureEvidence, ParsedDescription, parse
+from recall.toolkit import Tree
 from recall.units import unit_table
 
 approx = pytest.approx

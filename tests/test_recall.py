@@ -205,8 +205,11 @@ def test_confidence_grows_with_the_margin():
     # a worse closeness or an unknown subject noun lowers it
     from recall.engine import confidence_of
 
-    assert confidence_of(2.0, 0.3, False) < confidence_of(2.0, 0.0, False)
-    assert confidence_of(2.0, 0.0, True) < confidence_of(2.0, 0.0, False)
+    assert confidence_of(5.0, 0.3, False) < confidence_of(5.0, 0.0, False)
+    assert confidence_of(5.0, 0.0, True) < confidence_of(5.0, 0.0, False)
+    # many near-tied candidates lower it too (ln competitors), and a tie is never above 0.5
+    assert confidence_of(5.0, 0.0, False, competitors=8.0) < confidence_of(5.0, 0.0, False)
+    assert confidence_of(0.0, 0.0, False) <= 0.5
 
 
 def test_subject_head_and_unknown_nouns():

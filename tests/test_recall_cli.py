@@ -89,3 +89,49 @@ def test_recall_file_that_is_not_text(seeded, tmp_path):
     path.write_bytes(b"description\n\xff\xfe\x00bad\n")
     res = run("recall", "--file", path, "--db", seeded, "--json")
     assert res.exit_code == 1 and "not UTF-8" in res.output and "Traceback" not in res.output
+
+
+def test_recall_table_says_not_in_the_catalog_with_the_closest_of_the_kind(seeded):
+    res = run("recall", "An orange of 7 cm diameter.", "--db", seeded)
+    assert res.exit_code == 0, res.output
+    text = " ".join(res.stdout.split())
+    assert "NOT IN THE CATALOG (open set): no 'orange' (a fruit)" in text
+    assert "closest of the same kind (fruit)" in text and "closest fruit: apple" in text
+    assert "confidence 0.0" in text
+
+
+def test_recall_table_shows_the_ranking_score_sorted_with_its_name_part(seeded):
+    res = run("recall", "a tennis ball, 60 g", "--db", seeded, "--json")
+    out = json.loads(res.stdout)
+    scores = [m["score"] for m in out["matches"]]
+    assert scores == sorted(scores)
+    first = out["matches"][0]
+    assert first["score"] == pytest.approx(first["distance"] - first["name_part"] + first["vague_part"])
+    table = run("recall", "a tennis ball, 60 g", "--db", seeded).stdout
+    header = next(line for line in table.splitlines() if "object" in line)
+    assert "score" in header and "name" in header and "distance" not in header
+    rows = [line for line in table.splitlines() if line.startswith("│ ")]
+    shown = [float(r.split("│")[3]) for r in rows if r.split("│")[3].strip()]
+    assert shown == sorted(shown) and len(shown) >= 3
+
+
+def test_a_vague_description_says_it_is_a_guess(seeded):
+    res = run("recall", "something small and round", "--db", seeded)
+    text = " ".join(res.stdout.split())
+    assert "vague: small -> a_cm <=" in text and "a guess: many objects fit" in text
+    assert "basketball" not in text
+
+
+def test_grasp_plan_for_a_teapot_plans_for_the_described_object(seeded):
+    res = run("grasp", "plan", "a ceramic teapot about 22 cm wide, 900 g", "--db", seeded, "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    how = out["recalled"]
+    assert out["object"] == "described teapot" and how["not_in_catalog"] and how["hint"] == "pitcher"
+    assert out["features"]["b_cm"] == 22 or out["features"]["a_cm"] == 22
+    assert out["features"]["mass_g"] == 900 and out["features"]["material"] == "other"
+    assert how["stated"] == ["b_cm", "mass_g", "material"] and "a_cm" in how["from_hint"]
+    table = run("grasp", "plan", "a ceramic teapot about 22 cm wide, 900 g", "--db", seeded).stdout
+    assert "planned for the described teapot: not in the catalog (no 'teapot')" in " ".join(table.split())
+    close = json.loads(run("grasp", "plan", "a tennis ball, 6.5 cm", "--db", seeded, "--json").stdout)
+    assert close["object"] == "tennis ball" and close["recalled"]["planned_for"] == "tennis ball"

@@ -61,6 +61,69 @@ def test_pruned_top_k_equals_brute_force_on_arbitrary_queries(query, k):
     _assert_same(query, k)
 
 
+@settings(max_examples=90, deadline=None)
+@given(query=arbitrary_queries(), k=st.integers(1, 12), plan=st.sampled_from(["scan", "window", "cells"]))
+def test_every_plan_on_its_own_equals_brute_force(query, k, plan):
+    """Whatever plan the cost model would pick, each one alone gives the brute force's answer."""
+    name, rows, dist = index().plan_and_search(query, k, force=plan)
+    brows, bdist = brute_force_top_k(catalog(), query, k)
+    assert name == plan or (len(query) == 0 and name == "empty")
+    np.testing.assert_array_equal(rows, brows)
+    np.testing.assert_array_equal(dist, bdist)
+
+
+@st.composite
+def category_queries(draw):
+    feats = draw(st.lists(st.sampled_from(sorted(CATEGORIES)), min_size=1, max_size=5, unique=True))
+    return FeatureQuery.from_values({f: draw(st.sampled_from(CATEGORIES[f])) for f in feats})
+
+
+@settings(max_examples=80, deadline=None)
+@given(query=category_queries(), k=st.sampled_from([1, 2, 5, 13, 60, 4000]))
+def test_category_only_descriptions_are_answered_from_the_combinations(query, k):
+    """Categories only: the combinations plan, equal to brute force (ties by row), for JP and jplog."""
+    plan, rows, dist = index().plan_and_search(query, k)
+    assert plan == "categories"
+    brows, bdist = brute_force_top_k(catalog(), query, k)
+    np.testing.assert_array_equal(rows, brows)
+    np.testing.assert_array_equal(dist, bdist)
+    lrows, ldist = top_k(catalog(), query, k, metric="jplog")
+    np.testing.assert_array_equal(lrows, brows)
+    np.testing.assert_array_equal(ldist, bdist)
+
+
+def test_ties_at_zero_are_the_lowest_rows_at_zero():
+    """"At most 50 g" puts thousands of rows at 0: the zero plan returns the k lowest of them."""
+    for values, quals in (
+        ({"mass_g": 50}, {"mass_g": "at_most"}),
+        ({"mass_g": 50, "texture": "grippy"}, {"mass_g": "at_most"}),
+        ({"a_cm": 30, "b_cm": 2}, {"a_cm": "at_most", "b_cm": "at_most"}),
+    ):
+        query = FeatureQuery.from_values(values, quals)
+        for k in (1, 5, 40):
+            plan, rows, dist = index().plan_and_search(query, k)
+            assert plan == "zero" or k > 5  # (40 zeros may not all be in the first pool)
+            brows, bdist = brute_force_top_k(catalog(), query, k)
+            np.testing.assert_array_equal(rows, brows)
+            np.testing.assert_array_equal(dist, bdist)
+    with pytest.raises(ValueError, match="distance 0"):
+        index().plan_and_search(FeatureQuery.from_values({"a_cm": 12.34567}), 5, force="zero")
+
+
+def test_small_catalogs_are_scanned():
+    from recall.search import SCAN_BELOW
+
+    snap = catalog()
+    q = FeatureQuery.from_values({"a_cm": 12, "b_cm": 5, "material": "wood"})
+    for n in (SCAN_BELOW, SCAN_BELOW + 1):
+        small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
+        plan, rows, dist = index_for(small).plan_and_search(q, 5)
+        assert (plan == "scan") == (n == SCAN_BELOW)
+        brows, bdist = brute_force_top_k(small, q, 5)
+        np.testing.assert_array_equal(rows, brows)
+        np.testing.assert_array_equal(dist, bdist)
+
+
 def test_ties_are_broken_by_row_like_brute_force():
     # category-only descriptions: thousands of rows at distance 0
     for values in ({"shape": "radial"}, {"material": "other", "rigidity": "floppy"}, {"texture": "grippy"}):
@@ -107,6 +170,23 @@ SQL_PARAMS = {
 }  # fmt: skip
 
 
+@pytest.fixture(scope="module")
+def sql_catalog(tmp_path_factory):
+    """The small catalog in a DuckDB file with the macros installed, and its Recaller."""
+    from kb.catalog import KnowledgeBase
+    from recall.engine import Recaller
+    from recall.sql import install_macros
+
+    tmp = tmp_path_factory.mktemp("sql")
+    (tmp / "catalog.csv").write_text(CATALOG_CSV)
+    kb = KnowledgeBase.open(tmp / "catalog.duckdb")
+    kb.import_csv(tmp / "catalog.csv")
+    with kb.connect(write=True) as con:
+        install_macros(con)
+    return kb, Recaller.from_db(tmp / "catalog.duckdb")
+
+
+@pytest.mark.parametrize("metric", ["jp", "jplog", "euclidean", "minkowski", "cosine"])
 @pytest.mark.parametrize(
     "values",
     [
@@ -114,25 +194,20 @@ SQL_PARAMS = {
         {"a_cm": 7, "b_cm": 7, "c_cm": 7, "mass_g": 60, "shape": "radial"},
         {"mass_g": 100, "texture": "rough", "fragility": "medium", "rigidity": "rigid"},
         {"material": "wood"},
+        {"shape": "radial", "texture": "rough", "rigidity": "squeezable"},
         {"a_cm": 9.0},
     ],
 )
-def test_numpy_and_sql_macros_agree(tmp_path, values):
-    from kb.catalog import KnowledgeBase
-    from recall.engine import Recaller
-    from recall.sql import install_macros
-
-    csv_path = tmp_path / "catalog.csv"
-    csv_path.write_text(CATALOG_CSV)
-    db = tmp_path / "catalog.duckdb"
-    kb = KnowledgeBase.open(db)
-    kb.import_csv(csv_path)
-    with kb.connect(write=True) as con:
-        install_macros(con)
+def test_numpy_and_sql_macros_agree(sql_catalog, values, metric):
+    kb, recaller = sql_catalog
     args = ", ".join(f"{SQL_PARAMS[f]} := {v!r}" for f, v in values.items())
-    sql_rows = kb.sql(f"SELECT name, distance FROM jp_rank({args})").rows
-    recaller = Recaller.from_db(db)
-    result = recaller.recall_features(values, top=len(sql_rows), features_only=True)
+    columns = "a_cm, b_cm, c_cm, mass_g, shape, texture, fragility, material, rigidity"
+    sql_rows = kb.sql(
+        f"SELECT name, {metric}_distance({columns}, {args}) AS distance FROM objects ORDER BY distance, name"
+    ).rows
+    if metric in ("jp", "jplog"):
+        assert kb.sql(f"SELECT name, distance FROM {metric}_rank({args})").rows == sql_rows
+    result = recaller.recall_features(values, top=len(sql_rows), metric=metric, features_only=True)
     assert [m.name for m in result.matches] == [r[0] for r in sql_rows]
     for match, (_, distance) in zip(result.matches, sql_rows, strict=True):
         # the engine holds float32 values (6e-8 relative), SQL the stored doubles

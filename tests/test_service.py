@@ -127,6 +127,16 @@ def test_grasp_plan_by_name_and_by_description(client):
     assert_error(client.post("/grasp/plan", json={"text": "qwx zzzt"}), 400, "RecallError")
 
 
+def test_not_in_the_catalog_the_same_over_http(client):
+    body = client.post("/recall", json={"text": "An orange of 7 cm diameter."}).json()
+    assert body["not_in_catalog"] and body["open_set"] and body["described"]["noun"] == "orange"
+    assert body["same_kind"][0]["name"] == "apple" and body["confidence"] <= 0.05
+    plan = client.post("/grasp/plan", json={"text": "a ceramic teapot about 22 cm wide, 900 g"}).json()
+    how = plan["recalled"]
+    assert plan["object"] == "described teapot" and how["hint"] == "pitcher" and how["not_in_catalog"]
+    assert plan["features"]["mass_g"] == 900 and how["why"].startswith("planned for the described teapot")
+
+
 def test_grasp_validations_paged_and_filtered(writer, seeded_db):
     from kb.catalog import KnowledgeBase
 

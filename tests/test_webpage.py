@@ -101,6 +101,16 @@ def test_page_lists_the_catalog_and_recalls_from_the_url(site):
 
 
 @needs_chromium
+def test_page_says_not_in_the_catalog_and_plans_for_the_described_object(site):
+    q = urllib.parse.quote("An orange of 7 cm diameter.")
+    dom = dump_dom(f"{site}/?q={q}")
+    assert 'data-ready="true"' in dom, dom[-3000:]
+    assert re.search(r'id="not-in-catalog">Not in the catalog<', dom)
+    assert "no orange (a fruit)" in dom and "closest fruit: apple" in dom
+    assert "planned for the described orange: not in the catalog" in dom
+
+
+@needs_chromium
 def test_html_in_a_catalog_name_is_shown_as_text(site):
     dom = dump_dom(f"{site}/")
     assert 'data-ready="true"' in dom

@@ -20,6 +20,7 @@ app = typer.Typer(
     cls=ObjrecallGroup,
     no_args_is_help=True,
     add_completion=False,
+    rich_markup_mode=None,
     help="objrecall: recall household objects from descriptions and validate their grasps.",
 )
 

@@ -59,18 +59,48 @@ def emit_lines(items: Iterable[Any]) -> None:
 
 
 class ObjrecallGroup(TyperGroup):
-    """Root command group: an :class:`ObjrecallError` becomes one ``Error: ...`` line and exit code 1."""
+    """Root command group: an :class:`ObjrecallError`, and any usage error (a missing file, a bad option or
+    value, an unknown command), becomes one ``Error: ...`` line on stderr and exit code 1."""
+
+    def main(self, args: Any = None, prog_name: Any = None, complete_var: Any = None,
+             standalone_mode: bool = True, **extra: Any) -> Any:
+        try:
+            rv = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+        except typer.TyperException as err:  # click's UsageError, BadParameter, NoSuchOption, FileError, ...
+            if not standalone_mode:
+                raise
+            if type(err).__name__ == "NoArgsIsHelpError":  # a bare `objrecall` or group: the help, exit 0
+                sys.stdout.write(err.format_message() + "\n")
+                sys.exit(0)
+            ctx = getattr(err, "ctx", None)
+            hint = f" (see `{ctx.command_path} --help`)" if ctx is not None else ""
+            _fail(f"{err.format_message()}{hint}", exit_now=True)
+        except typer.Abort:
+            if not standalone_mode:
+                raise
+            _fail("aborted", exit_now=True)
+        if not standalone_mode:
+            return rv
+        sys.exit(rv if isinstance(rv, int) else 0)
 
     def invoke(self, ctx: Any) -> Any:
         try:
             return super().invoke(ctx)
         except ObjrecallError as err:
             _fail(str(err))
-        except (FileNotFoundError, IsADirectoryError, PermissionError) as err:
+        except (FileNotFoundError, IsADirectoryError, NotADirectoryError, PermissionError) as err:
             _fail(f"{err.filename}: {err.strerror}")
+        except Exception as err:
+            if "duckdb" not in type(err).__module__:
+                raise
+            # a DuckDB file that is not an objrecall catalog, or one damaged: say so in one line
+            first = (str(err).strip().splitlines() or [type(err).__name__])[0]
+            _fail(f"database error (is this an objrecall catalog?): {first}")
 
 
-def _fail(message: str) -> None:
-    """One line on stderr and exit code 1 (no traceback)."""
+def _fail(message: str, *, exit_now: bool = False) -> None:
+    """One line on stderr and exit code 1 (no traceback); ``exit_now`` outside a running command."""
     sys.stderr.write(f"Error: {' '.join(message.split())}\n")
+    if exit_now:
+        sys.exit(1)
     raise typer.Exit(1)

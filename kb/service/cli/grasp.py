@@ -131,14 +131,9 @@ def _recall(db: Path, description: str) -> tuple[Any, dict[str, Any]]:
         best = result.best
         if best is None:
             raise RecallError(f"could not recall an object from {description!r}: no usable features or names")
-        info = {
-            "method": "recall",
-            "confidence": round(result.confidence, 4),
-            "open_set": result.open_set,
-            "distance": best.distance,
-            "alternatives": [m.name for m in result.matches[1:]],
-        }
-        return kb.get_object(best.name), info
+        from recall.target import grasp_target
+
+        return grasp_target(result, kb.get_object)
     from recall.parser import parse
 
     parsed = parse(description)
@@ -220,6 +215,8 @@ def plan(
         return
     conf = f", confidence {how['confidence']:.2f}" if "confidence" in how else ""
     console.print(f"[bold]{escape(obj.name)}[/] ({how['method']}{conf})", highlight=False)
+    if "why" in how:
+        console.print(escape(how["why"]), highlight=False)
     for i, p in enumerate(plans, start=1):
         console.print(
             f"{i}. [bold]{p.grasp_type}[/] ({p.family}), across {p.grasped_dim} with {p.aperture_cm:g} cm aperture, "

@@ -8,6 +8,7 @@ from typing import Annotated, Any
 import typer
 
 from kb.service.cli.common import DbOption, JsonOption
+from kb.service.http.settings import ENV_SOURCES
 
 METRIC_HELP = (
     "Distance: jp (the paper's Joint Probability), euclidean, minkowski (p=4), cosine, kdtree, jplog (JP with "
@@ -31,10 +32,34 @@ def register(app: typer.Typer) -> None:
             bool,
             typer.Option("--features-only", help="Ignore object names in the text (the paper's method)."),
         ] = False,
+        lookup: Annotated[
+            bool,
+            typer.Option("--lookup", help="When the catalog does not know it (open set, or confidence below "
+                         "0.5), search the stores of --sources, add what fits, and recall again."),
+        ] = False,
+        force_lookup: Annotated[
+            bool, typer.Option("--force-lookup", help="Like --lookup, but ask the stores even after a good recall.")
+        ] = False,
+        sources: Annotated[
+            Path | None,
+            typer.Option("--sources", help=f"Stores for --lookup (TOML; stores with a 'search') [env {ENV_SOURCES}; "
+                         "default: the bundled demo store's]"),
+        ] = None,
+        base_url: Annotated[
+            str | None, typer.Option("--base-url", help="Point every store of --sources at this URL.")
+        ] = None,
+        budget: Annotated[
+            float, typer.Option("--budget", help="Seconds a lookup may take (default 10).")
+        ] = 10.0,
+        max_pages: Annotated[
+            int, typer.Option("--max-pages", help="Requests a lookup may make, over all stores (default 12).")
+        ] = 12,
         db: DbOption = None,
         json_out: JsonOption = False,
     ) -> None:
-        """Recall the catalog objects a description is about, nearest first, with the reasons."""
+        """Recall the catalog objects a description is about, nearest first, with the reasons.
+
+        With --lookup, an object the catalog does not know is looked up in the stores' search first."""
         from kb.errors import DescriptionError, RecallError
         from kb.service.cli.common import emit, emit_lines, resolve_db
         from recall.descriptions import read_description_column
@@ -45,8 +70,13 @@ def register(app: typer.Typer) -> None:
             raise DescriptionError("give either a description TEXT or --file D.csv (not both)")
         if metric is not None and metric not in METRICS:
             raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
-        recaller = Recaller.from_db(resolve_db(db))
         options = dict(top=top, metric=metric, features_only=features_only)
+        if lookup or force_lookup:
+            plan = _lookup_sources(sources, base_url)
+            limits = dict(budget_s=budget, max_pages=max_pages, force=force_lookup)
+            _lookup_command(resolve_db(db), text, file, plan, {**options, **limits}, json_out)
+            return
+        recaller = Recaller.from_db(resolve_db(db))
         if file is not None:
             rows = read_description_column(file)
             results = (recaller.recall_text(row, **options) for row in rows)
@@ -89,6 +119,57 @@ def register(app: typer.Typer) -> None:
             _print_report(report)
 
 
+def _lookup_sources(path: Path | None, base_url: str | None):
+    """The sources a lookup asks: --sources, else $OBJRECALL_SOURCES, else the bundled demo store's."""
+    import os
+
+    from scrapers.demo_store import DEMO_SOURCES
+    from scrapers.sources import load_sources
+
+    chosen = path or (Path(os.environ[ENV_SOURCES]) if os.environ.get(ENV_SOURCES) else DEMO_SOURCES)
+    return load_sources(chosen, base_url=base_url)
+
+
+def _lookup_command(db: Path, text: str | None, file: Path | None, plan, options: dict, json_out: bool) -> None:
+    """``recall --lookup``: each description recalled, looked up when needed, and recalled again."""
+    import requests
+
+    from kb.service.cli.common import emit, emit_lines
+    from recall.descriptions import read_description_column
+    from recall.lookup import recall_with_lookup
+
+    rows = read_description_column(file) if file is not None else [text or ""]
+    with requests.Session() as session:
+        results = (recall_with_lookup(db, row, sources=plan, session=session, **options) for row in rows)
+        if json_out and file is None:
+            emit(next(results).to_dict())
+        elif json_out:
+            emit_lines(r.to_dict() for r in results)
+        else:
+            for row, result in zip(rows, results, strict=True):
+                _print_lookup(result)
+                _print_result(result.result, title=row if file is not None else None)
+
+
+def _print_lookup(result) -> None:
+    """What a lookup did, before the recall it led to."""
+    from rich.console import Console
+    from rich.markup import escape
+
+    console = Console()
+    if not result.looked_up:
+        console.print(escape(f"Lookup: not needed ({result.message})"))
+        return
+    console.print(escape(f"Lookup ({result.why}): {result.message}"))
+    stores = result.stores
+    for answer in stores.stores if stores else []:
+        said = answer.status + (f": {answer.reason}" if answer.reason else "")
+        console.print(escape(f"  store {answer.store}: {said}; searched {', '.join(answer.queries) or '-'}"))
+    for cand in stores.candidates if stores else []:
+        console.print(escape(f"  page {cand.url}: {cand.name or '?'} -> {cand.outcome}"
+                             + (f" ({cand.reason})" if cand.reason else "")))  # fmt: skip
+
+
 def _fmt(value: Any) -> str:
     if value is None:
         return "?"
@@ -100,45 +181,86 @@ def _fmt(value: Any) -> str:
 def _print_result(result, title: str | None = None) -> None:
     from rich.console import Console
     from rich.markup import escape
-    from rich.table import Table
 
     console = Console()
-    stated = list(result.query["values"])
     if title:
         console.print(f"[bold]{escape(title)}[/bold]")
     if not result.matches:
-        console.print("No feature or object name found in the description: nothing to recall.")
+        if result.not_in_catalog:
+            console.print(escape(_verdict(result)))
+        else:
+            console.print("No feature or object name found in the description: nothing to recall.")
         return
     quals = result.query.get("qualifiers", {})
     described = ", ".join(
         f"{f}={_fmt(v)}" + (f" ({quals[f]})" if f in quals else "") for f, v in result.query["values"].items()
     )
     named = f"; named: {', '.join(result.named)}" if result.named else ""
-    console.print(escape(f"Described: {described or 'no features'}{named}"))
-    table = Table(
-        title=f"metric {result.metric}" + (" (features only)" if result.features_only else " + names")
-    )
+    vague = f"; vague: {', '.join(result.vague)}" if result.vague else ""
+    console.print(escape(f"Described: {described or 'no features'}{named}{vague}"))
+    title = f"metric {result.metric}" + (" (features only)" if result.features_only else " + names")
+    console.print(_match_table(result.matches, result, title))
+    if result.same_kind:
+        console.print(_match_table(result.same_kind, result, f"closest of the same kind ({result.same_kind_as})"))
+    console.print(escape(_verdict(result)))
+
+
+def _match_table(matches, result, title: str):
+    """Matches in ranking order: the score used for ranking (= features - name + vague), each stated
+    feature's part, the name part and, when vague words were used, their part."""
+    from rich.table import Table
+
+    stated = list(result.query["values"])
+    show_name = not result.features_only
+    show_vague = bool(result.vague)
+    table = Table(title=title)
     table.add_column("#", justify="right")
     table.add_column("object")
-    table.add_column("distance", justify="right")
+    table.add_column("score", justify="right")
     for feat in stated:
         table.add_column(feat, justify="right")
-    for i, m in enumerate(result.matches, 1):
+    if show_name:
+        table.add_column("name", justify="right")
+    if show_vague:
+        table.add_column("vague", justify="right")
+    for i, m in enumerate(matches, 1):
         name = m.name + (" (named)" if m.matched_by_name else "")
         cells = [f"{_fmt(m.features.get(f))} [dim]+{m.contributions.get(f, 0.0):.2f}[/dim]" for f in stated]
-        table.add_row(str(i), name, f"{m.distance:.3f}", *cells)
-    console.print(table)
+        extra = [f"-{m.name_part:.2f}"] if show_name else []
+        extra += [f"+{m.vague_part:.2f}"] if show_vague else []
+        table.add_row(str(i), name, f"{m.score:.3f}", *cells, *extra)
+    return table
+
+
+def _verdict(result) -> str:
+    """One line: not in the catalog / not a close match / close match, the confidence and why."""
+    if result.not_in_catalog:
+        noun = result.described
+        near = ", ".join(m.name for m in result.matches[:3]) or "nothing (no feature stated)"
+        kind = ", ".join(m.name for m in result.same_kind) or "none"
+        return (
+            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (a {noun.kind}) in the catalog; physically closest: {near}; "
+            f"closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}"
+        )
     verdict = (
-        "NOT a close match (open set): nothing in the catalog is near" if result.open_set else "close match"
+        "NOT a close match (open set): nothing in the catalog is near"
+        if result.open_set
+        else "a guess: many objects fit the description equally"
+        if result.competitors >= 3
+        else "close match"
     )
     why = []
     if result.closeness is not None:
         why.append(f"mean relative error of the best match {result.closeness:.2f}")
     if result.unknown_noun:
         why.append(f"'{result.unknown_noun}' is no catalog noun")
-    console.print(
-        escape(f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else ""))
-    )
+    if result.competitors >= 1.5:
+        why.append(f"{result.competitors:.1f} candidates about as good")
+    return f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else "")
+
+
+def _pct(k: int, n: int) -> str:
+    return f"{100.0 * k / n:.1f} %" if n else "-"
 
 
 def _print_report(report) -> None:
@@ -171,14 +293,20 @@ def _print_report(report) -> None:
             f"Parse: R² dimensions {_fmt(round(r2d, 3)) if r2d is not None else '-'}, "
             f"R² mass {_fmt(round(r2m, 3)) if r2m is not None else '-'}; category accuracy: {cats}"
         )
-    flags = ", ".join(f"{mode} {k}/{report.n}" for mode, k in report.false_flags.items())
-    console.print(f"Open-set flags on these in-catalog descriptions (false flags): {flags}")
+    flags = ", ".join(f"{mode} {k}/{report.n} ({_pct(k, report.n)})" for mode, k in report.false_flags.items())
+    console.print(f"Open-set flags on these in-catalog descriptions (false-flag rate): {flags}")
     if report.open_set_n:
         flagged = ", ".join(
-            f"{mode} {k}/{report.open_set_n} (confidence >= 0.9: {report.open_set_confident[mode]})"
+            f"{mode} {k}/{report.open_set_n} ({_pct(k, report.open_set_n)}; confidence >= 0.9: "
+            f"{report.open_set_confident[mode]})"
             for mode, k in report.open_set.items()
         )
-        console.print(f"Open-set descriptions flagged: {flagged}")
+        console.print(f"Open-set descriptions flagged (detection rate): {flagged}")
+    for mode in report.points:
+        cal = report.calibration(mode)
+        console.print(f"Confidence, {mode}: Brier {cal.brier:.3f}, ECE {cal.ece:.3f} over {cal.n} results")
+        for line in cal.plot():
+            console.print(f"  {line}", highlight=False)
     if report.unknown_objects:
         console.print(
             f"Skipped {len(report.unknown_objects)} description(s) of objects not in the catalog: "

@@ -11,7 +11,7 @@ from kb.features import CATEGORIES
 from kb.service.http.settings import MAX_PAGE, MAX_TEXT_CHARS, MAX_TOP, SQL_MAX_ROWS, SQL_MAX_TIMEOUT_S
 from recall.metrics import METRICS
 
-__all__ = ["LimitQ", "NameP", "ObjectIn", "OffsetQ", "Page", "PlanIn", "RecallIn", "SqlIn", "TextIn"]
+__all__ = ["LimitQ", "LookupIn", "NameP", "ObjectIn", "OffsetQ", "Page", "PlanIn", "RecallIn", "SqlIn", "TextIn"]
 
 MetricName = Literal[tuple(METRICS)]  # type: ignore[valid-type]
 
@@ -40,6 +40,12 @@ class RecallIn(TextIn):
         "with features_only (recall/RECALL.md).",
     )
     features_only: bool = Field(False, description="Ignore object names in the text (features only).")
+
+
+class LookupIn(RecallIn):
+    budget_s: float = Field(10.0, gt=0, le=60, description="Seconds the lookup may take.")
+    max_pages: int = Field(12, ge=1, le=50, description="Requests the lookup may make, over all stores.")
+    force: bool = Field(False, description="Ask the stores even when the catalog recall is good.")
 
 
 class PlanIn(BaseModel):

@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import threading
 import time
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from kb.errors import DatabaseError
+from kb.errors import DatabaseError, ObjrecallError
 from kb.service.http.jobs import IngestionJobs
-from kb.service.http.settings import ServiceSettings
+from kb.service.http.settings import ENV_SOURCES, ServiceSettings
 
 if TYPE_CHECKING:
     from kb.catalog import KnowledgeBase
@@ -44,6 +45,14 @@ class ServiceState:
 
         self._require_catalog()
         return KnowledgeBase.open(self.settings.db, busy_timeout=self.settings.busy_timeout, upgrade=False)
+
+    def sources_file(self) -> Path:
+        """The sources file ingestion and lookups read; refused when the server was started without one."""
+        if self.settings.sources is None:
+            raise ObjrecallError(
+                f"no sources file configured on the server (start it with --sources FILE or set {ENV_SOURCES})"
+            )
+        return self.settings.sources
 
     def recaller(self):
         """The recall engine over a snapshot of the catalog, re-checked at most every snapshot_ttl s."""

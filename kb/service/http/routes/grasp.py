@@ -14,10 +14,23 @@ from kb.service.http.settings import DEFAULT_PAGE
 router = APIRouter(tags=["grasp"])
 
 
+def _record_of(result):
+    """A catalog object of the result (its matches and closest of the same kind) by name, from the
+    snapshot the result came from (no second read of the catalog)."""
+    from kb.features import FEATURES, ObjectRecord
+
+    known = {m.name: m for m in (*result.matches, *result.same_kind)}
+
+    def get(name: str) -> ObjectRecord:
+        m = known[name]
+        return ObjectRecord.create(m.name, **{f: m.features.get(f) for f in FEATURES})
+
+    return get
+
+
 @router.post("/grasp/plan")
 def grasp_plan(body: PlanIn, state: State) -> dict[str, Any]:
     """Ranked grasp plans for a catalog object (``name``) or the best match of a description (``text``)."""
-    from kb.features import FEATURES, ObjectRecord
     from sim.planner import plan_grasps
 
     if (body.text is None) == (body.name is None):
@@ -26,12 +39,12 @@ def grasp_plan(body: PlanIn, state: State) -> dict[str, Any]:
         obj = state.knowledge_base().get_object(body.name)
         how: dict[str, Any] = {"method": "name"}
     else:
-        result = state.recaller().recall_text(body.text, top=1)
+        from recall.target import grasp_target
+
+        result = state.recaller().recall_text(body.text, top=3)
         if not result.matches:
             raise RecallError("the description states no feature and names no catalog object")
-        best = result.matches[0]
-        obj = ObjectRecord.create(best.name, **{f: best.features.get(f) for f in FEATURES})
-        how = {"method": "recall", "confidence": result.confidence, "open_set": result.open_set}
+        obj, how = grasp_target(result, _record_of(result))
     plans = plan_grasps(obj, top=body.top)
     return to_jsonable(
         {"object": obj.name, "recalled": how, "features": obj.features(), "plans": [p.to_dict() for p in plans]}

@@ -6,11 +6,9 @@ from typing import Annotated, Any
 from fastapi import APIRouter, Depends, Query
 from fastapi import Path as PathParam
 
-from kb.errors import ObjrecallError
 from kb.jsonable import to_jsonable
 from kb.service.http.auth import require_token
 from kb.service.http.routes import State
-from kb.service.http.settings import ENV_SOURCES
 
 router = APIRouter(tags=["ingestion"])
 
@@ -34,10 +32,6 @@ def start_ingestion(state: State) -> dict[str, Any]:
     """Start ``objrecall ingest --sources <configured file> --db <catalog>`` as a child process; 202 with
     the job handle (poll ``/ingestion/jobs/{id}``). 409 while a job started here still runs."""
     settings = state.settings
-    if settings.sources is None:
-        raise ObjrecallError(
-            f"no sources file configured on the server (start it with --sources FILE or set {ENV_SOURCES})"
-        )
-    command = [*settings.ingest_command, "ingest", "--sources", str(settings.sources), "--db", str(settings.db)]
+    command = [*settings.ingest_command, "ingest", "--sources", str(state.sources_file()), "--db", str(settings.db)]
     job = state.jobs.start(command)
     return {"id": job.id, "status": job.status, "status_url": f"/ingestion/jobs/{job.id}"}

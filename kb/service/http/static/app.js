@@ -26,12 +26,10 @@ function busy(delta) {
   document.body.dataset.state = pending > 0 ? "loading" : "idle";
 }
 
-async function api(path, body) {
-  const init = body === undefined ? {} : {
-    method: "POST",
-    headers: { "Content-Type": "application/json" },
-    body: JSON.stringify(body),
-  };
+async function api(path, body, token) {
+  const headers = { "Content-Type": "application/json" };
+  if (token) headers.Authorization = `Bearer ${token}`;
+  const init = body === undefined ? {} : { method: "POST", headers, body: JSON.stringify(body) };
   busy(1);
   try {
     const response = await fetch(path, init);
@@ -111,6 +109,7 @@ function showGrasp(plan) {
     ` (${best.family}) for ${plan.object}: across ${best.grasped_dim}, aperture ${fmt(best.aperture_cm)} cm, ` +
     `${best.approach} approach, grip force ${fmt(best.grip_force_n)} N`));
   box.append(head);
+  if (plan.recalled && plan.recalled.why) box.append(el("p", plan.recalled.why, "meta"));
   const list = el("ul");
   for (const line of best.rationale || []) list.append(el("li", line));
   box.append(list);
@@ -124,9 +123,22 @@ async function runRecall(text) {
   const top = Number(document.getElementById("top").value) || 5;
   const metric = document.getElementById("metric").value;
   const featuresOnly = document.getElementById("features-only").checked;
-  setStatus("recall-status", "Recalling...");
+  const lookup = document.getElementById("lookup").checked;
+  const lookupSummary = document.getElementById("lookup-summary");
+  lookupSummary.hidden = true;
+  setStatus("recall-status", lookup ? "Recalling, and asking the stores if the catalog does not know it..." : "Recalling...");
   try {
-    const answer = await api("/recall", { text, top, metric: metric || null, features_only: featuresOnly });
+    const request = { text, top, metric: metric || null, features_only: featuresOnly };
+    let answer;
+    if (lookup) {
+      const looked = await api("/recall/lookup", request, document.getElementById("token").value.trim());
+      answer = looked.result;
+      lookupSummary.textContent = looked.looked_up ? `Lookup: ${looked.message}` : "Lookup not needed: the catalog knows it.";
+      lookupSummary.dataset.found = String(looked.found);
+      lookupSummary.hidden = false;
+    } else {
+      answer = await api("/recall", request);
+    }
     const body = document.querySelector("#matches tbody");
     body.replaceChildren();
     answer.matches.forEach((m, i) => {
@@ -136,22 +148,35 @@ async function runRecall(text) {
       const name = el("td", m.name, "name");
       if (m.matched_by_name) name.append(el("span", "named", "named"));
       row.append(name);
-      row.append(el("td", fmt(m.distance), "num"));
+      row.append(el("td", fmt(m.score), "num"));
       row.append(contributionCell(m.contributions));
+      row.append(el("td", m.name_part ? `-${fmt(m.name_part)}` : "", "num"));
+      row.append(el("td", m.vague_part ? `+${fmt(m.vague_part)}` : "", "num"));
       body.append(row);
     });
     const summary = document.getElementById("recall-summary");
+    const notIn = answer.not_in_catalog && answer.described;
     if (!answer.matches.length) {
-      summary.textContent = "The description states no feature the catalog knows and names no object.";
+      summary.textContent = notIn
+        ? `Not in the catalog: no ${answer.described.noun} (a ${answer.described.kind}), and no feature to compare.`
+        : "The description states no feature the catalog knows and names no object.";
       document.getElementById("grasp").replaceChildren();
     } else {
       summary.replaceChildren();
+      const conf = `confidence ${(answer.confidence * 100).toFixed(0)} %`;
       const best = el("strong", answer.matches[0].name);
       best.id = "top-match";
-      summary.append("Best match: ", best,
-        ` (confidence ${(answer.confidence * 100).toFixed(0)} %` +
-        (answer.open_set ? "; not a close match: probably not in the catalog" : "") + ")");
-      const plan = await api("/grasp/plan", { name: answer.matches[0].name });
+      if (notIn) {
+        const verdict = el("strong", "Not in the catalog");
+        verdict.id = "not-in-catalog";
+        const kind = answer.same_kind.map((m) => m.name).join(", ") || "none";
+        summary.append(verdict, `: no ${answer.described.noun} (a ${answer.described.kind}). Physically closest: `,
+          best, `; closest ${answer.same_kind_as || answer.described.kind}: ${kind} (${conf})`);
+      } else {
+        summary.append("Best match: ", best,
+          ` (${conf}` + (answer.open_set ? "; not a close match: probably not in the catalog" : "") + ")");
+      }
+      const plan = await api("/grasp/plan", answer.open_set ? { text } : { name: answer.matches[0].name });
       showGrasp(plan);
     }
     result.hidden = false;

@@ -1,0 +1,84 @@
+"""Open set by kinds: a description that names a household noun the catalog does not have.
+
+The catalog's objects each get a kind (:func:`kb.kinds.kind_of_name`). A description whose subject
+names a noun of the kinds lexicon (``kb/data/kind_nouns.csv``) that names no catalog object (no name,
+alias or head noun of one, in the noun itself or in its English name) is **not in the catalog**: "An
+orange of 7 cm diameter" (fruit), "a ceramic teapot" (jug). The recall still ranks the physically
+closest objects (a physically similar object serves the grasp) and adds the closest objects of the same
+kind (:meth:`KindIndex.rows_of_kind`: the noun's kind, else its nearest ancestor below the root that has
+objects). Rules and figures: ``recall/RECALL.md``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from kb.kinds import ROOT, Noun, ancestors, kind_of_name, noun_in, words_of
+
+__all__ = ["DescribedNoun", "KindIndex", "described_noun"]
+
+
+@dataclass(frozen=True)
+class DescribedNoun:
+    """The lexicon noun a description's subject names, its kind, and whether the catalog has it."""
+
+    noun: str
+    kind: str
+    english: str
+    in_catalog: bool
+
+    def to_dict(self) -> dict[str, object]:
+        return {"noun": self.noun, "kind": self.kind, "english": self.english, "in_catalog": self.in_catalog}
+
+
+class KindIndex:
+    """The kind of every catalog row, and the rows of each kind."""
+
+    def __init__(self, names: Sequence[str], aliases: Sequence[Sequence[str]]):
+        self.kinds: list[str | None] = [
+            kind_of_name(n, a) for n, a in zip(names, aliases, strict=True)
+        ]
+        self.rows: dict[str, list[int]] = {}
+        for row, kind in enumerate(self.kinds):
+            for k in ancestors(kind) if kind else ():
+                self.rows.setdefault(k, []).append(row)
+
+    def rows_of_kind(self, kind: str) -> tuple[str | None, list[int]]:
+        """The rows of ``kind`` or of its nearest ancestor that has rows (never the root): (kind used,
+        rows); (None, []) when none."""
+        for k in ancestors(kind):
+            if k == ROOT:
+                break
+            if self.rows.get(k):
+                return k, list(self.rows[k])
+        return None, []
+
+
+def described_noun(
+    subject: Sequence[str],
+    phrases,
+    heads,
+    vocabulary: frozenset[str],
+    generic: frozenset[str],
+    after_of: Sequence[str] = (),
+) -> DescribedNoun | None:
+    """The lexicon noun heading the subject phrase (``subject``: its words, singular), and whether the
+    catalog knows it: the noun or its English name is a catalog name or alias (``phrases``: word tuples),
+    or its head is a catalog head noun (``heads``). Generic nouns ("thing", "piece", "fruit", "toy") name
+    a kind, not an object: None. ``after_of``: the phrase after "of" when the subject is a measure of
+    something ("a bar of soap", "a pair of scissors"), used when the subject itself names no noun;
+    ``vocabulary``: every word of the catalog's names and aliases."""
+    noun: Noun | None = noun_in(list(subject))
+    if (noun is None or noun.words[-1] in generic) and after_of:
+        noun = noun_in(list(after_of))
+    if noun is None or noun.words[-1] in generic:
+        return None
+    english = tuple(words_of(noun.english))
+    # known: a catalog name or alias, or a catalog head noun ("bottle": every bottle) whose modifiers are
+    # all catalog words ("bottle cap"; but "bowling ball" is no catalog ball)
+    known = any(
+        words in phrases or (words and words[-1] in heads and all(w in vocabulary for w in words[:-1]))
+        for words in (noun.words, english)
+    )
+    return DescribedNoun(noun.text, noun.kind, noun.english, known)

@@ -1,0 +1,113 @@
+"""Scoring and ranking primitives shared by every search plan (``recall.search``, ``recall.cells``,
+``recall.combinations``): one float64 JP routine, so that all plans and the brute force give the same
+distances bit for bit, and the top-k selection with ties broken by row number.
+
+Two helpers give the product form used to *filter* before scoring: argmin Σ log(1 + d_j) =
+argmin Π (1 + d_j). :func:`factors` computes a feature's ``1 + d`` in float32 (NaN = unknown counts as the
+unknown penalty, or as 1 when ``optimistic``); products of up to 9 float32 factors are within
+:data:`FILTER_SLACK` of the exact ones, so a filter ``Π ≤ e^S · (1 + FILTER_SLACK)`` never drops a row
+whose exact distance is ≤ S.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
+from recall.metrics import CATEGORY_CODES, MISMATCH_TERM, UNKNOWN_CATEGORY_TERM, FeatureQuery
+
+__all__ = ["FILTER_SLACK", "factors", "jp_scores", "merge_top_k", "select_top_k", "survivors"]
+
+NUM_INDEX = {f: j for j, f in enumerate(NUMERIC_FEATURES)}
+CAT_INDEX = {f: j for j, f in enumerate(CATEGORICAL_FEATURES)}
+#: Relative slack of a float32 product filter: 3 roundings of 2^-24 per factor, 9 factors, times 20.
+FILTER_SLACK = 1e-5
+
+
+def category_terms(feature: str, value: str) -> np.ndarray:
+    """JP term by (code + 1): index 0 is an unknown category (-1)."""
+    table = np.full(len(CATEGORY_CODES[feature]) + 1, MISMATCH_TERM)
+    table[0] = UNKNOWN_CATEGORY_TERM
+    table[CATEGORY_CODES[feature][value] + 1] = 0.0
+    return table
+
+
+def category_factors(feature: str, value: str) -> np.ndarray:
+    """``e^term`` by (code + 1), float32: 1 match, 2 unknown, 4 mismatch (exact in float32)."""
+    return np.exp(category_terms(feature, value)).round().astype(np.float32)
+
+
+def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None) -> np.ndarray:
+    """JP distance of ``rows`` (an index array, a slice, or all when None) of float32 / int8 columns,
+    in float64, summed in the query's order (numeric terms, then categorical ones)."""
+    total = None
+    for cond in query.numeric:
+        col = num_cols[NUM_INDEX[cond.feature]]
+        x = (col if rows is None else col[rows]).astype(np.float64)
+        term = np.log1p(cond.differences(x))
+        total = term if total is None else np.add(total, term, out=total)
+    for feat, value in query.categorical:
+        col = cat_cols[CAT_INDEX[feat]]
+        codes = col if rows is None else col[rows]
+        term = category_terms(feat, value)[codes.astype(np.intp) + 1]
+        total = term if total is None else np.add(total, term, out=total)
+    if total is None:
+        size = len(num_cols[0]) if rows is None else len(np.arange(len(num_cols[0]))[rows])
+        return np.zeros(size)
+    return total
+
+
+def factors(item, num_cols, cat_cols, rows=None, optimistic: bool = False) -> np.ndarray:
+    """``1 + d`` of one stated feature (``("num", condition)`` or ``("cat", (feature, value))``) for
+    ``rows`` (index array, slice or None), float32. ``optimistic``: an unknown numeric value counts 1 (a
+    lower bound), else its penalty (the exact factor, within rounding)."""
+    kind, obj = item
+    if kind == "cat":
+        feat, value = obj
+        codes = cat_cols[CAT_INDEX[feat]]
+        codes = codes if rows is None else codes[rows]
+        return category_factors(feat, value)[codes.astype(np.intp) + 1]
+    col = num_cols[NUM_INDEX[obj.feature]]
+    x = col if rows is None else col[rows]
+    low, high = np.float32(obj.low), np.float32(obj.high)
+    if low != obj.low or high != obj.high:  # bounds not held in float32 (not from FeatureQuery): float64
+        x, low, high = x.astype(np.float64), obj.low, obj.high
+    d = np.maximum(low - x, x - high)
+    np.fmax(d, 0.0, out=d)  # NaN (unknown) -> 0
+    d += 1.0
+    if not optimistic:
+        np.copyto(d, 1.0 + obj.unknown_difference, where=np.isnan(x))
+    return d
+
+
+def survivors(items, num_cols, cat_cols, rows, s: float) -> np.ndarray:
+    """Of ``rows`` (an index array, or a slice whose rows are returned as indices), those whose product
+    Π (1 + d_j) can be <= e^s (unknown numeric values optimistic): factors multiplied in the order of
+    ``items``, rows dropped as soon as the bound is passed."""
+    bound = np.float32(np.exp(s) * (1.0 + FILTER_SLACK))
+    prod = None
+    for item in items:
+        f = factors(item, num_cols, cat_cols, rows, optimistic=True)
+        prod = f if prod is None else np.multiply(prod, f, out=f)
+        keep = prod <= bound
+        rows = np.flatnonzero(keep) + rows.start if isinstance(rows, slice) else rows[keep]
+        prod = prod[keep]
+        if not len(rows):
+            break
+    return rows
+
+
+def select_top_k(rows: np.ndarray, scores: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The k smallest (score, row) pairs, ordered by score then row number."""
+    if len(scores) > k:
+        kth = np.partition(scores, k - 1)[k - 1]
+        keep = scores <= kth
+        rows, scores = rows[keep], scores[keep]
+    order = np.lexsort((rows, scores))[:k]
+    return rows[order].astype(np.int64), scores[order]
+
+
+def merge_top_k(rows_a, scores_a, rows_b, scores_b, k: int):
+    """Top-k of two scored row sets that may share rows."""
+    rows, first = np.unique(np.concatenate((rows_a, rows_b)), return_index=True)
+    return select_top_k(rows, np.concatenate((scores_a, scores_b))[first], k)

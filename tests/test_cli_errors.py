@@ -1,0 +1,97 @@
+"""Every command's error path: one ``Error: ...`` line on stderr and exit code 1, never a boxed usage
+error, a traceback or exit code 2 (README: "Errors are one line on stderr and exit code 1")."""
+
+from __future__ import annotations
+
+import subprocess
+
+import pytest
+import typer.main
+from typer.testing import CliRunner
+
+from kb.service.cli import app
+
+runner = CliRunner()
+
+
+def _leaf_commands() -> list[list[str]]:
+    out: list[list[str]] = []
+
+    def walk(cmd, path):
+        if hasattr(cmd, "commands"):
+            for name, sub in cmd.commands.items():
+                walk(sub, [*path, name])
+        else:
+            out.append(path)
+
+    walk(typer.main.get_command(app), [])
+    return out
+
+
+def _assert_one_line_error(result, args):
+    assert result.exit_code == 1, (args, result.exit_code, result.output)
+    lines = [ln for ln in result.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("Error: "), (args, result.stderr)
+    assert "Traceback" not in result.output and "╭" not in result.output, (args, result.output)
+
+
+def test_every_command_is_covered():
+    assert len(_leaf_commands()) >= 15
+
+
+@pytest.mark.parametrize("command", _leaf_commands(), ids=" ".join)
+def test_an_unknown_option_is_one_line_exit_1(command):
+    result = runner.invoke(app, [*command, "--no-such-option"])
+    _assert_one_line_error(result, command)
+    assert "--no-such-option" in result.stderr and "--help" in result.stderr
+
+
+def test_missing_files_are_one_line_exit_1(tmp_path):
+    missing = str(tmp_path / "missing" / "nothing-here")
+    cases = [
+        ["sql", "select 1", "--db", missing],
+        ["parse", "--file", missing],
+        ["recall", "a red mug", "--db", missing],
+        ["recall", "--file", missing, "--db", missing],
+        ["evaluate", "--catalog", missing, "--descriptions", missing],
+        ["extract", missing],
+        ["ingest", "--sources", missing, "--db", str(tmp_path / "c.duckdb")],
+        ["catalog", "import", missing, "--db", str(tmp_path / "c.duckdb")],
+        ["catalog", "export", "-", "--db", missing],
+        ["catalog", "list", "--db", missing],
+        ["catalog", "show", "mug", "--db", missing],
+        ["catalog", "summary", "--db", missing],
+        ["grasp", "plan", "a red mug", "--catalog", missing],
+        ["grasp", "validate", "mug", "--db", missing],
+    ]
+    for args in cases:
+        _assert_one_line_error(runner.invoke(app, args), args)
+
+
+def test_bad_values_are_one_line_exit_1(tmp_path):
+    for args in (["catalog", "list", "--limit", "many"], ["sql"], ["sql", "select 1", "--timeout", "soon"],
+                 ["recall", "a mug", "--top", "-x"], ["no-such-command"]):
+        _assert_one_line_error(runner.invoke(app, args), args)
+
+
+def test_a_duckdb_file_that_is_no_catalog_is_one_line(tmp_path):
+    import duckdb
+
+    other = tmp_path / "other.duckdb"
+    duckdb.connect(str(other)).close()
+    _assert_one_line_error(runner.invoke(app, ["catalog", "show", "mug", "--db", str(other)]), "show")
+
+
+def test_the_installed_script_says_the_same(tmp_path, cli_env):
+    proc = subprocess.run(["objrecall", "catalog", "import", str(tmp_path / "no-such.csv")], capture_output=True,
+                          text=True, env=cli_env, timeout=120)
+    assert proc.returncode == 1 and proc.stdout == ""
+    assert proc.stderr.count("\n") == 1 and proc.stderr.startswith("Error: ") and "no-such.csv" in proc.stderr
+
+
+def test_help_needs_no_value_and_bare_command_shows_help():
+    result = runner.invoke(app, ["catalog", "list", "--help"], env={"COLUMNS": "80"})
+    assert result.exit_code == 0
+    assert "<bool>" not in result.stdout and "OBJRECALL_DB" in result.stdout
+    result = runner.invoke(app, [])
+    assert result.exit_code == 0 and "Usage:" in result.stdout

@@ -1,0 +1,189 @@
+"""Recall that knows what it does not know (issue 16): nouns not in the catalog, vague words as soft
+evidence, the score columns, and the calibration measures."""
+
+from __future__ import annotations
+
+import functools
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from recall.calibration import brier_score, calibration, expected_calibration_error
+from recall.engine import NOT_IN_CATALOG_CONFIDENCE, Recaller
+from recall.vague import VAGUE_WEIGHT, soft_evidence
+
+SEED_CSV = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"
+
+
+@functools.cache
+def seed() -> Recaller:
+    return Recaller.from_csv(SEED_CSV)
+
+
+# ---------------------------------------------------------------------------------- not in the catalog
+def test_the_papers_orange_is_not_in_the_catalog_with_the_closest_ball_and_fruit():
+    res = seed().recall_text("An orange of 7 cm diameter.")
+    assert res.not_in_catalog and res.open_set
+    assert res.described is not None and (res.described.noun, res.described.kind) == ("orange", "fruit")
+    assert res.confidence <= NOT_IN_CATALOG_CONFIDENCE
+    # the physically closest objects are round things of about 7 cm
+    assert all(m.features["shape"] == "radial" and 5.5 <= m.features["a_cm"] <= 8.5 for m in res.matches[:3])
+    # and among the fruit an apple (plastic fruit is a toy)
+    assert res.same_kind_as == "fruit" and res.same_kind[0].name == "apple"
+    out = res.to_dict()
+    assert out["not_in_catalog"] and out["described"]["noun"] == "orange" and out["same_kind"][0]["name"] == "apple"
+
+
+def test_a_teapot_is_not_in_the_catalog_and_the_jug_kind_gives_the_pitcher():
+    res = seed().recall_text("a ceramic teapot about 22 cm wide, 900 g")
+    assert res.not_in_catalog and res.described.kind == "jug"
+    assert [m.name for m in res.same_kind] == ["pitcher"]
+    assert res.confidence <= NOT_IN_CATALOG_CONFIDENCE
+
+
+def test_a_catalog_noun_a_synonym_and_a_compound_on_catalog_words_are_in_the_catalog():
+    for text in ("a tennis ball", "a steel bottle, 20 cm", "a spanner, 20 cm long, 150 g", "a plastic bottle cap"):
+        res = seed().recall_text(text)
+        assert not res.not_in_catalog, text
+    res = seed().recall_text("a tennis ball")
+    assert res.confidence > 0.8
+
+
+def test_a_compound_with_a_word_the_catalog_lacks_is_not_in_it():
+    res = seed().recall_text("A bowling ball, 8.5 inches in diameter, weighs about 14 pounds.")
+    assert res.not_in_catalog and res.described.noun == "bowling ball" and res.same_kind_as == "ball"
+
+
+def test_the_noun_after_of_when_the_subject_is_a_measure_of_something():
+    res = seed().recall_text("A bar of soap, 9 x 6 x 2.5 cm, 110 g")
+    assert res.not_in_catalog and res.described.noun == "soap"
+    assert not seed().recall_text("a bunch of keys, 10 cm, 70 g").not_in_catalog
+
+
+def test_a_noun_not_in_the_catalog_with_no_feature_returns_nothing_but_says_so():
+    res = seed().recall_text("a moka pot")
+    assert res.matches == [] and res.not_in_catalog and res.confidence == 0.0
+
+
+def test_features_only_is_the_papers_method_and_knows_no_nouns():
+    res = seed().recall_text("An orange of 7 cm diameter.", features_only=True)
+    assert not res.not_in_catalog and res.described is None
+
+
+def test_a_name_in_the_text_beats_a_foreign_subject():
+    # the text names a catalog object exactly: the subject noun does not make it foreign
+    res = seed().recall_text("an orange tennis ball, 6.5 cm")
+    assert res.best.name == "tennis ball" and not res.not_in_catalog
+
+
+# ------------------------------------------------------------------------------------------ vague words
+def test_something_small_and_round_is_no_basketball():
+    res = seed().recall_text("something small and round", top=10)
+    names = [m.name for m in res.matches]
+    assert "basketball" not in names and "soccer ball" not in names
+    assert all(m.vague_part == 0.0 for m in res.matches[:5])
+    assert res.vague and res.vague[0].startswith("small -> a_cm <=")
+    assert res.confidence < 0.2  # dozens of small round things: a vague description is no answer
+
+
+def test_big_and_heavy_ball_prefers_big_heavy_balls():
+    res = seed().recall_text("a big heavy ball")
+    assert {m.name for m in res.matches[:2]} == {"soccer ball", "basketball"}
+
+
+def test_heavy_steel_tool_about_a_foot_is_the_hammer_not_the_ruler():
+    res = seed().recall_text("heavy steel tool, about a foot long")
+    assert res.best.name == "hammer"
+
+
+def test_vague_size_word_is_ignored_when_a_dimension_is_stated():
+    res = seed().recall_text("a small ball, 22 cm across")
+    assert res.vague == [] and res.best.name in {"soccer ball", "basketball"}
+
+
+def _num(a, m):
+    """Numeric columns (a, b, c, mass) with b = c = a."""
+    a, m = np.asarray(a, dtype=float), np.asarray(m, dtype=float)
+    return [a, a, a, m]
+
+
+def test_soft_range_boundaries():
+    # small: at most the 33rd percentile of a_cm; 0 up to the limit, then W * ln(x / limit) / ln 2,
+    # the whole weight from twice the limit on, half for an unknown value
+    a = np.concatenate([np.linspace(1.0, 40.0, 400), [np.nan]])
+    num = _num(a, np.ones(len(a)))
+    ev = soft_evidence("something small", {}, None, num)
+    (feature, limit, side), = ev.limits
+    assert (feature, side) == ("a_cm", -1) and limit == pytest.approx(np.quantile(a[:-1], 0.33))
+    x = a[:-1]
+    want = VAGUE_WEIGHT * np.minimum(1.0, np.maximum(0.0, np.log(x / limit)) / math.log(2))
+    assert np.allclose(ev.penalty[:-1], want)
+    assert np.all(ev.penalty[:-1][x <= limit] == 0.0) and np.all(ev.penalty[:-1][x > limit] > 0.0)
+    assert np.all(ev.penalty[:-1][x >= 2 * limit] == pytest.approx(VAGUE_WEIGHT))
+    assert ev.penalty[-1] == pytest.approx(VAGUE_WEIGHT / 2)
+    # big: the other side of the 67th percentile
+    big = soft_evidence("a big one", {}, None, num)
+    (_, hi, side), = big.limits
+    assert side == +1 and np.all(big.penalty[:-1][x >= hi] == 0.0) and np.all(big.penalty[:-1][x < hi] > 0.0)
+    assert VAGUE_WEIGHT < 2 * math.log(2)  # less than one category mismatch
+
+
+def test_soft_words_and_their_conditions():
+    num = _num(np.arange(1.0, 11.0), np.arange(10.0, 110.0, 10.0))
+    assert soft_evidence("a big box", {}, None, num).words[0].startswith("big -> a_cm >=")
+    assert soft_evidence("it weighs almost nothing", {}, None, num).words[0].startswith(
+        "weighs almost nothing -> mass_g <="
+    )
+    assert soft_evidence("heavy", {}, "heavy", num).penalty[0] > 0  # the parser's hint
+    assert soft_evidence("heavy", {"mass_g": 50.0}, "heavy", num) is None  # a stated mass wins
+    assert soft_evidence("a little over 5 cm", {}, None, num) is None  # not a size word
+    assert soft_evidence("a red box", {}, None, num) is None
+
+
+# ------------------------------------------------------------------------------------ the score columns
+@pytest.mark.parametrize(
+    "text", ["a plastic ball about 7 cm", "a light hollow ball, two and a half inches", "a small metal tool, 15 cm"]
+)
+def test_scores_are_sorted_and_made_of_their_shown_parts(text):
+    res = seed().recall_text(text, top=5)
+    scores = [m.score for m in res.matches]
+    assert scores == sorted(scores)
+    for m in res.matches:
+        assert m.score == pytest.approx(m.distance - m.name_part + m.vague_part)
+        assert m.distance == pytest.approx(sum(m.contributions.values()))
+
+
+def test_confidence_does_not_depend_on_how_many_matches_are_shown():
+    a = seed().recall_text("a plastic ball about 7 cm", top=1)
+    b = seed().recall_text("a plastic ball about 7 cm", top=8)
+    assert a.confidence == pytest.approx(b.confidence)
+
+
+# ---------------------------------------------------------------------------------------- calibration
+def test_calibration_of_known_points():
+    cal = calibration([1.0, 1.0, 0.0, 0.0], [True, True, False, False])
+    assert cal.brier == 0.0 and cal.ece == 0.0 and cal.bins[-1].n == 2  # 1.0 falls in the last bin
+    assert brier_score([0.5] * 4, [True, False, True, False]) == pytest.approx(0.25)
+    assert expected_calibration_error([0.9] * 10, [True] * 9 + [False]) == pytest.approx(0.0)
+    assert expected_calibration_error([0.9] * 10, [True] * 5 + [False] * 5) == pytest.approx(0.4)
+    assert any("|" in line for line in cal.plot())
+    with pytest.raises(ValueError):
+        calibration([0.5], [True, False])
+    with pytest.raises(ValueError):
+        calibration([1.5], [True])
+
+
+@given(st.lists(st.tuples(st.floats(0, 1), st.booleans()), min_size=1, max_size=50), st.integers(1, 20))
+def test_calibration_properties(points, bins):
+    conf = [c for c, _ in points]
+    right = [r for _, r in points]
+    cal = calibration(conf, right, bins)
+    assert 0.0 <= cal.brier <= 1.0 and 0.0 <= cal.ece <= 1.0 + 1e-12
+    assert sum(b.n for b in cal.bins) == len(points)
+    # predicting the outcome exactly is perfect
+    exact = calibration([float(r) for r in right], right, bins)
+    assert exact.brier == 0.0 and exact.ece == pytest.approx(0.0)
