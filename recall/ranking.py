@@ -11,6 +11,8 @@ whose exact distance is ≤ S.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
@@ -24,17 +26,31 @@ CAT_INDEX = {f: j for j, f in enumerate(CATEGORICAL_FEATURES)}
 FILTER_SLACK = 1e-5
 
 
+@functools.cache
 def category_terms(feature: str, value: str) -> np.ndarray:
-    """JP term by (code + 1): index 0 is an unknown category (-1)."""
+    """JP term by (code + 1): index 0 is an unknown category (-1). Read-only, built once."""
     table = np.full(len(CATEGORY_CODES[feature]) + 1, MISMATCH_TERM)
     table[0] = UNKNOWN_CATEGORY_TERM
     table[CATEGORY_CODES[feature][value] + 1] = 0.0
+    table.flags.writeable = False
     return table
 
 
-def category_factors(feature: str, value: str) -> np.ndarray:
-    """``e^term`` by (code + 1), float32: 1 match, 2 unknown, 4 mismatch (exact in float32)."""
-    return np.exp(category_terms(feature, value)).round().astype(np.float32)
+@functools.cache
+def _by_byte(feature: str, value: str, factor: bool) -> np.ndarray:
+    """The term (float64) or factor e^term (float32: 1, 2, 4, exact) of a category indexed by the code's
+    byte (0..127 codes, 255 = unknown -1), so that int8 codes index it without a conversion."""
+    terms = category_terms(feature, value)
+    table = np.zeros(256)
+    table[: len(terms) - 1] = terms[1:]
+    table[255] = terms[0]
+    table = np.exp(table).round().astype(np.float32) if factor else table
+    table.flags.writeable = False
+    return table
+
+
+def _category_lookup(feature: str, value: str, codes: np.ndarray, factor: bool) -> np.ndarray:
+    return _by_byte(feature, value, factor)[codes.view(np.uint8)]
 
 
 def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None) -> np.ndarray:
@@ -49,7 +65,7 @@ def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None) -> np.ndarray:
     for feat, value in query.categorical:
         col = cat_cols[CAT_INDEX[feat]]
         codes = col if rows is None else col[rows]
-        term = category_terms(feat, value)[codes.astype(np.intp) + 1]
+        term = _category_lookup(feat, value, codes, factor=False)
         total = term if total is None else np.add(total, term, out=total)
     if total is None:
         size = len(num_cols[0]) if rows is None else len(np.arange(len(num_cols[0]))[rows])
@@ -66,7 +82,7 @@ def factors(item, num_cols, cat_cols, rows=None, optimistic: bool = False) -> np
         feat, value = obj
         codes = cat_cols[CAT_INDEX[feat]]
         codes = codes if rows is None else codes[rows]
-        return category_factors(feat, value)[codes.astype(np.intp) + 1]
+        return _category_lookup(feat, value, codes, factor=True)
     col = num_cols[NUM_INDEX[obj.feature]]
     x = col if rows is None else col[rows]
     low, high = np.float32(obj.low), np.float32(obj.high)
@@ -101,7 +117,12 @@ def select_top_k(rows: np.ndarray, scores: np.ndarray, k: int) -> tuple[np.ndarr
     """The k smallest (score, row) pairs, ordered by score then row number."""
     if len(scores) > k:
         kth = np.partition(scores, k - 1)[k - 1]
-        keep = scores <= kth
+        below = np.flatnonzero(scores < kth)  # fewer than k
+        tied = np.flatnonzero(scores == kth)
+        need = k - len(below)
+        if len(tied) > need:  # many rows at the k-th distance: the lowest row numbers win
+            tied = tied[np.argpartition(rows[tied], need - 1)[:need]]
+        keep = np.concatenate((below, tied))
         rows, scores = rows[keep], scores[keep]
     order = np.lexsort((rows, scores))[:k]
     return rows[order].astype(np.int64), scores[order]

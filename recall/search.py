@@ -56,8 +56,10 @@ from recall.snapshot import CatalogSnapshot
 
 __all__ = ["JPIndex", "brute_force_top_k", "index_for", "score_rows", "select_top_k", "top_k"]
 
-#: Catalogs up to this size are always scanned.
-SCAN_BELOW = 4096
+#: Catalogs up to this size are always scanned, and so is any query of at most SCAN_WORK row-features
+#: (below that, the fixed costs of the other plans exceed the scan; measured, see RECALL.md).
+SCAN_BELOW = 32768
+SCAN_WORK = 100_000
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
 #: A window of at most this many rows is filtered without weighing the other plans.
@@ -254,10 +256,11 @@ class JPIndex:
             return "empty", np.empty(0, dtype=np.int64), np.empty(0)
         if len(query) == 0:
             return "empty", np.arange(k, dtype=np.int64), np.zeros(k)
-        if not query.numeric and force in (None, "categories"):
-            return "categories", *self.combinations.top_k(query, k)
         items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
-        if force == "scan" or (force is None and self.n <= SCAN_BELOW):
+        small = self.n <= SCAN_BELOW or self.n * len(items) <= SCAN_WORK
+        if not query.numeric and (force == "categories" or force is None and not small):
+            return "categories", *self.combinations.top_k(query, k)
+        if force == "scan" or (force is None and small):
             return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
         best_rows, best_scores = select_top_k(pool, self.score(query, pool), k)
@@ -300,7 +303,10 @@ class JPIndex:
         return "cells", rows, scores
 
     def _scan(self, query: FeatureQuery, items: list, k: int):
-        """Every row's product Π (1 + d_j) in float32; the rows within the k-th (widened) scored."""
+        """Every row's product Π (1 + d_j) in float32; the rows within the k-th (widened) scored.
+        Categories only: every row scored (the distances are few values, ties many)."""
+        if not query.numeric:
+            return select_top_k(np.arange(self.n), self.score(query), k)
         prod = None
         for item in items:
             f = factors(item, self.num_cols, self.cat_cols)

@@ -57,6 +57,23 @@ _LD_JSON = re.compile(
     r"<script\b[^>]*\btype\s*=\s*[\"']?application/ld\+json[\"']?[^>]*>(.*?)</script\s*>",
     re.IGNORECASE | re.DOTALL,
 )
+#: A JavaScript object literal longer than this is not read (page state of that size is a catalogue).
+MAX_SCRIPT_CHARS = 2_000_000
+
+
+def _js_object(text: str) -> Any:
+    """The first JavaScript object literal of ``text`` (chompjs), or None."""
+    if not any(ch in text[:200] for ch in ":'"):
+        return None
+    try:
+        import chompjs
+
+        obj = chompjs.parse_js_object(text)
+    except Exception:  # noqa: BLE001 - chompjs raises ValueError and others on what is not an object
+        return None
+    return obj if isinstance(obj, (dict, list)) and obj else None
+
+
 _SCRIPT = re.compile(r"<script\b([^>]*)>(.*?)</script\s*>", re.IGNORECASE | re.DOTALL)
 _WS = re.compile(r"\s+")
 #: Only the first this many visible text lines are read. The real pages measured have at most ~1,500
@@ -173,7 +190,10 @@ class Page:
     @cached_property
     def script_payloads(self) -> list[Any]:
         """JSON objects embedded in other scripts (``wf.extend({...})``, ``window.__STATE__ = {...}``,
-        ``<script type="application/json">``): the first object literal of each script that parses."""
+        ``<script type="application/json">``): the first object literal of each script that parses, as
+        JSON, else as a JavaScript object literal (unquoted keys, single quotes, trailing commas:
+        ``chompjs``, which reads 316 of the 1,525 object-bearing scripts of the real development pages
+        against 239 for JSON alone)."""
         payloads = []
         decoder = json.JSONDecoder()
         for m in _SCRIPT.finditer(self.text):
@@ -186,7 +206,9 @@ class Page:
             try:
                 obj, _ = decoder.raw_decode(body, start)
             except (ValueError, RecursionError):
-                continue
+                obj = _js_object(body[start : start + MAX_SCRIPT_CHARS])
+                if obj is None:
+                    continue
             payloads.append(obj)
         return payloads
 

@@ -28,6 +28,7 @@ from typing import Any
 from kb.features import FEATURES, ObjectRecord, validate_features
 from sim.friction import friction_coefficient
 from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, is_flat_grasp, side_force_capacity
+from sim.programs import program_for
 
 __all__ = [
     "DEFAULTS",
@@ -44,7 +45,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "5"
+PLANNER_VERSION = "6"  # 6: candidates listed once per hand program (sim/programs.py)
 
 GRAVITY = 9.81  # m/s^2
 
@@ -125,23 +126,6 @@ EFFECTIVE_DENSITY = {
 #: Fraction of the bounding box a shape fills (sphere pi/6, cylinder pi/4, others about a box).
 SHAPE_FILL = {"radial": 0.52, "prism": 0.79, "long": 0.8, "compact": 0.9, "thin": 0.9, None: 0.8}
 
-_APPROACH = {
-    "heavy_wrap_large_diameter": "side",
-    "heavy_wrap_small_diameter": "side",
-    "medium_wrap": "side",
-    "adducted_thumb": "side",
-    "light_tool": "side",
-    "power_disk": "top",
-    "power_sphere": "top",
-    "lateral_pinch": "side",
-    "thumb_4_finger": "top",
-    "thumb_3_finger": "top",
-    "thumb_2_finger": "top",
-    "thumb_index_finger": "top",
-    "precision_disk": "top",
-    "precision_sphere": "top",
-    "tripod": "top",
-}
 
 
 #: Feature keys accepted in a features mapping besides the canonical ones (the paper says "stiffness").
@@ -605,13 +589,20 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
     base_force = required_grip_force(o.mass_g, o.friction, o.fragility)
     edge_force = edge_grip_force(o.mass_g, o.b_cm, o.fragility) if is_flat_grasp(o.c_cm, o.b_cm) else 0.0
     plans: list[GraspPlan] = []
-    seen: set[str] = set()
+    seen: set[str] = set()  # hand programs already listed: a merged type is simulated once
     for rank, (grasp_type, reason) in enumerate(_candidates(o)):
-        if grasp_type in seen:
+        program = program_for(grasp_type)
+        if program.name in seen:
             continue
-        seen.add(grasp_type)
+        seen.add(program.name)
         family = GRASP_TYPES[grasp_type]
         rationale = [reason]
+        if program.merged:
+            others = ", ".join(t.replace("_", " ") for t in program.grasp_types if t != grasp_type)
+            rationale.append(
+                f"simulated by the {program.name.replace('_', ' ')} hand program, shared with {others}: "
+                "this hand (no finger abduction) cannot make them differently (sim/programs.py)"
+            )
         if rank == 0:
             rationale.append(f"grasped across its smallest side c = {width:g} cm (Feix 2014: 94 % of grasps)")
         score = 1.0 - 0.2 * rank
@@ -643,7 +634,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
                 family=family,
                 grasped_dim=dim,
                 aperture_cm=_aperture(grasp_type, width),
-                approach=_APPROACH[grasp_type],  # type: ignore[arg-type]
+                approach=program.approach,  # type: ignore[arg-type]
                 grip_force_n=force,
                 score=round(score, 3),
                 rationale=tuple(rationale + notes),
@@ -657,6 +648,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
                     "two_hands": two_hands,
                     "assumed_mass_g": round(o.mass_g, 1),
                     "planner_version": PLANNER_VERSION,
+                    "program": program.name,
                 },
             )
         )

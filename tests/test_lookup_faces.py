@@ -89,7 +89,7 @@ def test_cli_refuses_absurd_budgets(db, sources_file):
 
 
 def test_http_lookup_needs_the_token_and_finds_the_teapot(db, sources_file):
-    client = TestClient(create_app(db, token=TOKEN, sources=sources_file), raise_server_exceptions=False)
+    client = TestClient(create_app(db, token=TOKEN, sources=sources_file), raise_server_exceptions=False, base_url="http://127.0.0.1")
     assert client.post("/recall/lookup", json={"text": TEAPOT}).status_code == 401
     res = client.post("/recall/lookup", json={"text": TEAPOT}, headers={"Authorization": f"Bearer {TOKEN}"})
     assert res.status_code == 200, res.text
@@ -102,7 +102,7 @@ def test_http_lookup_needs_the_token_and_finds_the_teapot(db, sources_file):
 
 
 def test_http_lookup_without_sources_says_so(db):
-    client = TestClient(create_app(db, token=TOKEN, sources=None), raise_server_exceptions=False)
+    client = TestClient(create_app(db, token=TOKEN, sources=None), raise_server_exceptions=False, base_url="http://127.0.0.1")
     res = client.post("/recall/lookup", json={"text": TEAPOT}, headers={"Authorization": f"Bearer {TOKEN}"})
     assert res.status_code >= 400 and "no sources file" in res.json()["detail"]
 

@@ -20,6 +20,10 @@ def test_demo_runs_end_to_end(tmp_path, cli_env):
     assert steps["ingest"]["new"] >= 25 and steps["ingest"]["rejected"] >= 3
     tops = [r["top"] for r in steps["recall"]]
     assert tops[:6] == ["calculator", "water bottle", "wood cylinder", "cardboard box", "mini rubix cube", "tv remote"]
+    teapot = steps["recall"][-1]  # sold only through the demo store's search: recalled after a lookup
+    assert teapot["looked_up"] and teapot["added"] == ["glazed ceramic teapot 1.2 l"]
+    assert teapot["top"] == "glazed ceramic teapot 1.2 l" and not teapot["open_set"]
+    assert not steps["recall"][0]["looked_up"]  # the calculator is known: no lookup
     assert steps["grasp"]["ran"] + steps["grasp"]["skipped"] == steps["grasp"]["trials"] > 0
     assert steps["grasp"]["errors"] == 0
     report = out / "grasp-report" / "index.html"

@@ -18,8 +18,9 @@ from recall.snapshot import CatalogSnapshot, synthetic_description, synthetic_sn
 
 @functools.cache
 def catalog() -> CatalogSnapshot:
-    """20 000 synthetic objects (log-normal sizes, skewed categories, a few unknown values)."""
-    return synthetic_snapshot(20_000, np.random.default_rng(7), unknown_rate=0.05)
+    """40 000 synthetic objects (log-normal sizes, skewed categories, a few unknown values): above
+    SCAN_BELOW, so that the planner chooses among its plans."""
+    return synthetic_snapshot(40_000, np.random.default_rng(7), unknown_rate=0.05)
 
 
 @functools.cache
@@ -81,12 +82,17 @@ def category_queries(draw):
 @settings(max_examples=80, deadline=None)
 @given(query=category_queries(), k=st.sampled_from([1, 2, 5, 13, 60, 4000]))
 def test_category_only_descriptions_are_answered_from_the_combinations(query, k):
-    """Categories only: the combinations plan, equal to brute force (ties by row), for JP and jplog."""
-    plan, rows, dist = index().plan_and_search(query, k)
-    assert plan == "categories"
+    """Categories only: the combinations plan (or the scan, on little work), equal to brute force (ties
+    by row), for JP and jplog."""
+    from recall.search import SCAN_WORK
+
     brows, bdist = brute_force_top_k(catalog(), query, k)
-    np.testing.assert_array_equal(rows, brows)
-    np.testing.assert_array_equal(dist, bdist)
+    for force in (None, "categories"):
+        plan, rows, dist = index().plan_and_search(query, k, force=force)
+        small = len(catalog()) * len(query) <= SCAN_WORK
+        assert plan == ("scan" if small and force is None else "categories")
+        np.testing.assert_array_equal(rows, brows)
+        np.testing.assert_array_equal(dist, bdist)
     lrows, ldist = top_k(catalog(), query, k, metric="jplog")
     np.testing.assert_array_equal(lrows, brows)
     np.testing.assert_array_equal(ldist, bdist)
@@ -95,9 +101,9 @@ def test_category_only_descriptions_are_answered_from_the_combinations(query, k)
 def test_ties_at_zero_are_the_lowest_rows_at_zero():
     """"At most 50 g" puts thousands of rows at 0: the zero plan returns the k lowest of them."""
     for values, quals in (
-        ({"mass_g": 50}, {"mass_g": "at_most"}),
-        ({"mass_g": 50, "texture": "grippy"}, {"mass_g": "at_most"}),
-        ({"a_cm": 30, "b_cm": 2}, {"a_cm": "at_most", "b_cm": "at_most"}),
+        ({"mass_g": 50, "a_cm": 30, "b_cm": 20}, {"mass_g": "at_most", "a_cm": "at_most", "b_cm": "at_most"}),
+        ({"mass_g": 50, "texture": "grippy", "a_cm": 40}, {"mass_g": "at_most", "a_cm": "at_most"}),
+        ({"a_cm": 30, "b_cm": 2, "c_cm": 5}, {"a_cm": "at_most", "b_cm": "at_most", "c_cm": "at_most"}),
     ):
         query = FeatureQuery.from_values(values, quals)
         for k in (1, 5, 40):
@@ -110,11 +116,16 @@ def test_ties_at_zero_are_the_lowest_rows_at_zero():
         index().plan_and_search(FeatureQuery.from_values({"a_cm": 12.34567}), 5, force="zero")
 
 
-def test_small_catalogs_are_scanned():
-    from recall.search import SCAN_BELOW
+def test_small_catalogs_and_little_work_are_scanned():
+    from recall.search import SCAN_BELOW, SCAN_WORK
 
     snap = catalog()
-    q = FeatureQuery.from_values({"a_cm": 12, "b_cm": 5, "material": "wood"})
+    two = FeatureQuery.from_values({"a_cm": 12, "material": "wood"})
+    three = FeatureQuery.from_values({"a_cm": 12, "b_cm": 5, "material": "wood"})
+    assert 2 * len(snap) <= SCAN_WORK < 3 * len(snap)
+    assert index().plan_and_search(two, 5)[0] == "scan"
+    assert index().plan_and_search(three, 5)[0] != "scan"
+    q = FeatureQuery.from_values({"a_cm": 12, "b_cm": 5, "mass_g": 90, "material": "wood"})
     for n in (SCAN_BELOW, SCAN_BELOW + 1):
         small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
         plan, rows, dist = index_for(small).plan_and_search(q, 5)

@@ -13,6 +13,9 @@ from kb.service.http import ERROR_STATUS, MAX_PAGE, create_app, load_token
 TOKEN = "test-token-not-secret"
 AUTH = {"Authorization": f"Bearer {TOKEN}"}
 
+#: TestClient options: server errors as responses, and a loopback Host (the default allow-list).
+LOCAL = {"raise_server_exceptions": False, "base_url": "http://127.0.0.1"}
+
 
 @pytest.fixture(scope="module")
 def shared_db(tmp_path_factory) -> Path:
@@ -27,13 +30,13 @@ def shared_db(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def client(shared_db: Path) -> TestClient:
-    return TestClient(create_app(shared_db, token=""), raise_server_exceptions=False)
+    return TestClient(create_app(shared_db, token=""), **LOCAL)
 
 
 @pytest.fixture
 def writer(seeded_db: Path) -> TestClient:
     """A client of an app with writes enabled, on a fresh seeded catalog."""
-    return TestClient(create_app(seeded_db, token=TOKEN), raise_server_exceptions=False)
+    return TestClient(create_app(seeded_db, token=TOKEN), **LOCAL)
 
 
 def assert_error(response, status: int, error: str | None = None, words: str | None = None) -> dict:
@@ -334,7 +337,7 @@ def test_request_body_size_limit(client):
 
 
 def test_request_time_limit(shared_db):
-    slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), raise_server_exceptions=False)
+    slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), **LOCAL)
     r = slow.post(
         "/sql", json={"query": "SELECT count(*) FROM range(100000000) a, range(100000000) b", "timeout_s": 3}
     )
@@ -343,7 +346,7 @@ def test_request_time_limit(shared_db):
 
 
 def test_missing_catalog_is_a_clear_503(tmp_path):
-    c = TestClient(create_app(tmp_path / "none.duckdb", token=""), raise_server_exceptions=False)
+    c = TestClient(create_app(tmp_path / "none.duckdb", token=""), **LOCAL)
     assert c.get("/health").json() == {"status": "ok", "catalog": False}
     assert_error(c.get("/objects"), 503, "DatabaseError", "objrecall init")
     assert_error(c.post("/recall", json={"text": "a mug"}), 503, "DatabaseError")

@@ -1,5 +1,6 @@
 """The main job (``objrecall demo``): seed catalog -> ingest the demo storefront -> recall sample
-descriptions -> validate their grasps in MuJoCo -> report. Runs with no network: the demo storefront is
+descriptions (each looked up in the demo store's search when the catalog does not know it: one, the teapot,
+is sold only there) -> validate their grasps in MuJoCo -> report. Runs with no network: the demo storefront is
 served on 127.0.0.1 by this process.
 
 Like the CLI and the HTTP service, this module is part of the service face (``kb/service/``) and may import
@@ -53,7 +54,7 @@ def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers
     console.rule("[bold]2. ingest the demo storefront (127.0.0.1, no network)")
     result.steps["ingest"] = _ingest_demo_store(kb, console)
 
-    console.rule("[bold]3. recall sample descriptions")
+    console.rule("[bold]3. recall sample descriptions (looked up in the demo store's search when unknown)")
     recalled = _recall_samples(db, console)
     result.steps["recall"] = recalled
 
@@ -90,31 +91,42 @@ def _ingest_demo_store(kb: KnowledgeBase, console: Console) -> dict[str, Any]:
 
 
 def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
-    from recall.engine import Recaller
+    """Each demo description recalled with ``recall.lookup.recall_with_lookup`` against the demo store."""
+    import requests
 
-    recaller = Recaller.from_db(db)
+    from recall.lookup import recall_with_lookup
+    from scrapers.demo_store import DEMO_SOURCES, DemoStore
+    from scrapers.sources import load_sources
+
     with demo_descriptions_path().open(newline="", encoding="utf-8") as fh:
         descriptions = [row["description"] for row in csv.DictReader(fh)]
-    table = Table("description", "recalled", "distance", "confidence", "open set", show_lines=True)
+    table = Table("description", "recalled", "distance", "confidence", "open set", "lookup", show_lines=True)
     rows = []
-    for text in descriptions:
-        res = recaller.recall_text(text, top=3)
-        best = res.matches[0] if res.matches else None
-        rows.append({
-            "description": text,
-            "top": best.name if best else None,
-            "distance": best.distance if best else None,
-            "confidence": res.confidence,
-            "open_set": res.open_set,
-            "alternatives": [m.name for m in res.matches[1:]],
-        })
-        table.add_row(
-            escape(text if len(text) < 90 else text[:87] + "..."),
-            escape(best.name) if best else "-",
-            f"{best.distance:.2f}" if best else "-",
-            f"{res.confidence:.2f}",
-            "yes" if res.open_set else "no",
-        )
+    with DemoStore(port=0, crawl_delay=None) as store, requests.Session() as session:
+        sources = load_sources(DEMO_SOURCES, base_url=store.base_url, delay_s=0)
+        for text in descriptions:
+            looked = recall_with_lookup(db, text, sources=sources, session=session, top=3)
+            res = looked.result
+            best = res.matches[0] if res.matches else None
+            rows.append({
+                "description": text,
+                "top": best.name if best else None,
+                "distance": best.distance if best else None,
+                "confidence": res.confidence,
+                "open_set": res.open_set,
+                "alternatives": [m.name for m in res.matches[1:]],
+                "looked_up": looked.looked_up,
+                "lookup": looked.message if looked.why else None,
+                "added": looked.stores.new_objects if looked.stores else [],
+            })
+            table.add_row(
+                escape(text if len(text) < 90 else text[:87] + "..."),
+                escape(best.name) if best else "-",
+                f"{best.distance:.2f}" if best else "-",
+                f"{res.confidence:.2f}",
+                "yes" if res.open_set else "no",
+                escape(looked.message) if looked.why else "-",
+            )
     console.print(table)
     return rows
 

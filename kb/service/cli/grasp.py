@@ -157,7 +157,11 @@ def plan(
     ] = None,
     top: Annotated[int, typer.Option("--top", min=1, max=15, help="How many ranked plans to give.")] = 3,
     simulate: Annotated[
-        bool, typer.Option("--simulate", help="Check the best plan in MuJoCo (one trial).")
+        bool,
+        typer.Option(
+            "--simulate",
+            help="Simulate every listed plan in MuJoCo (one trial each): first choice vs validated choice.",
+        ),
     ] = False,
     seed: Annotated[int, typer.Option("--seed", help="Trial seed (with --simulate).")] = 0,
     db: DbOption = None,
@@ -207,9 +211,12 @@ def plan(
         "plans": [plan_dict(p) for p in plans],
     }
     if simulate:
-        from sim.trial import run_trial
+        from sim.choice import simulate_plans
 
-        out["trial"] = run_trial(obj, plans[0], seed=seed).to_dict()
+        trials, choice = simulate_plans(obj, plans, seed=seed)
+        out["trial"] = trials[0].to_dict()  # the first choice's trial
+        out["trials"] = [t.to_dict() for t in trials]
+        out["choice"] = choice.to_dict()
     if json_out:
         emit(out)
         return
@@ -224,11 +231,24 @@ def plan(
         )
         for line in p.rationale:
             console.print(f"     - {line}", markup=False, highlight=False)
+        if simulate:
+            t = out["trials"][i - 1]
+            console.print(
+                f"     trial ({t.get('program')} program): [bold]{t.get('outcome')}[/] "
+                f"{escape(t.get('reason') or '')}; slip {t.get('slip_cm')} cm, turn {t.get('rotation_deg')} deg",
+                highlight=False,
+            )
     if simulate:
-        t = out["trial"]
-        console.print(
-            f"trial: [bold]{t.get('outcome')}[/] {t.get('reason') or ''} slip {t.get('slip_cm')} cm"
-        )
+        console.print(_choice_line(out["choice"]), highlight=False)
+
+
+def _choice_line(c: dict[str, Any]) -> str:
+    """'first choice ... ; validated choice ...': both named, never one silently for the other."""
+    first = f"first choice {c['first']} " + ("holds" if c["first_holds"] else f"fails ({c['first_reason']})")
+    if c["validated"] is None:
+        return f"{first}; validated choice: none of the {c['candidates']} candidates holds"
+    same = " (the same)" if not c["differs"] else f" (planner's rank {c['validated_rank'] + 1})"
+    return f"{first}; validated choice {c['validated']}{same}"
 
 
 def validate(
@@ -297,6 +317,12 @@ def validate(
     )
     if summary.not_stored:
         console.print(f"[yellow]{summary.not_stored} trials raised unexpected errors and were not stored[/]")
+    console.print(summary.choice_summary.describe(), highlight=False)
+    from rich.markup import escape
+
+    for c in summary.choices:
+        if c.differs:
+            console.print(f"  {escape(c.object_name)}: {_choice_line(c.to_dict())}", highlight=False)
     if summary.report:
         console.print(f"report: {summary.report}", highlight=False)
 

@@ -34,7 +34,13 @@ from pathlib import Path
 
 from kb.service.http.jobs import IngestionJobs, objrecall_command
 from kb.service.http.limits import LimitsWrapped
-from kb.service.http.settings import ENV_SOURCES, ServiceSettings, load_token, package_version
+from kb.service.http.settings import (
+    ENV_SOURCES,
+    ServiceSettings,
+    allowed_hosts_from,
+    load_token,
+    package_version,
+)
 from kb.service.http.state import ServiceState
 
 __all__ = ["create_app"]
@@ -53,16 +59,18 @@ def create_app(
     busy_timeout: float = 30.0,
     ingest_command: list[str] | None = None,
     warm: bool = False,
+    allowed_hosts: list[str] | tuple[str, ...] | None = None,
 ) -> LimitsWrapped:
     """The FastAPI application serving the catalog at ``db_path``.
 
     ``token`` enables writes (None: read from the environment, see :func:`load_token`; "" disables them).
     ``sources`` is the sources file ``POST /ingestion/runs`` ingests (default ``$OBJRECALL_SOURCES``).
     ``ingest_command`` replaces the command prefix that runs ``objrecall`` (tests, containers).
-    ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
+    ``allowed_hosts`` lists the Host header names answered (default ``$OBJRECALL_ALLOWED_HOSTS``, else
+    loopback only; ``["*"]`` answers any). ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
     (the first parse builds the grammar, which takes seconds), so the first requests are not slow.
     """
-    from fastapi import FastAPI
+    from fastapi_offline import FastAPIOffline
 
     from kb.service.http.handlers import install_error_handlers
     from kb.service.http.routes import catalog, grasp, ingestion, recall, service
@@ -80,9 +88,11 @@ def create_app(
         snapshot_ttl=snapshot_ttl,
         busy_timeout=busy_timeout,
         ingest_command=list(ingest_command) if ingest_command else objrecall_command(),
+        allowed_hosts=allowed_hosts_from(allowed_hosts),
     )
     state = ServiceState(settings, IngestionJobs(Path(tempfile.gettempdir()) / f"objrecall-ingest-logs-{os.getpid()}"))
-    app = FastAPI(
+    # /docs and /redoc with Swagger UI / ReDoc served by this server (fastapi-offline), not from a CDN
+    app = FastAPIOffline(
         lifespan=_lifespan(state, warm),
         title="objrecall knowledge service",
         version=package_version(),
