@@ -11,6 +11,7 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from kb.service.cli.common import DbOption, JsonOption, emit, resolve_db
@@ -46,11 +47,22 @@ def _default_timeout() -> float:
 
 
 def _fmt(value: object) -> str:
+    """A cell as text; markup-like text from a scraped page (``[bold]``) is shown as it is."""
     if value is None:
         return "-"
     if isinstance(value, float):
         return f"{value:g}"
-    return str(value)
+    return escape(str(value))
+
+
+#: Below this terminal width ``catalog list`` shows the compact columns (size as axbxc, no texture or
+#: fragility), so that every cell stays readable at 80 columns.
+WIDE_LIST_COLUMNS = 120
+
+
+def _size(obj) -> str:
+    dims = [d for d in obj.dims_cm if d is not None]
+    return "x".join(f"{d:g}" for d in dims) if dims else "-"
 
 
 def init(
@@ -123,10 +135,19 @@ def catalog_list(
     if json_out:
         emit([o.to_dict() for o in objects])
         return
-    features = _features()
-    table = Table("name", *features, title=f"{len(objects)} objects")
-    for o in objects:
-        table.add_row(o.name, *(_fmt(getattr(o, f)) for f in features))
+    wide = console.width >= WIDE_LIST_COLUMNS
+    if wide:
+        features = _features()
+        table = Table("name", *features, title=f"{len(objects)} objects")
+        for o in objects:
+            table.add_row(_fmt(o.name), *(_fmt(getattr(o, f)) for f in features))
+    else:
+        table = Table(title=f"{len(objects)} objects", caption="texture, fragility: --json or a wider terminal")
+        table.add_column("name", ratio=3, overflow="fold")
+        for column in ("size cm", "mass g", "shape", "material", "rigidity"):
+            table.add_column(column, no_wrap=True)
+        for o in objects:
+            table.add_row(_fmt(o.name), _size(o), _fmt(o.mass_g), _fmt(o.shape), _fmt(o.material), _fmt(o.rigidity))
     console.print(table)
 
 
@@ -146,14 +167,23 @@ def catalog_show(
     table = Table("feature", "value", title=obj.name)
     for f in _features():
         table.add_row(f, _fmt(getattr(obj, f)))
-    table.add_row("aliases", ", ".join(obj.aliases) or "-")
-    table.add_row("source", obj.source or "-")
+    table.add_row("aliases", _fmt(", ".join(obj.aliases) or None))
+    table.add_row("source", _fmt(obj.source))
     console.print(table)
-    if prov:
-        ptable = Table("feature", "value", "role", "source", "adapter", "fetched_at", title="provenance")
-        for p in prov:
+    _print_provenance(prov)
+
+
+def _print_provenance(prov: list[dict]) -> None:
+    """Provenance grouped by source: each source (often a long URL) printed once above its values."""
+    groups: dict[tuple, list[dict]] = {}
+    for p in prov:
+        groups.setdefault((p["source"], p["adapter"]), []).append(p)
+    for (source, adapter), rows in groups.items():
+        ptable = Table("feature", "value", "role", "fetched_at", title_justify="left",
+                       title=f"from {_fmt(source)} ({_fmt(adapter)})")
+        for p in rows:
             value = p["value_num"] if p["value_num"] is not None else p["value_text"]
-            ptable.add_row(p["feature"], _fmt(value), p["role"], p["source"], _fmt(p["adapter"]), _fmt(p["fetched_at"]))
+            ptable.add_row(_fmt(p["feature"]), _fmt(value), _fmt(p["role"]), _fmt(p["fetched_at"])[:19])
         console.print(ptable)
 
 
@@ -192,7 +222,7 @@ def sql(
     if json_out:
         emit({"columns": result.columns, "rows": result.to_dicts(), "truncated": result.truncated})
         return
-    table = Table(*result.columns)
+    table = Table(*(_fmt(c) for c in result.columns))
     for row in result.rows:
         table.add_row(*(_fmt(v) for v in row))
     console.print(table)
