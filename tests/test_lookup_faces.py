@@ -7,7 +7,6 @@ import json
 import os
 import shutil
 import sys
-import tempfile
 from pathlib import Path
 
 import httpx
@@ -113,32 +112,22 @@ CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 @pytest.mark.slow
 @pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (apt-get install chromium)")
 def test_web_page_looks_it_up(db, sources_file):
-    sync_client = pytest.importorskip("websockets.sync.client", reason="the websockets package drives Chromium")
-    from test_webpage import DevTools, _cdp_browser
+    from test_webpage import browser_at
 
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
            "OBJRECALL_API_TOKEN": TOKEN}  # fmt: skip
     env.pop("OBJRECALL_API_TOKEN_FILE", None)
     args = ["--log-level", "warning", "--sources", str(sources_file)]
-    with serve_subprocess(db, env=env, extra_args=args) as base, tempfile.TemporaryDirectory() as profile:
+    with serve_subprocess(db, env=env, extra_args=args) as base:
         httpx.post(f"{base}/recall", json={"text": "warm up: a mug"}, timeout=120)
-        proc, ws_url = _cdp_browser(profile)
-        try:
-            with sync_client.connect(ws_url, max_size=None) as ws:
-                tools = DevTools(ws)
-                tools.call("Page.enable")
-                tools.call("Page.navigate", url=f"{base}/")
-                tools.wait_for("document.body && document.body.dataset.ready === 'true'")
-                tools.eval(
-                    f"document.getElementById('q').value = {json.dumps(TEAPOT)};"
-                    "document.getElementById('lookup').checked = true;"
-                    f"document.getElementById('token').value = {json.dumps(TOKEN)};"
-                    "document.getElementById('recall-button').click()"
-                )
-                top = tools.wait_for("(document.getElementById('top-match') || {}).textContent")
-                assert top == TEAPOT_NAME
-                summary = tools.eval("document.getElementById('lookup-summary').textContent")
-                assert summary.startswith("Lookup: added from 1 of 1 store(s)")
-        finally:
-            proc.kill()
-            proc.wait()
+        with browser_at(f"{base}/") as tools:
+            tools.eval(
+                f"document.getElementById('q').value = {json.dumps(TEAPOT)};"
+                "document.getElementById('lookup').checked = true;"
+                f"document.getElementById('token').value = {json.dumps(TOKEN)};"
+                "document.getElementById('recall-button').click()"
+            )
+            top = tools.wait_for("(document.getElementById('top-match') || {}).textContent")
+            assert top == TEAPOT_NAME
+            summary = tools.eval("document.getElementById('lookup-summary').textContent")
+            assert summary.startswith("Lookup: added from 1 of 1 store(s)")
