@@ -17,11 +17,15 @@ Grammar (informal)::
     fraction := half | quarter(s) | third(s) | unit fraction ("three quarters") | 1/4 | ¼
 
 Digits: ``1,000`` (three digits after a comma) is a thousands separator; ``7,5`` (one or two digits) is
-a decimal comma. ``7.5`` and ``.5`` are decimals.
+a decimal comma. ``7.5`` and ``.5`` are decimals; ``1.5e2`` (scientific notation), ``10**3`` and
+``10^3`` (powers) are read as the numbers they write, ``inf`` when too large for a float: the parser
+refuses those by the catalog's limits, never reads them as another number ("1e308" is not 308).
+The sign of a negative number is read by the tagger (:mod:`recall.tags`), not here.
 """
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Sequence
 
@@ -32,20 +36,35 @@ __all__ = ["DIGITS_PATTERN", "digits_value", "is_number_token", "number_value", 
 #: Regular expression for one number written with digits; the parser's tokenizer uses it as is. It
 #: stays linear on long digit-comma chains ("1,234,567,..."): a thousands group only needs no digit
 #: after it, so a failed match backs off one group and succeeds.
-DIGITS_PATTERN = r"\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
+DIGITS_PATTERN = (
+    r"\d+(?:\.\d+)?(?:[eE]|\*\*|\^)[+-]?\d+"  # scientific notation and powers: 1.5e2, 10**3, 10^3
+    r"|\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
+)
 
 _THOUSANDS = re.compile(r"\d{1,3}(?:,\d{3})+(?:\.\d+)?")
 _DECIMAL_COMMA = re.compile(r"\d+,\d{1,2}")
 _DECIMAL = re.compile(r"\d*\.\d+|\d+")
 _FRACTION = re.compile(r"(\d+)/(\d+)")
+_SCIENTIFIC = re.compile(r"\d+(?:\.\d+)?[eE][+-]?\d+")
+_POWER = re.compile(r"(\d+(?:\.\d+)?)(?:\*\*|\^)([+-]?\d+)")
 _HYPHEN_WORDS = re.compile(r"[a-z]+(?:-[a-z]+)+")
 _ARTICLES = frozenset({"a", "an"})
 
 
 def digits_value(token: str) -> float | None:
-    """Value of a token written in digits (``15``, ``7.5``, ``7,5``, ``1,000``, ``3/4``, ``½``)."""
+    """Value of a token written in digits (``15``, ``7.5``, ``7,5``, ``1,000``, ``3/4``, ``½``, ``1.5e2``,
+    ``10**3``, ``10^3``). A value too large for a float is ``inf`` (for the caller to refuse), never another
+    number."""
     if token in UNICODE_FRACTIONS:
         return UNICODE_FRACTIONS[token]
+    if _SCIENTIFIC.fullmatch(token):
+        return float(token)  # "1e400" is inf
+    m = _POWER.fullmatch(token)
+    if m:
+        try:
+            return float(m.group(1)) ** float(m.group(2))  # a 5,000-digit exponent is inf, not an error
+        except OverflowError:
+            return math.inf
     if _THOUSANDS.fullmatch(token):
         return float(token.replace(",", ""))
     if _DECIMAL_COMMA.fullmatch(token):

@@ -294,7 +294,7 @@ _DIMS_RE = re.compile(
 )
 # An axis letter or word written before a number inside a dimensions value.
 _AXIS_PREFIX = re.compile(
-    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ)\.?\s*[:=]?\s*(?=\d)"
+    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ)\.?\s*[:=]?\s*(?:約|约)?\s*(?=\d)"
 )
 _DIAMETER_PREFIX = re.compile(
     rf"(?:(?<=^)|(?<=[\s(:;,]))(?:直径|直徑|[ØøΦφ⌀]|dia\.|diameter|durchmesser|diamètre|diámetro|diametro|"
@@ -654,7 +654,7 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
         s = _DIAMETER_PREFIX.sub(lambda m: m.group("n"), s)
     prefixed: list[str] = []
     if _AXIS_PREFIX.search(s):
-        prefixed = [p.group(0).strip(" .:=") for p in _AXIS_PREFIX.finditer(s)]
+        prefixed = [p.group(0).strip(" .:=約约") for p in _AXIS_PREFIX.finditer(s)]
         s = clean_text(_AXIS_PREFIX.sub("", s))  # "H 30 cm x W 20 cm", "長37.5*寬26*高13.5cm"
     found: list[Dims] = []
     for m in _DIMS_RE.finditer(s):

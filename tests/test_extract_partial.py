@@ -186,3 +186,28 @@ def test_other_products_blocks_stay_out(classes):
     record = extract_page(_page(body), "https://s.example/p")
     assert record.mass_g == 2000.0
     assert not any("9000" in w or "9 kg" in w for w in record.warnings)
+
+
+# ------------------------------------------------------------------ parts, clauses, hedges
+@pytest.mark.parametrize("label", ["Cable length", "Power cord length", "Hose length", "Lid diameter", "Stand height"])
+def test_a_parts_extent_is_not_the_products(label):
+    body = f"<ul><li>{label}: 75 cm</li><li>Weight: 1.1 kg</li></ul>"
+    record = extract_page(_page(body), "https://s.example/p")
+    assert record.dims == [] and record.mass_g == 1100.0
+
+
+def test_labels_after_a_value_on_one_line_are_still_read():
+    record = extract_page(_page("<p>Weight: 2 kg Height: 30 cm</p>"), "https://s.example/p")
+    assert record.mass_g == 2000.0 and _roles(record) == [("height", 30.0)]
+
+
+def test_garment_measurements_in_one_sentence_give_each_extent():
+    record = extract_page(_page("<p>Length 70 cm, chest width 52 cm, in size L</p>"), "https://s.example/p")
+    assert sorted(_roles(record)) == [("length", 70.0), ("width", 52.0)]
+
+
+def test_a_hedge_between_axis_word_and_number_is_skipped():
+    body = "<div>商品サイズ（cm）</div><div>幅約45×奥行約30×高さ約12</div><div>重量</div><div>約850g</div>"
+    record = extract_page(_page(body, "ja"), "https://s.example/p")
+    assert _roles(record) == [("width", 45.0), ("depth", 30.0), ("height", 12.0)]
+    assert record.mass_g == 850.0

@@ -80,10 +80,16 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
     labelled: list[tuple[str, LabelInfo, int]] = []  # label, what it names, where its value starts
     starts: list[int] = []  # where each separator's label starts
     prev_end = 0
-    for sep in seps:
+    for k, sep in enumerate(seps):
         words = list(re.finditer(r"\S+", text[prev_end : sep.start()]))
         label_start = prev_end + words[-1].start() if words else sep.start()
-        for n in range(min(_MAX_LABEL_WORDS, len(words)), 0, -1):
+        # Before a line's first separator every word is the label's: "Cable length: 75 cm" names a part,
+        # not a length ("length" alone is only the label when nothing precedes it).
+        shortest = max(1, len(words)) if k == 0 and len(words) <= _MAX_LABEL_WORDS else 1
+        for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
+            first = words[-n].group(0)
+            if k > 0 and (_DIGIT.search(first) or _is_unit(first)):
+                continue  # "Weight: 2 kg Height: 30 cm": "kg" ends the previous value, it starts no label
             cand_start = prev_end + words[-n].start()
             info = classify_label(text[cand_start : sep.start()])
             if info is not None:
@@ -99,17 +105,33 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
         if _DIGIT.search(value):
             out.append((label, value, info))
     if not seps:
-        m = _DIGIT.search(text)
-        if m and m.start() > 0:
-            cut = m.start()
-            letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
-            if letter:
-                cut = letter.start()
-            label = text[:cut]
-            info = classify_label(label)
-            if info is not None:
-                out.append((label.strip(), text[cut:], info))
+        # "Gewicht 4,7 kg"; "Length 70 cm, chest width 52 cm, in size L": each clause a label and a number
+        clauses = _CLAUSE.split(text)
+        for clause in clauses:
+            found = _label_then_number(clause)
+            if found is None:
+                if clause is clauses[0]:
+                    break
+                continue
+            out.append(found if len(clauses) == 1 else (found[0], found[1].strip(" ,;"), found[2]))
     return out
+
+
+# A clause boundary: a comma or semicolon, a space and a word ("4,7 kg", "H21.6, W9.1" have none).
+_CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
+
+
+def _label_then_number(text: str) -> tuple[str, str, LabelInfo] | None:
+    m = _DIGIT.search(text)
+    if not m or m.start() == 0:
+        return None
+    cut = m.start()
+    letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
+    if letter:
+        cut = letter.start()
+    label = text[:cut]
+    info = classify_label(label)
+    return (label.strip(), text[cut:], info) if info is not None else None
 
 
 def pairs_from_lines(lines: list[Line]) -> list[Pair]:
