@@ -563,3 +563,17 @@ def test_hostile_descriptions_never_crash_recall(seeded_db):
         check(text)
 
     fuzz()
+
+
+def test_hostile_sql_over_http_is_a_400_never_a_500(seeded_db, tmp_path):
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    client = TestClient(create_app(seeded_db, token=""), raise_server_exceptions=False, base_url="http://127.0.0.1")
+    before = _sha(seeded_db)
+    for template in HOSTILE_SQL:
+        response = client.post("/sql", json={"query": template.format(tmp=tmp_path), "timeout_s": 5})
+        assert response.status_code == 400, (template, response.status_code, response.text)
+        assert response.json()["error"] == "QueryRefused" and str(seeded_db.parent) not in response.text
+    assert _sha(seeded_db) == before
