@@ -1,9 +1,10 @@
-"""``POST /grasp/plan`` (ranked grasp plans for an object or a description) and ``GET /grasp/validations``
-(the stored MuJoCo trials)."""
+"""``POST /grasp/plan`` (ranked grasp plans for an object or a description, with its latest validation),
+``GET /grasp/validations`` (the stored MuJoCo trials) and ``GET /grasp/render`` (a PNG of a planned grasp)."""
 
 from typing import Annotated, Any
 
 from fastapi import APIRouter, Query
+from fastapi.responses import Response
 
 from kb.errors import ObjectNotFound, ObjrecallError, RecallError
 from kb.jsonable import to_jsonable
@@ -47,8 +48,50 @@ def grasp_plan(body: PlanIn, state: State) -> dict[str, Any]:
         obj, how = grasp_target(result, _record_of(result))
     plans = plan_grasps(obj, top=body.top)
     return to_jsonable(
-        {"object": obj.name, "recalled": how, "features": obj.features(), "plans": [p.to_dict() for p in plans]}
+        {
+            "object": obj.name,
+            "recalled": how,
+            "features": obj.features(),
+            "plans": [p.to_dict() for p in plans],
+            "validation": _latest_validation(state, obj.name),
+        }
     )
+
+
+def _latest_validation(state: State, name: str) -> dict[str, Any] | None:
+    """The stored trials of ``name`` with the current hand (``objrecall grasp validate``) as its first and
+    validated choice (sim/choice.py), or None when it was not validated with this hand."""
+    from sim.choice import choose
+    from sim.worker import current_hand_version
+
+    with state.knowledge_base().connect() as con:
+        cur = con.execute(
+            "SELECT object_name, grasp_type, rank, seed, success, outcome, reason FROM grasp_validations "
+            "WHERE object_name = ? AND hand_version = ? ORDER BY rank, seed",
+            [name, current_hand_version()],
+        )
+        cols = [d[0] for d in cur.description]
+        rows = [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
+    return choose(rows)[0].to_dict() if rows else None
+
+
+@router.get("/grasp/render")
+def grasp_render(
+    state: State,
+    object: Annotated[str, Query(min_length=1, max_length=200, description="A catalog name or alias.")],
+    grasp_type: Annotated[str, Query(max_length=40, description="One of the object's planned types.")],
+) -> Response:
+    """A PNG of the simulated grasp (MuJoCo, to the end of the hold, seed 0) of one of the object's planned
+    grasp types: what the hand does, to look at rather than read."""
+    from sim.planner import plan_grasps
+    from sim.render import render_trial
+
+    obj = state.knowledge_base().get_object(object)
+    plan = next((p for p in plan_grasps(obj) if p.grasp_type == grasp_type), None)
+    if plan is None:
+        raise ObjrecallError(f"{grasp_type!r} is not a planned grasp of {obj.name!r}")
+    png = render_trial(obj, plan, seed=0, width=480, height=360)
+    return Response(content=png, media_type="image/png", headers={"Cache-Control": "max-age=300"})
 
 
 @router.get("/grasp/validations", response_model=Page)
