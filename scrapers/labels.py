@@ -65,19 +65,21 @@ _KIND_WORDS: dict[str, str] = {
     ),
     **_words(
         "diameter",
-        "diameter dia קוטר القطر durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр",
+        "diameter dia קוטר القطر durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр "
+        "çap çapı",
     ),
     **_words(
         "thickness",
         "thickness thick dicke stärke épaisseur grosor espesor spessore espessura grubość hrúbka tloušťka "
-        "толщина товщина dikte",
+        "толщина товщина dikte kalınlık kalınlığı",
     ),
     **_words(
         "dimensions",
         "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
         "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
         "afmetingen afmeting mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
-        "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات",
+        "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات "
+        "ölçü ölçüler ölçüleri ölçüsü ebat ebatlar ebatları ebadı",
     ),
     **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
     **_words(
@@ -104,7 +106,7 @@ _NEGATIONS = {
 _QUALIFIERS = {
     _fold(w)
     for w in (
-        "item product article artikel produkt produit producto produto prodotto articolo artigo overall "
+        "item product article artikel produkt produit producto produto prodotto articolo artigo overall physical "
         "total totale gesamt body unit assembled device net netto nett neto нетто устройства товара "
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
@@ -308,7 +310,7 @@ def _classify(label: object) -> LabelInfo | None:
 # whitelist rule as the word labels: every part must be a measurement, package or qualifier token
 # (商品の寸法 幅×奥行×高さ, 商品パッケージの寸法, 本体質量, 产品尺寸 长*宽*高).
 _CJK_KIND_TOKENS = {
-    "dimensions": "寸法 サイズ 尺寸 外形寸法 크기 사이즈 치수",
+    "dimensions": "寸法 サイズ 尺寸 外形寸法 外寸 크기 사이즈 치수",
     "weight": "重量 重さ 質量 质量 净重 淨重 무게 중량",
     "length": "長さ 长度 長度 長 长 길이",
     "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭",

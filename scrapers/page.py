@@ -84,7 +84,8 @@ MAX_LINES = 12_000
 
 def decode_body(body: str | bytes, content_type: str | None = None) -> str:
     """Page bytes as text: a BOM, then UTF-8 if the bytes are valid UTF-8, then the charset of the
-    Content-Type header or a ``<meta charset>``, then cp1252 (which decodes anything)."""
+    Content-Type header or a ``<meta charset>``, then the charset ``charset_normalizer`` detects (a saved
+    Shift_JIS page whose header was lost), then cp1252 (which decodes anything)."""
     if isinstance(body, str):
         return body
     if not isinstance(body, (bytes, bytearray, memoryview)):
@@ -104,6 +105,8 @@ def decode_body(body: str | bytes, content_type: str | None = None) -> str:
     if declared is None:
         m = _META_CHARSET.search(data[:8192])
         declared = m.group(1).decode("ascii", "replace") if m else None
+    if declared is None:
+        declared = _detected_charset(data)
     for codec in (declared, "cp1252"):
         if codec:
             try:
@@ -111,6 +114,21 @@ def decode_body(body: str | bytes, content_type: str | None = None) -> str:
             except LookupError:
                 continue
     return data.decode("latin-1")
+
+
+#: Bytes the charset detector reads (it is linear in what it reads; the start of a page says enough).
+DETECT_BYTES = 200_000
+
+
+def _detected_charset(data: bytes) -> str | None:
+    """The charset of undeclared, non-UTF-8 bytes (``charset_normalizer``), or None."""
+    try:
+        from charset_normalizer import from_bytes
+
+        best = from_bytes(data[:DETECT_BYTES]).best()
+    except Exception:  # noqa: BLE001 - detection is a guess; cp1252 still decodes anything
+        return None
+    return best.encoding if best is not None else None
 
 
 @dataclass(frozen=True)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import subprocess
 import sys
@@ -22,6 +23,7 @@ from hypothesis import strategies as st
 
 from kb.catalog import KnowledgeBase
 from kb.errors import QueryFailed, QueryRefused, QueryTimeout
+from kb.features import ObjectRecord
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -469,3 +471,109 @@ def test_api_docs_are_served_offline(seeded_db):
             assert response.status_code == 200 and len(response.content) > 1000, (page, url)
         assert "cdn." not in html and "https://" not in html.replace("https://swagger.io", ""), page
     assert client.get("/openapi.json").json()["paths"]
+
+
+# ---------------------------------------------------------------------------------------------- XSS payloads
+XSS = [
+    "<script>alert(1)</script>",
+    '"><img src=x onerror=alert(1)>',
+    "<svg/onload=alert(1)>",
+    "javascript:alert(1)",
+    "</td></tr><script>alert(1)</script>",
+    "{{7*7}} ${7*7} <%= 7*7 %>",
+]
+
+
+def test_xss_payloads_round_trip_as_data_over_http(tmp_path):
+    from urllib.parse import quote
+
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    db = tmp_path / "c.duckdb"
+    KnowledgeBase.open(db).upsert([ObjectRecord.create("plain mug", a_cm=10, mass_g=300)], source="t", adapter="t")
+    client = TestClient(create_app(db, token="tok"), base_url="http://127.0.0.1")
+    auth = {"Authorization": "Bearer tok"}
+    for i, payload in enumerate(XSS):
+        name = f"thing {i} {payload.replace('/', ' ')}"  # a "/" cannot be in a path segment; it is in the rest
+        body = {"a_cm": 3, "mass_g": 12, "aliases": [f"alias {i} {payload}"], "source": f"https://x/{payload}"}
+        put = client.put(f"/objects/{quote(name, safe='')}", json=body, headers=auth)
+        assert put.status_code in (200, 201), (payload, put.text)
+        got = client.get("/objects", params={"limit": 500})
+        assert got.headers["content-type"].startswith("application/json")
+        assert got.headers["x-content-type-options"] == "nosniff"
+        stored = {o["name"]: o for o in got.json()["items"]}
+        key = " ".join(name.lower().split())
+        assert key in stored and stored[key]["source"] == body["source"], payload
+    page = client.get("/")
+    assert "script-src 'self'" in page.headers["content-security-policy"]  # no inline script can run
+
+
+def test_xss_payloads_are_escaped_in_the_grasp_report(tmp_path):
+    from sim.report import write_report
+
+    rows = [{"object_name": f"obj {p}", "grasp_type": "power", "family": "power", "rank": 1, "seed": 0,
+             "outcome": "failure", "reason": p, "success": False} for p in XSS]
+    html = write_report(rows, tmp_path / "report").read_text()
+    for payload in XSS:
+        if "<" in payload or '"' in payload:
+            assert payload not in html, payload
+    assert "<script>alert(1)</script>" not in html and "&lt;script&gt;" in html
+
+
+# ---------------------------------------------------------------------------------------------- descriptions
+HOSTILE_DESCRIPTIONS = [
+    "", " ", "\x00", "\x00" * 50, "\u202e\u202d mug", "🦆" * 300, "a" * 4999, "x " * 2500,
+    "'; DROP TABLE objects; --", "\" OR 1=1 --", "<script>alert(1)</script> mug",
+    "-10 kg", "-5 cm long", "1e308 cm", "10**100 g", "NaN cm", "inf kg", "0 g", "0.0000001 mm",
+    "9" * 400 + " cm", "1/0 inches", "3 ft 12 in", "5 feet 13 inches", "--- --- ---", "....", "%s%s%n%x",
+    "\n\n\n\t\t", "mug" * 1000, "a mug " * 800, "ｍｕｇ １０ ｃｍ", "ＡＢＣ", "a\u0301" * 100,
+    "a 500 kg 5 m tall box", "a 500.0001 kg box", "a 50000 cm box", "between 3 and 2 cm", "from 5 to cm",
+]
+
+
+def test_hostile_descriptions_never_crash_recall(seeded_db):
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    from kb.errors import ObjrecallError
+    from recall.engine import Recaller
+
+    recaller = Recaller.from_db(seeded_db)
+
+    def check(text: str) -> None:
+        try:
+            result = recaller.recall_text(text, top=3)
+        except ObjrecallError as err:  # a clear refusal (empty, too long) is fine
+            assert str(err) and "\n" not in str(err).strip()
+            return
+        assert 0.0 <= result.confidence <= 1.0
+        for match in result.matches:
+            assert math.isfinite(match.distance)
+
+    for text in HOSTILE_DESCRIPTIONS:
+        check(text)
+
+    @settings(max_examples=300, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(st.text(max_size=200) | st.lists(st.sampled_from(
+        ["mug", "-", "1e9", "kg", "cm", "ft", "in", "12", "'", "3/4", "x", "by", "about", "nan", "½", " "]),
+        max_size=30).map(" ".join))
+    def fuzz(text):
+        check(text)
+
+    fuzz()
+
+
+def test_hostile_sql_over_http_is_a_400_never_a_500(seeded_db, tmp_path):
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    client = TestClient(create_app(seeded_db, token=""), raise_server_exceptions=False, base_url="http://127.0.0.1")
+    before = _sha(seeded_db)
+    for template in HOSTILE_SQL:
+        response = client.post("/sql", json={"query": template.format(tmp=tmp_path), "timeout_s": 5})
+        assert response.status_code == 400, (template, response.status_code, response.text)
+        assert response.json()["error"] == "QueryRefused" and str(seeded_db.parent) not in response.text
+    assert _sha(seeded_db) == before

@@ -211,3 +211,31 @@ def test_a_hedge_between_axis_word_and_number_is_skipped():
     record = extract_page(_page(body, "ja"), "https://s.example/p")
     assert _roles(record) == [("width", 45.0), ("depth", 30.0), ("height", 12.0)]
     assert record.mass_g == 850.0
+
+
+# ------------------------------------------------------------------------ header rows
+def test_a_header_row_of_labels_pairs_with_the_first_row_under_it():
+    body = ("<table><tr><th>Width</th><th>Height</th><th>Depth</th><th>Weight</th></tr>"
+            "<tr><td>30 cm</td><td>20 cm</td><td>10 cm</td><td>2 kg</td></tr>"
+            "<tr><td>40 cm</td><td>25 cm</td><td>12 cm</td><td>3 kg</td></tr></table>")  # fmt: skip
+    record = extract_page(_page(body), "https://s.example/p")
+    assert _roles(record) == [("width", 30.0), ("height", 20.0), ("depth", 10.0)]
+    assert record.mass_g == 2000.0
+    assert not any("40" in w or "3000" in w for w in record.warnings)
+
+
+def test_a_header_row_needs_as_many_values_as_labels():
+    body = "<div>Dimensions</div><div>Width</div><div>30 cm</div><div>Height</div><div>20 cm</div>"
+    record = extract_page(_page(body), "https://s.example/p")
+    assert sorted(_roles(record)) == [("height", 20.0), ("width", 30.0)]
+
+
+@pytest.mark.parametrize(
+    ("label", "kind"),
+    [("Ürün Ölçüleri", "dimensions"), ("Ebat", "dimensions"), ("Çap", "diameter"), ("Kalınlık", "thickness"),
+     ("外寸", "dimensions"), ("Physical dimensions", "dimensions")],
+)
+def test_more_label_words(label, kind):
+    from scrapers.labels import classify_label
+
+    assert classify_label(label).kind == kind

@@ -69,3 +69,21 @@ def test_a_name_is_the_products_when_most_of_its_words_are_in_the_title():
     assert _names_product("Stoneware Pasta Bowl Set Grey", title)  # 4 of 5 words: 80 %
     assert not _names_product("Stoneware Mug Grey Large Matte", title)  # 1 of 5
     assert not _names_product("Bowl Cover Lid Glass Large", title)
+
+
+@pytest.mark.parametrize("encoding", ["shift_jis", "euc-jp"])
+def test_an_undeclared_japanese_encoding_is_detected(encoding):
+    page = ("<html><head><title>木製テーブル</title></head><body><h1>木製テーブル</h1>"
+            "<p>シンプルなデザインの木製テーブルです。毎日の食卓にどうぞ。</p>"
+            "<table><tr><th>サイズ</th><td>幅30×奥行20×高さ10cm</td></tr><tr><th>重量</th><td>約1.2kg</td></tr>"
+            "</table></body></html>")  # fmt: skip
+    record = extract_page(page.encode(encoding), "https://shop.example.jp/p", "text/html")
+    assert record.name == "木製テーブル"
+    assert record.dims_cm == (30.0, 20.0, 10.0) and record.mass_g == 1200.0
+
+
+def test_an_undeclared_western_page_still_reads_its_umlauts():
+    page = ("<html><body><h1>Küchenwaage</h1><p>Die Waage für Ihre Küche, präzise und flach.</p>"
+            "<p>Gewicht</p><p>4,7 kg</p><p>Höhe: 10 cm</p><p>Breite: 5 cm</p></body></html>")  # fmt: skip
+    record = extract_page(page.encode("cp1252"), "https://shop.example.de/x")
+    assert record.mass_g == pytest.approx(4700.0) and record.dims_cm == (10.0, 5.0)

@@ -30,3 +30,10 @@ def test_demo_runs_end_to_end(tmp_path, cli_env):
     html = report.read_text()
     assert "calculator" in html and list((out / "grasp-report").glob("*.png"))
     assert (out / "demo_summary.json").exists()
+    # output not on a terminal: one summary line per step, no progress bar
+    lines = proc.stderr.splitlines()
+    for step in ("catalog ", "ingest: ", "recall: ", "grasp: ", "main job done"):
+        assert any(line.startswith(step) for line in lines), (step, proc.stderr[-3000:])
+    grasp_line = next(line for line in lines if line.startswith("grasp: "))
+    assert f"{steps['grasp']['trials']} trials" in grasp_line and f"{steps['grasp']['succeeded']} succeeded" in grasp_line
+    assert not any("grasp trials" in line for line in lines) and "\r" not in proc.stderr  # no progress bar

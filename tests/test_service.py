@@ -389,3 +389,31 @@ def test_web_page_is_served_with_a_strict_policy(client):
     )
     assert client.get("/static/style.css").status_code == 200
     assert client.get("/static/../service.py").status_code == 404
+
+
+def test_grasp_plan_carries_the_latest_validation_and_the_render_shows_it(writer, seeded_db):
+    """The web page's grasp: the plan, the stored validation with the current hand (first vs validated
+    choice) and a real MuJoCo render of the shown grasp."""
+    from kb.catalog import KnowledgeBase
+    from sim.worker import current_hand_version
+
+    assert writer.post("/grasp/plan", json={"name": "tennis ball"}).json()["validation"] is None
+    plans = writer.post("/grasp/plan", json={"name": "tennis ball"}).json()["plans"]
+    first, second = plans[0]["grasp_type"], plans[1]["grasp_type"]
+    base = {"object_name": "tennis ball", "seed": 0, "features_hash": "h", "family": "power"}
+    KnowledgeBase.open(seeded_db).record_grasp_results([
+        {**base, "grasp_type": first, "rank": 0, "success": False, "outcome": "failure", "reason": "turned 20 deg",
+         "hand_version": current_hand_version()},
+        {**base, "grasp_type": second, "rank": 1, "success": True, "outcome": "success", "reason": "held",
+         "hand_version": current_hand_version()},
+        {**base, "grasp_type": second, "rank": 1, "success": False, "outcome": "failure", "reason": "old hand",
+         "seed": 1, "hand_version": "an older hand"},  # another hand's trials are not this hand's validation
+    ])  # fmt: skip
+    v = writer.post("/grasp/plan", json={"name": "tennis ball"}).json()["validation"]
+    assert (v["first"], v["first_holds"], v["validated"], v["differs"]) == (first, False, second, True)
+    png = writer.get("/grasp/render", params={"object": "tennis ball", "grasp_type": second})
+    assert png.status_code == 200 and png.headers["content-type"] == "image/png"
+    assert png.content[:8] == b"\x89PNG\r\n\x1a\n"
+    assert_error(writer.get("/grasp/render", params={"object": "tennis ball", "grasp_type": "fist"}), 400,
+                 words="not a planned grasp")  # fmt: skip
+    assert_error(writer.get("/grasp/render", params={"object": "unicorn", "grasp_type": first}), 404)

@@ -100,6 +100,9 @@ def test_page_lists_the_catalog_and_recalls_from_the_url(site):
     assert 'data-feature="mass_g"' in matches
     assert re.search(r'id="grasp-type" data-grasp="[a-z_]+"', dom)
     assert "confidence" in dom
+    # its simulated grasp: not validated in this fresh catalog yet, said so, with the render of the plan
+    assert re.search(r'id="grasp-validation">Not validated in simulation', dom)
+    assert re.search(r'<img id="grasp-render" alt="tennis ball: [a-z_]+ \(simulated\)" src="/grasp/render\?object=tennis%20ball&amp;grasp_type=[a-z_]+"', dom)
 
 
 @needs_chromium
@@ -225,6 +228,12 @@ def test_typing_a_description_shows_matches_and_paging_works(site):
             "(document.getElementById('grasp-type') || {dataset: {}}).dataset.grasp"
         )
         assert grasp
+        # the render of the grasp arrives from the server (a real MuJoCo image) and is shown
+        width = tools.wait_for(
+            "(document.getElementById('grasp-render') || {}).complete && "
+            "document.getElementById('grasp-render').naturalWidth"
+        )
+        assert width == 480
         assert tools.eval("new URL(location.href).searchParams.get('q')").startswith(
             "a metal frying pan"
         )

@@ -52,15 +52,24 @@ def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers
                   f"({', '.join(f'{k} {v}' for k, v in summary['shape'].items())})")
 
     console.rule("[bold]2. ingest the demo storefront (127.0.0.1, no network)")
-    result.steps["ingest"] = _ingest_demo_store(kb, console)
+    result.steps["ingest"] = ing = _ingest_demo_store(kb, console)
+    console.print(f"ingest: {ing.get('fetched', 0)} pages fetched, {ing.get('extracted', 0)} extracted, "
+                  f"{ing.get('rejected', 0)} rejected, {ing.get('new', 0)} new and {ing.get('updated', 0)} "
+                  "updated objects")
 
     console.rule("[bold]3. recall sample descriptions (looked up in the demo store's search when unknown)")
     recalled = _recall_samples(db, console)
     result.steps["recall"] = recalled
+    console.print(f"recall: {len(recalled)} descriptions, {sum(1 for r in recalled if r['top'])} recalled, "
+                  f"{sum(1 for r in recalled if r['open_set'])} open set, "
+                  f"{sum(1 for r in recalled if r['looked_up'])} looked up in the store")
 
     console.rule("[bold]4. validate grasps of the recalled objects in MuJoCo")
     names = list(dict.fromkeys(r["top"] for r in recalled if r["top"]))
-    result.steps["grasp"] = _validate_grasps(kb, names, out_dir, workers)
+    result.steps["grasp"] = g = _validate_grasps(kb, names, out_dir, workers, progress=console.is_terminal)
+    console.print(f"grasp: {g.get('objects', 0)} objects, {g.get('trials', 0)} trials "
+                  f"({g.get('ran', 0)} run now, {g.get('skipped', 0)} stored before): {g.get('succeeded', 0)} "
+                  f"succeeded, {g.get('failed', 0)} failed, {g.get('errors', 0)} errors")
 
     console.rule("[bold]5. report")
     report = result.steps["grasp"].get("report")
@@ -131,10 +140,13 @@ def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
     return rows
 
 
-def _validate_grasps(kb: KnowledgeBase, names: list[str], out_dir: Path, workers: int) -> dict[str, Any]:
+def _validate_grasps(
+    kb: KnowledgeBase, names: list[str], out_dir: Path, workers: int, *, progress: bool
+) -> dict[str, Any]:
     from sim.worker import validate
 
-    summary = validate(kb, names, workers=workers, report_dir=out_dir / "grasp-report", progress=True)
+    # a progress bar only on a terminal: piped or logged output gets the one-line summary instead
+    summary = validate(kb, names, workers=workers, report_dir=out_dir / "grasp-report", progress=progress)
     out = summary.to_dict() if hasattr(summary, "to_dict") else {}
     out.pop("results", None)
     out["report"] = str(out_dir / "grasp-report" / "index.html")

@@ -140,11 +140,20 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
     one line."""
     pairs: list[Pair] = []
     n = len(lines)
+    column_values: set[int] = set()  # value lines already paired by a header row
     for i, line in enumerate(lines):
         if len(pairs) >= MAX_PAIRS:
             break
+        if i in column_values:
+            continue
         text = line.text
         info = classify_label(text) if len(text) <= 80 else None
+        if info is not None and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
+            header = _header_row(lines, i)
+            if header:
+                pairs.extend(header)
+                column_values.update(p.order for p in header)
+                continue
         if info is not None:
             j = i + 1
             while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
@@ -161,6 +170,29 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
             for label, value, label_info in split_inline(text):
                 pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
     return pairs
+
+
+def _label_line(line: Line) -> bool:
+    return len(line.text) <= 80 and not _DIGIT.search(line.text) and classify_label(line.text) is not None
+
+
+def _header_row(lines: list[Line], i: int) -> list[Pair]:
+    """A header row of labels and the row under it (``Width | Height | Depth`` over ``30 cm | 20 cm |
+    10 cm``, or ``dt dt dt dd dd dd``): label k pairs with value k of the **first** row only (later rows are
+    variants or other products). Pairs carry the value line's index as their order. [] when the lines after
+    the labels are not as many values."""
+    labels = []
+    j = i
+    while j < len(lines) and _label_line(lines[j]) and len(labels) < 12:
+        labels.append(lines[j])
+        j += 1
+    values = lines[j : j + len(labels)]
+    if len(values) < len(labels) or not all(_DIGIT.search(v.text) and classify_label(v.text) is None for v in values):
+        return []
+    return [
+        Pair(lab.text, val.text, classify_label(lab.text), lab.package or val.package, val.index, val.group)
+        for lab, val in zip(labels, values, strict=False)
+    ]
 
 
 def mass_unit_of_range(value: str, label_unit: str | None) -> bool:

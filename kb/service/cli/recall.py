@@ -8,6 +8,7 @@ from typing import Annotated, Any
 import typer
 
 from kb.service.cli.common import DbOption, JsonOption
+from kb.service.http.settings import ENV_SOURCES
 
 METRIC_HELP = (
     "Distance: jp (the paper's Joint Probability), euclidean, minkowski (p=4), cosine, kdtree, jplog (JP with "
@@ -116,9 +117,6 @@ def register(app: typer.Typer) -> None:
             emit(report.to_dict())
         else:
             _print_report(report)
-
-
-ENV_SOURCES = "OBJRECALL_SOURCES"
 
 
 def _lookup_sources(path: Path | None, base_url: str | None):

@@ -37,9 +37,12 @@ __all__ = [
     "MAX_TEXT_CHARS",
     "MAX_TOP",
     "SQL_MAX_RESPONSE_BYTES",
+    "SQL_MAX_ROWS",
+    "SQL_MAX_TIMEOUT_S",
     "ServiceSettings",
     "allowed_hosts_from",
     "load_token",
+    "package_version",
     "status_for",
 ]
 
@@ -133,3 +136,13 @@ def load_token(environ: dict[str, str] | None = None) -> str | None:
             raise ObjrecallError(f"{path}: cannot read the API token file ({err.strerror})") from None
         return token or None
     return None
+
+
+def package_version() -> str:
+    """The installed objrecall version (``0+unknown`` from a source tree that was never installed)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("objrecall")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
+        return "0+unknown"
