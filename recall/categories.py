@@ -10,7 +10,7 @@ picks one word per feature: the highest rank, then the first.
 from __future__ import annotations
 
 from recall import lexicon as lx
-from recall.quantities import Reading
+from recall.reading import Reading
 from recall.tags import CATEGORY_TAGS, NUMBER_TAGS
 from recall.tokens import Token
 
