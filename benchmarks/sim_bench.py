@@ -1,9 +1,10 @@
 """Simulation benchmarks: single trials (physics part) and the validation worker (workers part).
 
-Run: ``python benchmarks/sim_bench.py [--quick]``. Prints ratios against a baseline measured in the same
-run (no absolute thresholds): trials per second on one and on two worker processes, and the wall time of
-validating the whole seed catalog's best grasps (planner -> trial -> knowledge base), whose goal is under
-a minute on two cores.
+Run: ``python benchmarks/sim_bench.py [--quick] [--only trials|workers|choice] [--top N]``. Prints ratios
+against a baseline measured in the same run (no absolute thresholds): trials per second on one and on two
+worker processes, the wall time of validating the whole seed catalog's best grasps (planner -> trial ->
+knowledge base), and the closed-loop choice (issue 14): objects with a validated grasp, first-choice
+success, how often they differ and trials per CPU second, beside the figures before that issue.
 """
 
 from __future__ import annotations
@@ -151,14 +152,64 @@ def bench_trials(quick: bool = False, *, limit: int | None = None) -> dict[str, 
     return out
 
 
+#: Before issue 14 (planner 5, hand ar10like-5; seed catalog, seed 0; sim/PHYSICS.md): the first choice held
+#: for 127 of 169, a candidate of the top 3 for 141; about 0.10 CPU s per trial.
+BEFORE = {"objects": 169, "first_holds": 127, "validated": 141, "differs": None, "trials_per_cpu_s": 10.0}
+
+
+def bench_choice(top: int = 3, *, limit: int | None = None, workers: int = 2) -> dict[str, Any]:
+    """Closed-loop choice on the seed catalog (data written here): the top ``top`` candidates of every
+    object validated on ``workers`` processes; first-choice success, objects with a validated grasp (the
+    best-ranked candidate that holds), how often the two differ, trials per CPU second; beside BEFORE."""
+    from kb.catalog import KnowledgeBase
+    from kb.csvio import write_catalog_csv
+    from sim.worker import validate
+
+    records = seed_records()[:limit] if limit else seed_records()
+    with tempfile.TemporaryDirectory() as tmp:
+        csv = Path(tmp) / "catalog.csv"
+        write_catalog_csv(records, csv)
+        kb = KnowledgeBase.open(Path(tmp) / "choice.duckdb")
+        kb.import_csv(csv)
+        summary = validate(kb, None, top=top, workers=workers, progress=False, render=None)
+    cpu = sum(float(json.loads(r["details"]).get("cpu_time_s") or 0.0) for r in summary.results)
+    c = summary.choice_summary
+    out = {
+        "top": top,
+        **c.to_dict(),
+        "trials": summary.ran,
+        "errors": summary.errors,
+        "trials_per_cpu_s": round(summary.ran / cpu, 2) if cpu else None,
+        "wall_s": summary.wall_time_s,
+        "before": BEFORE,
+    }
+    n = c.objects
+    print(
+        f"closed-loop choice, top {top}, {n} seed objects (data written here): validated grasp for {c.validated}/{n} "
+        f"({100 * c.validated / n:.0f} %; before {BEFORE['validated']}/{BEFORE['objects']}, goal >= 95 %); "
+        f"first choice holds {c.first_holds}/{n} (before {BEFORE['first_holds']}/{BEFORE['objects']}); validated "
+        f"differs from first for {c.differs}/{n}; {out['trials_per_cpu_s']} trials per CPU second (before about "
+        f"{BEFORE['trials_per_cpu_s']:g}); {summary.errors} errors; {summary.wall_time_s:.0f} s wall on {workers} workers",
+        flush=True,
+    )
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="20 objects instead of the whole seed catalog")
+    parser.add_argument(
+        "--only", choices=("trials", "workers", "choice"), help="run one part (default: all three)"
+    )
+    parser.add_argument("--top", type=int, default=3, help="candidates per object in the choice part")
     args = parser.parse_args(argv)
-    bench_trials = globals().get("bench_trials")  # the single-trial part (physics), when present
-    if callable(bench_trials):
+    limit = 20 if args.quick else None
+    if args.only in (None, "trials"):
         bench_trials(quick=args.quick)
-    bench_workers(limit=20 if args.quick else None)
+    if args.only in (None, "workers"):
+        bench_workers(limit=limit)
+    if args.only in (None, "choice"):
+        bench_choice(args.top, limit=limit)
     return 0
 
 

@@ -262,8 +262,23 @@ class KnowledgeBase:
                 [key, key, key],
             ).fetchall()
             if not rows:
-                raise ObjectNotFound(name)
+                raise ObjectNotFound(name, self._close_names(con, key))
             return self._rows_to_records(con, rows)[0]
+
+    @staticmethod
+    def _close_names(con: duckdb.DuckDBPyConnection, key: str, n: int = 3) -> tuple[str, ...]:
+        """Object names whose name or an alias is close to ``key`` (difflib), for "did you mean"."""
+        import difflib
+
+        pairs = con.execute(
+            "SELECT name, name FROM objects UNION ALL "
+            "SELECT a.alias, o.name FROM object_aliases a JOIN objects o ON o.id = a.object_id"
+        ).fetchall()
+        spelled = {}
+        for spelling, name in pairs:
+            spelled.setdefault(spelling, name)
+        close = difflib.get_close_matches(key, list(spelled), n=n * 2, cutoff=0.75)
+        return tuple(dict.fromkeys(spelled[c] for c in close))[:n]
 
     def provenance(self, name: str) -> list[dict[str, Any]]:
         """Every observed value of the object's features, newest first, with source and raw text."""

@@ -86,9 +86,11 @@ class CatalogError(ObjrecallError):
 class ObjectNotFound(CatalogError, LookupError):
     """No object with that name or alias."""
 
-    def __init__(self, name: str):
+    def __init__(self, name: str, suggestions: tuple[str, ...] = ()):
         self.name = name
-        super().__init__(f"no object named {name!r} in the catalog")
+        self.suggestions = tuple(suggestions)
+        hint = f"; did you mean {' or '.join(repr(s) for s in self.suggestions)}?" if self.suggestions else ""
+        super().__init__(f"no object named {name!r} in the catalog{hint}")
 
 
 class CatalogImportError(CatalogError):

@@ -1,7 +1,7 @@
 """Resolving dimensions: which stated extent is which of the catalog's a >= b >= c.
 
 :func:`read_relations` finds extents stated relative to another ("twice as long as it is wide");
-:func:`resolve_dims` assigns the statements of a :class:`recall.quantities.Reading` (labelled extents,
+:func:`resolve_dims` assigns the statements of a :class:`recall.reading.Reading` (labelled extents,
 tuples, diameters, sides, unlabelled lengths) to ``a_cm``, ``b_cm``, ``c_cm`` by the rules in
 ``recall/PARSER.md``, "Dimensions".
 """
@@ -11,10 +11,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
-from kb.features import MAX_DIM_CM
 from recall import lexicon as lx
 from recall.numbers import number_value
-from recall.quantities import DimStatement, Quantity, Reading, Relation, Stated
+from recall.reading import DimStatement, Quantity, Reading, Relation, Stated, limit_refusal
 from recall.tokens import Token
 from recall.units import Unit, unit_table
 
@@ -78,7 +77,11 @@ def _to_cm(q: Quantity, reading: Reading, stmt: DimStatement, scale: float = 1.0
         return None
     f = unit.factor * scale
     value = q.value * f
-    if not 0 < value <= MAX_DIM_CM:
+    reason = limit_refusal("a_cm", value)
+    if reason is not None:  # the quantity's own words, or a relation's ("twenty times as long")
+        inside = stmt.start <= q.start and q.end <= stmt.end
+        start, end = (q.start, q.end) if inside else (stmt.start, stmt.end)
+        reading.refuse(start, end, f"{value:.10g} cm: {reason}")
         return None
     return Stated(
         value,

@@ -9,6 +9,7 @@ documented with their numbers in ``recall/RECALL.md``.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import re
@@ -22,6 +23,7 @@ import numpy as np
 from kb.errors import RecallError
 from kb.features import FEATURES, NUMERIC_FEATURES
 from kb.kinds import singular, words_of
+from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
 from recall.openset import DescribedNoun, KindIndex, described_noun
 from recall.search import score_rows, select_top_k, top_k
@@ -523,6 +525,7 @@ class Recaller:
         materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
         self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
+        self._geometry: ShapeGeometry | None = None
         self._kdtrees: dict = {}
 
     @classmethod
@@ -551,6 +554,8 @@ class Recaller:
     ) -> RecallResult:
         """Recall from a parser result (``recall.parser.ParsedDescription``)."""
         query = FeatureQuery.from_parsed(parsed)
+        if not features_only:
+            query = self._shape_from_geometry(query)
         text = parsed.text
         # numeric evidence is masked for name matching ("seven and quarter centimeters" names no coin)
         spans = [(ev.start, ev.end) for f, ev in parsed.features.items() if f in NUMERIC_FEATURES]
@@ -590,6 +595,20 @@ class Recaller:
         result = self._recall(query, names, top=top, metric=metric, features_only=features_only, noun=noun)
         result.text = text
         return result
+
+    def _shape_from_geometry(self, query: FeatureQuery) -> FeatureQuery:
+        """A stated shape word gives way to the class the three stated extents clearly have
+        (:mod:`recall.geometry`): the geometry counts more than the word."""
+        values = query.values()
+        if "shape" not in values or not all(f in values for f in ("a_cm", "b_cm", "c_cm")):
+            return query
+        if self._geometry is None:
+            self._geometry = ShapeGeometry.of_snapshot(self.snapshot)
+        shape = self._geometry.classify(values["a_cm"], values["b_cm"], values["c_cm"])
+        if shape is None or shape == values["shape"] or not overrides(shape, values["shape"]):
+            return query
+        cats = tuple((f, shape if f == "shape" else v) for f, v in query.categorical)
+        return dataclasses.replace(query, categorical=cats)
 
     def described(self, text: str) -> DescribedNoun | None:
         """The lexicon noun the description's subject names, and whether the catalog has it."""
@@ -724,7 +743,7 @@ class Recaller:
                     features={f: getattr(rec, f) for f in FEATURES},
                     name_part=name_part,
                     vague_part=vague_part,
-                    kind=self.kinds.kinds[row],
+                    kind=self.kinds.kind(row),
                 )
             )
         return out

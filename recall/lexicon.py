@@ -1,7 +1,7 @@
 """The parser's domain lexicon: every word it knows, the tag it gets, and the feature value it means.
 
 This module is data only, written to be read (``recall/PARSER.md`` prints the same tables with the rules
-that use them). The tagger of :mod:`recall.parser` is an NLTK ``UnigramTagger`` whose model is built from
+that use them). The tagger of :mod:`recall.tags` is an NLTK ``UnigramTagger`` whose model is built from
 these tables (:func:`tag_model`); a ``RegexpTagger`` tags what is not listed (digits, fractions, other
 words). Category values are always canonical words of :mod:`kb.features` (checked by a test).
 

@@ -2,14 +2,14 @@
 
 The first quantity with a mass unit; else contents (a volume in a sentence with a contents word, at
 :data:`recall.lexicon.CONTENTS_DENSITY_G_PER_ML`), which is a lower bound: the container adds its own.
-A mass owned by another object ("my 2 kg dumbbell") counts only when no other mass is stated.
+A mass owned by another object ("my 2 kg dumbbell") counts only when no other mass is stated. A value
+outside the catalog's limits (:func:`recall.reading.limit_refusal`) is refused, with its reason.
 """
 
 from __future__ import annotations
 
-from kb.features import MAX_MASS_G
 from recall import lexicon as lx
-from recall.quantities import Reading, Stated
+from recall.reading import Reading, Stated, limit_refusal
 
 __all__ = ["resolve_mass"]
 
@@ -20,7 +20,9 @@ def resolve_mass(reading: Reading) -> Stated | None:
     for q, in_contents in masses:
         assert q.unit is not None
         grams = q.value * q.unit.factor
-        if not 0 < grams <= MAX_MASS_G:
+        reason = limit_refusal("mass_g", grams)
+        if reason is not None:
+            reading.refuse(q.start, q.end, f"{grams:.10g} g: {reason}")
             continue
         qualifier = "at_least" if in_contents and q.qualifier != "range" else q.qualifier
         f = q.unit.factor
@@ -30,7 +32,9 @@ def resolve_mass(reading: Reading) -> Stated | None:
     for q in reading.contents:
         assert q.unit is not None
         grams = q.value * q.unit.factor * lx.CONTENTS_DENSITY_G_PER_ML
-        if not 0 < grams <= MAX_MASS_G:
+        reason = limit_refusal("mass_g", grams)
+        if reason is not None:
+            reading.refuse(q.start, q.end, f"{grams:.10g} g of contents: {reason}")
             continue
         return Stated(grams, grams, None, "at_least", q.start, q.end)
     return None

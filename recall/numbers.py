@@ -17,11 +17,15 @@ Grammar (informal)::
     fraction := half | quarter(s) | third(s) | unit fraction ("three quarters") | 1/4 | ¼
 
 Digits: ``1,000`` (three digits after a comma) is a thousands separator; ``7,5`` (one or two digits) is
-a decimal comma. ``7.5`` and ``.5`` are decimals.
+a decimal comma. ``7.5`` and ``.5`` are decimals; ``1.5e2`` (scientific notation), ``10**3`` and
+``10^3`` (powers) are read as the numbers they write, ``inf`` when too large for a float: the parser
+refuses those by the catalog's limits, never reads them as another number ("1e308" is not 308).
+The sign of a negative number is read by the tagger (:mod:`recall.tags`), not here.
 """
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Sequence
 
@@ -32,20 +36,35 @@ __all__ = ["DIGITS_PATTERN", "digits_value", "is_number_token", "number_value", 
 #: Regular expression for one number written with digits; the parser's tokenizer uses it as is. It
 #: stays linear on long digit-comma chains ("1,234,567,..."): a thousands group only needs no digit
 #: after it, so a failed match backs off one group and succeeds.
-DIGITS_PATTERN = r"\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
+DIGITS_PATTERN = (
+    r"\d+(?:\.\d+)?(?:[eE]|\*\*|\^)[+-]?\d+"  # scientific notation and powers: 1.5e2, 10**3, 10^3
+    r"|\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
+)
 
 _THOUSANDS = re.compile(r"\d{1,3}(?:,\d{3})+(?:\.\d+)?")
 _DECIMAL_COMMA = re.compile(r"\d+,\d{1,2}")
 _DECIMAL = re.compile(r"\d*\.\d+|\d+")
 _FRACTION = re.compile(r"(\d+)/(\d+)")
+_SCIENTIFIC = re.compile(r"\d+(?:\.\d+)?[eE][+-]?\d+")
+_POWER = re.compile(r"(\d+(?:\.\d+)?)(?:\*\*|\^)([+-]?\d+)")
 _HYPHEN_WORDS = re.compile(r"[a-z]+(?:-[a-z]+)+")
 _ARTICLES = frozenset({"a", "an"})
 
 
 def digits_value(token: str) -> float | None:
-    """Value of a token written in digits (``15``, ``7.5``, ``7,5``, ``1,000``, ``3/4``, ``½``)."""
+    """Value of a token written in digits (``15``, ``7.5``, ``7,5``, ``1,000``, ``3/4``, ``½``, ``1.5e2``,
+    ``10**3``, ``10^3``). A value too large for a float is ``inf`` (for the caller to refuse), never another
+    number."""
     if token in UNICODE_FRACTIONS:
         return UNICODE_FRACTIONS[token]
+    if _SCIENTIFIC.fullmatch(token):
+        return float(token)  # "1e400" is inf
+    m = _POWER.fullmatch(token)
+    if m:
+        try:
+            return float(m.group(1)) ** float(m.group(2))  # a 5,000-digit exponent is inf, not an error
+        except OverflowError:
+            return math.inf
     if _THOUSANDS.fullmatch(token):
         return float(token.replace(",", ""))
     if _DECIMAL_COMMA.fullmatch(token):
@@ -168,84 +187,95 @@ def number_value(tokens: Sequence[str]) -> float | None:
         toks.pop()
     if not toks:
         return None
-    whole = _Whole()
-    fraction = 0.0
-    numerator: float | None = None  # a small number word right before a fraction word ("three quarters")
-    after_and = False
-    had_fraction = False
-    i = 0
-    if toks[0] in _ARTICLES:
-        i = 1
-    while i < len(toks):
-        tok = toks[i]
-        if tok in _ARTICLES:
-            # only "and a half", "and a quarter" (after and) or "one and a half": the article of a fraction
-            if not (after_and and i + 1 < len(toks) and _is_fraction_token(toks[i + 1])):
+    return _NumberReading(toks).value()
+
+
+class _NumberReading:
+    """Reading one number's tokens left to right: a whole part (:class:`_Whole`), then at most one
+    fraction, joined by "and" ("fifteen and half", "one and a half", "two and three quarters")."""
+
+    def __init__(self, toks: list[str]) -> None:
+        self.toks = toks
+        self.whole = _Whole()
+        self.fraction = 0.0
+        self.numerator: float | None = None  # a small number word before a fraction word ("three quarters")
+        self.after_and = False
+        self.had_fraction = False
+
+    def value(self) -> float | None:
+        """The number, or None when the tokens are not one well-formed number."""
+        toks = self.toks
+        for i in range(1 if toks[0] in _ARTICLES else 0, len(toks)):
+            tok = toks[i]
+            nxt = toks[i + 1] if i + 1 < len(toks) else ""
+            if tok in _ARTICLES:
+                # only "and a half", "and a quarter", "one and a half": the article of a fraction
+                ok = self.after_and and _is_fraction_token(nxt)
+            elif tok == "and":
+                ok = self._and()
+            elif _is_fraction_token(tok):
+                ok = self._fraction(tok)
+            else:
+                ok = self._word(tok, nxt)
+            if not ok:
                 return None
-            i += 1
-            continue
-        if tok == "and":
-            if after_and or not whole.seen or had_fraction:
-                return None
-            after_and = True
-            i += 1
-            continue
-        if _is_fraction_token(tok):
-            if had_fraction and numerator is None:
-                return None
-            f = FRACTION_WORDS.get(tok)
-            if f is None:
-                f = digits_value(tok)
-                if f is None:
-                    return None
-                if numerator is not None:  # "three 1/4" is not a number
-                    return None
-            part = (numerator if numerator is not None else 1.0) * f
-            if numerator is not None and not after_and:
-                # "three quarters": the numerator was counted in the whole part: take it back
-                whole = _Whole()
-            fraction += part
-            numerator = None
-            had_fraction = True
-            i += 1
-            continue
-        if had_fraction:
-            return None  # nothing follows the fraction ("half twenty")
+        if self.after_and and not self.had_fraction:
+            return None
+        if not self.whole.seen and not self.had_fraction:
+            return None
+        return self.whole.value + self.fraction
+
+    def _and(self) -> bool:
+        if self.after_and or not self.whole.seen or self.had_fraction:
+            return False
+        self.after_and = True
+        return True
+
+    def _fraction(self, tok: str) -> bool:
+        if self.had_fraction and self.numerator is None:
+            return False
+        f = FRACTION_WORDS.get(tok)
+        if f is None:
+            f = digits_value(tok)
+            if f is None or self.numerator is not None:  # "three 1/4" is not a number
+                return False
+        part = (self.numerator if self.numerator is not None else 1.0) * f
+        if self.numerator is not None and not self.after_and:
+            # "three quarters": the numerator was counted in the whole part: take it back
+            self.whole = _Whole()
+        self.fraction += part
+        self.numerator = None
+        self.had_fraction = True
+        return True
+
+    def _word(self, tok: str, nxt: str) -> bool:
+        """A number word or digits: part of the whole, or the numerator of the fraction that follows."""
+        if self.had_fraction:
+            return False  # nothing follows the fraction ("half twenty")
         kind_value = _word_kind(tok)
         if kind_value is None:
             value = digits_value(tok)
             if value is None:
-                return None
+                return False
             kind_value = ("digits", value)
         kind, value = kind_value
-        if after_and:
+        whole = self.whole
+        if self.after_and:
             # after "and": a fraction's numerator ("and three quarters") or the rest after a hundred
-            nxt = toks[i + 1] if i + 1 < len(toks) else ""
             if kind == "unit" and _is_fraction_token(nxt) and nxt in FRACTION_WORDS:
-                numerator = value
-                i += 1
-                continue
+                self.numerator = value
+                return True
             if whole.last in ("hundred", "thousand") and kind in ("unit", "teen", "tens"):
                 if not whole.add(kind, value):
-                    return None
-                after_and = False
-                i += 1
-                continue
-            return None
-        nxt = toks[i + 1] if i + 1 < len(toks) else ""
+                    return False
+                self.after_and = False
+                return True
+            return False
         if kind == "unit" and nxt in FRACTION_WORDS and not whole.seen:
-            numerator = value  # "three quarters", "one half"
+            self.numerator = value  # "three quarters", "one half"
             whole.add(kind, value)
-            i += 1
-            continue
-        if not whole.add(kind, value):
-            return None
-        i += 1
-    if after_and and not had_fraction:
-        return None
-    if not whole.seen and not had_fraction:
-        return None
-    return whole.value + fraction
+            return True
+        return whole.add(kind, value)
 
 
 _SPLIT = re.compile(DIGITS_PATTERN + r"|[^\W\d_]+(?:-[^\W\d_]+)*|[" + "".join(UNICODE_FRACTIONS) + "]")

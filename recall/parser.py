@@ -37,7 +37,8 @@ from recall.categories import read_categories, resolve_categories
 from recall.chunks import GRAMMAR, MAX_SEGMENT_TOKENS, Chunker
 from recall.dimensions import read_relations, resolve_dims
 from recall.mass import resolve_mass
-from recall.quantities import QuantityReader, Reading, Stated
+from recall.quantities import QuantityReader
+from recall.reading import Reading, Stated
 from recall.tags import Tagger
 from recall.tokens import Tokenizer
 from recall.toolkit import Tree
@@ -50,6 +51,7 @@ __all__ = [
     "DescriptionParser",
     "FeatureEvidence",
     "ParsedDescription",
+    "RefusedQuantity",
     "parse",
 ]
 
@@ -85,6 +87,21 @@ class FeatureEvidence:
 
 
 @dataclass(frozen=True)
+class RefusedQuantity:
+    """A stated value the parser does not use, and why: negative ("-10 kg"), zero, beyond the catalog's
+    limits ("1e308 cm", "10**100 g"; 5 m and 500 kg are accepted), too small to state, or a second unit
+    not smaller than one of the first ("5 ft 12 in")."""
+
+    words: str
+    start: int
+    end: int
+    reason: str
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"words": self.words, "start": self.start, "end": self.end, "reason": self.reason}
+
+
+@dataclass(frozen=True)
 class ParsedDescription:
     """What a description states. ``features`` holds only the stated features: it is the per-feature
     mask the recall uses. ``mass_hint`` ("light"/"heavy") is a weak hint, never a mass: the recall
@@ -94,6 +111,8 @@ class ParsedDescription:
     features: dict[str, FeatureEvidence]
     mass_hint: str | None
     tree: Tree = field(compare=False, repr=False)
+    #: stated values that are not used, in text order, each with its reason
+    refused: tuple[RefusedQuantity, ...] = ()
 
     def values(self) -> dict[str, float | str]:
         """Feature -> value, for the stated features only."""
@@ -105,12 +124,14 @@ class ParsedDescription:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-able: every feature of :data:`kb.features.FEATURES` (null when not stated), then
-        ``qualifiers``, ``evidence`` (per stated feature) and ``mass_hint``."""
+        ``qualifiers``, ``evidence`` (per stated feature), ``mass_hint`` and ``refused`` (the stated values
+        not used, with their reasons)."""
         out: dict[str, Any] = {f: (self.features[f].value if f in self.features else None) for f in FEATURES}
         out["mass_hint"] = self.mass_hint
         out["qualifiers"] = {f: ev.qualifier for f, ev in self.features.items()}
         out["evidence"] = {f: ev.to_dict() for f, ev in self.features.items()}
         out["text"] = self.text
+        out["refused"] = [r.to_dict() for r in self.refused]
         return out
 
 
@@ -147,7 +168,13 @@ class DescriptionParser:
             pos += len(segment)
         read_relations(tokens, reading)
         features, hint = _resolve(reading, text)
-        return ParsedDescription(text=text, features=features, mass_hint=hint, tree=Tree("S", children))
+        refused = tuple(
+            RefusedQuantity(text[start:end], start, end, reason)
+            for (start, end), reason in sorted(reading.refused.items())
+        )
+        return ParsedDescription(
+            text=text, features=features, mass_hint=hint, tree=Tree("S", children), refused=refused
+        )
 
 
 def _resolve(reading: Reading, text: str) -> tuple[dict[str, FeatureEvidence], str | None]:

@@ -1,90 +1,30 @@
 """Stage 4 of the description parser (the paper's Fig. 2): reading the chunks into quantities.
 
 :class:`QuantityReader` walks one sentence's chunk tree: a QUANT chunk is read into a
-:class:`Quantity` (hedge, number or range by :mod:`recall.numbers`, unit by :mod:`recall.units`); a DIM
-chunk gives a dimension statement (a role and its quantity), a MULTI chunk a tuple or list of extents;
+:class:`recall.reading.Quantity` (hedge, number or range by :mod:`recall.numbers`, unit by
+:mod:`recall.units`); a DIM chunk gives a dimension statement (a role and its quantity), a MULTI chunk a tuple or list of extents;
 a quantity outside them is a mass, contents (in a sentence with a contents word) or an unlabelled
-length. Everything read is collected, in text order, in a :class:`Reading` that the resolution stages
-(:mod:`recall.dimensions`, :mod:`recall.mass`, :mod:`recall.categories`) turn into features.
+length. Everything read is collected, in text order, in a :class:`recall.reading.Reading` that the
+resolution stages (:mod:`recall.dimensions`, :mod:`recall.mass`, :mod:`recall.categories`) turn into
+features.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from recall import lexicon as lx
 from recall.chunks import size
 from recall.numbers import number_value
+from recall.reading import DimStatement, Quantity, Reading
 from recall.tags import UNIT_TAGS
 from recall.tokens import Token
 from recall.toolkit import Tree
 from recall.units import Unit, unit_table
 
-__all__ = ["DimStatement", "Quantity", "QuantityReader", "Reading", "Relation", "Stated"]
-
-
-@dataclass(slots=True)
-class Quantity:
-    value: float
-    low: float | None
-    high: float | None
-    qualifier: str
-    unit: Unit | None
-    start: int
-    end: int
-    pos: int  # token index in the text (for unit inheritance)
-
-
-@dataclass
-class DimStatement:
-    role: str
-    quantities: list[Quantity]
-    start: int
-    end: int
-
-
-@dataclass
-class Relation:
-    """An extent stated relative to another ("twice as long as it is wide"): ``role`` is ``factor``
-    times ``ref`` (None: the extent stated last before it, as in "6 cm wide and three times as long")."""
-
-    role: str
-    factor: float
-    ref: str | None
-    start: int
-    end: int
-
-
-@dataclass
-class Reading:
-    """Everything read from the chunks, in text order, before the features are resolved."""
-
-    dims: list[DimStatement] = field(default_factory=list)
-    multis: list[DimStatement] = field(default_factory=list)
-    sizes: list[DimStatement] = field(default_factory=list)
-    masses: list[tuple[Quantity, bool]] = field(default_factory=list)  # (quantity, is contents)
-    other_masses: list[Quantity] = field(default_factory=list)  # "my 2 kg dumbbell": used only alone
-    contents: list[Quantity] = field(default_factory=list)
-    length_units: list[tuple[int, Unit]] = field(default_factory=list)  # (token index, unit)
-    categories: dict[str, list[tuple[int, int, str, Token]]] = field(default_factory=dict)
-    mass_hints: list[str] = field(default_factory=list)
-    cue_words: set[str] = field(default_factory=set)
-    in_dim_chunk: set[int] = field(default_factory=set)
-    relations: list[Relation] = field(default_factory=list)
-
-
-@dataclass
-class Stated:
-    """A resolved value in catalog units (cm, g), its bounds and qualifier, and its character span."""
-
-    value: float
-    low: float | None
-    high: float | None
-    qualifier: str
-    start: int
-    end: int
+__all__ = ["QuantityReader"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -113,7 +53,7 @@ class QuantityReader:
                 toks = segment[k : k + n]
                 if child.label() == "QUANT" and idx + 1 < len(tree) and _noun_took_other_unit(tree[idx + 1]):
                     # "~ 10cm diameter ~ 0.8 kg": the noun's value is the length before it, not the mass
-                    q = self._quantity(child, toks, base + k)
+                    q = self._quantity(child, toks, base + k, reading)
                     role = lx.DIMENSION_WORDS.get(segment[k + n].low, "size")
                     if (
                         q is not None
@@ -132,7 +72,7 @@ class QuantityReader:
     def _read_chunk(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
         label = chunk.label()
         if label == "QUANT":
-            q = self._quantity(chunk, toks, pos)
+            q = self._quantity(chunk, toks, pos, sent.reading)
             if q is not None:
                 self._free_quantity(q, toks, sent, k)
             return
@@ -142,7 +82,9 @@ class QuantityReader:
         if label == "DIM":
             self._read_dim(chunk, toks, pos, sent, k)
 
-    def _children(self, chunk: Tree, toks: list[Token], pos: int) -> Iterator[tuple[Any, int, int]]:
+    def _children(
+        self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence
+    ) -> Iterator[tuple[Any, int, int]]:
         """The parts of a DIM or MULTI chunk in order: (its :class:`Quantity`, start, end) for each QUANT
         read, (the :class:`Token`, j, j + 1) for each word (token indexes within ``toks``)."""
         j = 0
@@ -150,7 +92,7 @@ class QuantityReader:
             if isinstance(sub, Tree):
                 n = size(sub)
                 if sub.label() == "QUANT":
-                    q = self._quantity(sub, toks[j : j + n], pos + j)
+                    q = self._quantity(sub, toks[j : j + n], pos + j, sent.reading, extent=True)
                     if q is not None:
                         yield q, j, j + n
                 j += n
@@ -176,14 +118,18 @@ class QuantityReader:
         role = "size"
         dim_word: Token | None = None
         dim_first = False
-        for part, _a, _b in self._children(chunk, toks, pos):
+        for part, _a, _b in self._children(chunk, toks, pos, sent):
             if isinstance(part, Quantity):
                 quants.append(part)
             elif part.tag in ("DIM", "DIMN"):
                 dim_word = part
                 dim_first = not quants
                 role = lx.DIMENSION_WORDS.get(part.low, "size")
-        if not quants or self._not_extents(quants, toks, sent, k):
+        if not quants:
+            if any(toks[0].start <= a and b <= toks[-1].end for a, b in reading.refused):
+                reading.in_dim_chunk.update(range(pos, pos + len(toks)))  # "-5 cm long": no long shape
+            return
+        if self._not_extents(quants, toks, sent, k):
             return
         if dim_word is not None and dim_word.low in lx.WEAK_DIMENSION_WORDS:
             if dim_first or quants[0].unit is None:
@@ -224,7 +170,7 @@ class QuantityReader:
         roles: list[str | None] = []
         spans: list[tuple[int, int]] = []
         is_list = False
-        for part, a, b in self._children(chunk, toks, pos):
+        for part, a, b in self._children(chunk, toks, pos, sent):
             if isinstance(part, Quantity):
                 quants.append(part)
                 roles.append(None)
@@ -283,12 +229,40 @@ class QuantityReader:
             reading.length_units.append((q.pos, q.unit))
             reading.sizes.append(DimStatement("size", [q], q.start, q.end))
 
-    def _quantity(self, chunk: Tree, toks: list[Token], pos: int) -> Quantity | None:
-        """Read a QUANT chunk: hedge, number or range, unit."""
+    def _quantity(
+        self, chunk: Tree, toks: list[Token], pos: int, reading: Reading, extent: bool = False
+    ) -> Quantity | None:
+        """Read a QUANT chunk: hedge, number or range, unit. A negative or zero value, or a second unit not
+        smaller than one of the first ("5 ft 12 in"), is refused: None, and recorded in
+        ``reading.refused`` when the quantity has a unit or is an ``extent`` (a value in a dimension)."""
+        parts = self._parts(chunk, toks)
+        if parts is None:
+            return None
+        qualifier, numbers, unit, problem = parts
+        start, end = toks[0].start, toks[-1].end
+        if problem is None and min(numbers[:2]) <= 0:
+            problem = "negative" if min(numbers[:2]) < 0 else "zero"
+            problem += ": a size or a mass is more than zero"
+        if problem is not None:
+            if unit is not None or extent:
+                reading.refuse(start, end, problem)
+            return None
+        if len(numbers) >= 2:
+            lo, hi = sorted(numbers[:2])
+            return Quantity((lo + hi) / 2, lo, hi, "range", unit, start, end, pos)
+        value = numbers[0]
+        low = value if qualifier == "at_least" else None
+        high = value if qualifier == "at_most" else None
+        return Quantity(value, low, high, qualifier, unit, start, end, pos)
+
+    def _parts(self, chunk: Tree, toks: list[Token]) -> tuple[str, list[float], Unit | None, str | None] | None:
+        """(qualifier, numbers, unit, why the quantity is refused or None) of a QUANT chunk; None when it
+        has no well-formed number."""
         qualifier = "exact"
         plus = False
         numbers: list[float] = []
         unit: Unit | None = None
+        problem: str | None = None
         j = 0
         for sub in chunk:
             if isinstance(sub, Tree):
@@ -306,25 +280,19 @@ class QuantityReader:
                     else:
                         numbers.append(value)
                 elif label == "RANGE":
-                    r = 0
-                    for rsub in sub:
-                        if isinstance(rsub, Tree):
-                            rn = size(rsub)
-                            if rsub.label() == "NUM":
-                                value = _num(part[r : r + rn])
-                                if value is None:
-                                    return None
-                                numbers.append(value)
-                            elif rsub.label() == "UNIT":
-                                unit = self._units.get(part[r].low)
-                            r += rn
-                        else:
-                            r += 1
+                    values, range_unit = self._range(sub, part)
+                    if values is None:
+                        return None
+                    numbers += values
+                    unit = range_unit or unit
                 elif label == "UNIT":
                     unit = self._units.get(part[0].low)
                 elif label == "SUB":  # "1 lb 2 oz", "5 ft 3 in": one quantity in two units
                     sub_unit = self._units.get(part[0].low)
                     if unit is not None and sub_unit is not None and len(numbers) == 2:
+                        # "5 ft 12 in": refused (a whole foot in the inches); 1e-9 absorbs pint's float rounding
+                        if numbers[1] * sub_unit.factor >= unit.factor * (1 - 1e-9):
+                            problem = f"{numbers[1]:g} {sub_unit.pint_name} is not less than 1 {unit.pint_name}"
                         numbers = [numbers[0] + numbers[1] * sub_unit.factor / unit.factor]
                 j += n
             else:
@@ -332,20 +300,27 @@ class QuantityReader:
                     qualifier = "about"
                 plus = toks[j].tag == "UAND"
                 j += 1
-        if not numbers:
-            return None
-        start, end = toks[0].start, toks[-1].end
-        if len(numbers) >= 2:
-            lo, hi = sorted(numbers[:2])
-            if lo <= 0:
-                return None
-            return Quantity((lo + hi) / 2, lo, hi, "range", unit, start, end, pos)
-        value = numbers[0]
-        if value <= 0:
-            return None
-        low = value if qualifier == "at_least" else None
-        high = value if qualifier == "at_most" else None
-        return Quantity(value, low, high, qualifier, unit, start, end, pos)
+        return (qualifier, numbers, unit, problem) if numbers else None
+
+    def _range(self, chunk: Tree, toks: list[Token]) -> tuple[list[float] | None, Unit | None]:
+        """The numbers of a RANGE chunk (None when one is not well formed) and its inner unit ("3 cm to 4")."""
+        numbers: list[float] = []
+        unit: Unit | None = None
+        r = 0
+        for rsub in chunk:
+            if isinstance(rsub, Tree):
+                rn = size(rsub)
+                if rsub.label() == "NUM":
+                    value = _num(toks[r : r + rn])
+                    if value is None:
+                        return None, None
+                    numbers.append(value)
+                elif rsub.label() == "UNIT":
+                    unit = self._units.get(toks[r].low)
+                r += rn
+            else:
+                r += 1
+        return numbers, unit
 
 
 def _inherit_units(quants: list[Quantity]) -> None:
@@ -411,10 +386,14 @@ def _fill_context(segment: list[Token]) -> int | None:
 
 
 def _num(toks: Sequence[Token]) -> float | None:
+    """The value of a NUM chunk's tokens, negative after a minus sign ("-10", "minus 5")."""
     words = [t.low for t in toks]
     if len(words) == 1 and words[0] in ("a", "an"):
         return 1.0
-    return number_value(words)
+    value = number_value(words)
+    if value is not None and any(t.negative for t in toks):
+        return -value
+    return value
 
 
 def _hedge_qualifier(toks: Sequence[Token]) -> str:

@@ -9,6 +9,8 @@ tuple labels, ...; the list is in ``recall/PARSER.md``).
 
 from __future__ import annotations
 
+import re
+
 from recall import lexicon as lx
 from recall.numbers import DIGITS_PATTERN
 from recall.tokens import FRACTION_CHARS, Token
@@ -83,6 +85,11 @@ def fix_tags(tokens: list[Token]) -> list[Token]:
             if end is not None:
                 skip_to = end  # "430 g +/- 20 g": a tolerance, not a range or a second value: dropped
                 continue
+        if _sign(tok, prev, nxt):
+            nxt.negative = True  # "-10 kg", "minus 5 cm": the number is negative; the sign is dropped
+            nxt.word = tok.word + " " * (nxt.start - tok.end) + nxt.word
+            nxt.start = tok.start
+            continue
         if _letter_extent(tokens, i, out, prev_num, letters_w):
             out.append(tok)
             continue
@@ -144,10 +151,42 @@ def _letter_extent(tokens: list[Token], i: int, out: list[Token], prev_num: bool
     return False
 
 
+_MINUS = frozenset({"-", "−", "minus"})
+_PROPER_FRACTION = re.compile(r"(\d+)/(\d+)")
+
+
+def _sign(tok: Token, prev: Token | None, nxt: Token | None) -> bool:
+    """True for a minus sign: "minus" before a number, or ``-``/``−`` glued to the number after it and
+    not glued to a number or word before it ("-10 kg", "from -3 to 4", "size:-5 cm"; not "2-3 cm",
+    "12-1/2", "X-5")."""
+    if tok.low not in _MINUS or nxt is None or nxt.tag not in NUMBER_TAGS:
+        return False
+    if tok.low == "minus":
+        return True
+    if nxt.start != tok.end:
+        return False  # "- 10 cm": a dash, a list bullet
+    return prev is None or prev.end != tok.start or not prev.word[-1:].isalnum()
+
+
+def _mixed_fraction(prev: Token | None, nxt: Token | None) -> bool:
+    """True for the hyphen of a mixed number written "12-1/2" or "3-½": an integer glued to a proper
+    fraction (a range "1/2-3/4" or "2-3" has no whole number before a fraction)."""
+    if prev is None or nxt is None or prev.tag != "CD" or not prev.word.isdigit():
+        return False
+    if nxt.low in lx.UNICODE_FRACTIONS:
+        return True
+    m = _PROPER_FRACTION.fullmatch(nxt.low)
+    return m is not None and 0 < int(m.group(1)) < int(m.group(2))
+
+
 def _dropped(tok: Token, prev: Token | None, nxt: Token | None, prev_num: bool) -> bool:
-    """True for a hyphen that joins ("5-cm-long", "10-ish") and the dot of an abbreviation before a
-    lower-case word ("approx. 5 cm", "3 in. long"): neither is a range nor a sentence end."""
+    """True for a hyphen that joins ("5-cm-long", "10-ish", the mixed number "12-1/2") and the dot of an
+    abbreviation before a lower-case word ("approx. 5 cm", "3 in. long"): neither is a range nor a
+    sentence end."""
     if tok.tag == "RTO" and tok.low in ("-", "–", "—"):
+        if prev is not None and nxt is not None and prev.end == tok.start == nxt.start - 1:
+            if _mixed_fraction(prev, nxt):
+                return True
         nxt_unit = nxt is not None and nxt.tag in (UNIT_TAGS | {"DIM", "DIMN", "HS", "IN"})
         if (prev_num and nxt_unit) or (
             prev is not None and prev.tag in UNIT_TAGS and nxt is not None and nxt.tag in ("DIM", "DIMN")

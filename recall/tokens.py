@@ -3,7 +3,7 @@
 ``nltk.tokenize.RegexpTokenizer`` over :data:`TOKEN_PATTERN` (numbers in digits, unicode fractions,
 words with inner hyphens or apostrophes, ``"`` ``'`` ``×`` and punctuation; anything else is skipped).
 A hyphenated word the lexicon does not know is split ("5-cm-long", "non-fragile"), except number
-compounds ("twenty-one"); multi-word expressions of :data:`recall.lexicon.MULTIWORD` ("more than",
+compounds ("twenty-one"); ``−`` (the minus sign) is a token for the tagger's sign rule; multi-word expressions of :data:`recall.lexicon.MULTIWORD` ("more than",
 "on each side", "fl oz") are merged into one token, longest first.
 """
 
@@ -28,7 +28,7 @@ TOKEN_PATTERN = (
     + r"|[^\W\d_]+(?:['’-][^\W\d_]+)*"
     + r"|''|[\"”″'′’]"
     + r"|\+/-|\+-|±"
-    + r"|[×~≈*=:;,.!?()&–—-]"
+    + r"|[×~≈*=:;,.!?()&–—−-]"
 )  # fmt: skip
 
 
@@ -41,6 +41,7 @@ class Token:
     start: int
     end: int
     tag: str = "W"
+    negative: bool = False  # a number with a minus sign before it ("-10 kg", "minus 5 cm")
 
 
 class _RegexpTokenizer(RegexpTokenizer):

@@ -78,7 +78,7 @@ def write(
             object_of_page: dict[str, int] = {}
             obs_rows = _insert_new(con, fresh, report, object_of_page, now)
             obs_rows += _update_matched(con, matched, index, report, object_of_page, run_id, now)
-            _insert_aliases(con, fresh, matched, index, object_of_page, report)
+            _insert_aliases(con, fresh, matched, index, object_of_page, report, events)
             _insert_observations(con, obs_rows, run_id, now)
             report.observations_added = len(obs_rows)
             _write_pages(con, outcomes, object_of_page, run_id, now)
@@ -176,8 +176,12 @@ def _update_matched(con, matched, index, report, object_of_page, run_id, now) ->
     return obs_rows
 
 
-def _insert_aliases(con, fresh, matched, index, object_of_page, report) -> None:
-    """Other names a product goes by (a second store's title matched by URL or GTIN) become aliases."""
+def _insert_aliases(con, fresh, matched, index, object_of_page, report, events) -> None:
+    """Other names a product goes by (a second store's title matched by URL or GTIN) become aliases, and
+    so does the English name of a title in another language (:func:`kb.kinds.assign_kind`: "caffettiera
+    moka ..." -> "moka pot"), recorded as a ``naming`` page event with where it came from."""
+    from kb.kinds import assign_kind
+
     alias_rows = []
     new_ids = {g[0].clean.name: object_of_page[g[0].url] for g in fresh}
     taken = set(index.by_name) | set(new_ids)
@@ -187,6 +191,12 @@ def _insert_aliases(con, fresh, matched, index, object_of_page, report) -> None:
             if p.clean.name not in taken:
                 taken.add(p.clean.name)
                 alias_rows.append({"alias": p.clean.name, "object_id": oid})
+            named = assign_kind(p.clean.name)
+            if named is not None and named.english and named.english not in taken:
+                taken.add(named.english)
+                alias_rows.append({"alias": named.english, "object_id": oid})
+                reason = f"kind {named.kind}; English alias {named.english!r} from the {named.provenance}"
+                events.append((p.url, "naming", reason))
     _bulk(
         con,
         "ingest_aliases",

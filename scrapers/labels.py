@@ -25,7 +25,7 @@ from functools import lru_cache
 
 from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
 
-__all__ = ["AXES", "KINDS", "LabelInfo", "classify_label"]
+__all__ = ["AXES", "KINDS", "LabelInfo", "classify_label", "classify_other"]
 
 #: Single-axis kinds (one length each); "dimensions" is a combined A x B x C value, "size" too but never
 #: a mass (``Size: 10 Ounce (Pack of 1)`` is a net content), "weight" is a mass.
@@ -65,19 +65,21 @@ _KIND_WORDS: dict[str, str] = {
     ),
     **_words(
         "diameter",
-        "diameter dia קוטר القطر durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр",
+        "diameter dia קוטר القطر durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр "
+        "çap çapı",
     ),
     **_words(
         "thickness",
         "thickness thick dicke stärke épaisseur grosor espesor spessore espessura grubość hrúbka tloušťka "
-        "толщина товщина dikte",
+        "толщина товщина dikte kalınlık kalınlığı",
     ),
     **_words(
         "dimensions",
         "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
         "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
         "afmetingen afmeting mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
-        "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات",
+        "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات "
+        "ölçü ölçüler ölçüleri ölçüsü ebat ebatlar ebatları ebadı",
     ),
     **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
     **_words(
@@ -104,7 +106,7 @@ _NEGATIONS = {
 _QUALIFIERS = {
     _fold(w)
     for w in (
-        "item product article artikel produkt produit producto produto prodotto articolo artigo overall "
+        "item product article artikel produkt produit producto produto prodotto articolo artigo overall physical "
         "total totale gesamt body unit assembled device net netto nett neto нетто устройства товара "
         "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
         "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
@@ -113,6 +115,7 @@ _QUALIFIERS = {
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
         "ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
+        "chest bust poitrine pecho petto "
         " l b h w d t x х"
     ).split()
 }
@@ -228,6 +231,33 @@ class LabelInfo:
     kind: str
     package: bool = False
     unit: str | None = None
+    #: For a dimensions label, the axes it names in order (``Dimensions (H x W x D)`` -> height, width,
+    #: depth; ``Largo x Ancho x Alto``); () when it names none or is ambiguous (``L x L x H``).
+    order: tuple[str, ...] = ()
+    #: "product" for every label :func:`classify_label` accepts; "component" (a part's extent or weight:
+    #: ``Cable length``, ``Battery Weight``, ``Schlauchlänge``) or "capacity" (a capacity or rating:
+    #: ``Fassungsvermögen 8 kg``, ``Max Height``, ``容量``) from :func:`classify_other`.
+    role: str = "product"
+
+
+#: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
+_ORDER_LETTERS = {
+    "l": "length", "w": "width", "b": "width", "h": "height", "d": "depth", "t": "depth",
+    "в": "height", "ш": "width", "г": "depth", "д": "length",
+}  # fmt: skip
+
+
+def _order_of(text: str, kinds: list[str]) -> tuple[str, ...]:
+    """The axes a dimensions label names in order (see :attr:`LabelInfo.order`)."""
+    m = _ORDER_HINT.search(text) or _ORDER_WORD.search(text.lower())
+    if m:
+        letters = re.sub(r"\s+", "", m.group(0))[::2]  # "H x W x D", "ВхШхГ", "B/H/T": every other char
+        roles = tuple(_ORDER_LETTERS.get(ch.lower(), "") for ch in letters)
+    else:
+        roles = tuple(k for k in kinds if k in AXES)
+    if len(roles) < 2 or "" in roles or len(set(roles)) < len(roles):
+        return ()
+    return roles
 
 
 def classify_label(label: object) -> LabelInfo | None:
@@ -253,6 +283,7 @@ def _classify(label: object) -> LabelInfo | None:
     if not text or len(text) > 80 or text[0].isdigit():
         return None  # a label does not start with a number ("1 kg" is a value)
     unit = unit_hint(text)
+    original = text
     text = text.rstrip(" :：-–—=").strip()
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
     text = _ORDER_HINT.sub(" ", text)
@@ -294,12 +325,14 @@ def _classify(label: object) -> LabelInfo | None:
     # "Item Package Dimensions", "Product size": the most specific kind wins; weight beats dimensions
     # only when no axis or dimension word is present.
     if len({k for k in kinds if k in AXES}) >= 2:
-        return LabelInfo("dimensions", package, unit)  # "Width x Height x Depth", "Largo x Ancho x Alto"
+        # "Width x Height x Depth", "Largo x Ancho x Alto"
+        return LabelInfo("dimensions", package, unit, _order_of(original, kinds))
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:
                 return LabelInfo("dimensions", package, unit)  # "Weight & Dimensions"
-            return LabelInfo(kind, package, unit)
+            order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
+            return LabelInfo(kind, package, unit, order)
     return None
 
 
@@ -307,7 +340,7 @@ def _classify(label: object) -> LabelInfo | None:
 # whitelist rule as the word labels: every part must be a measurement, package or qualifier token
 # (商品の寸法 幅×奥行×高さ, 商品パッケージの寸法, 本体質量, 产品尺寸 长*宽*高).
 _CJK_KIND_TOKENS = {
-    "dimensions": "寸法 サイズ 尺寸 外形寸法 크기 사이즈 치수",
+    "dimensions": "寸法 サイズ 尺寸 外形寸法 外寸 크기 사이즈 치수",
     "weight": "重量 重さ 質量 质量 净重 淨重 무게 중량",
     "length": "長さ 长度 長度 長 长 길이",
     "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭",
@@ -375,6 +408,56 @@ def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
     if len({k for k in kinds if k in AXES}) >= 2 or "dimensions" in kinds:
         return LabelInfo("dimensions", package, unit)
     return LabelInfo(kinds[0], package, unit)
+
+
+_CAPACITY_WORDS = {
+    _fold(w)
+    for w in (
+        "capacity capacities load max maximum min minimum supported supports rated rating volume "
+        "fassungsvermögen fassungsvermoegen kapazität kapazitaet füllmenge belastbarkeit tragkraft traglast "
+        "nutzinhalt contenance capacité charge capacidad carga capacità portata capacidade suportado "
+        "pojemność udźwig объем объём вместимость нагрузка грузоподъемность hacim kapasite taşıma inhoud "
+        "draagvermogen"
+    ).split()
+}
+_CJK_CAPACITY = ("容量", "耐荷重", "最大", "容积", "承重", "용량")
+
+
+@lru_cache(maxsize=16384)
+def classify_other(label: object) -> LabelInfo | None:
+    """A measurement label that is *not* the product's (:attr:`LabelInfo.role` says whose), for the
+    chooser's alternatives; None for the product's own labels and for labels that name no measurement.
+    A capacity without a kind word is read as a weight (a washer's ``Fassungsvermögen: 8 kg``)."""
+    try:
+        if not isinstance(label, str) or len(label) > 80 or classify_label(label) is not None:
+            return None
+        text = clean_text(label).rstrip(" :：-–—=").strip()
+        if not text or any(ch.isdigit() for ch in text) or ":" in text:
+            return None  # a label holds no number ("Weight: 1.1 kg" is a pair, not a label)
+        folded = _fold(_BRACKETS.sub(" ", text))
+        if any(token in folded for token in _CJK_CAPACITY):
+            return LabelInfo("weight", role="capacity")
+        words = [w for w in re.split(r"[\W_]+", folded) if w]
+        if not words or len(words) > _MAX_WORDS:
+            return None
+        kinds = [_KIND_WORDS[w] for w in words if w in _KIND_WORDS]
+        kinds += [k for w in words if w not in _KIND_WORDS for k in [_compound_kind(w)] if k]
+        if any(w in _CAPACITY_WORDS for w in words):
+            kind = kinds[0] if kinds else "weight"
+            return LabelInfo("dimensions" if kind == "size" else kind, role="capacity")
+        if kinds:
+            return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component")
+    except Exception:  # noqa: BLE001 - a label we cannot read is no measurement
+        return None
+    return None
+
+
+def _compound_kind(word: str) -> str | None:
+    """The kind a compound's measurement suffix names, whatever its prefix (``schlauchlänge`` -> length)."""
+    for suffix in _COMPOUND_SUFFIXES:
+        if word.endswith(suffix) and len(word) > len(suffix) + 2:
+            return _KIND_WORDS[suffix]
+    return None
 
 
 def _split_compound(word: str) -> tuple[str, bool] | None:

@@ -57,6 +57,23 @@ _LD_JSON = re.compile(
     r"<script\b[^>]*\btype\s*=\s*[\"']?application/ld\+json[\"']?[^>]*>(.*?)</script\s*>",
     re.IGNORECASE | re.DOTALL,
 )
+#: A JavaScript object literal longer than this is not read (page state of that size is a catalogue).
+MAX_SCRIPT_CHARS = 2_000_000
+
+
+def _js_object(text: str) -> Any:
+    """The first JavaScript object literal of ``text`` (chompjs), or None."""
+    if not any(ch in text[:200] for ch in ":'"):
+        return None
+    try:
+        import chompjs
+
+        obj = chompjs.parse_js_object(text)
+    except Exception:  # noqa: BLE001 - chompjs raises ValueError and others on what is not an object
+        return None
+    return obj if isinstance(obj, (dict, list)) and obj else None
+
+
 _SCRIPT = re.compile(r"<script\b([^>]*)>(.*?)</script\s*>", re.IGNORECASE | re.DOTALL)
 _WS = re.compile(r"\s+")
 #: Only the first this many visible text lines are read. The real pages measured have at most ~1,500
@@ -67,7 +84,8 @@ MAX_LINES = 12_000
 
 def decode_body(body: str | bytes, content_type: str | None = None) -> str:
     """Page bytes as text: a BOM, then UTF-8 if the bytes are valid UTF-8, then the charset of the
-    Content-Type header or a ``<meta charset>``, then cp1252 (which decodes anything)."""
+    Content-Type header or a ``<meta charset>``, then the charset ``charset_normalizer`` detects (a saved
+    Shift_JIS page whose header was lost), then cp1252 (which decodes anything)."""
     if isinstance(body, str):
         return body
     if not isinstance(body, (bytes, bytearray, memoryview)):
@@ -87,6 +105,8 @@ def decode_body(body: str | bytes, content_type: str | None = None) -> str:
     if declared is None:
         m = _META_CHARSET.search(data[:8192])
         declared = m.group(1).decode("ascii", "replace") if m else None
+    if declared is None:
+        declared = _detected_charset(data)
     for codec in (declared, "cp1252"):
         if codec:
             try:
@@ -94,6 +114,21 @@ def decode_body(body: str | bytes, content_type: str | None = None) -> str:
             except LookupError:
                 continue
     return data.decode("latin-1")
+
+
+#: Bytes the charset detector reads (it is linear in what it reads; the start of a page says enough).
+DETECT_BYTES = 200_000
+
+
+def _detected_charset(data: bytes) -> str | None:
+    """The charset of undeclared, non-UTF-8 bytes (``charset_normalizer``), or None."""
+    try:
+        from charset_normalizer import from_bytes
+
+        best = from_bytes(data[:DETECT_BYTES]).best()
+    except Exception:  # noqa: BLE001 - detection is a guess; cp1252 still decodes anything
+        return None
+    return best.encoding if best is not None else None
 
 
 @dataclass(frozen=True)
@@ -173,7 +208,10 @@ class Page:
     @cached_property
     def script_payloads(self) -> list[Any]:
         """JSON objects embedded in other scripts (``wf.extend({...})``, ``window.__STATE__ = {...}``,
-        ``<script type="application/json">``): the first object literal of each script that parses."""
+        ``<script type="application/json">``): the first object literal of each script that parses, as
+        JSON, else as a JavaScript object literal (unquoted keys, single quotes, trailing commas:
+        ``chompjs``, which reads 316 of the 1,525 object-bearing scripts of the real development pages
+        against 239 for JSON alone)."""
         payloads = []
         decoder = json.JSONDecoder()
         for m in _SCRIPT.finditer(self.text):
@@ -186,7 +224,9 @@ class Page:
             try:
                 obj, _ = decoder.raw_decode(body, start)
             except (ValueError, RecursionError):
-                continue
+                obj = _js_object(body[start : start + MAX_SCRIPT_CHARS])
+                if obj is None:
+                    continue
             payloads.append(obj)
         return payloads
 

@@ -31,6 +31,7 @@ import mujoco
 import numpy as np
 
 from sim.grasps import FINGER_MAX_FORCE_N, GRASP_TYPES, THUMB_MAX_FORCE_N, GraspPlan, active_fingers
+from sim.programs import PROGRAMS_VERSION, program_for
 
 __all__ = [
     "ACTUATOR_NAMES",
@@ -51,7 +52,7 @@ __all__ = [
     "thumb_tip",
 ]
 
-HAND_VERSION = "ar10like-5"
+HAND_VERSION = f"ar10like-6.{PROGRAMS_VERSION}"  # 6: one hand program per grasp type (sim/programs.py)
 
 CM = 0.01  # metres per centimetre
 
@@ -143,9 +144,9 @@ UNUSED_TORQUE_NM = 0.05
 #: While closing, each used digit presses with at least this force (N): the closing speed is the torque
 #: over the joint damping, and a 1 N grip would take a second to close. The hold then returns to the plan.
 CLOSING_FORCE_FLOOR_N = 2.0
-#: Lever arm from a joint to where the digit presses, as a fraction of the digit's length beyond the
-#: joint: finger pads press near the tip in precision grasps, mid-finger in wraps.
-LEVER_FRACTION = {"power": 0.6, "intermediate": 0.8, "precision": 0.85}
+# The lever arm from a joint to where the digit presses (a fraction of the digit beyond the joint: 0.6
+# mid-finger in wraps, 0.8 lateral pinch, 0.85 near the tip in precision grasps) is each hand program's
+# ``lever`` (sim/programs.py).
 
 #: Wrist slides: kp 5000 N/m sags 3 mm under a 1.5 kg load; critically damped (dampratio 1) against the
 #: hand's own mass; +-200 N is a strong arm's payload (~20 kg), so even heavy objects are the fingers'
@@ -400,10 +401,11 @@ def _solve(fn, target: float, lo: float, hi: float) -> float:
     return 0.5 * (lo + hi)
 
 
-def finger_pinch_mcp(finger: str, y_cm: float) -> float:
-    """MCP angle (radians, PIP following) that puts ``finger``'s tip at hand-frame ``y_cm``."""
+def finger_pinch_mcp(finger: str, y_cm: float, pip_per_mcp: float = PIP_PER_MCP) -> float:
+    """MCP angle (radians, PIP following at ``pip_per_mcp``) that puts ``finger``'s tip at hand-frame ``y_cm``."""
     lo, hi = 0.0, math.radians(RANGE_DEG["mcp"][1])
-    return _solve(lambda q: finger_tip(finger, q, PIP_PER_MCP * q)[0], y_cm, lo, hi)
+    pip_max = math.radians(RANGE_DEG["pip"][1])
+    return _solve(lambda q: finger_tip(finger, q, min(pip_max, pip_per_mcp * q))[0], y_cm, lo, hi)
 
 
 def thumb_flex_for(y_cm: float) -> float:
@@ -453,13 +455,20 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     """
     if plan.grasp_type not in GRASP_TYPES:
         raise ValueError(f"unknown grasp type {plan.grasp_type!r}")
-    family = GRASP_TYPES[plan.grasp_type]
+    program = program_for(plan.grasp_type)
+    wrap = program.control == "wrap"
+    ratio = program.pip_per_mcp
+    pip_max = math.radians(RANGE_DEG["pip"][1])
+
+    def pip_of(q: float) -> float:
+        return min(pip_max, ratio * q)
+
     aperture = max(float(plan.aperture_cm), 0.5)
     width = float(width_cm) if width_cm is not None else max(0.5, aperture - 1.5)
-    fingers = active_fingers(plan.grasp_type)
+    fingers = program.fingers
     side = min(max(plan.grip_force_n, 0.1), THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(fingers))
     per_finger = side / len(fingers)
-    lever = LEVER_FRACTION[family]
+    lever = program.lever
     limits = dict.fromkeys(ACTUATOR_NAMES, UNUSED_TORQUE_NM)
     limits["thumb_rot"] = THUMB_MAX_FORCE_N * _digit_length_cm("thumb", "rot") * CM
     limits["thumb_flex"] = side * lever * _digit_length_cm("thumb", "flex") * CM
@@ -478,7 +487,7 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     touch_q: dict[str, float] = {}
     # Thumb rotation: aim the tip at the centre of the fingers it opposes.
 
-    if family == "power":
+    if wrap:
         # The object sits under the palm between the hanging thumb and the knuckles, centred between
         # them when it fits; a wider one overhangs the knuckles (never the thumb, which hangs from the
         # palm), and the fingers wrap down over its far side.
@@ -493,8 +502,8 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
         for f in fingers:
             open_q[f"{f}_mcp"] = 0.0
             open_q[f"{f}_pip"] = math.radians(10.0)
-            close_q[f"{f}_mcp"] = math.radians(RANGE_DEG["mcp"][1] + 30.0)
-            close_q[f"{f}_pip"] = math.radians(RANGE_DEG["pip"][1] + 30.0)
+            close_q[f"{f}_mcp"] = math.radians(program.mcp_close_deg)
+            close_q[f"{f}_pip"] = math.radians(program.pip_close_deg)
         contact_z = -PALM_HALF_CM[2]
     else:
         # Precision and lateral pinch: the pads press on opposite sides at one height (else the squeeze
@@ -508,8 +517,8 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
             thumb_z = thumb_tip(thumb_flex_for(c - width / 2.0 - r_t))[1]
             zs = []
             for f in fingers:
-                q = finger_pinch_mcp(f, c + width / 2.0 + FINGER_BY_NAME[f].radius_cm * TIP_TAPER)
-                zs.append(finger_tip(f, q, PIP_PER_MCP * q)[1])
+                q = finger_pinch_mcp(f, c + width / 2.0 + FINGER_BY_NAME[f].radius_cm * TIP_TAPER, ratio)
+                zs.append(finger_tip(f, q, pip_of(q))[1])
             return thumb_z - float(np.mean(zs))
 
         center = _solve(height_gap, 0.0, -2.0, 8.0)
@@ -520,18 +529,22 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
         finger_contacts = []
         for f in fingers:
             r_f = FINGER_BY_NAME[f].radius_cm * TIP_TAPER
-            q_open = finger_pinch_mcp(f, center + half_open + r_f)
-            q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM)
-            open_q[f"{f}_mcp"], open_q[f"{f}_pip"] = q_open, PIP_PER_MCP * q_open
-            close_q[f"{f}_mcp"], close_q[f"{f}_pip"] = q_close, PIP_PER_MCP * q_close
-            q_touch = finger_pinch_mcp(f, center + width / 2.0 + r_f)
-            touch_q[f"{f}_mcp"], touch_q[f"{f}_pip"] = q_touch, PIP_PER_MCP * q_touch
-            finger_contacts.append(finger_tip(f, q_touch, PIP_PER_MCP * q_touch)[1])
+            q_open = finger_pinch_mcp(f, center + half_open + r_f, ratio)
+            q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM, ratio)
+            open_q[f"{f}_mcp"], open_q[f"{f}_pip"] = q_open, pip_of(q_open)
+            close_q[f"{f}_mcp"], close_q[f"{f}_pip"] = q_close, pip_of(q_close)
+            q_touch = finger_pinch_mcp(f, center + width / 2.0 + r_f, ratio)
+            touch_q[f"{f}_mcp"], touch_q[f"{f}_pip"] = q_touch, pip_of(q_touch)
+            finger_contacts.append(finger_tip(f, q_touch, pip_of(q_touch))[1])
         contact_z = 0.5 * (thumb_contact + float(np.mean(finger_contacts)))
     # Thumb rotation: aim the tip at the centre of the fingers it opposes, at the depth where it touches
     # (the rotation is about the palm's y axis, so the lateral reach is the tip's depth below the CMC).
-    x_target = float(np.mean([FINGER_BY_NAME[f].x_cm for f in fingers]))
-    if family == "power":
+    x_target = (
+        program.thumb_aim
+        if program.thumb_aim is not None
+        else float(np.mean([FINGER_BY_NAME[f].x_cm for f in fingers]))
+    )
+    if wrap:
         reach = THUMB.metacarpal_cm + sum(THUMB.lengths_cm)
     else:
         reach = max(2.0, THUMB.base_cm[2] - thumb_contact)

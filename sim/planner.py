@@ -28,6 +28,7 @@ from typing import Any
 from kb.features import FEATURES, ObjectRecord, validate_features
 from sim.friction import friction_coefficient
 from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, is_flat_grasp, side_force_capacity
+from sim.programs import program_for
 
 __all__ = [
     "DEFAULTS",
@@ -44,7 +45,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "5"
+PLANNER_VERSION = "6"  # 6: candidates listed once per hand program (sim/programs.py)
 
 GRAVITY = 9.81  # m/s^2
 
@@ -125,23 +126,6 @@ EFFECTIVE_DENSITY = {
 #: Fraction of the bounding box a shape fills (sphere pi/6, cylinder pi/4, others about a box).
 SHAPE_FILL = {"radial": 0.52, "prism": 0.79, "long": 0.8, "compact": 0.9, "thin": 0.9, None: 0.8}
 
-_APPROACH = {
-    "heavy_wrap_large_diameter": "side",
-    "heavy_wrap_small_diameter": "side",
-    "medium_wrap": "side",
-    "adducted_thumb": "side",
-    "light_tool": "side",
-    "power_disk": "top",
-    "power_sphere": "top",
-    "lateral_pinch": "side",
-    "thumb_4_finger": "top",
-    "thumb_3_finger": "top",
-    "thumb_2_finger": "top",
-    "thumb_index_finger": "top",
-    "precision_disk": "top",
-    "precision_sphere": "top",
-    "tripod": "top",
-}
 
 
 #: Feature keys accepted in a features mapping besides the canonical ones (the paper says "stiffness").
@@ -323,249 +307,274 @@ def _power_wrap(width_cm: float, mass_g: float, long: bool = False) -> str:
     return "light_tool"
 
 
-def _candidates(o: PlannedObject) -> list[tuple[str, str]]:
-    """Ordered (grasp type, reason) candidates: the rules' choice first, then sensible alternatives."""
-    w, a, m = o.c_cm, o.a_cm, o.mass_g
-    heavy = m >= HEAVY_MASS_G
-    out: list[tuple[str, str]] = []
+Candidates = list[tuple[str, str]]
 
-    if o.rigidity == "floppy":
-        if m < LATERAL_PINCH_MAX_MASS_G * 2:
-            out.append(
-                ("lateral_pinch", "floppy and light: pinch a fold between thumb and the side of the index")
-            )
-            out.append(("thumb_2_finger", "floppy: a fingertip pinch also gathers a fold"))
-            out.append(("medium_wrap", "floppy: gather it in the fist"))
+
+def _floppy(o: PlannedObject) -> Candidates | None:
+    """Cloth and paper sheets: a fold pinched or gathered in the fist."""
+    if o.rigidity != "floppy":
+        return None
+    if o.mass_g < LATERAL_PINCH_MAX_MASS_G * 2:
+        return [
+            ("lateral_pinch", "floppy and light: pinch a fold between thumb and the side of the index"),
+            ("thumb_2_finger", "floppy: a fingertip pinch also gathers a fold"),
+            ("medium_wrap", "floppy: gather it in the fist"),
+        ]
+    return [
+        ("medium_wrap", "floppy and heavy: gather it in the fist"),
+        ("heavy_wrap_small_diameter", "floppy and heavy: a tight fist around a gathered fold"),
+        ("lateral_pinch", "floppy: pinch a fold"),
+    ]
+
+
+def _sphere(o: PlannedObject) -> Candidates | None:
+    """Cutkosky's circular branch for round objects: power sphere, precision sphere, tripod by size."""
+    if not o.is_sphere:
+        return None
+    d, m = o.c_cm, o.mass_g
+    if o.fragility == "fragile" and m < 100.0 and d < 9.0:
+        return [
+            ("precision_sphere", f"round, fragile and light ({m:.0f} g): gently on the fingertips"),
+            ("power_sphere", "round: cupped in the palm"),
+            ("tripod", "thumb, index and middle finger pads"),
+        ]
+    if m >= HEAVY_MASS_G or d >= POWER_SPHERE_MIN_CM or m >= POWER_SPHERE_MIN_MASS_G:
+        if m >= HEAVY_MASS_G:
+            why = "heavy"
+        elif d >= POWER_SPHERE_MIN_CM:
+            why = f"{d:g} cm across (>= {POWER_SPHERE_MIN_CM:g} cm)"
         else:
-            out.append(("medium_wrap", "floppy and heavy: gather it in the fist"))
-            out.append(("heavy_wrap_small_diameter", "floppy and heavy: a tight fist around a gathered fold"))
-            out.append(("lateral_pinch", "floppy: pinch a fold"))
-        return out
+            why = f"{m:.0f} g (>= {POWER_SPHERE_MIN_MASS_G:g} g)"
+        return [
+            ("power_sphere", f"round and {why}: cupped in the palm (Cutkosky: power, circular)"),
+            ("precision_sphere", "round: fingertips around it (precision, circular)"),
+            ("heavy_wrap_large_diameter", "wrapped like a thick cylinder"),
+        ]
+    if d >= 2.5:
+        return [
+            ("precision_sphere", f"round, light and {d:g} cm across: fingertips around it"),
+            ("tripod", "small and round: thumb, index and middle finger pads"),
+            ("power_sphere", "round: cupped in the palm"),
+        ]
+    return [
+        ("tripod", f"round and small ({d:g} cm): thumb, index and middle finger pads"),
+        ("thumb_index_finger", "tiny: thumb and index tips"),
+        ("precision_sphere", "round: fingertips around it"),
+    ]
 
-    if o.is_sphere:
-        d = w
-        if o.fragility == "fragile" and m < 100.0 and d < 9.0:
-            out.append(
-                ("precision_sphere", f"round, fragile and light ({m:.0f} g): gently on the fingertips")
-            )
-            out.append(("power_sphere", "round: cupped in the palm"))
-            out.append(("tripod", "thumb, index and middle finger pads"))
-        elif heavy or d >= POWER_SPHERE_MIN_CM or m >= POWER_SPHERE_MIN_MASS_G:
-            why = (
-                "heavy"
-                if heavy
-                else (
-                    f"{d:g} cm across (>= {POWER_SPHERE_MIN_CM:g} cm)"
-                    if d >= POWER_SPHERE_MIN_CM
-                    else f"{m:.0f} g (>= {POWER_SPHERE_MIN_MASS_G:g} g)"
-                )
-            )
-            out.append(("power_sphere", f"round and {why}: cupped in the palm (Cutkosky: power, circular)"))
-            out.append(("precision_sphere", "round: fingertips around it (precision, circular)"))
-            out.append(("heavy_wrap_large_diameter", "wrapped like a thick cylinder"))
-        elif d >= 2.5:
-            out.append(("precision_sphere", f"round, light and {d:g} cm across: fingertips around it"))
-            out.append(("tripod", "small and round: thumb, index and middle finger pads"))
-            out.append(("power_sphere", "round: cupped in the palm"))
-        else:
-            out.append(("tripod", f"round and small ({d:g} cm): thumb, index and middle finger pads"))
-            out.append(("thumb_index_finger", "tiny: thumb and index tips"))
-            out.append(("precision_sphere", "round: fingertips around it"))
-        return out
 
-    if o.is_disk and not (o.is_flat and w <= LATERAL_PINCH_MAX_THICK_CM):
-        diameter = o.b_cm
-        if heavy or diameter >= 9.0 or m >= 300.0:
-            out.append(
-                (
-                    "power_disk",
-                    f"disk {diameter:g} cm across and {m:.0f} g: palm on the face, fingers round the rim",
-                )
-            )
-            out.append(("precision_disk", "disk: fingertips round the rim"))
-            out.append((_power_wrap(w, m), "held across its thickness"))
-        elif diameter >= 3.0:
-            out.append(
-                (
-                    "precision_disk",
-                    f"disk {diameter:g} cm across and light: fingertips round the rim (Cutkosky: precision, circular)",
-                )
-            )
-            out.append((_fingers_for_length(diameter, m), "pinched across its thickness"))
-            out.append(("power_disk", "disk: palm on the face"))
-        else:
-            out.append(
-                ("thumb_index_finger", f"small disk ({diameter:g} cm): thumb and index tips on its faces")
-            )
-            out.append(("tripod", "small: thumb, index and middle finger pads"))
-            out.append(("lateral_pinch", "small and flat: thumb against the side of the index"))
-        return out
+def _disk(o: PlannedObject) -> Candidates | None:
+    """Cutkosky's circular branch for disks (lids, coasters): power or precision disk by size and mass."""
+    if not o.is_disk or (o.is_flat and o.c_cm <= LATERAL_PINCH_MAX_THICK_CM):
+        return None
+    diameter, w, m = o.b_cm, o.c_cm, o.mass_g
+    if m >= HEAVY_MASS_G or diameter >= 9.0 or m >= 300.0:
+        return [
+            ("power_disk", f"disk {diameter:g} cm across and {m:.0f} g: palm on the face, fingers round the rim"),
+            ("precision_disk", "disk: fingertips round the rim"),
+            (_power_wrap(w, m), "held across its thickness"),
+        ]
+    if diameter >= 3.0:
+        return [
+            (
+                "precision_disk",
+                f"disk {diameter:g} cm across and light: fingertips round the rim (Cutkosky: precision, circular)",
+            ),
+            (_fingers_for_length(diameter, m), "pinched across its thickness"),
+            ("power_disk", "disk: palm on the face"),
+        ]
+    return [
+        ("thumb_index_finger", f"small disk ({diameter:g} cm): thumb and index tips on its faces"),
+        ("tripod", "small: thumb, index and middle finger pads"),
+        ("lateral_pinch", "small and flat: thumb against the side of the index"),
+    ]
 
+
+def _lateral_pinch(o: PlannedObject, why: str) -> Candidates:
+    return [
+        ("lateral_pinch", f"{why}, thin ({o.c_cm:g} cm) and small: thumb pad against the side of the index (keys, cards)"),
+        ("thumb_index_finger", "thin: thumb and index tips"),
+        ("thumb_2_finger", "thin: thumb against two finger pads"),
+    ]
+
+
+def _small_flat(o: PlannedObject) -> Candidates | None:
+    """Tiny flat things (coins, clips: the tip pinch) and small flat-sided ones (keys, cards: lateral)."""
+    w, a = o.c_cm, o.a_cm
     small_flat = (
         w <= LATERAL_PINCH_MAX_THICK_CM
         and a <= LATERAL_PINCH_MAX_LENGTH_CM
-        and m <= LATERAL_PINCH_MAX_MASS_G
+        and o.mass_g <= LATERAL_PINCH_MAX_MASS_G
         and w <= 0.6 * o.b_cm
     )
     if small_flat and a <= TIP_PINCH_MAX_LENGTH_CM:
-        out.append(
+        return [
             (
                 "thumb_index_finger",
                 f"flat and tiny ({a:g} cm): picked up between the tips of thumb and index (tip pinch)",
-            )
-        )
-        out.append(("lateral_pinch", "flat: thumb pad against the side of the index"))
-        out.append(("thumb_2_finger", "thumb against two finger pads"))
-        return out
+            ),
+            ("lateral_pinch", "flat: thumb pad against the side of the index"),
+            ("thumb_2_finger", "thumb against two finger pads"),
+        ]
     if small_flat and (o.is_flat or w < 1.0):
-        out.append(
-            (
-                "lateral_pinch",
-                f"flat-sided, thin ({w:g} cm) and small: thumb pad against the side of the index (keys, cards)",
-            )
-        )
-        out.append(("thumb_index_finger", "thin: thumb and index tips"))
-        out.append(("thumb_2_finger", "thin: thumb against two finger pads"))
-        return out
+        return _lateral_pinch(o, "flat-sided")
+    return None
 
-    if o.is_flat:
-        if (
-            w <= LATERAL_PINCH_MAX_THICK_CM
-            and a <= LATERAL_PINCH_MAX_LENGTH_CM
-            and m <= LATERAL_PINCH_MAX_MASS_G
-        ):
-            out.append(
-                (
-                    "lateral_pinch",
-                    f"flat, thin ({w:g} cm) and small: thumb pad against the side of the index (keys, cards)",
-                )
-            )
-            out.append(("thumb_index_finger", "thin: thumb and index tips"))
-            out.append(("thumb_2_finger", "thin: thumb against two finger pads"))
-            return out
-        if heavy:
-            out.append(
-                (
-                    "medium_wrap",
-                    f"flat but heavy ({m:.0f} g >= {HEAVY_MASS_G:g} g): hand wrapped over the edge",
-                )
-            )
-            out.append(("thumb_4_finger", "flat: thumb on one face, four fingers under the other"))
-            out.append(("power_disk", "palm on the face, fingers round the edge"))
-            return out
-        out.append(
-            (
-                _fingers_for_length(a, m),
-                f"flat ({w:g} cm thick) and {m:.0f} g: thumb on one face, finger pads on the other, along its {a:g} cm length",
-            )
-        )
-        out.append(("lateral_pinch", "flat: thumb against the side of the index"))
-        out.append(("medium_wrap", "hand wrapped over the edge"))
-        return out
 
-    # prismatic, long and compact (box-like) objects
-    if o.shape == "long" and a >= TOOL_MIN_LENGTH_CM and m < LIGHT_MASS_G:
-        out.append(
-            (
-                "light_tool",
-                f"a long ({a:g} cm), light utensil: held by its handle like a tool (Cutkosky: power, prismatic)",
-            )
-        )
-        out.append(("medium_wrap", "the handle wrapped by the fingers"))
-        out.append((_fingers_for_length(a, m), "finger pads along its length"))
-        return out
+def _flat(o: PlannedObject) -> Candidates | None:
+    """Flat objects (books, plates, phones): lateral pinch when small, a wrap over the edge when heavy,
+    else thumb against finger pads along the length."""
+    if not o.is_flat:
+        return None
+    w, a, m = o.c_cm, o.a_cm, o.mass_g
+    if w <= LATERAL_PINCH_MAX_THICK_CM and a <= LATERAL_PINCH_MAX_LENGTH_CM and m <= LATERAL_PINCH_MAX_MASS_G:
+        return _lateral_pinch(o, "flat")
+    if m >= HEAVY_MASS_G:
+        return [
+            ("medium_wrap", f"flat but heavy ({m:.0f} g >= {HEAVY_MASS_G:g} g): hand wrapped over the edge"),
+            ("thumb_4_finger", "flat: thumb on one face, four fingers under the other"),
+            ("power_disk", "palm on the face, fingers round the edge"),
+        ]
+    return [
+        (
+            _fingers_for_length(a, m),
+            f"flat ({w:g} cm thick) and {m:.0f} g: thumb on one face, finger pads on the other, along its {a:g} cm length",
+        ),
+        ("lateral_pinch", "flat: thumb against the side of the index"),
+        ("medium_wrap", "hand wrapped over the edge"),
+    ]
 
-    # a hand-filling object (about 5 cm and over) of 150 g or more is wrapped rather than pinched
+
+def _utensil(o: PlannedObject) -> Candidates | None:
+    """A long light utensil (spatula, ladle) is held by its handle, thinner than its box."""
+    a, m = o.a_cm, o.mass_g
+    if not (o.shape == "long" and a >= TOOL_MIN_LENGTH_CM and m < LIGHT_MASS_G):
+        return None
+    return [
+        (
+            "light_tool",
+            f"a long ({a:g} cm), light utensil: held by its handle like a tool (Cutkosky: power, prismatic)",
+        ),
+        ("medium_wrap", "the handle wrapped by the fingers"),
+        (_fingers_for_length(a, m), "finger pads along its length"),
+    ]
+
+
+def _power_prismatic(o: PlannedObject) -> Candidates | None:
+    """Heavy, wide or hand-filling prisms (about 5 cm and 150 g or more) are wrapped, not pinched."""
+    w, m = o.c_cm, o.mass_g
+    heavy = m >= HEAVY_MASS_G
     light_small = m < LIGHT_MASS_G and w <= PRECISION_MAX_WIDTH_CM and not (w >= 4.5 and m >= 150.0)
-    if heavy or not light_small:
-        why = (
-            f"heavy ({m:.0f} g >= {HEAVY_MASS_G:g} g)"
-            if heavy
-            else (
-                f"{m:.0f} g"
-                if w <= PRECISION_MAX_WIDTH_CM
-                else f"{w:g} cm wide (> {PRECISION_MAX_WIDTH_CM:g} cm)"
-            )
-        )
-        kind = _power_wrap(w, m, long=o.shape == "long")
-        out.append(
-            (
-                kind,
-                f"{why}: fingers and palm wrap it across its {w:g} cm width (Feix 2014: large and heavy -> power)",
-            )
-        )
-        if kind != "medium_wrap":
-            out.append(("medium_wrap", "wrapped with the fingers"))
-        if w <= PRECISION_MAX_WIDTH_CM + 1.0 and m < HEAVY_MASS_G:
-            out.append(("thumb_4_finger", "thumb against four finger pads"))
-        elif w >= POWER_SPHERE_MIN_CM:
-            out.append(("power_sphere", "the fingers spread round it"))
-        else:
-            out.append(("heavy_wrap_small_diameter", "a tight fist round it"))
-        return out
+    if not (heavy or not light_small):
+        return None
+    if heavy:
+        why = f"heavy ({m:.0f} g >= {HEAVY_MASS_G:g} g)"
+    elif w <= PRECISION_MAX_WIDTH_CM:
+        why = f"{m:.0f} g"
+    else:
+        why = f"{w:g} cm wide (> {PRECISION_MAX_WIDTH_CM:g} cm)"
+    kind = _power_wrap(w, m, long=o.shape == "long")
+    out = [
+        (kind, f"{why}: fingers and palm wrap it across its {w:g} cm width (Feix 2014: large and heavy -> power)")
+    ]
+    if kind != "medium_wrap":
+        out.append(("medium_wrap", "wrapped with the fingers"))
+    if w <= PRECISION_MAX_WIDTH_CM + 1.0 and not heavy:
+        out.append(("thumb_4_finger", "thumb against four finger pads"))
+    elif w >= POWER_SPHERE_MIN_CM:
+        out.append(("power_sphere", "the fingers spread round it"))
+    else:
+        out.append(("heavy_wrap_small_diameter", "a tight fist round it"))
+    return out
 
-    if (
-        o.shape == "long"
-        and a >= 10.0
-        and o.b_cm <= PEN_MAX_THICK_CM
-        and w >= 0.8 * o.b_cm
-        and m < PEN_MAX_MASS_G
-    ):
-        out.append(
-            (
-                "tripod",
-                f"pen-like ({a:g} cm long, {o.b_cm:g} cm thick, {m:.0f} g): held in the writing tripod (Feix 2016)",
-            )
-        )
-        out.append((_fingers_for_length(a, m), "picked up: finger pads along its length"))
-        out.append(("lateral_pinch", "thin: thumb against the side of the index"))
-        return out
 
-    if o.shape == "long" and w < 3.0 and m >= 150.0:
-        out.append(
-            (
-                "light_tool",
-                f"long, a thin handle ({w:g} cm) and {m:.0f} g: held like a tool (Cutkosky: power, prismatic)",
-            )
-        )
-        out.append((_fingers_for_length(a, m), "finger pads along its length"))
-        out.append(("heavy_wrap_small_diameter", "a tight fist round the handle"))
-        return out
+def _pen(o: PlannedObject) -> Candidates | None:
+    """Pen-like objects are held in the writing tripod (Feix 2016), the grasp they are picked up for."""
+    a, w, m = o.a_cm, o.c_cm, o.mass_g
+    if not (o.shape == "long" and a >= 10.0 and o.b_cm <= PEN_MAX_THICK_CM and w >= 0.8 * o.b_cm and m < PEN_MAX_MASS_G):
+        return None
+    return [
+        (
+            "tripod",
+            f"pen-like ({a:g} cm long, {o.b_cm:g} cm thick, {m:.0f} g): held in the writing tripod (Feix 2016)",
+        ),
+        (_fingers_for_length(a, m), "picked up: finger pads along its length"),
+        ("lateral_pinch", "thin: thumb against the side of the index"),
+    ]
 
-    if o.shape == "long" and a >= 12.0 and w >= 3.0:
-        out.append(
-            (
-                "medium_wrap",
-                f"long ({a:g} cm) and {w:g} cm thick: wrapped by the fingers (Cutkosky: power, prismatic)",
-            )
-        )
-        out.append((_fingers_for_length(a, m), "light: finger pads along its length"))
-        out.append(("adducted_thumb", "long: thumb laid along it"))
-        return out
 
-    if o.shape == "compact" and a < 4.0:
-        kind = "thumb_2_finger" if a >= 2.0 else "thumb_index_finger"
-        out.append(
-            (kind, f"small ({a:g} cm) and light block: fingertip pinch (Cutkosky: precision, prismatic)")
-        )
-        out.append(("tripod", "small: thumb, index and middle finger pads"))
-        out.append(("lateral_pinch", "small: thumb against the side of the index"))
-        return out
+def _long_handle(o: PlannedObject) -> Candidates | None:
+    """A long object with a thin handle and some weight (kitchen knife, pliers): held like a tool."""
+    a, w, m = o.a_cm, o.c_cm, o.mass_g
+    if not (o.shape == "long" and w < 3.0 and m >= 150.0):
+        return None
+    return [
+        (
+            "light_tool",
+            f"long, a thin handle ({w:g} cm) and {m:.0f} g: held like a tool (Cutkosky: power, prismatic)",
+        ),
+        (_fingers_for_length(a, m), "finger pads along its length"),
+        ("heavy_wrap_small_diameter", "a tight fist round the handle"),
+    ]
 
+
+def _long_wrap(o: PlannedObject) -> Candidates | None:
+    """A long, handle-thick object (banana, screwdriver handle) is wrapped by the fingers."""
+    a, w, m = o.a_cm, o.c_cm, o.mass_g
+    if not (o.shape == "long" and a >= 12.0 and w >= 3.0):
+        return None
+    return [
+        ("medium_wrap", f"long ({a:g} cm) and {w:g} cm thick: wrapped by the fingers (Cutkosky: power, prismatic)"),
+        (_fingers_for_length(a, m), "light: finger pads along its length"),
+        ("adducted_thumb", "long: thumb laid along it"),
+    ]
+
+
+def _small_block(o: PlannedObject) -> Candidates | None:
+    """Small blocks (dice): a fingertip pinch; a block is prismatic (Cutkosky)."""
+    a = o.a_cm
+    if not (o.shape == "compact" and a < 4.0):
+        return None
+    kind = "thumb_2_finger" if a >= 2.0 else "thumb_index_finger"
+    return [
+        (kind, f"small ({a:g} cm) and light block: fingertip pinch (Cutkosky: precision, prismatic)"),
+        ("tripod", "small: thumb, index and middle finger pads"),
+        ("lateral_pinch", "small: thumb against the side of the index"),
+    ]
+
+
+def _precision_prismatic(o: PlannedObject) -> Candidates:
+    """Everything else (small light prisms, long light objects: remote, battery): thumb against n pads."""
+    a, w, m = o.a_cm, o.c_cm, o.mass_g
     kind = _fingers_for_length(a, m)
-    out.append(
+    out = [
         (
             kind,
             f"light ({m:.0f} g) and {w:g} cm wide: a precision pinch across the smallest side, finger pads along its {a:g} cm length (Feix 2014; Cutkosky: precision, prismatic)",
         )
-    )
+    ]
     if o.shape == "long" and w < 3.0:
         out.append(("light_tool", "long and thin: held like a tool handle"))
     else:
         out.append(("medium_wrap", "wrapped by the fingers"))
-    alt = "thumb_3_finger" if kind != "thumb_3_finger" else "thumb_2_finger"
-    out.append((alt, "finger pads along its length"))
+    out.append(("thumb_3_finger" if kind != "thumb_3_finger" else "thumb_2_finger", "finger pads along its length"))
     return out
+
+
+#: The rules in the order PLANNER.md's table lists them; the first that applies chooses.
+_RULES = (
+    _floppy, _sphere, _disk, _small_flat, _flat, _utensil, _power_prismatic, _pen, _long_handle, _long_wrap,
+    _small_block,
+)  # fmt: skip
+
+
+def _candidates(o: PlannedObject) -> Candidates:
+    """Ordered (grasp type, reason) candidates: the rules' choice first, then sensible alternatives."""
+    for rule in _RULES:
+        out = rule(o)
+        if out is not None:
+            return out
+    return _precision_prismatic(o)
 
 
 def _aperture(grasp_type: str, width_cm: float) -> float:
@@ -605,13 +614,20 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
     base_force = required_grip_force(o.mass_g, o.friction, o.fragility)
     edge_force = edge_grip_force(o.mass_g, o.b_cm, o.fragility) if is_flat_grasp(o.c_cm, o.b_cm) else 0.0
     plans: list[GraspPlan] = []
-    seen: set[str] = set()
+    seen: set[str] = set()  # hand programs already listed: a merged type is simulated once
     for rank, (grasp_type, reason) in enumerate(_candidates(o)):
-        if grasp_type in seen:
+        program = program_for(grasp_type)
+        if program.name in seen:
             continue
-        seen.add(grasp_type)
+        seen.add(program.name)
         family = GRASP_TYPES[grasp_type]
         rationale = [reason]
+        if program.merged:
+            others = ", ".join(t.replace("_", " ") for t in program.grasp_types if t != grasp_type)
+            rationale.append(
+                f"simulated by the {program.name.replace('_', ' ')} hand program, shared with {others}: "
+                "this hand (no finger abduction) cannot make them differently (sim/programs.py)"
+            )
         if rank == 0:
             rationale.append(f"grasped across its smallest side c = {width:g} cm (Feix 2014: 94 % of grasps)")
         score = 1.0 - 0.2 * rank
@@ -643,7 +659,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
                 family=family,
                 grasped_dim=dim,
                 aperture_cm=_aperture(grasp_type, width),
-                approach=_APPROACH[grasp_type],  # type: ignore[arg-type]
+                approach=program.approach,  # type: ignore[arg-type]
                 grip_force_n=force,
                 score=round(score, 3),
                 rationale=tuple(rationale + notes),
@@ -657,6 +673,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
                     "two_hands": two_hands,
                     "assumed_mass_g": round(o.mass_g, 1),
                     "planner_version": PLANNER_VERSION,
+                    "program": program.name,
                 },
             )
         )

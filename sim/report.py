@@ -3,9 +3,10 @@
 :func:`write_report` takes result rows (``grasp_validations`` rows as dicts, optionally with the object's
 ``shape`` and ``material``; ``details`` as a dict or JSON text) and writes into ``out_dir``:
 
-- ``index.html``: success rates by grasp type, shape and material (tables and matplotlib plots saved as
-  PNG files beside it), a gallery of the rendered best grasp of each object (``images/``, written by the
-  worker), and a table of every trial with outcome, slip, rotation and forces;
+- ``index.html``: success rates by hand program, grasp type, shape and material (tables and matplotlib
+  plots saved as PNG files beside it), per object its first choice and, where it differs, its validated
+  choice (sim/choice.py) with their renders (``images/``, written by the worker), or why no candidate
+  holds (:func:`failure_cause`), and a table of every trial with outcome, slip, rotation and forces;
 - ``results.json`` (summary, rates and rows) and ``results.csv`` (one row per trial).
 
 Object names and reasons come from scraped pages: every piece of text goes through :func:`html.escape`
@@ -35,9 +36,11 @@ __all__ = ["CSV_FIELDS", "success_rates", "write_report"]
 CSV_FIELDS = (
     "object_name", "shape", "material", "rank", "grasp_type", "family", "seed", "outcome", "success",
     "reason", "slip_cm", "rotation_deg", "grip_force_n", "max_contact_force_n", "simulator", "hand_version",
-    "planner_version", "features_hash", "image",
+    "planner_version", "features_hash", "image", "program",
 )  # fmt: skip
-_GROUPS = (("grasp_type", "grasp type"), ("shape", "shape"), ("material", "material"))
+_GROUPS = (
+    ("program", "hand program"), ("grasp_type", "grasp type"), ("shape", "shape"), ("material", "material"),
+)  # fmt: skip
 _SAFE_IMAGE = re.compile(r"^[A-Za-z0-9._-]+\.png$")
 
 
@@ -64,6 +67,7 @@ def _normalise(row: Mapping[str, Any]) -> dict[str, Any]:
     out["details"] = details
     image = details.get("image")
     out["image"] = image if isinstance(image, str) and _SAFE_IMAGE.match(image) else None
+    out["program"] = details.get("program") or out.get("program")
     if out.get("outcome") is None:
         out["outcome"] = "success" if out.get("success") else "failure"
     out["success"] = bool(out.get("success")) and out["outcome"] == "success"
@@ -151,29 +155,65 @@ def _row_html(r: dict[str, Any]) -> str:
     )
 
 
-def _gallery(rows: list[dict[str, Any]], out_dir: Path) -> str:
-    best: dict[str, dict[str, Any]] = {}
-    for r in rows:
-        name = str(r.get("object_name"))
-        current = best.get(name)
-        if current is None or (r.get("rank") or 0, r.get("seed") or 0) < (
-            current.get("rank") or 0,
-            current.get("seed") or 0,
-        ):
-            best[name] = r
-    figures = []
-    for name in sorted(best):
-        r = best[name]
-        image = r.get("image")
-        if image and (out_dir / "images" / image).is_file():
-            pic = f"<img src='images/{_e(image)}' alt='{_e(name)}: {_e(r.get('grasp_type'))}' loading='lazy'>"
-        else:
-            pic = "<div class='noimg'>no image rendered</div>"
-        outcome = r["outcome"] if r["outcome"] in ("success", "failure", "error") else "failure"
-        figures.append(
-            f"<figure>{pic}<figcaption><b>{_e(name)}</b><br>{_e(r.get('grasp_type'))} ({_e(r.get('family'))}): "
-            f"<span class='{outcome}'>{_e(r.get('outcome'))}</span>, slip {_fmt(r.get('slip_cm'))} cm</figcaption></figure>"
+def failure_cause(row: Mapping[str, Any]) -> str:
+    """Why a grasp did not hold, in the hand's terms: aperture, mass and friction, or the weight's moment."""
+    reason = str(row.get("reason") or "")
+    params = row_details(row).get("plan", {}).get("params", {})
+    if params.get("feasible") is False:
+        return "aperture: every side is wider than the hand's span (needs two hands)"
+    if "inside" in reason:
+        return "aperture: the hand cannot open round it (starts inside the object)"
+    if params.get("force_within_capacity") is False:
+        return (
+            f"mass and friction: it needs {params.get('required_force_n')} N of squeeze at friction "
+            f"{params.get('friction')}, more than this grasp gives"
         )
+    if "no contact" in reason:
+        return "size: the digits closed past it (too small or thin for the pads)"
+    if reason.startswith("turned"):
+        return "moment: its weight or a push turned it out of the grip (friction and pad lever too small)"
+    if reason.startswith(("slipped", "not lifted")):
+        return "mass and friction: squeeze times friction did not carry its weight"
+    return reason or "failed"
+
+
+def _figure(r: dict[str, Any], out_dir: Path, label: str) -> str:
+    image = r.get("image")
+    name = str(r.get("object_name"))
+    if image and (out_dir / "images" / image).is_file():
+        pic = f"<img src='images/{_e(image)}' alt='{_e(name)}: {_e(r.get('grasp_type'))}' loading='lazy'>"
+    else:
+        pic = "<div class='noimg'>no image rendered</div>"
+    outcome = r["outcome"] if r["outcome"] in ("success", "failure", "error") else "failure"
+    return (
+        f"<figure>{pic}<figcaption><b>{_e(name)}</b>: {_e(label)}<br>{_e(r.get('grasp_type'))} "
+        f"({_e(r.get('family'))}; {_e(r.get('program'))} program): <span class='{outcome}'>"
+        f"{_e(r.get('outcome'))}</span>, slip {_fmt(r.get('slip_cm'))} cm, turn {_fmt(r.get('rotation_deg'), 1)} deg"
+        f"</figcaption></figure>"
+    )
+
+
+def _gallery(rows: list[dict[str, Any]], out_dir: Path, choices: list[Any]) -> str:
+    """Per object: the first choice, and beside it the validated choice where it differs, or why none
+    of the candidates holds."""
+    first_row: dict[tuple, dict[str, Any]] = {}
+    for r in rows:
+        key = (str(r.get("object_name")), str(r.get("grasp_type")))
+        if key not in first_row or (r.get("seed") or 0) < (first_row[key].get("seed") or 0):
+            first_row[key] = r
+    figures = []
+    for c in sorted(choices, key=lambda c: c.object_name):
+        first = first_row[(c.object_name, c.first)]
+        parts = [_figure(first, out_dir, "first choice" + (" (validated)" if not c.differs else ""))]
+        if c.validated is not None and c.differs:
+            label = f"validated choice (planner's rank {c.validated_rank + 1})"
+            parts.append(_figure(first_row[(c.object_name, c.validated)], out_dir, label))
+        elif c.validated is None:
+            causes = "; ".join(
+                f"{t}: {failure_cause(first_row[(c.object_name, t)])}" for t, _ in c.reasons
+            )
+            parts.append(f"<p class='why'><b>{_e(c.object_name)}</b>: no candidate holds. {_e(causes)}</p>")
+        figures.append(f"<div class='choice'>{''.join(parts)}</div>")
     return "\n".join(figures) or "<p>No trials.</p>"
 
 
@@ -229,6 +269,10 @@ def write_report(
     for k, v in (title_meta or {}).items():
         meta_bits.append(f"{k} {v}")
     rate = counts["success"] / total if total else 0.0
+    from sim.choice import choose, summarize_choices
+
+    choices = choose(rows)
+    chosen = summarize_choices(choices)
     cards = "".join(
         f"<div class='card'>{_e(label)}<b>{_e(value)}</b></div>"
         for label, value in (
@@ -238,6 +282,9 @@ def write_report(
             ("failure", counts["failure"]),
             ("error", counts["error"]),
             ("success rate", f"{100 * rate:.0f} %"),
+            ("first choice holds", f"{chosen.first_holds} / {objects}"),
+            ("validated grasp", f"{chosen.validated} / {objects}"),
+            ("validated differs from first", chosen.differs),
         )
     )
     template = Template(resources.files("sim").joinpath("templates/report.html").read_text(encoding="utf-8"))
@@ -246,7 +293,7 @@ def write_report(
         cards=cards,
         plots="\n".join(plots) or "<p>No trials.</p>",
         rate_tables="\n".join(_rate_table(rates[key], key, label) for key, label in _GROUPS),
-        gallery=_gallery(rows, out),
+        gallery=_gallery(rows, out, choices),
         rows="\n".join(_row_html(r) for r in rows),
     )
     index = out / "index.html"
@@ -258,8 +305,9 @@ def write_report(
         "trials": total,
         **counts,
         "success_rate": round(rate, 4),
+        "choices": chosen.to_dict(),
     }
-    doc = {"summary": summary, "rates": rates, "results": rows}
+    doc = {"summary": summary, "rates": rates, "choices": [c.to_dict() for c in choices], "results": rows}
     (out / "results.json").write_text(
         json.dumps(to_jsonable(doc), ensure_ascii=False, indent=1), encoding="utf-8"
     )

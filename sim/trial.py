@@ -35,6 +35,7 @@ from kb.features import ObjectRecord
 from sim import hand as H
 from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
 from sim.objects import ObjectModel, add_object, add_table, object_model
+from sim.programs import program_for
 
 __all__ = [
     "LIFT_M",
@@ -43,6 +44,7 @@ __all__ = [
     "PERTURBATION_DIRECTIONS",
     "TrialResult",
     "TrialWorld",
+    "beyond_limits",
     "build_world",
     "check_physics",
     "run_trial",
@@ -57,8 +59,8 @@ LIFT_M = 0.10
 LIFTED_FRACTION = 0.5
 #: The hand starts this far back along the approach direction.
 APPROACH_M = 0.06
-#: Gap between the palm face and the object in power grasps, and above it in precision grasps (m).
-PALM_CLEARANCE_CM = 0.4
+#: Gap between the palm face and the object above it in pinches (cm); a wrap's gap is its hand program's
+#: ``palm_gap_cm`` (sim/programs.py: 0.4 cm pressed to the palm, 1 cm held in the fingers).
 PRECISION_PALM_CLEARANCE_CM = 1.0
 #: Deeper overlap than this at the pre-grasp pose means the hand starts inside the object.
 PENETRATION_TOL_M = 0.002
@@ -110,12 +112,14 @@ class TrialResult:
     outcome: str
     success: bool
     reason: str
+    program: str = ""  # the hand program that ran (sim/programs.py); merged types share one
     slip_cm: float = 0.0
     rotation_deg: float = 0.0
     grip_force_n: float = 0.0
     max_contact_force_n: float = 0.0
     lifted: bool = False
     perturbation: dict[str, float] = field(default_factory=dict)
+    closed_posture: tuple[float, ...] = ()  # digit joint angles (rad, ACTUATOR_NAMES order) after closing
     sim_time_s: float = 0.0
     wall_time_s: float = 0.0
     simulator: str = SIMULATOR
@@ -147,6 +151,7 @@ class TrialWorld:
     wrist_qpos: np.ndarray
     approach: str = "top"  # as built: the plan's, or "edge" for a flat object grasped at a table edge
     geom_digit: dict[int, str] = field(default_factory=dict)  # hand geom id -> digit it belongs to
+    digit_qpos: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))  # qpos index per digit joint
 
     def palm_pose(self) -> tuple[np.ndarray, np.ndarray]:
         return self.data.xpos[self.palm_body].copy(), self.data.xmat[self.palm_body].reshape(3, 3).copy()
@@ -237,7 +242,8 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         ext[ax] = model_obj.extent_cm(dim)
     width = ext[2] if flat else ext[1]
     targets = H.grasp_targets(plan, width)
-    family = GRASP_TYPES[plan.grasp_type]
+    program = program_for(plan.grasp_type)
+    wrap = program.control == "wrap"
 
     # Where the object's centre sits in the hand frame (cm).
     depth = ext[2] if approach == "top" else ext[0]  # extent along the approach axis
@@ -248,9 +254,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         overhang = edge_overhang_cm(depth)
     palm_face = -H.PALM_HALF_CM[2]
     grip_depth = 0.0  # precision: how far below the near face the pads meet the object (cm)
-    if family == "power":
+    if wrap:
         x_c = 0.0
-        z_c = palm_face - PALM_CLEARANCE_CM - depth / 2.0
+        z_c = palm_face - program.palm_gap_cm - depth / 2.0
     else:
         x_c = float(np.mean([H.FINGER_BY_NAME[f].x_cm for f in targets.fingers]))
         # Pads meet the object's sides at its centre (no gravity torque about the pinch axis) when they
@@ -298,7 +304,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
     open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
     data.qpos[digit_qpos] = open_q
-    if family != "power":
+    if not wrap:
         # Round objects bulge above their equator into the fingers that reach down to it: pinch higher,
         # in 5 mm steps up to 1 cm below the top, until the pre-shaped hand clears the object.
         backoff = _precision_backoff_m(
@@ -322,6 +328,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         wrist_act=wrist_act,
         digit_act=digit_act,
         wrist_qpos=wrist_qpos,
+        digit_qpos=digit_qpos,
         approach=approach,
         geom_digit={
             g: model.geom(g).name.split("_")[0]
@@ -361,6 +368,12 @@ def check_physics(model: mujoco.MjModel, data: mujoco.MjData, where: str = "") -
         raise PhysicsError(f"simulation diverged{where}: MuJoCo warning {name} at t={data.time:.3f} s")
 
 
+def beyond_limits(slip_cm: float, turn_deg: float) -> bool:
+    """The success rule's motion part: has the object moved :data:`MAX_SLIP_CM` or more, or turned
+    :data:`MAX_ROTATION_DEG` or more, relative to the palm? (Either alone fails a trial.)"""
+    return slip_cm >= MAX_SLIP_CM or turn_deg >= MAX_ROTATION_DEG
+
+
 def _smooth(u: float) -> float:
     u = min(max(u, 0.0), 1.0)
     return u * u * (3.0 - 2.0 * u)
@@ -380,6 +393,7 @@ class _Runner:
         self.hold_forces: list[float] = []
         self.wrist_base = self.d.ctrl[world.wrist_act].copy()
         self.hold_joints: list[list] = []  # filled by _latch: the grip-force loop runs from then on
+        self.closed_posture: tuple[float, ...] = ()
 
     def _step(self, n_steps: int, where: str) -> None:
         mujoco.mj_step(self.m, self.d, nstep=n_steps)
@@ -409,7 +423,7 @@ class _Runner:
             self._measure(record_force)
 
     def failed(self) -> bool:
-        return self.slip >= MAX_SLIP_CM or self.turn >= MAX_ROTATION_DEG
+        return beyond_limits(self.slip, self.turn)
 
     def start_penetration_m(self) -> float:
         """Deepest hand-object overlap with the pre-shaped hand placed at its grasp pose."""
@@ -437,7 +451,7 @@ class _Runner:
         w, d = self.w, self.d
         open_q = d.ctrl[w.digit_act].copy()
         touch_q, close_q = w.targets.touch, w.targets.close
-        if GRASP_TYPES[w.plan.grasp_type] != "power":
+        if program_for(w.plan.grasp_type).control != "wrap":
             # Pads first travel to where they meet the object, all arriving together, then press on.
             self._phase(
                 TOUCH_S,
@@ -452,6 +466,7 @@ class _Runner:
         )
         self._phase(CLOSE_HOLD_S, " while closing")
         self._latch()
+        self.closed_posture = tuple(round(float(q), 4) for q in d.qpos[w.digit_qpos])
         self.ref_pos, self.ref_rot = self.w.object_in_palm()
         self.obj_z0 = float(d.xpos[w.object_body][2])
 
@@ -571,6 +586,7 @@ def run_trial(
         outcome="failure",
         success=False,
         reason="",
+        program=program_for(plan.grasp_type).name,
     )
 
     def finish(outcome: str, reason: str) -> TrialResult:
@@ -578,6 +594,7 @@ def run_trial(
         result.slip_cm = round(runner.slip, 3)
         result.rotation_deg = round(runner.turn, 2)
         result.max_contact_force_n = round(runner.max_force, 3)
+        result.closed_posture = runner.closed_posture
         if runner.hold_forces:
             result.grip_force_n = round(float(np.mean(runner.hold_forces)), 3)
         result.sim_time_s = round(float(world.data.time), 4)

@@ -28,6 +28,7 @@ from typing import Any
 from kb.catalog import KnowledgeBase, features_hash
 from kb.errors import ObjrecallError, SimulationError
 from kb.features import ObjectRecord
+from sim.choice import ChoiceSummary, GraspChoice, choose, summarize_choices
 from sim.executors import Executor, make_executor
 from sim.grasps import GraspPlan
 from sim.planner import PLANNER_VERSION, plan_grasps
@@ -156,7 +157,7 @@ def run_task(task: TrialTask) -> dict[str, Any]:
         )
         if res.get("hand_version") and str(res["hand_version"]) != task.hand_version:
             details["trial_hand_version"] = str(res["hand_version"])  # the key keeps the planned version
-        for key in ("lifted", "perturbation", "sim_time_s", "wall_time_s"):
+        for key in ("program", "lifted", "perturbation", "closed_posture", "sim_time_s", "wall_time_s"):
             if key in res:
                 details[key] = res[key]
         details.setdefault("wall_time_s", round(time.perf_counter() - start, 4))
@@ -195,10 +196,18 @@ class ValidationSummary:
     executor: str = ""
     report: Path | None = None
     results: list[dict[str, Any]] = field(default_factory=list)
+    choices: list[GraspChoice] = field(default_factory=list)
+
+    @property
+    def choice_summary(self) -> ChoiceSummary:
+        """How often the first choice holds, a validated choice exists, and they differ."""
+        return summarize_choices(self.choices)
 
     def to_dict(self, *, with_results: bool = True) -> dict[str, Any]:
         d = dataclasses.asdict(self)
         d["report"] = str(self.report) if self.report else None
+        d["choices"] = [c.to_dict() for c in self.choices]
+        d["choice_summary"] = self.choice_summary.to_dict()
         if with_results:
             d["results"] = [{**r, "details": _details(r)} for r in self.results]
         else:
@@ -256,6 +265,130 @@ def _progress(enabled: bool, total: int):
     )
 
 
+def _tasks_for(
+    objects: Sequence[ObjectRecord],
+    *,
+    top: int,
+    seeds: Sequence[int],
+    hand: str,
+    ids: dict[str, int],
+    stored: dict[tuple, dict[str, Any]],
+    image_dir: Path | None,
+    trial: Trial,
+    render: Trial | None,
+) -> tuple[list[TrialTask], list[tuple], int]:
+    """The tasks still to run (trials not stored; a render of each object's first choice when a report
+    is wanted and its image is missing), every requested result key, and how many were stored."""
+    tasks: list[TrialTask] = []
+    wanted: list[tuple] = []
+    skipped = 0
+    for obj in objects:
+        fh = features_hash(obj)
+        for rank, plan in enumerate(plan_grasps(obj, top=top)):
+            for seed in seeds:
+                key = (obj.name, plan.grasp_type, seed, hand, fh)
+                wanted.append(key)
+                want_image = image_dir is not None and render is not None and rank == 0 and seed == seeds[0]
+                image_path = str(image_dir / image_name(obj.name, plan.grasp_type)) if want_image else None
+                if key in stored:
+                    skipped += 1
+                    if image_path and not Path(image_path).exists():  # render only: the trial is stored
+                        tasks.append(
+                            TrialTask(obj, plan, rank, seed, fh, ids.get(obj.name), None, render, image_path, hand)
+                        )
+                    continue
+                task_render = render if image_path else None
+                tasks.append(
+                    TrialTask(obj, plan, rank, seed, fh, ids.get(obj.name), trial, task_render, image_path, hand)
+                )
+    return tasks, wanted, skipped
+
+
+def _row_key(row: dict[str, Any]) -> tuple:
+    return (row["object_name"], row["grasp_type"], row["seed"], row["hand_version"], row["features_hash"])
+
+
+class _Batches:
+    """Result rows buffered and written to the knowledge base every ``every`` rows or ``seconds``."""
+
+    def __init__(self, kb: KnowledgeBase, every: int, seconds: float, clock: Callable[[], float]):
+        self.kb, self.every, self.seconds, self.clock = kb, every, seconds, clock
+        self.buffer: list[dict[str, Any]] = []
+        self.last = clock()
+
+    def add(self, row: dict[str, Any]) -> None:
+        self.buffer.append(row)
+        if len(self.buffer) >= self.every or self.clock() - self.last >= self.seconds:
+            self.flush()
+
+    def flush(self) -> None:
+        rows = [r for r in self.buffer if r.get("store")]
+        if rows:
+            self.kb.record_grasp_results([{k: v for k, v in r.items() if k != "store"} for r in rows])
+        self.buffer.clear()
+        self.last = self.clock()
+
+
+def _run(
+    ex: Executor, tasks: list[TrialTask], summary: ValidationSummary, batches: _Batches, progress: bool
+) -> tuple[dict[tuple, dict[str, Any]], dict[tuple, dict[str, Any]]]:
+    """Run ``tasks`` on ``ex``, counting outcomes into ``summary`` and storing trial rows through
+    ``batches``. Returns the new trial rows and the render-only details, both by result key."""
+    new_rows: dict[tuple, dict[str, Any]] = {}
+    images: dict[tuple, dict[str, Any]] = {}
+    try:
+        with _progress(progress, len(tasks)) as bar:
+            job = bar.add_task("trials", total=len(tasks), last="") if bar is not None else None
+            for row in ex.map(run_task, tasks):
+                key = _row_key(row)
+                if "outcome" not in row:  # render-only task
+                    images[key] = json.loads(row["details"])
+                else:
+                    summary.ran += 1
+                    outcome = row["outcome"]
+                    summary.succeeded += outcome == "success"
+                    summary.failed += outcome == "failure"
+                    summary.errors += outcome == "error"
+                    summary.not_stored += not row["store"]
+                    new_rows[key] = row
+                    batches.add(row)
+                if bar is not None:
+                    bar.update(job, advance=1, last=f"{row['object_name'][:30]} {row['grasp_type']}")
+    finally:
+        batches.flush()
+    return new_rows, images
+
+
+def _with_images(row: dict[str, Any], image: dict[str, Any] | None) -> dict[str, Any]:
+    row = {k: v for k, v in row.items() if k != "store"}
+    if image:
+        details = _details(row)
+        details.update({k: v for k, v in image.items() if k in ("image", "image_error")})
+        row["details"] = json.dumps(details, default=str)
+    return row
+
+
+def _validated_renders(
+    results: list[dict[str, Any]], objects: Sequence[ObjectRecord], image_dir: Path, render: Trial, hand: str
+) -> list[TrialTask]:
+    """Render tasks for each validated choice that differs from the first choice (the first choice is
+    rendered with its trial), so the report can show both."""
+    by_name = {o.name: o for o in objects}
+    tasks = []
+    for c in choose(results):
+        if c.validated is None or not c.differs:
+            continue
+        row = next(r for r in results if r["object_name"] == c.object_name and r["grasp_type"] == c.validated)
+        if "image" in _details(row):
+            continue
+        obj = by_name[c.object_name]
+        plan = next(p for p in plan_grasps(obj) if p.grasp_type == c.validated)
+        path = image_dir / image_name(obj.name, plan.grasp_type)
+        rank, seed, oid = int(row["rank"]), int(row["seed"]), row.get("object_id")
+        tasks.append(TrialTask(obj, plan, rank, seed, row["features_hash"], oid, None, render, str(path), hand))
+    return tasks
+
+
 def validate(
     kb: KnowledgeBase,
     names: Sequence[str] | str | None = None,
@@ -280,8 +413,9 @@ def validate(
 
     ``executor`` is an :class:`Executor` or a name (``local``, ``serial``, ``ray``; ``workers`` and
     ``address`` configure it). ``limit`` stops after that many new trials (the rest resume later).
-    ``render`` renders the best plan of each object into the report (only with ``report_dir``).
-    Raises ObjectNotFound for an unknown name.
+    ``render`` renders the first choice of each object into the report, and the validated choice where
+    it differs (only with ``report_dir``). ``summary.choices`` holds each object's first and validated
+    choice (sim/choice.py). Raises ObjectNotFound for an unknown name.
     """
     t0 = clock()
     seeds = list(dict.fromkeys(int(s) for s in seeds))
@@ -289,61 +423,21 @@ def validate(
         raise ObjrecallError(f"top must be at least 1, not {top}")
     objects = _objects(kb, names)
     hand = current_hand_version() if hand_version is None else hand_version
-    ids = _object_ids(kb)
     stored = _stored(kb, [o.name for o in objects])
     report_path = Path(report_dir) if report_dir is not None else None
     image_dir = report_path / "images" if report_path is not None else None
-
-    tasks: list[TrialTask] = []
-    wanted: list[tuple] = []
-    meta: dict[str, dict[str, Any]] = {}
-    skipped = 0
-    for obj in objects:
-        fh = features_hash(obj)
-        meta[obj.name] = {"shape": obj.shape, "material": obj.material}
-        for rank, plan in enumerate(plan_grasps(obj, top=top)):
-            for seed in seeds:
-                key = (obj.name, plan.grasp_type, seed, hand, fh)
-                wanted.append(key)
-                want_image = image_dir is not None and render is not None and rank == 0 and seed == seeds[0]
-                image_path = str(image_dir / image_name(obj.name, plan.grasp_type)) if want_image else None
-                if key in stored:
-                    skipped += 1
-                    if image_path and not Path(image_path).exists():
-                        tasks.append(
-                            TrialTask(
-                                obj, plan, rank, seed, fh, ids.get(obj.name), None, render, image_path, hand
-                            )
-                        )
-                    continue
-                tasks.append(
-                    TrialTask(
-                        obj,
-                        plan,
-                        rank,
-                        seed,
-                        fh,
-                        ids.get(obj.name),
-                        trial,
-                        render if image_path else None,
-                        image_path,
-                        hand,
-                    )
-                )
-    trial_tasks = [t for t in tasks if t.trial is not None]
+    tasks, wanted, skipped = _tasks_for(
+        objects, top=top, seeds=seeds, hand=hand, ids=_object_ids(kb), stored=stored,
+        image_dir=image_dir, trial=trial, render=render,
+    )  # fmt: skip
     if limit is not None:
-        keep = {id(t) for t in trial_tasks[: max(0, int(limit))]}
+        keep = {id(t) for t in [t for t in tasks if t.trial is not None][: max(0, int(limit))]}
         tasks = [t for t in tasks if t.trial is None or id(t) in keep]
-        trial_tasks = [t for t in trial_tasks if id(t) in keep]
 
     if isinstance(executor, str):
-        executor_name = executor
-        ex: Executor = make_executor(executor, workers=workers, address=address)
-        owns = True
+        executor_name, ex, owns = executor, make_executor(executor, workers=workers, address=address), True
     else:
-        executor_name = type(executor).__name__
-        ex, owns = executor, False
-
+        executor_name, ex, owns = type(executor).__name__, executor, False
     summary = ValidationSummary(
         objects=len(objects),
         trials=len(wanted),
@@ -352,63 +446,24 @@ def validate(
         workers=getattr(ex, "workers", 1),
         executor=executor_name,
     )
-    buffer: list[dict[str, Any]] = []
-    new_rows: dict[tuple, dict[str, Any]] = {}
-    images: dict[tuple, dict[str, Any]] = {}
-    last_flush = clock()
-
-    def flush() -> None:
-        nonlocal last_flush
-        rows = [r for r in buffer if r.get("store")]
-        if rows:
-            kb.record_grasp_results([{k: v for k, v in r.items() if k != "store"} for r in rows])
-        buffer.clear()
-        last_flush = clock()
-
+    meta = {o.name: {"shape": o.shape, "material": o.material} for o in objects}
+    batches = _Batches(kb, flush_every, flush_seconds, clock)
     try:
-        with _progress(progress, len(tasks)) as bar:
-            job = bar.add_task("trials", total=len(tasks), last="") if bar is not None else None
-            for row in ex.map(run_task, tasks):
-                key = (
-                    row["object_name"],
-                    row["grasp_type"],
-                    row["seed"],
-                    row["hand_version"],
-                    row["features_hash"],
-                )
-                if "outcome" not in row:  # render-only task
-                    images[key] = json.loads(row["details"])
-                else:
-                    summary.ran += 1
-                    outcome = row["outcome"]
-                    summary.succeeded += outcome == "success"
-                    summary.failed += outcome == "failure"
-                    summary.errors += outcome == "error"
-                    summary.not_stored += not row["store"]
-                    new_rows[key] = row
-                    buffer.append(row)
-                if bar is not None:
-                    bar.update(job, advance=1, last=f"{row['object_name'][:30]} {row['grasp_type']}")
-                if len(buffer) >= flush_every or (buffer and clock() - last_flush >= flush_seconds):
-                    flush()
+        new_rows, images = _run(ex, tasks, summary, batches, progress)
+        results = []
+        for key in wanted:
+            row = new_rows.get(key) or stored.get(key)
+            if row is not None:  # else not run (limit) or not stored
+                results.append({**_with_images(row, images.get(key)), **meta.get(row["object_name"], {})})
+        if image_dir is not None and render is not None:
+            extra = _validated_renders(results, objects, image_dir, render, hand)
+            _, more = _run(ex, extra, summary, batches, progress=False)
+            results = [_with_images(r, more.get(_row_key(r))) for r in results]
     finally:
-        flush()
         if owns:
             ex.close()
-
-    results: list[dict[str, Any]] = []
-    for key in wanted:
-        row = new_rows.get(key) or stored.get(key)
-        if row is None:
-            continue  # not run (limit) or not stored
-        row = {k: v for k, v in row.items() if k != "store"}
-        if key in images:
-            details = _details(row)
-            details.update({k: v for k, v in images[key].items() if k in ("image", "image_error")})
-            row["details"] = json.dumps(details, default=str)
-        row.update(meta.get(row["object_name"], {}))
-        results.append(row)
     summary.results = results
+    summary.choices = choose(results)
     if report_path is not None:
         from sim.report import write_report
 

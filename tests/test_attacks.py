@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 import subprocess
 import sys
@@ -22,6 +23,7 @@ from hypothesis import strategies as st
 
 from kb.catalog import KnowledgeBase
 from kb.errors import QueryFailed, QueryRefused, QueryTimeout
+from kb.features import ObjectRecord
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -298,3 +300,280 @@ def test_any_csv_text_is_read_or_refused_never_a_crash(body):
         return
     for record in result.records:
         assert record.name and "\x00" not in record.name and "\n" not in record.name
+
+
+# ---------------------------------------------------------------------------------------------- HTTP
+def test_host_names_are_parsed_without_port():
+    from kb.service.http.limits import host_name
+
+    assert host_name(b"127.0.0.1:8000") == "127.0.0.1"
+    assert host_name(b"LocalHost") == "localhost"
+    assert host_name(b"[::1]:8000") == "::1"
+    assert host_name(b"::1") == "::1"
+    assert host_name(None) == ""
+
+
+def test_only_allowed_host_headers_are_answered(seeded_db, monkeypatch):
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    monkeypatch.delenv("OBJRECALL_ALLOWED_HOSTS", raising=False)
+    client = TestClient(create_app(seeded_db, token=""), base_url="http://127.0.0.1:8000")
+    for host in ("127.0.0.1:8000", "localhost", "localhost:1234", "[::1]:8000"):
+        assert client.get("/health", headers={"Host": host}).status_code == 200, host
+    for host in ("evil.example", "evil.example:8000", "127.0.0.1.evil.example", "localhost.", ""):
+        response = client.get("/objects", headers={"Host": host})
+        assert response.status_code == 400, host
+        assert response.json()["error"] == "BadRequest" and "Host" in response.json()["detail"]
+    monkeypatch.setenv("OBJRECALL_ALLOWED_HOSTS", "objrecall.lan, 10.0.0.5")
+    client = TestClient(create_app(seeded_db, token=""), base_url="http://objrecall.lan")
+    assert client.get("/health").status_code == 200
+    assert client.get("/health", headers={"Host": "localhost"}).status_code == 400
+    anyhost = TestClient(create_app(seeded_db, token="", allowed_hosts=["*"]), base_url="http://whatever.example")
+    assert anyhost.get("/health").status_code == 200
+
+
+@pytest.fixture(scope="module")
+def live_server(tmp_path_factory):
+    """(base URL, server pid) of `objrecall serve` on loopback with a 1 s request-read deadline."""
+    from kb.catalog import KnowledgeBase
+    from kb.service.bootstrap import seed_catalog_path
+    from kb.service.http import serve_subprocess
+
+    db = tmp_path_factory.mktemp("attack") / "catalog.duckdb"
+    KnowledgeBase.open(db).import_csv(seed_catalog_path())
+    env = {**os.environ, "PYTHONPATH": str(REPO), "PATH": f"{Path(sys.executable).parent}:{os.environ['PATH']}"}
+    env.pop("OBJRECALL_ALLOWED_HOSTS", None)
+    with serve_subprocess(db, env=env, extra_args=["--header-timeout", "1", "--log-level", "warning"]) as base:
+        port = int(base.rsplit(":", 1)[1])
+        yield base, _listening_pid(port)
+
+
+def _listening_pid(port: int) -> int:
+    """The pid of the process listening on 127.0.0.1:port (via /proc)."""
+    inode = None
+    for line in Path("/proc/net/tcp").read_text().splitlines()[1:]:
+        fields = line.split()
+        if fields[1].endswith(f":{port:04X}") and fields[3] == "0A":
+            inode = fields[9]
+    assert inode is not None
+    for proc in Path("/proc").iterdir():
+        if not proc.name.isdigit():
+            continue
+        try:
+            if any(os.readlink(fd) == f"socket:[{inode}]" for fd in (proc / "fd").iterdir()):
+                return int(proc.name)
+        except OSError:
+            continue
+    raise AssertionError("no listener found")
+
+
+def _children(pid: int) -> list[int]:
+    out = []
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        out += [int(p) for p in (task / "children").read_text().split()]
+    return out
+
+
+def _peak_rss_mb(pid: int) -> float:
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1]) / 1024
+    return 0.0
+
+
+@pytest.mark.slow
+def test_half_open_connections_are_closed_and_the_server_keeps_answering(live_server):
+    import socket
+
+    import httpx
+
+    base, _ = live_server
+    port = int(base.rsplit(":", 1)[1])
+    sockets = []
+    try:
+        for i in range(300):
+            s = socket.create_connection(("127.0.0.1", port), timeout=10)
+            if i % 3 == 1:  # headers that never finish
+                s.sendall(b"GET /objects HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Slow: ")
+            elif i % 3 == 2:  # a body that never finishes
+                s.sendall(b"POST /sql HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 500\r\n\r\n{")
+            sockets.append(s)  # and every third sends nothing at all
+        assert httpx.get(f"{base}/health", timeout=30).status_code == 200  # served during the attack
+        closed = 0
+        deadline = time.monotonic() + 60  # a bound on the test, not a speed claim
+        for s in sockets:
+            s.settimeout(max(0.1, deadline - time.monotonic()))
+            try:
+                while s.recv(1024):
+                    pass
+                closed += 1
+            except ConnectionResetError:
+                closed += 1
+            except TimeoutError:
+                pass
+        assert closed == len(sockets)
+    finally:
+        for s in sockets:
+            s.close()
+    assert httpx.get(f"{base}/objects?limit=1", timeout=30).status_code == 200
+
+
+@pytest.mark.slow
+def test_sql_bombs_over_http_are_refused_and_stop_with_their_request(live_server):
+    import httpx
+
+    base, pid = live_server
+    for query in BOMBS[:3]:
+        response = httpx.post(f"{base}/sql", json={"query": query, "timeout_s": 5}, timeout=120)
+        assert response.status_code == 400 and "memory" in response.json()["detail"], (query, response.text)
+    response = httpx.post(f"{base}/sql", json={"query": "SELECT length(repeat('x', 400000000))", "timeout_s": 0.5},
+                          timeout=120)
+    assert response.status_code == 504 and response.json()["error"] == "RequestTimeout"
+    deadline = time.monotonic() + 10  # settling bound
+    while time.monotonic() < deadline:
+        states = [Path(f"/proc/{c}/stat").read_text().rsplit(")", 1)[1].split()[0] for c in _children(pid)]
+        if "R" not in states:
+            break
+        time.sleep(0.05)
+    assert "R" not in states  # no SQL worker keeps running after its 504
+    assert _peak_rss_mb(pid) < 1536
+    assert all(_peak_rss_mb(c) < 2048 for c in _children(pid))
+    for query in ("SELECT 1 AS a, 2 AS a", "SELECT path FROM duckdb_databases()", "UPDATE EXTENSIONS"):
+        response = httpx.post(f"{base}/sql", json={"query": query}, timeout=60)
+        assert response.status_code in (200, 400), response.text
+        assert str(Path(base).name) not in response.text
+    both = httpx.post(f"{base}/sql", json={"query": "SELECT 1 AS a, 2 AS a"}, timeout=60).json()
+    assert both["columns"] == ["a", "a (2)"] and both["rows"] == [{"a": 1, "a (2)": 2}]
+    refused = httpx.post(f"{base}/sql", json={"query": "SELECT path FROM duckdb_databases()"}, timeout=60)
+    assert refused.status_code == 400 and "/" not in refused.json()["detail"]
+    unknown = httpx.post(f"{base}/sql", json={"query": "UPDATE EXTENSIONS (httpfs)"}, timeout=60)
+    assert unknown.status_code == 400 and unknown.json()["error"] == "QueryRefused"
+
+
+def test_api_docs_are_served_offline(seeded_db):
+    """/docs and /redoc load every script and style from this server (no CDN: the page works offline)."""
+    import re
+
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    client = TestClient(create_app(seeded_db, token=""), base_url="http://127.0.0.1")
+    for page in ("/docs", "/redoc"):
+        html = client.get(page).text
+        assets = re.findall(r'(?:src|href)=["\']([^"\']+\.(?:js|css))["\']', html)
+        assert assets, page
+        for url in assets:
+            assert url.startswith("/") and not url.startswith("//"), (page, url)
+            response = client.get(url)
+            assert response.status_code == 200 and len(response.content) > 1000, (page, url)
+        assert "cdn." not in html and "https://" not in html.replace("https://swagger.io", ""), page
+    assert client.get("/openapi.json").json()["paths"]
+
+
+# ---------------------------------------------------------------------------------------------- XSS payloads
+XSS = [
+    "<script>alert(1)</script>",
+    '"><img src=x onerror=alert(1)>',
+    "<svg/onload=alert(1)>",
+    "javascript:alert(1)",
+    "</td></tr><script>alert(1)</script>",
+    "{{7*7}} ${7*7} <%= 7*7 %>",
+]
+
+
+def test_xss_payloads_round_trip_as_data_over_http(tmp_path):
+    from urllib.parse import quote
+
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    db = tmp_path / "c.duckdb"
+    KnowledgeBase.open(db).upsert([ObjectRecord.create("plain mug", a_cm=10, mass_g=300)], source="t", adapter="t")
+    client = TestClient(create_app(db, token="tok"), base_url="http://127.0.0.1")
+    auth = {"Authorization": "Bearer tok"}
+    for i, payload in enumerate(XSS):
+        name = f"thing {i} {payload.replace('/', ' ')}"  # a "/" cannot be in a path segment; it is in the rest
+        body = {"a_cm": 3, "mass_g": 12, "aliases": [f"alias {i} {payload}"], "source": f"https://x/{payload}"}
+        put = client.put(f"/objects/{quote(name, safe='')}", json=body, headers=auth)
+        assert put.status_code in (200, 201), (payload, put.text)
+        got = client.get("/objects", params={"limit": 500})
+        assert got.headers["content-type"].startswith("application/json")
+        assert got.headers["x-content-type-options"] == "nosniff"
+        stored = {o["name"]: o for o in got.json()["items"]}
+        key = " ".join(name.lower().split())
+        assert key in stored and stored[key]["source"] == body["source"], payload
+    page = client.get("/")
+    assert "script-src 'self'" in page.headers["content-security-policy"]  # no inline script can run
+
+
+def test_xss_payloads_are_escaped_in_the_grasp_report(tmp_path):
+    from sim.report import write_report
+
+    rows = [{"object_name": f"obj {p}", "grasp_type": "power", "family": "power", "rank": 1, "seed": 0,
+             "outcome": "failure", "reason": p, "success": False} for p in XSS]
+    html = write_report(rows, tmp_path / "report").read_text()
+    for payload in XSS:
+        if "<" in payload or '"' in payload:
+            assert payload not in html, payload
+    assert "<script>alert(1)</script>" not in html and "&lt;script&gt;" in html
+
+
+# ---------------------------------------------------------------------------------------------- descriptions
+HOSTILE_DESCRIPTIONS = [
+    "", " ", "\x00", "\x00" * 50, "\u202e\u202d mug", "🦆" * 300, "a" * 4999, "x " * 2500,
+    "'; DROP TABLE objects; --", "\" OR 1=1 --", "<script>alert(1)</script> mug",
+    "-10 kg", "-5 cm long", "1e308 cm", "10**100 g", "NaN cm", "inf kg", "0 g", "0.0000001 mm",
+    "9" * 400 + " cm", "1/0 inches", "3 ft 12 in", "5 feet 13 inches", "--- --- ---", "....", "%s%s%n%x",
+    "\n\n\n\t\t", "mug" * 1000, "a mug " * 800, "ｍｕｇ １０ ｃｍ", "ＡＢＣ", "a\u0301" * 100,
+    "a 500 kg 5 m tall box", "a 500.0001 kg box", "a 50000 cm box", "between 3 and 2 cm", "from 5 to cm",
+]
+
+
+def test_hostile_descriptions_never_crash_recall(seeded_db):
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    from kb.errors import ObjrecallError
+    from recall.engine import Recaller
+
+    recaller = Recaller.from_db(seeded_db)
+
+    def check(text: str) -> None:
+        try:
+            result = recaller.recall_text(text, top=3)
+        except ObjrecallError as err:  # a clear refusal (empty, too long) is fine
+            assert str(err) and "\n" not in str(err).strip()
+            return
+        assert 0.0 <= result.confidence <= 1.0
+        for match in result.matches:
+            assert math.isfinite(match.distance)
+
+    for text in HOSTILE_DESCRIPTIONS:
+        check(text)
+
+    @settings(max_examples=300, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(st.text(max_size=200) | st.lists(st.sampled_from(
+        ["mug", "-", "1e9", "kg", "cm", "ft", "in", "12", "'", "3/4", "x", "by", "about", "nan", "½", " "]),
+        max_size=30).map(" ".join))
+    def fuzz(text):
+        check(text)
+
+    fuzz()
+
+
+def test_hostile_sql_over_http_is_a_400_never_a_500(seeded_db, tmp_path):
+    from fastapi.testclient import TestClient
+
+    from kb.service.http import create_app
+
+    client = TestClient(create_app(seeded_db, token=""), raise_server_exceptions=False, base_url="http://127.0.0.1")
+    before = _sha(seeded_db)
+    for template in HOSTILE_SQL:
+        response = client.post("/sql", json={"query": template.format(tmp=tmp_path), "timeout_s": 5})
+        assert response.status_code == 400, (template, response.status_code, response.text)
+        assert response.json()["error"] == "QueryRefused" and str(seeded_db.parent) not in response.text
+    assert _sha(seeded_db) == before

@@ -112,7 +112,9 @@ def test_evaluate_counts_open_set_flags(small, tmp_path):
         ["evaluate", "--catalog", str(small[0]), "--descriptions", str(small[1]), "--open-set", str(opens)],
     )
     assert res.exit_code == 0, res.output
-    assert "Open-set descriptions flagged: jp 1/2" in " ".join(res.stdout.split())
+    out = " ".join(res.stdout.split())
+    assert "Open-set descriptions flagged (detection rate): jp 1/2 (50.0 %" in out
+    assert "(false-flag rate)" in out and "Brier" in out and "ECE" in out
 
 
 CATALOG2 = Path(__file__).parent / "data" / "catalog2"

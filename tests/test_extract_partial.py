@@ -186,3 +186,127 @@ def test_other_products_blocks_stay_out(classes):
     record = extract_page(_page(body), "https://s.example/p")
     assert record.mass_g == 2000.0
     assert not any("9000" in w or "9 kg" in w for w in record.warnings)
+
+
+# ------------------------------------------------------------------ parts, clauses, hedges
+@pytest.mark.parametrize("label", ["Cable length", "Power cord length", "Hose length", "Lid diameter", "Stand height"])
+def test_a_parts_extent_is_not_the_products(label):
+    body = f"<ul><li>{label}: 75 cm</li><li>Weight: 1.1 kg</li></ul>"
+    record = extract_page(_page(body), "https://s.example/p")
+    assert record.dims == [] and record.mass_g == 1100.0
+
+
+def test_labels_after_a_value_on_one_line_are_still_read():
+    record = extract_page(_page("<p>Weight: 2 kg Height: 30 cm</p>"), "https://s.example/p")
+    assert record.mass_g == 2000.0 and _roles(record) == [("height", 30.0)]
+
+
+def test_garment_measurements_in_one_sentence_give_each_extent():
+    record = extract_page(_page("<p>Length 70 cm, chest width 52 cm, in size L</p>"), "https://s.example/p")
+    assert sorted(_roles(record)) == [("length", 70.0), ("width", 52.0)]
+
+
+def test_a_hedge_between_axis_word_and_number_is_skipped():
+    body = "<div>商品サイズ（cm）</div><div>幅約45×奥行約30×高さ約12</div><div>重量</div><div>約850g</div>"
+    record = extract_page(_page(body, "ja"), "https://s.example/p")
+    assert _roles(record) == [("width", 45.0), ("depth", 30.0), ("height", 12.0)]
+    assert record.mass_g == 850.0
+
+
+# ------------------------------------------------------------------------ header rows
+def test_a_header_row_of_labels_pairs_with_the_first_row_under_it():
+    body = ("<table><tr><th>Width</th><th>Height</th><th>Depth</th><th>Weight</th></tr>"
+            "<tr><td>30 cm</td><td>20 cm</td><td>10 cm</td><td>2 kg</td></tr>"
+            "<tr><td>40 cm</td><td>25 cm</td><td>12 cm</td><td>3 kg</td></tr></table>")  # fmt: skip
+    record = extract_page(_page(body), "https://s.example/p")
+    assert _roles(record) == [("width", 30.0), ("height", 20.0), ("depth", 10.0)]
+    assert record.mass_g == 2000.0
+    assert not any("40" in w or "3000" in w for w in record.warnings)
+
+
+def test_a_header_row_needs_as_many_values_as_labels():
+    body = "<div>Dimensions</div><div>Width</div><div>30 cm</div><div>Height</div><div>20 cm</div>"
+    record = extract_page(_page(body), "https://s.example/p")
+    assert sorted(_roles(record)) == [("height", 20.0), ("width", 30.0)]
+
+
+@pytest.mark.parametrize(
+    ("label", "kind"),
+    [("Ürün Ölçüleri", "dimensions"), ("Ebat", "dimensions"), ("Çap", "diameter"), ("Kalınlık", "thickness"),
+     ("外寸", "dimensions"), ("Physical dimensions", "dimensions")],
+)
+def test_more_label_words(label, kind):
+    from scrapers.labels import classify_label
+
+    assert classify_label(label).kind == kind
+
+
+@pytest.mark.parametrize(
+    ("label", "order"),
+    [
+        ("Dimensions (H x W x D)", ("height", "width", "depth")),
+        ("Item Dimensions LxWxH", ("length", "width", "height")),
+        ("Габариты (ВхШхГ), см", ("height", "width", "depth")),
+        ("Abmessungen (B/H/T)", ("width", "height", "depth")),
+        ("Largo x Ancho x Alto", ("length", "width", "height")),
+        ("Dimensions de l'article L x L x H", ()),  # ambiguous: no roles
+        ("Product Dimensions", ()),
+    ],
+)
+def test_a_dimensions_label_names_the_order_of_its_axes(label, order):
+    from scrapers.labels import classify_label
+
+    assert classify_label(label).order == order
+
+
+def test_the_label_order_gives_a_combined_value_its_roles():
+    body = "<table><tr><th>Dimensions (H x W x D)</th><td>17.9 x 359.3 x 235.6 mm</td></tr></table>"
+    record = extract_page(_page(body), "https://s.example/p")
+    assert _roles(record) == [("width", 35.93), ("depth", 23.56), ("height", 1.79)]
+
+
+# ------------------------------------------------------- parts and capacities are candidates too
+def test_parts_and_capacities_are_listed_but_never_chosen():
+    body = ("<ul><li>Capacity: 1.7 L</li><li>Cable length: 75 cm</li><li>Weight: 1.1 kg</li>"
+            "<li>Max load: 5 kg</li></ul><table><tr><th>Fassungsvermögen</th><td>8 kg</td></tr></table>")  # fmt: skip
+    record = extract_page(_page(body), "https://s.example/p")
+    assert record.dims == [] and record.mass_g == 1100.0
+    roles = {(c["feature"], c["role"], json.dumps(c["value"])) for c in record.candidates}
+    assert ("dims", "component", "[75.0]") in roles
+    assert ("mass", "capacity", "5000.0") in roles and ("mass", "capacity", "8000.0") in roles
+    assert all(c["decision"].startswith("not the product's") for c in record.candidates if c["role"] != "product")
+
+
+def test_a_page_with_only_a_parts_value_states_nothing_of_the_product():
+    from kb.errors import ExtractionError
+
+    with pytest.raises(ExtractionError, match="no product dimensions or mass"):
+        extract_page(_page("<ul><li>Cable length: 75 cm</li><li>Battery weight: 148 g</li></ul>"), "https://s.example/p")
+
+
+@pytest.mark.parametrize(
+    ("label", "role"),
+    [("Cable length", "component"), ("Battery Weight", "component"), ("Schlauchlänge", "component"),
+     ("Fassungsvermögen", "capacity"), ("Max Height", "capacity"), ("耐荷重", "capacity"),
+     ("Weight", None), ("Colour", None), ("Weight: 1.1 kg", None)],
+)
+def test_whose_label_it_is(label, role):
+    from scrapers.labels import classify_other
+
+    info = classify_other(label)
+    assert (info.role if info else None) == role
+
+
+@pytest.mark.parametrize(
+    ("value", "extents", "axes"),
+    [
+        ("<li>Diameter 30cm x Height 15cm</li>", [("diameter", 30.0), ("height", 15.0)], (30.0, 30.0, 15.0)),
+        ("<li>Width: 30 cm x Height 20 cm</li>", [("width", 30.0), ("height", 20.0)], (30.0, 20.0)),
+        ("<li>Size: Width 30 cm x Height 20 cm x Depth 10 cm</li>",
+         [("width", 30.0), ("height", 20.0), ("depth", 10.0)], (30.0, 20.0, 10.0)),
+    ],
+)
+def test_axis_words_inside_one_value_keep_their_roles(value, extents, axes):
+    record = extract_page(_page(f"<ul>{value}</ul>"), "https://s.example/p")
+    assert sorted(_roles(record)) == sorted(extents)
+    assert record.dims_cm == axes

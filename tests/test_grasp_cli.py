@@ -111,12 +111,23 @@ def test_plan_without_a_catalog_plans_for_the_parsed_features(tmp_path):
     assert data["plans"][0]["family"] == "precision"
 
 
-def test_plan_simulate_runs_one_real_trial(db):
-    result = invoke("grasp", "plan", "small cube", "--db", str(db), "--simulate", "--json")
+def test_plan_simulate_runs_one_real_trial_per_plan_and_shows_both_choices(db):
+    result = invoke("grasp", "plan", "small cube", "--db", str(db), "--simulate", "--json", "--top", "2")
     assert result.exit_code == 0, result.output
-    trial = json.loads(result.output)["trial"]
+    data = json.loads(result.output)
+    trial = data["trial"]
     assert trial["outcome"] in ("success", "failure", "error")
     assert trial["simulator"].startswith("mujoco")
+    assert [t["grasp_type"] for t in data["trials"]] == [p["grasp_type"] for p in data["plans"]]
+    assert data["trials"][0] == trial  # "trial" stays the first choice's
+    choice = data["choice"]
+    assert choice["first"] == data["plans"][0]["grasp_type"]
+    assert choice["first_holds"] == (trial["outcome"] == "success")
+    holding = [t["grasp_type"] for t in data["trials"] if t["success"]]
+    assert choice["validated"] == (holding[0] if holding else None)
+    text = invoke("grasp", "plan", "small cube", "--db", str(db), "--simulate", "--top", "2").output
+    assert "first choice " + choice["first"] in text and "validated choice" in text
+    assert text.count(" program): ") == 2
 
 
 def test_plan_needs_a_description_or_catalog():
@@ -162,12 +173,21 @@ def test_validate_end_to_end_with_real_physics_report_and_resume(db, tmp_path):
     cube = next(r for r in stored if r["object_name"] == "small cube" and r["family"] == "power")
     assert cube["success"] is True, cube["reason"]  # a 5 cm, 100 g cube holds in a power grasp
 
+    assert summary["choice_summary"]["objects"] == 2
+    assert {c["object_name"] for c in summary["choices"]} == {"tennis ball", "small cube"}
+    assert all(c["first"] == next(r["grasp_type"] for r in summary["results"]
+                                  if r["object_name"] == c["object_name"] and r["rank"] == 0)
+               for c in summary["choices"])  # fmt: skip
+    text = invoke(*args).output
+    assert "first choice holds for" in text and "a validated grasp" in text
+
     report = tmp_path / "report"
     again = json.loads(invoke(*args, "--report", str(report), "--json").output)
     assert again["ran"] == 0 and again["skipped"] == 4
     assert (report / "index.html").is_file() and (report / "results.csv").is_file()
     images = sorted((report / "images").glob("*.png"))
-    assert len(images) == 2, "one render of the best plan per object"
+    differing = sum(c["differs"] and c["validated"] is not None for c in again["choices"])
+    assert len(images) == 2 + differing, "a render of the first choice per object, and of a differing validated one"
     assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in images)
     page = (report / "index.html").read_text()
     assert all(f"images/{p.name}" in page for p in images)

@@ -362,3 +362,23 @@ include = ["^/(de|fr|es|it|pt)/"]
         b_pages = [e for e in b.log if e.path.startswith(("/de/", "/fr/"))]
         # Interleaved in time: some page of b was served while a's crawl was under way, and vice versa.
         assert any(a_pages[0].started < e.started < a_pages[-1].started for e in b_pages)
+
+
+def test_store_names_in_other_languages_get_an_english_alias_with_provenance(tmp_path):
+    from recall.engine import Recaller
+
+    with DemoStore(crawl_delay=None) as store, requests.Session() as session:
+        kb = seeded(tmp_path / "names.duckdb")
+        sources = sources_for(store, include="cafetera|wasserkocher|theiere|moka-alluminio")
+        run_ingestion(kb, sources, session=session)
+    aliases = dict(rows(kb, "SELECT alias, o.name FROM object_aliases a JOIN objects o ON o.id = a.object_id"))
+    assert aliases["moka pot"] in {"caffettiera moka in alluminio 3 tazze", "cafetera italiana de aluminio 6 tazas"}
+    assert aliases["electric kettle"].startswith("wasserkocher")
+    assert aliases["teapot"].startswith("théière")
+    events = rows(kb, "SELECT url, reason FROM page_events WHERE stage = 'naming' ORDER BY url")
+    assert any("English alias 'electric kettle' from the title ('wasserkocher', de)" in r for _, r in events)
+    # the recall finds them by their English names, and a teapot is no longer "not in the catalog"
+    recaller = Recaller.from_db(tmp_path / "names.duckdb")
+    assert recaller.recall_text("an electric kettle").best.name.startswith("wasserkocher")
+    teapot = recaller.recall_text("a cast iron teapot, 1.2 kg")
+    assert teapot.best.name.startswith("théière") and not teapot.not_in_catalog

@@ -68,3 +68,43 @@ def test_export_to_file(tmp_path):
     res = run("catalog", "export", out, "--db", db, "--json")
     assert json.loads(res.stdout)["objects"] >= 100
     assert out.read_text().startswith("name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity")
+
+
+def _objrecall(cli_env, *args, columns=80):
+    env = {**cli_env, "COLUMNS": str(columns)}
+    return subprocess.run(["objrecall", *map(str, args)], capture_output=True, text=True, env=env, timeout=120)
+
+
+def test_catalog_list_is_readable_at_80_columns(tmp_path, cli_env):
+    db = tmp_path / "c.duckdb"
+    assert _objrecall(cli_env, "init", "--seed", "--db", db).returncode == 0
+    out = _objrecall(cli_env, "catalog", "list", "--db", db).stdout
+    assert max(len(line) for line in out.splitlines()) <= 80
+    assert "…" not in out  # no cell cut short
+    words = set(out.replace("│", " ").split())
+    for name in ("adjustable wrench", "tennis ball", "tv remote"):  # whole, though a long name may wrap
+        assert set(name.split()) <= words, name
+    assert "6.4x6.4x6.4" in out  # the tennis ball's size on one line
+    wide = _objrecall(cli_env, "catalog", "list", "--db", db, columns=200).stdout
+    assert "fragility" in wide and "…" not in wide
+
+
+def test_catalog_show_prints_each_source_once_and_suggests_names(tmp_path, cli_env):
+    db = tmp_path / "c.duckdb"
+    assert _objrecall(cli_env, "init", "--seed", "--db", db).returncode == 0
+    out = _objrecall(cli_env, "catalog", "show", "tv remote", "--db", db, columns=200).stdout
+    assert out.count("paper section IV-E") == 2  # the object's source row and one provenance heading
+    missing = _objrecall(cli_env, "catalog", "show", "tv remot", "--db", db)
+    assert missing.returncode == 1 and "did you mean 'tv remote'" in missing.stderr
+
+
+def test_markup_in_names_is_shown_as_text(tmp_path, cli_env):
+    db = tmp_path / "c.duckdb"
+    evil = "[bold red]boom[/bold red] <script>alert(1)</script>"
+    csv = tmp_path / "evil.csv"
+    write_catalog_csv([ObjectRecord.create(evil, a_cm=3, mass_g=5)], csv)
+    assert _objrecall(cli_env, "catalog", "import", csv, "--db", db).returncode == 0
+    shown = _objrecall(cli_env, "catalog", "list", "--db", db, columns=200).stdout
+    assert "[bold red]boom[/bold red]" in shown
+    sql = _objrecall(cli_env, "sql", "select name as \"[i]n[/i]\" from objects", "--db", db, columns=200).stdout
+    assert "[i]n[/i]" in sql and "[bold red]boom[/bold red]" in sql

@@ -213,3 +213,28 @@ def test_the_search_only_products_are_in_no_sitemap(store):
     for prod in SEARCH_ONLY_PRODUCTS:
         assert prod.path not in sitemap
         assert requests.get(store.url(prod.path), timeout=5).status_code == 200
+
+
+def test_results_pages_are_followed_until_a_store_has_listed_its_search_results(db, store):
+    from kb.catalog import KnowledgeBase as KB
+    from scrapers.lookup import search_stores
+
+    text = '[[stores]]\nname = "s"\nbase_url = "' + store.base_url + '"\nsearch = "{base_url}/search?q={query}"\n'
+    plan = parse_sources(text + "search_results = 5\ndelay_s = 0\n")
+    with requests.Session() as session:
+        report = search_stores(KB.open(db), plan, ["steel"], description="steel", fits=lambda r: (False, "no"),
+                               session=session, deadline=time.monotonic() + 20)  # fmt: skip
+    (answer,) = report.stores
+    assert len(answer.search_pages) == 2 and answer.search_pages[1].endswith("page=2")
+    assert len(answer.product_pages) == 5
+    assert {c.outcome for c in report.candidates} == {"does_not_fit"} and report.run_id is None
+
+
+def test_a_crawl_delay_longer_than_the_time_left_skips_the_store(db, store):
+    with DemoStore(crawl_delay=5) as patient:
+        t0 = time.monotonic()
+        result = recall_with_lookup(db, TEAPOT, sources=sources(patient, store), budget_s=3.0)
+        elapsed = time.monotonic() - t0
+    patient_answer = result.stores.stores[0]
+    assert patient_answer.status == "skipped" and "delay between requests (5 s)" in patient_answer.reason
+    assert result.found and elapsed < 5.0

@@ -7,7 +7,6 @@ import json
 import os
 import shutil
 import sys
-import tempfile
 from pathlib import Path
 
 import httpx
@@ -89,7 +88,7 @@ def test_cli_refuses_absurd_budgets(db, sources_file):
 
 
 def test_http_lookup_needs_the_token_and_finds_the_teapot(db, sources_file):
-    client = TestClient(create_app(db, token=TOKEN, sources=sources_file), raise_server_exceptions=False)
+    client = TestClient(create_app(db, token=TOKEN, sources=sources_file), raise_server_exceptions=False, base_url="http://127.0.0.1")
     assert client.post("/recall/lookup", json={"text": TEAPOT}).status_code == 401
     res = client.post("/recall/lookup", json={"text": TEAPOT}, headers={"Authorization": f"Bearer {TOKEN}"})
     assert res.status_code == 200, res.text
@@ -102,7 +101,7 @@ def test_http_lookup_needs_the_token_and_finds_the_teapot(db, sources_file):
 
 
 def test_http_lookup_without_sources_says_so(db):
-    client = TestClient(create_app(db, token=TOKEN, sources=None), raise_server_exceptions=False)
+    client = TestClient(create_app(db, token=TOKEN, sources=None), raise_server_exceptions=False, base_url="http://127.0.0.1")
     res = client.post("/recall/lookup", json={"text": TEAPOT}, headers={"Authorization": f"Bearer {TOKEN}"})
     assert res.status_code >= 400 and "no sources file" in res.json()["detail"]
 
@@ -113,32 +112,32 @@ CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 @pytest.mark.slow
 @pytest.mark.skipif(CHROMIUM is None, reason="chromium not installed (apt-get install chromium)")
 def test_web_page_looks_it_up(db, sources_file):
-    sync_client = pytest.importorskip("websockets.sync.client", reason="the websockets package drives Chromium")
-    from test_webpage import DevTools, _cdp_browser
+    from test_webpage import browser_at
 
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
            "OBJRECALL_API_TOKEN": TOKEN}  # fmt: skip
     env.pop("OBJRECALL_API_TOKEN_FILE", None)
     args = ["--log-level", "warning", "--sources", str(sources_file)]
-    with serve_subprocess(db, env=env, extra_args=args) as base, tempfile.TemporaryDirectory() as profile:
+    with serve_subprocess(db, env=env, extra_args=args) as base:
         httpx.post(f"{base}/recall", json={"text": "warm up: a mug"}, timeout=120)
-        proc, ws_url = _cdp_browser(profile)
-        try:
-            with sync_client.connect(ws_url, max_size=None) as ws:
-                tools = DevTools(ws)
-                tools.call("Page.enable")
-                tools.call("Page.navigate", url=f"{base}/")
-                tools.wait_for("document.body && document.body.dataset.ready === 'true'")
-                tools.eval(
-                    f"document.getElementById('q').value = {json.dumps(TEAPOT)};"
-                    "document.getElementById('lookup').checked = true;"
-                    f"document.getElementById('token').value = {json.dumps(TOKEN)};"
-                    "document.getElementById('recall-button').click()"
-                )
-                top = tools.wait_for("(document.getElementById('top-match') || {}).textContent")
-                assert top == TEAPOT_NAME
-                summary = tools.eval("document.getElementById('lookup-summary').textContent")
-                assert summary.startswith("Lookup: added from 1 of 1 store(s)")
-        finally:
-            proc.kill()
-            proc.wait()
+        with browser_at(f"{base}/") as tools:
+            tools.eval(
+                f"document.getElementById('q').value = {json.dumps(TEAPOT)};"
+                "document.getElementById('lookup').checked = true;"
+                f"document.getElementById('token').value = {json.dumps(TOKEN)};"
+                "document.getElementById('recall-button').click()"
+            )
+            top = tools.wait_for("(document.getElementById('top-match') || {}).textContent")
+            assert top == TEAPOT_NAME
+            summary = tools.eval("document.getElementById('lookup-summary').textContent")
+            assert summary.startswith("Lookup: added from 1 of 1 store(s)")
+
+
+def test_cli_lookup_of_a_file_gives_one_json_line_per_description(db, sources_file, tmp_path):
+    csv_file = tmp_path / "d.csv"
+    csv_file.write_text(f'description\n"{TEAPOT}"\n"a tennis ball, 6.7 cm across, 58 g"\n')
+    res = cli("recall", "--file", csv_file, "--lookup", "--sources", sources_file, "--db", db, "--json")
+    assert res.exit_code == 0, res.output
+    first, second = (json.loads(line) for line in res.stdout.splitlines())
+    assert first["looked_up"] and first["found"] and first["result"]["matches"][0]["name"] == TEAPOT_NAME
+    assert not second["looked_up"] and second["result"]["matches"][0]["name"] == "tennis ball"

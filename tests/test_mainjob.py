@@ -20,9 +20,22 @@ def test_demo_runs_end_to_end(tmp_path, cli_env):
     assert steps["ingest"]["new"] >= 25 and steps["ingest"]["rejected"] >= 3
     tops = [r["top"] for r in steps["recall"]]
     assert tops[:6] == ["calculator", "water bottle", "wood cylinder", "cardboard box", "mini rubix cube", "tv remote"]
+    teapot = steps["recall"][-1]  # sold only through the demo store's search: recalled after a lookup
+    assert teapot["looked_up"] and teapot["added"] == ["glazed ceramic teapot 1.2 l"]
+    assert teapot["top"] == "glazed ceramic teapot 1.2 l" and not teapot["open_set"]
+    assert not steps["recall"][0]["looked_up"]  # the calculator is known: no lookup
+    orange = steps["recall"][6]  # the paper's open-set case: no orange in the catalog, nor in the stores
+    assert orange["not_in_catalog"] and orange["open_set"] and orange["same_kind"][0] == "apple"
     assert steps["grasp"]["ran"] + steps["grasp"]["skipped"] == steps["grasp"]["trials"] > 0
     assert steps["grasp"]["errors"] == 0
     report = out / "grasp-report" / "index.html"
     html = report.read_text()
     assert "calculator" in html and list((out / "grasp-report").glob("*.png"))
     assert (out / "demo_summary.json").exists()
+    # output not on a terminal: one summary line per step, no progress bar
+    lines = proc.stderr.splitlines()
+    for step in ("catalog ", "ingest: ", "recall: ", "grasp: ", "main job done"):
+        assert any(line.startswith(step) for line in lines), (step, proc.stderr[-3000:])
+    grasp_line = next(line for line in lines if line.startswith("grasp: "))
+    assert f"{steps['grasp']['trials']} trials" in grasp_line and f"{steps['grasp']['succeeded']} succeeded" in grasp_line
+    assert not any("grasp trials" in line for line in lines) and "\r" not in proc.stderr  # no progress bar

@@ -187,3 +187,37 @@ def test_calibration_properties(points, bins):
     # predicting the outcome exactly is perfect
     exact = calibration([float(r) for r in right], right, bins)
     assert exact.brier == 0.0 and exact.ece == pytest.approx(0.0)
+
+
+# ------------------------------------------------------------------------------- shape from geometry
+def test_three_extents_decide_a_proportion_class_over_a_shape_word():
+    from recall.metrics import FeatureQuery
+
+    r = seed()
+    box = FeatureQuery.from_values({"a_cm": 15.5, "b_cm": 9.0, "c_cm": 1.8, "shape": "prism"})
+    assert r._shape_from_geometry(box).values()["shape"] == "thin"
+    # a round word stays: proportions cannot tell a ball from a cube
+    ball = FeatureQuery.from_values({"a_cm": 15.5, "b_cm": 9.0, "c_cm": 1.8, "shape": "radial"})
+    assert r._shape_from_geometry(ball).values()["shape"] == "radial"
+    # two extents are not enough, and no shape word means nothing to replace
+    two = FeatureQuery.from_values({"a_cm": 15.5, "b_cm": 9.0, "shape": "prism"})
+    assert r._shape_from_geometry(two) == two
+    none = FeatureQuery.from_values({"a_cm": 15.5, "b_cm": 9.0, "c_cm": 1.8})
+    assert r._shape_from_geometry(none) == none
+
+
+def test_geometry_votes_need_a_clear_majority():
+    from recall.geometry import MIN_VOTES, K, ShapeGeometry, overrides
+
+    codes = {"thin": 0, "compact": 1, "prism": 2, "long": 3, "radial": 4}
+    flat = [[20.0, 10.0, 1.0]] * K
+    cubes = [[5.0, 5.0, 5.0]] * (K // 2 + 1) + [[5.1, 5.0, 5.0]] * (K // 2 + 1)
+    num = np.array(flat + cubes)
+    shapes = np.array([codes["thin"]] * K + [codes["compact"]] * (K // 2 + 1) + [codes["radial"]] * (K // 2 + 1))
+    geo = ShapeGeometry(num, shapes)
+    assert geo.classify(21.0, 10.0, 1.1) == "thin"
+    assert geo.classify(5.0, 5.0, 5.0) is None  # split vote
+    assert geo.classify(1.0, 2.0, 3.0) is None  # not sorted
+    assert MIN_VOTES <= K
+    assert overrides("thin", "prism") and overrides("prism", "long") and not overrides("thin", "radial")
+    assert not overrides("radial", "compact") and not overrides("compact", "prism")

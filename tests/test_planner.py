@@ -322,3 +322,27 @@ def test_human_eval_command_prints_agreement_and_refuses_a_missing_file(capsys, 
     assert out["n"] >= 40 and out["planner_version"] and isinstance(out["type_misses"], list)
     assert main(["--csv", str(tmp_path / "missing.csv")]) == 1
     assert "Error:" in capsys.readouterr().err
+
+
+def test_partial_sizes_plan_from_what_is_known():
+    """The catalog keeps unknown extents NULL (kb/features.py partial sizes): a diameter-only object has
+    a = b = diameter and no c; a length-only object only a. The planner plans from what is known and says
+    what it assumed; the simulator builds the same object."""
+    from sim.objects import object_model
+
+    plate = {"name": "plate", "a_cm": 26.0, "b_cm": 26.0, "mass_g": 500.0, "shape": "thin", "material": "other"}
+    plans = plan_grasps(plate)
+    assert plans and any("third size unknown" in r and "3.9 cm" in r for r in plans[0].rationale)
+    assert plans[0].params["width_cm"] == pytest.approx(3.9)  # thin: c = 0.15 b
+    jar = {"name": "jar", "a_cm": 8.0, "b_cm": 8.0}  # diameter only, nothing else known
+    first = plan_grasps(jar)[0]
+    assert any("third size unknown" in r for r in first.rationale)
+    assert any("shape unknown" in r for r in first.rationale) and any("mass unknown" in r for r in first.rationale)
+    rod = {"name": "rod", "a_cm": 30.0, "shape": "long"}  # length only
+    plan = plan_grasps(rod)[0]
+    assert any("only one size known" in r and "30 x 6 x 4.5" in r for r in plan.rationale)
+    assert plan.params["width_cm"] == pytest.approx(4.5)
+    from kb.features import ObjectRecord
+
+    model = object_model(ObjectRecord.create("rod", a_cm=30.0, shape="long"))
+    assert model.extent_cm("a") == pytest.approx(30.0) and model.extent_cm("c") == pytest.approx(4.5, abs=0.6)

@@ -126,3 +126,30 @@ def test_empty_results_still_make_a_page(tmp_path):
     page = write_report([], tmp_path).read_text()
     assert "No trials." in page
     assert json.loads((tmp_path / "results.json").read_text())["summary"]["trials"] == 0
+
+
+def test_report_shows_first_and_validated_choice_and_why_nothing_holds(tmp_path):
+    (tmp_path / "images").mkdir()
+    img_first, img_val = image_name("remote", "thumb_4_finger"), image_name("remote", "medium_wrap")
+    for name in (img_first, img_val):
+        (tmp_path / "images" / name).write_bytes(PNG_1PX)
+    wide = row("soccer ball", "power_sphere", "power", "failure", reason="hand starts inside the object (3 mm)")
+    heavy = row("anvil", "thumb_2_finger", "precision", "failure", reason="slipped 9 cm")
+    heavy["details"] = json.dumps({"plan": {"params": {"force_within_capacity": False, "required_force_n": 80,
+                                                       "friction": 0.4}}})  # fmt: skip
+    rows = [
+        row("remote", "thumb_4_finger", "precision", "failure", reason="turned 25.8 deg", image=img_first),
+        row("remote", "medium_wrap", "power", "success", rank=1, image=img_val),
+        wide, heavy,
+    ]  # fmt: skip
+    index = write_report(rows, tmp_path)
+    page = index.read_text()
+    assert "first choice" in page and "validated choice (planner&#x27;s rank 2)" in page
+    assert f"images/{img_first}" in page and f"images/{img_val}" in page
+    assert "no candidate holds" in page
+    assert "aperture: the hand cannot open round it" in page  # the soccer ball: why, not just "failure"
+    assert "mass and friction: it needs 80 N" in page  # the anvil
+    doc = json.loads((tmp_path / "results.json").read_text())
+    assert doc["summary"]["choices"] == {"objects": 3, "first_holds": 0, "validated": 1, "differs": 3}
+    remote = next(c for c in doc["choices"] if c["object_name"] == "remote")
+    assert (remote["first"], remote["validated"], remote["differs"]) == ("thumb_4_finger", "medium_wrap", True)

@@ -13,6 +13,9 @@ from kb.service.http import ERROR_STATUS, MAX_PAGE, create_app, load_token
 TOKEN = "test-token-not-secret"
 AUTH = {"Authorization": f"Bearer {TOKEN}"}
 
+#: TestClient options: server errors as responses, and a loopback Host (the default allow-list).
+LOCAL = {"raise_server_exceptions": False, "base_url": "http://127.0.0.1"}
+
 
 @pytest.fixture(scope="module")
 def shared_db(tmp_path_factory) -> Path:
@@ -27,13 +30,13 @@ def shared_db(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def client(shared_db: Path) -> TestClient:
-    return TestClient(create_app(shared_db, token=""), raise_server_exceptions=False)
+    return TestClient(create_app(shared_db, token=""), **LOCAL)
 
 
 @pytest.fixture
 def writer(seeded_db: Path) -> TestClient:
     """A client of an app with writes enabled, on a fresh seeded catalog."""
-    return TestClient(create_app(seeded_db, token=TOKEN), raise_server_exceptions=False)
+    return TestClient(create_app(seeded_db, token=TOKEN), **LOCAL)
 
 
 def assert_error(response, status: int, error: str | None = None, words: str | None = None) -> dict:
@@ -334,7 +337,7 @@ def test_request_body_size_limit(client):
 
 
 def test_request_time_limit(shared_db):
-    slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), raise_server_exceptions=False)
+    slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), **LOCAL)
     r = slow.post(
         "/sql", json={"query": "SELECT count(*) FROM range(100000000) a, range(100000000) b", "timeout_s": 3}
     )
@@ -343,7 +346,7 @@ def test_request_time_limit(shared_db):
 
 
 def test_missing_catalog_is_a_clear_503(tmp_path):
-    c = TestClient(create_app(tmp_path / "none.duckdb", token=""), raise_server_exceptions=False)
+    c = TestClient(create_app(tmp_path / "none.duckdb", token=""), **LOCAL)
     assert c.get("/health").json() == {"status": "ok", "catalog": False}
     assert_error(c.get("/objects"), 503, "DatabaseError", "objrecall init")
     assert_error(c.post("/recall", json={"text": "a mug"}), 503, "DatabaseError")
@@ -386,3 +389,31 @@ def test_web_page_is_served_with_a_strict_policy(client):
     )
     assert client.get("/static/style.css").status_code == 200
     assert client.get("/static/../service.py").status_code == 404
+
+
+def test_grasp_plan_carries_the_latest_validation_and_the_render_shows_it(writer, seeded_db):
+    """The web page's grasp: the plan, the stored validation with the current hand (first vs validated
+    choice) and a real MuJoCo render of the shown grasp."""
+    from kb.catalog import KnowledgeBase
+    from sim.worker import current_hand_version
+
+    assert writer.post("/grasp/plan", json={"name": "tennis ball"}).json()["validation"] is None
+    plans = writer.post("/grasp/plan", json={"name": "tennis ball"}).json()["plans"]
+    first, second = plans[0]["grasp_type"], plans[1]["grasp_type"]
+    base = {"object_name": "tennis ball", "seed": 0, "features_hash": "h", "family": "power"}
+    KnowledgeBase.open(seeded_db).record_grasp_results([
+        {**base, "grasp_type": first, "rank": 0, "success": False, "outcome": "failure", "reason": "turned 20 deg",
+         "hand_version": current_hand_version()},
+        {**base, "grasp_type": second, "rank": 1, "success": True, "outcome": "success", "reason": "held",
+         "hand_version": current_hand_version()},
+        {**base, "grasp_type": second, "rank": 1, "success": False, "outcome": "failure", "reason": "old hand",
+         "seed": 1, "hand_version": "an older hand"},  # another hand's trials are not this hand's validation
+    ])  # fmt: skip
+    v = writer.post("/grasp/plan", json={"name": "tennis ball"}).json()["validation"]
+    assert (v["first"], v["first_holds"], v["validated"], v["differs"]) == (first, False, second, True)
+    png = writer.get("/grasp/render", params={"object": "tennis ball", "grasp_type": second})
+    assert png.status_code == 200 and png.headers["content-type"] == "image/png"
+    assert png.content[:8] == b"\x89PNG\r\n\x1a\n"
+    assert_error(writer.get("/grasp/render", params={"object": "tennis ball", "grasp_type": "fist"}), 400,
+                 words="not a planned grasp")  # fmt: skip
+    assert_error(writer.get("/grasp/render", params={"object": "unicorn", "grasp_type": first}), 404)

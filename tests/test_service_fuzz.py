@@ -33,7 +33,7 @@ def _catalog() -> Path:
 
 
 _DB = _catalog()
-app = create_app(_DB, token=TOKEN, request_timeout=20.0)
+app = create_app(_DB, token=TOKEN, request_timeout=20.0, allowed_hosts=["testserver"])  # the ASGI client's Host
 schema = schemathesis.openapi.from_asgi("/openapi.json", app)
 
 

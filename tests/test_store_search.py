@@ -5,9 +5,12 @@ from __future__ import annotations
 
 import json
 import re
+from urllib.parse import urlsplit
 
 import pytest
 import requests
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from kb.errors import ExtractionError, SourcesError
 from scrapers.demo_store import DemoStore
@@ -117,3 +120,60 @@ def test_search_faults(store):
     assert "Disallow: /search" not in requests.get(store.url("/robots.txt"), timeout=5).text
     with pytest.raises(ValueError, match="search_fault"):
         DemoStore(search_fault="broken")
+
+
+_links = st.lists(
+    st.tuples(st.sampled_from(["/p/", "http://127.0.0.1:1/p/", "https://other.example/p/", "/search?q=", "#", ""]),
+              st.text(min_size=0, max_size=12)),
+    max_size=8,
+)  # fmt: skip
+
+
+@settings(max_examples=150, deadline=None)
+@given(_links, st.sampled_from(["main", "body", "nav", "footer"]), st.booleans())
+def test_any_results_page_lists_only_the_stores_own_non_search_pages(links, where, as_json):
+    base = "http://127.0.0.1:1/search?q=x"
+    if as_json:
+        body = json.dumps({"items": [{"url": p + t} for p, t in links]}).encode()
+    else:
+        anchors = "".join(f'<a href="{p}{t}">x</a>' for p, t in links).replace("\x00", "")
+        body = f"<html><body><{where}>{anchors}</{where}></body></html>".encode("utf-8", "replace")
+    try:
+        page = parse_search_page(body, base, "application/json" if as_json else "text/html", source())
+    except ExtractionError:
+        return
+    assert len(page.product_urls) == len(set(page.product_urls))
+    for url in page.product_urls:
+        assert url.startswith("http://127.0.0.1:1/") and "#" not in url
+        assert urlsplit(url).path != "/search"
+    if where in ("nav", "footer") and not as_json:
+        assert page.product_urls == []
+
+
+@given(st.binary(max_size=300))
+def test_garbage_search_answers_never_crash(body):
+    try:
+        parse_search_page(body, "http://127.0.0.1:1/search?q=x", None, source())
+    except ExtractionError:
+        pass
+
+
+@given(st.text(max_size=40))
+def test_query_words_are_lower_case_words(text):
+    for word in query_words(text):
+        assert word == word.lower() and word.strip() and " " not in word
+
+
+def test_a_results_page_with_an_item_list_is_read_by_its_list():
+    listing = {"@context": "https://schema.org", "@type": "ItemList", "itemListElement": [
+        {"@type": "ListItem", "position": 1, "url": "/p/b.html"},
+        {"@type": "ListItem", "position": 2, "item": {"@type": "Product", "url": "http://127.0.0.1:1/p/c.html"}},
+        {"@type": "ListItem", "position": 3, "item": "/p/d.html"},
+    ]}  # fmt: skip
+    html = (
+        f'<html><head><script type="application/ld+json">{json.dumps({"@graph": [listing]})}</script>'
+        '<script type="application/ld+json">{broken</script></head>'
+        '<body><main><a href="/p/promo.html">promo</a><a href="/p/b.html">b</a></main></body></html>'
+    ).encode()
+    page = parse_search_page(html, "http://127.0.0.1:1/search?q=x", "text/html", source())
+    assert page.product_urls == ["http://127.0.0.1:1/p/b.html", "http://127.0.0.1:1/p/c.html", "http://127.0.0.1:1/p/d.html"]

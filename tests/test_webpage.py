@@ -9,6 +9,7 @@ skipped with that reason. The interactive test drives Chromium over the DevTools
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
@@ -18,12 +19,14 @@ import sys
 import tempfile
 import time
 import urllib.parse
+from collections.abc import Iterator
 from pathlib import Path
 
 import httpx
 import pytest
 
 from kb.service.http import serve_subprocess
+from kb.service.http.process import stop_process
 
 pytestmark = pytest.mark.slow
 
@@ -98,6 +101,9 @@ def test_page_lists_the_catalog_and_recalls_from_the_url(site):
     assert 'data-feature="mass_g"' in matches
     assert re.search(r'id="grasp-type" data-grasp="[a-z_]+"', dom)
     assert "confidence" in dom
+    # its simulated grasp: not validated in this fresh catalog yet, said so, with the render of the plan
+    assert re.search(r'id="grasp-validation">Not validated in simulation', dom)
+    assert re.search(r'<img id="grasp-render" alt="tennis ball: [a-z_]+ \(simulated\)" src="/grasp/render\?object=tennis%20ball&amp;grasp_type=[a-z_]+"', dom)
 
 
 @needs_chromium
@@ -171,8 +177,9 @@ class DevTools:
         raise AssertionError(f"timed out waiting for {expression}")
 
 
-@needs_chromium
-def test_typing_a_description_shows_matches_and_paging_works(site):
+@contextlib.contextmanager
+def browser_at(url: str) -> Iterator[DevTools]:
+    """Headless Chromium on ``url``, driven over the DevTools protocol, once the page says it is ready."""
     sync_client = pytest.importorskip(
         "websockets.sync.client", reason="the websockets package drives Chromium"
     )
@@ -182,41 +189,49 @@ def test_typing_a_description_shows_matches_and_paging_works(site):
             with sync_client.connect(ws_url, max_size=None) as ws:
                 tools = DevTools(ws)
                 tools.call("Page.enable")
-                tools.call("Page.navigate", url=f"{site}/")
+                tools.call("Page.navigate", url=url)
                 tools.wait_for("document.body && document.body.dataset.ready === 'true'")
-                names = tools.eval(
-                    "[...document.querySelectorAll('#catalog tbody tr')].map(r => r.dataset.name)"
-                )
-                assert EVIL_NAME in names  # '<' sorts early: the HTML name is on the first page, as text
-                cell = f"[...document.querySelectorAll('#catalog td.name')].find(td => td.textContent === {json.dumps(EVIL_NAME)})"
-                assert tools.eval(f"{cell}.childElementCount") == 0  # text only, no elements parsed from it
-                first = names[0]
-                tools.eval("document.getElementById('next').click()")
-                tools.wait_for("document.getElementById('page-info').textContent.startsWith('26-')")
-                assert tools.eval("document.querySelector('#catalog tbody tr').dataset.name") != first
-                tools.eval(
-                    "document.getElementById('q').value = 'a metal frying pan with a long handle, 48 cm long, 1.2 kg';"
-                    "document.getElementById('recall-button').click()"
-                )
-                top = tools.wait_for("(document.getElementById('top-match') || {}).textContent")
-                assert top == "frying pan"
-                rows = tools.eval("document.querySelectorAll('#matches tbody tr').length")
-                assert rows == 5
-                explained = tools.eval(
-                    "[...document.querySelectorAll('#matches .contrib')].map(e => e.dataset.feature)"
-                )
-                assert "mass_g" in explained
-                grasp = tools.wait_for(
-                    "(document.getElementById('grasp-type') || {dataset: {}}).dataset.grasp"
-                )
-                assert grasp
-                assert tools.eval("new URL(location.href).searchParams.get('q')").startswith(
-                    "a metal frying pan"
-                )
-                assert tools.eval("document.title") == "objrecall"
+                yield tools
         finally:
-            proc.terminate()
-            try:
-                proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
+            stop_process(proc)
+
+
+@needs_chromium
+def test_typing_a_description_shows_matches_and_paging_works(site):
+    with browser_at(f"{site}/") as tools:
+        names = tools.eval(
+            "[...document.querySelectorAll('#catalog tbody tr')].map(r => r.dataset.name)"
+        )
+        assert EVIL_NAME in names  # '<' sorts early: the HTML name is on the first page, as text
+        cell = f"[...document.querySelectorAll('#catalog td.name')].find(td => td.textContent === {json.dumps(EVIL_NAME)})"
+        assert tools.eval(f"{cell}.childElementCount") == 0  # text only, no elements parsed from it
+        first = names[0]
+        tools.eval("document.getElementById('next').click()")
+        tools.wait_for("document.getElementById('page-info').textContent.startsWith('26-')")
+        assert tools.eval("document.querySelector('#catalog tbody tr').dataset.name") != first
+        tools.eval(
+            "document.getElementById('q').value = 'a metal frying pan with a long handle, 48 cm long, 1.2 kg';"
+            "document.getElementById('recall-button').click()"
+        )
+        top = tools.wait_for("(document.getElementById('top-match') || {}).textContent")
+        assert top == "frying pan"
+        rows = tools.eval("document.querySelectorAll('#matches tbody tr').length")
+        assert rows == 5
+        explained = tools.eval(
+            "[...document.querySelectorAll('#matches .contrib')].map(e => e.dataset.feature)"
+        )
+        assert "mass_g" in explained
+        grasp = tools.wait_for(
+            "(document.getElementById('grasp-type') || {dataset: {}}).dataset.grasp"
+        )
+        assert grasp
+        # the render of the grasp arrives from the server (a real MuJoCo image) and is shown
+        width = tools.wait_for(
+            "(document.getElementById('grasp-render') || {}).complete && "
+            "document.getElementById('grasp-render').naturalWidth"
+        )
+        assert width == 480
+        assert tools.eval("new URL(location.href).searchParams.get('q')").startswith(
+            "a metal frying pan"
+        )
+        assert tools.eval("document.title") == "objrecall"

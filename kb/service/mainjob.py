@@ -1,5 +1,6 @@
 """The main job (``objrecall demo``): seed catalog -> ingest the demo storefront -> recall sample
-descriptions -> validate their grasps in MuJoCo -> report. Runs with no network: the demo storefront is
+descriptions (each looked up in the demo store's search when the catalog does not know it: one, the teapot,
+is sold only there) -> validate their grasps in MuJoCo -> report. Runs with no network: the demo storefront is
 served on 127.0.0.1 by this process.
 
 Like the CLI and the HTTP service, this module is part of the service face (``kb/service/``) and may import
@@ -51,15 +52,24 @@ def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers
                   f"({', '.join(f'{k} {v}' for k, v in summary['shape'].items())})")
 
     console.rule("[bold]2. ingest the demo storefront (127.0.0.1, no network)")
-    result.steps["ingest"] = _ingest_demo_store(kb, console)
+    result.steps["ingest"] = ing = _ingest_demo_store(kb, console)
+    console.print(f"ingest: {ing.get('fetched', 0)} pages fetched, {ing.get('extracted', 0)} extracted, "
+                  f"{ing.get('rejected', 0)} rejected, {ing.get('new', 0)} new and {ing.get('updated', 0)} "
+                  "updated objects")
 
-    console.rule("[bold]3. recall sample descriptions")
+    console.rule("[bold]3. recall sample descriptions (looked up in the demo store's search when unknown)")
     recalled = _recall_samples(db, console)
     result.steps["recall"] = recalled
+    console.print(f"recall: {len(recalled)} descriptions, {sum(1 for r in recalled if r['top'])} recalled, "
+                  f"{sum(1 for r in recalled if r['open_set'])} open set, "
+                  f"{sum(1 for r in recalled if r['looked_up'])} looked up in the store")
 
     console.rule("[bold]4. validate grasps of the recalled objects in MuJoCo")
     names = list(dict.fromkeys(r["top"] for r in recalled if r["top"]))
-    result.steps["grasp"] = _validate_grasps(kb, names, out_dir, workers)
+    result.steps["grasp"] = g = _validate_grasps(kb, names, out_dir, workers, progress=console.is_terminal)
+    console.print(f"grasp: {g.get('objects', 0)} objects, {g.get('trials', 0)} trials "
+                  f"({g.get('ran', 0)} run now, {g.get('skipped', 0)} stored before): {g.get('succeeded', 0)} "
+                  f"succeeded, {g.get('failed', 0)} failed, {g.get('errors', 0)} errors")
 
     console.rule("[bold]5. report")
     report = result.steps["grasp"].get("report")
@@ -90,39 +100,63 @@ def _ingest_demo_store(kb: KnowledgeBase, console: Console) -> dict[str, Any]:
 
 
 def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
-    from recall.engine import Recaller
+    """Each demo description recalled with ``recall.lookup.recall_with_lookup`` against the demo store."""
+    import requests
 
-    recaller = Recaller.from_db(db)
+    from recall.lookup import recall_with_lookup
+    from scrapers.demo_store import DEMO_SOURCES, DemoStore
+    from scrapers.sources import load_sources
+
     with demo_descriptions_path().open(newline="", encoding="utf-8") as fh:
         descriptions = [row["description"] for row in csv.DictReader(fh)]
-    table = Table("description", "recalled", "distance", "confidence", "open set", show_lines=True)
+    table = Table("description", "recalled", "score", "confidence", "open set", "lookup", show_lines=True)
     rows = []
-    for text in descriptions:
-        res = recaller.recall_text(text, top=3)
-        best = res.matches[0] if res.matches else None
-        rows.append({
-            "description": text,
-            "top": best.name if best else None,
-            "distance": best.distance if best else None,
-            "confidence": res.confidence,
-            "open_set": res.open_set,
-            "alternatives": [m.name for m in res.matches[1:]],
-        })
-        table.add_row(
-            escape(text if len(text) < 90 else text[:87] + "..."),
-            escape(best.name) if best else "-",
-            f"{best.distance:.2f}" if best else "-",
-            f"{res.confidence:.2f}",
-            "yes" if res.open_set else "no",
-        )
+    with DemoStore(port=0, crawl_delay=None) as store, requests.Session() as session:
+        sources = load_sources(DEMO_SOURCES, base_url=store.base_url, delay_s=0)
+        for text in descriptions:
+            looked = recall_with_lookup(db, text, sources=sources, session=session, top=3)
+            res = looked.result
+            best = res.matches[0] if res.matches else None
+            rows.append({
+                "description": text,
+                "top": best.name if best else None,
+                "distance": best.distance if best else None,
+                "confidence": res.confidence,
+                "open_set": res.open_set,
+                "not_in_catalog": res.not_in_catalog,
+                "same_kind": [m.name for m in res.same_kind],
+                "alternatives": [m.name for m in res.matches[1:]],
+                "looked_up": looked.looked_up,
+                "lookup": looked.message if looked.why else None,
+                "added": looked.stores.new_objects if looked.stores else [],
+            })
+            table.add_row(
+                escape(text if len(text) < 90 else text[:87] + "..."),
+                escape(best.name) if best else "-",
+                f"{best.score:.2f}" if best else "-",
+                f"{res.confidence:.2f}",
+                escape(_open_set_cell(res)),
+                escape(looked.message) if looked.why else "-",
+            )
     console.print(table)
     return rows
 
 
-def _validate_grasps(kb: KnowledgeBase, names: list[str], out_dir: Path, workers: int) -> dict[str, Any]:
+def _open_set_cell(res) -> str:
+    """"not in the catalog (no orange; closest fruit: apple)", "yes" (not a close match) or "no"."""
+    if res.not_in_catalog and res.described is not None:
+        kind = f"; closest {res.same_kind_as}: {res.same_kind[0].name}" if res.same_kind else ""
+        return f"not in the catalog (no {res.described.noun}{kind})"
+    return "yes" if res.open_set else "no"
+
+
+def _validate_grasps(
+    kb: KnowledgeBase, names: list[str], out_dir: Path, workers: int, *, progress: bool
+) -> dict[str, Any]:
     from sim.worker import validate
 
-    summary = validate(kb, names, workers=workers, report_dir=out_dir / "grasp-report", progress=True)
+    # a progress bar only on a terminal: piped or logged output gets the one-line summary instead
+    summary = validate(kb, names, workers=workers, report_dir=out_dir / "grasp-report", progress=progress)
     out = summary.to_dict() if hasattr(summary, "to_dict") else {}
     out.pop("results", None)
     out["report"] = str(out_dir / "grasp-report" / "index.html")

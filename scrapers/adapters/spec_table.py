@@ -22,7 +22,7 @@ from typing import Any
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
 from scrapers.adapters import Observation, adapter
-from scrapers.labels import AXES, LabelInfo, classify_label
+from scrapers.labels import AXES, LabelInfo, classify_label, classify_other
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page
 from scrapers.quantities import (
@@ -80,16 +80,26 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
     labelled: list[tuple[str, LabelInfo, int]] = []  # label, what it names, where its value starts
     starts: list[int] = []  # where each separator's label starts
     prev_end = 0
-    for sep in seps:
+    for k, sep in enumerate(seps):
         words = list(re.finditer(r"\S+", text[prev_end : sep.start()]))
         label_start = prev_end + words[-1].start() if words else sep.start()
-        for n in range(min(_MAX_LABEL_WORDS, len(words)), 0, -1):
+        # Before a line's first separator every word is the label's: "Cable length: 75 cm" names a part,
+        # not a length ("length" alone is only the label when nothing precedes it).
+        shortest = max(1, len(words)) if k == 0 and len(words) <= _MAX_LABEL_WORDS else 1
+        for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
+            first = words[-n].group(0)
+            if k > 0 and (_DIGIT.search(first) or _is_unit(first)):
+                continue  # "Weight: 2 kg Height: 30 cm": "kg" ends the previous value, it starts no label
             cand_start = prev_end + words[-n].start()
             info = classify_label(text[cand_start : sep.start()])
             if info is not None:
                 labelled.append((text[cand_start : sep.start()], info, sep.end()))
                 label_start = cand_start
                 break
+        else:
+            if k == 0 and words and (other := classify_other(text[prev_end + words[0].start() : sep.start()])):
+                labelled.append((text[prev_end + words[0].start() : sep.start()], other, sep.end()))
+                label_start = prev_end + words[0].start()
         starts.append(label_start)
         prev_end = sep.end()
     out: list[tuple[str, str, LabelInfo]] = []
@@ -99,17 +109,33 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
         if _DIGIT.search(value):
             out.append((label, value, info))
     if not seps:
-        m = _DIGIT.search(text)
-        if m and m.start() > 0:
-            cut = m.start()
-            letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
-            if letter:
-                cut = letter.start()
-            label = text[:cut]
-            info = classify_label(label)
-            if info is not None:
-                out.append((label.strip(), text[cut:], info))
+        # "Gewicht 4,7 kg"; "Length 70 cm, chest width 52 cm, in size L": each clause a label and a number
+        clauses = _CLAUSE.split(text)
+        for clause in clauses:
+            found = _label_then_number(clause)
+            if found is None:
+                if clause is clauses[0]:
+                    break
+                continue
+            out.append(found if len(clauses) == 1 else (found[0], found[1].strip(" ,;"), found[2]))
     return out
+
+
+# A clause boundary: a comma or semicolon, a space and a word ("4,7 kg", "H21.6, W9.1" have none).
+_CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
+
+
+def _label_then_number(text: str) -> tuple[str, str, LabelInfo] | None:
+    m = _DIGIT.search(text)
+    if not m or m.start() == 0:
+        return None
+    cut = m.start()
+    letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
+    if letter:
+        cut = letter.start()
+    label = text[:cut]
+    info = classify_label(label) or classify_other(label)
+    return (label.strip(), text[cut:], info) if info is not None else None
 
 
 def pairs_from_lines(lines: list[Line]) -> list[Pair]:
@@ -118,11 +144,20 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
     one line."""
     pairs: list[Pair] = []
     n = len(lines)
+    column_values: set[int] = set()  # value lines already paired by a header row
     for i, line in enumerate(lines):
         if len(pairs) >= MAX_PAIRS:
             break
+        if i in column_values:
+            continue
         text = line.text
-        info = classify_label(text) if len(text) <= 80 else None
+        info = (classify_label(text) or classify_other(text)) if len(text) <= 80 else None
+        if info is not None and info.role == "product" and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
+            header = _header_row(lines, i)
+            if header:
+                pairs.extend(header)
+                column_values.update(p.order for p in header)
+                continue
         if info is not None:
             j = i + 1
             while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
@@ -139,6 +174,29 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
             for label, value, label_info in split_inline(text):
                 pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
     return pairs
+
+
+def _label_line(line: Line) -> bool:
+    return len(line.text) <= 80 and not _DIGIT.search(line.text) and classify_label(line.text) is not None
+
+
+def _header_row(lines: list[Line], i: int) -> list[Pair]:
+    """A header row of labels and the row under it (``Width | Height | Depth`` over ``30 cm | 20 cm |
+    10 cm``, or ``dt dt dt dd dd dd``): label k pairs with value k of the **first** row only (later rows are
+    variants or other products). Pairs carry the value line's index as their order. [] when the lines after
+    the labels are not as many values."""
+    labels = []
+    j = i
+    while j < len(lines) and _label_line(lines[j]) and len(labels) < 12:
+        labels.append(lines[j])
+        j += 1
+    values = lines[j : j + len(labels)]
+    if len(values) < len(labels) or not all(_DIGIT.search(v.text) and classify_label(v.text) is None for v in values):
+        return []
+    return [
+        Pair(lab.text, val.text, classify_label(lab.text), lab.package or val.package, val.index, val.group)
+        for lab, val in zip(labels, values, strict=False)
+    ]
 
 
 def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
@@ -177,6 +235,9 @@ def observations_from_pairs(
         info = pair.info
         raw = f"{pair.label}: {pair.value}"[:200]
         package = pair.package or info.package
+        if info.role != "product":
+            obs.extend(_other_observations(pair, raw, decimal_comma, rank))
+            continue
         if info.kind in ("dimensions", "size"):
             dims = parse_dims(pair.value, info.unit, decimal_comma)
             rest = pair.value
@@ -189,6 +250,8 @@ def observations_from_pairs(
                         d, note = again[0], "read with a decimal comma (the other reading is absurd)"
                 rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
                 values, roles = d.values_cm, d.roles
+                if len(info.order) == len(values) and set(roles) <= {"extent"}:
+                    roles = info.order  # "Dimensions (H x W x D): 17.9 x 359.3 x 235.6 mm"
                 if len(values) == 2:
                     extra = third_axis(rest, decimal_comma)  # "8\" x 10\" and is 3/4\" thick"
                     if extra is not None:
@@ -218,6 +281,8 @@ def observations_from_pairs(
                     obs.append(
                         Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
                     )
+        elif info.kind in AXES and (joint := _axes_in_one_value(pair, decimal_comma)) is not None:
+            obs.append(joint)  # "Diameter 30cm x Height 15cm": one value naming its axes
         elif info.kind in AXES:
             length = parse_length(pair.value, info.unit, decimal_comma)
             note = None
@@ -229,6 +294,38 @@ def observations_from_pairs(
             axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
     obs.extend(_group_axes(axes))
     return obs
+
+
+def _axes_in_one_value(pair: Pair, decimal_comma: bool | None) -> Observation | None:
+    """``Diameter 30cm x Height 15cm``, ``Width: 30 cm x Height 20 cm``: an axis label whose value goes
+    on with more axes, read as one size with each extent's role; None otherwise."""
+    if " x " not in clean_text(pair.value):
+        return None
+    found = parse_dims(f"{pair.label} {pair.value}", pair.info.unit, decimal_comma)
+    if not found or "extent" in found[0].roles:
+        return None
+    d = found[0]
+    raw = f"{pair.label}: {pair.value}"[:200]
+    return Observation("dims", d.values_cm, pair.package, 1, pair.order, pair.group, raw, roles=d.roles)
+
+
+def _other_observations(pair: Pair, raw: str, decimal_comma: bool | None, rank: int) -> list[Observation]:
+    """A component's or capacity's value as a candidate that is not the product's (the chooser lists it
+    as an alternative and never picks it)."""
+    info = pair.info
+    if info.kind == "weight":
+        mass = parse_mass(pair.value, info.unit, decimal_comma)
+        found = [("mass", mass, ())] if mass is not None else []
+    elif info.kind in ("dimensions", "size"):
+        dims = parse_dims(pair.value, info.unit, decimal_comma)
+        found = [("dims", dims[0].values_cm, dims[0].roles)] if dims else []
+    else:
+        length = parse_length(pair.value, info.unit, decimal_comma)
+        found = [("dims", (length,), (info.kind,))] if length is not None else []
+    return [
+        Observation(f, v, pair.package, rank, pair.order, pair.group, raw, roles=r, role=info.role)
+        for f, v, r in found
+    ]
 
 
 def range_extent(kind: str, rng: tuple[float, float], raw: str) -> tuple[float, str]:
@@ -322,13 +419,69 @@ _UNIT_KEYS = ("unit_string", "unit", "unitText", "unitCode", "units", "uom")
 _MAX_NODES = 200_000
 
 
-def _json_pairs(data: Any) -> list[Pair]:
+_CAMEL = re.compile(r"(?<=[a-z])(?=[A-Z])|[_\-.]+")
+_NAME_KEYS = ("name", "title", "productName", "product_name", "displayName")
+_TOKEN = re.compile(r"[^\W\d_]{3,}")
+#: Share of a state object's name words that must appear in the page title for its keyed values to count
+#: as the product's (page state also holds recommended and recently viewed products).
+NAME_MATCH = 0.6
+
+
+def _key_label(key: str) -> str:
+    """A JSON key as label words: ``itemWeight`` -> ``item Weight``, ``product_width`` -> ``product width``."""
+    return _CAMEL.sub(" ", key).strip()
+
+
+def _names_product(name: str, title_words: frozenset[str]) -> bool:
+    words = [w.lower() for w in _TOKEN.findall(name)]
+    return bool(words) and sum(w in title_words for w in words) >= NAME_MATCH * len(words)
+
+
+def _keyed_value(node: dict, key: str, value: Any) -> str | None:
+    """The value text of a measurement key: a string as it is, a number with its unit from a sibling key
+    (``weightUnit``, ``unit``) or a ``{"value": 1.2, "unit": "kg"}`` object; None without a unit."""
+    if isinstance(value, dict):
+        inner = value.get("value", value.get("amount"))
+        unit = next((value[k] for k in _UNIT_KEYS if isinstance(value.get(k), str)), None)
+        return f"{inner} {unit}" if isinstance(inner, (int, float, str)) and unit else None
+    if isinstance(value, str):
+        return value if _DIGIT.search(value) and len(value) < 200 else None
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        for k in (f"{key}Unit", f"{key}_unit", f"{key}Uom", *_UNIT_KEYS):
+            if isinstance(node.get(k), str) and node[k].strip():
+                return f"{value} {node[k]}"
+    return None
+
+
+def _keyed_pairs(node: dict, order: int) -> list[Pair]:
+    """``{"itemWeight": "1.2 kg", "width": {"value": 30, "unit": "cm"}}``: keys that are measurement labels."""
+    pairs = []
+    for key, value in node.items():
+        if not isinstance(key, str) or len(key) > 60 or key in _UNIT_KEYS or key == "value":
+            continue
+        if isinstance(value, (list, bool)) or value is None:
+            continue
+        info = classify_label(_key_label(key))
+        if info is None:
+            continue
+        text = _keyed_value(node, key, value)
+        if text is not None:
+            pairs.append(Pair(_key_label(key), text, info, order=order))
+    return pairs
+
+
+def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
+    """Label/value pairs of page state: ``{"title": "Overall Weight", "value": "8", "unit_string": "lb."}``
+    entries, ``"Width: 12\""`` strings, and measurement keys (:func:`_keyed_pairs`) of objects that are
+    the product's: objects under a named object count only when that name is the product's (its words in
+    the page ``title``, :data:`NAME_MATCH`)."""
+    title_words = frozenset(w.lower() for w in _TOKEN.findall(title or ""))
     pairs: list[Pair] = []
-    stack = [data]
+    stack: list[tuple[Any, bool]] = [(data, True)]
     seen = 0
     order = 0
     while stack and seen < _MAX_NODES:
-        node = stack.pop()
+        node, own = stack.pop()
         seen += 1
         order += 1
         if isinstance(node, dict):
@@ -339,11 +492,17 @@ def _json_pairs(data: Any) -> list[Pair]:
                 if info is not None:
                     unit = next((node[k] for k in _UNIT_KEYS if isinstance(node.get(k), str)), "")
                     pairs.append(Pair(label, f"{value} {unit}".strip(), info, order=order))
-            stack.extend(reversed(list(node.values())))
+            name = next((node[k] for k in _NAME_KEYS if isinstance(node.get(k), str)), None)
+            if name and title_words and classify_label(name) is None:
+                own = _names_product(name, title_words)
+            if own:
+                pairs.extend(_keyed_pairs(node, order))
+            stack.extend((child, own) for child in reversed(list(node.values())))
         elif isinstance(node, list):
-            stack.extend(reversed(node))
+            stack.extend((child, own) for child in reversed(node))
         elif (
-            isinstance(node, str)
+            own
+            and isinstance(node, str)
             and 3 < len(node) < 200
             and ":" in node
             and _DIGIT.search(node)
@@ -359,7 +518,7 @@ def embedded_json(page: Page) -> list[Observation]:
     """Label/value data shipped as JSON inside the page's scripts (tabs rendered by JavaScript)."""
     obs: list[Observation] = []
     for payload in page.script_payloads:
-        pairs = _json_pairs(payload)
+        pairs = _json_pairs(payload, page.title)
         if pairs:
             # JSON order is not visual order: group axes only among neighbouring entries.
             obs.extend(observations_from_pairs(pairs, page.decimal_comma, rank=1))

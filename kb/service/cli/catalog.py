@@ -11,23 +11,58 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
-from kb.catalog import DEFAULT_MAX_ROWS, DEFAULT_SQL_TIMEOUT, KnowledgeBase
-from kb.features import FEATURES
-from kb.service.bootstrap import init_db
 from kb.service.cli.common import DbOption, JsonOption, emit, resolve_db
 
 console = Console()
 catalog_app = typer.Typer(no_args_is_help=True, help="Import, export and browse the object catalog.")
 
 
+def _open(db: Path | None, *, read_only: bool = False):
+    """The catalog named by ``--db`` (DuckDB is imported here, not when the CLI starts)."""
+    from kb.catalog import KnowledgeBase
+
+    return KnowledgeBase.open(resolve_db(db), read_only=read_only)
+
+
+def _features() -> tuple[str, ...]:
+    from kb.features import FEATURES
+
+    return FEATURES
+
+
+# The defaults are kb.catalog's; the help shows them without importing DuckDB (tests/test_kb_cli.py checks).
+def _default_max_rows() -> int:
+    from kb.catalog import DEFAULT_MAX_ROWS
+
+    return DEFAULT_MAX_ROWS
+
+
+def _default_timeout() -> float:
+    from kb.catalog import DEFAULT_SQL_TIMEOUT
+
+    return DEFAULT_SQL_TIMEOUT
+
+
 def _fmt(value: object) -> str:
+    """A cell as text; markup-like text from a scraped page (``[bold]``) is shown as it is."""
     if value is None:
         return "-"
     if isinstance(value, float):
         return f"{value:g}"
-    return str(value)
+    return escape(str(value))
+
+
+#: Below this terminal width ``catalog list`` shows the compact columns (size as axbxc, no texture or
+#: fragility), so that every cell stays readable at 80 columns.
+WIDE_LIST_COLUMNS = 120
+
+
+def _size(obj) -> str:
+    dims = [d for d in obj.dims_cm if d is not None]
+    return "x".join(f"{d:g}" for d in dims) if dims else "-"
 
 
 def init(
@@ -36,6 +71,8 @@ def init(
     json_out: JsonOption = False,
 ) -> None:
     """Create the catalog database or upgrade it to the latest schema (optionally load the seed catalog)."""
+    from kb.service.bootstrap import init_db
+
     path = resolve_db(db)
     kb = init_db(path, seed=seed)
     info = {"db": str(path), "revision": kb.schema_revision(), "objects": kb.count_objects()}
@@ -53,7 +90,7 @@ def catalog_import(
     json_out: JsonOption = False,
 ) -> None:
     """Import a canonical CSV in one transaction (upsert by name); a bad row imports nothing."""
-    kb = KnowledgeBase.open(resolve_db(db))
+    kb = _open(db)
     report = kb.import_csv(file, skip_invalid=skip_invalid)
     if json_out:
         emit(report.to_dict())
@@ -73,7 +110,7 @@ def catalog_export(
     json_out: JsonOption = False,
 ) -> None:
     """Export the catalog as canonical CSV (with aliases and source)."""
-    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    kb = _open(db, read_only=True)
     if str(file) == "-":
         typer.echo(kb.export_csv(), nl=False)
         return
@@ -93,14 +130,24 @@ def catalog_list(
     json_out: JsonOption = False,
 ) -> None:
     """List objects with their features."""
-    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    kb = _open(db, read_only=True)
     objects = kb.list_objects(limit=limit, offset=offset)
     if json_out:
         emit([o.to_dict() for o in objects])
         return
-    table = Table("name", *FEATURES, title=f"{len(objects)} objects")
-    for o in objects:
-        table.add_row(o.name, *(_fmt(getattr(o, f)) for f in FEATURES))
+    wide = console.width >= WIDE_LIST_COLUMNS
+    if wide:
+        features = _features()
+        table = Table("name", *features, title=f"{len(objects)} objects")
+        for o in objects:
+            table.add_row(_fmt(o.name), *(_fmt(getattr(o, f)) for f in features))
+    else:
+        table = Table(title=f"{len(objects)} objects", caption="texture, fragility: --json or a wider terminal")
+        table.add_column("name", ratio=3, overflow="fold")
+        for column in ("size cm", "mass g", "shape", "material", "rigidity"):
+            table.add_column(column, no_wrap=True)
+        for o in objects:
+            table.add_row(_fmt(o.name), _size(o), _fmt(o.mass_g), _fmt(o.shape), _fmt(o.material), _fmt(o.rigidity))
     console.print(table)
 
 
@@ -111,30 +158,39 @@ def catalog_show(
     json_out: JsonOption = False,
 ) -> None:
     """Show one object, its aliases and the provenance of its values."""
-    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    kb = _open(db, read_only=True)
     obj = kb.get_object(name)
     prov = kb.provenance(obj.name)
     if json_out:
         emit({**obj.to_dict(), "provenance": prov})
         return
     table = Table("feature", "value", title=obj.name)
-    for f in FEATURES:
+    for f in _features():
         table.add_row(f, _fmt(getattr(obj, f)))
-    table.add_row("aliases", ", ".join(obj.aliases) or "-")
-    table.add_row("source", obj.source or "-")
+    table.add_row("aliases", _fmt(", ".join(obj.aliases) or None))
+    table.add_row("source", _fmt(obj.source))
     console.print(table)
-    if prov:
-        ptable = Table("feature", "value", "role", "source", "adapter", "fetched_at", title="provenance")
-        for p in prov:
+    _print_provenance(prov)
+
+
+def _print_provenance(prov: list[dict]) -> None:
+    """Provenance grouped by source: each source (often a long URL) printed once above its values."""
+    groups: dict[tuple, list[dict]] = {}
+    for p in prov:
+        groups.setdefault((p["source"], p["adapter"]), []).append(p)
+    for (source, adapter), rows in groups.items():
+        ptable = Table("feature", "value", "role", "fetched_at", title_justify="left",
+                       title=f"from {_fmt(source)} ({_fmt(adapter)})")
+        for p in rows:
             value = p["value_num"] if p["value_num"] is not None else p["value_text"]
-            ptable.add_row(p["feature"], _fmt(value), p["role"], p["source"], _fmt(p["adapter"]), _fmt(p["fetched_at"]))
+            ptable.add_row(_fmt(p["feature"]), _fmt(value), _fmt(p["role"]), _fmt(p["fetched_at"])[:19])
         console.print(ptable)
 
 
 @catalog_app.command("summary")
 def catalog_summary(db: DbOption = None, json_out: JsonOption = False) -> None:
     """Counts: objects, per category value, observations, ingestion runs, grasp trials."""
-    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    kb = _open(db, read_only=True)
     summary = kb.summary()
     if json_out:
         emit(summary)
@@ -148,17 +204,25 @@ def catalog_summary(db: DbOption = None, json_out: JsonOption = False) -> None:
 def sql(
     query: Annotated[str, typer.Argument(help="One read-only SQL statement (SELECT).")],
     db: DbOption = None,
-    max_rows: Annotated[int, typer.Option(help="At most this many rows.")] = DEFAULT_MAX_ROWS,
-    timeout: Annotated[float, typer.Option(help="Interrupt the query after this many seconds.")] = DEFAULT_SQL_TIMEOUT,
+    *,
+    max_rows: Annotated[
+        int, typer.Option(default_factory=_default_max_rows, show_default="10000", help="At most this many rows.")
+    ],
+    timeout: Annotated[
+        float,
+        typer.Option(
+            default_factory=_default_timeout, show_default="10", help="Interrupt the query after this many seconds."
+        ),
+    ],
     json_out: JsonOption = False,
 ) -> None:
     """Run read-only SQL on the catalog (no file or network access, no extensions)."""
-    kb = KnowledgeBase.open(resolve_db(db), read_only=True)
+    kb = _open(db, read_only=True)
     result = kb.sql(query, max_rows=max_rows, timeout_s=timeout)
     if json_out:
         emit({"columns": result.columns, "rows": result.to_dicts(), "truncated": result.truncated})
         return
-    table = Table(*result.columns)
+    table = Table(*(_fmt(c) for c in result.columns))
     for row in result.rows:
         table.add_row(*(_fmt(v) for v in row))
     console.print(table)

@@ -80,6 +80,8 @@ def _print_parsed(parsed, with_tree: bool) -> None:
         console.print(table)
         if parsed.mass_hint:
             console.print(f"mass hint: {parsed.mass_hint} (weak)")
+    for refused in parsed.refused:  # "-10 kg", "1e308 cm": stated, not used, and why
+        console.print(f"refused: {refused.words!r}: {refused.reason}", markup=False, highlight=False)
     if with_tree:
         console.print(parsed.tree.pformat(), markup=False, highlight=False)
 

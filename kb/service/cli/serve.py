@@ -9,7 +9,12 @@ from typing import Annotated
 import typer
 
 from kb.service.cli.common import DbOption, resolve_db
-from kb.service.http.settings import ENV_SOURCES
+from kb.service.http.settings import (
+    DEFAULT_HEADER_TIMEOUT_S,
+    ENV_ALLOWED_HOSTS,
+    ENV_SOURCES,
+    allowed_hosts_from,
+)
 
 
 def serve(
@@ -28,6 +33,19 @@ def serve(
         float, typer.Option("--request-timeout", min=1.0, help="Answer 504 after this many seconds.")
     ] = 30.0,
     log_level: Annotated[str, typer.Option("--log-level", help="uvicorn log level.")] = "info",
+    allowed_host: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--allowed-host",
+            help=f"Host header name to answer (repeatable; '*' answers any). Default: env {ENV_ALLOWED_HOSTS} "
+            "(comma-separated), else loopback names and the --host address.",
+        ),
+    ] = None,
+    header_timeout: Annotated[
+        float,
+        typer.Option("--header-timeout", min=0.1, help="Close a connection whose request has not fully "
+                     "arrived within this many seconds."),
+    ] = DEFAULT_HEADER_TIMEOUT_S,
 ) -> None:
     """Serve the catalog over HTTP: the JSON API (OpenAPI at /docs) and the web page at /.
 
@@ -37,12 +55,17 @@ def serve(
     import uvicorn
 
     from kb.service.http import create_app
+    from kb.service.http.protocol import protocol_with_timeout
 
     path = resolve_db(db)
-    app = create_app(path, sources=sources, request_timeout=request_timeout, warm=True)
+    hosts = list(allowed_hosts_from(allowed_host))
+    if not allowed_host and host not in ("0.0.0.0", "::", ""):
+        hosts.append(host)  # the address it listens on is a name it is reached by
+    app = create_app(path, sources=sources, request_timeout=request_timeout, warm=True, allowed_hosts=hosts)
     if app.settings.token is None:
         sys.stderr.write("objrecall serve: no API token configured; writes are disabled\n")
-    uvicorn.run(app, host=host, port=port, log_level=log_level, access_log=log_level == "debug")
+    uvicorn.run(app, host=host, port=port, log_level=log_level, access_log=log_level == "debug",
+                http=protocol_with_timeout(header_timeout), timeout_keep_alive=5)
 
 
 def register(app: typer.Typer) -> None:

@@ -7,8 +7,32 @@ Modules: ``settings`` (limits, token, error statuses), ``app`` (the app factory 
 does not import FastAPI; :func:`create_app` does.
 """
 
-from kb.service.http.app import create_app
-from kb.service.http.process import free_port, serve_subprocess
-from kb.service.http.settings import ERROR_STATUS, MAX_PAGE, ServiceSettings, load_token
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from kb.service.http.app import create_app
+    from kb.service.http.process import free_port, serve_subprocess
+    from kb.service.http.settings import ERROR_STATUS, MAX_PAGE, ServiceSettings, load_token
 
 __all__ = ["ERROR_STATUS", "MAX_PAGE", "ServiceSettings", "create_app", "free_port", "load_token", "serve_subprocess"]
+
+#: Where each public name lives; imported on first use, so ``objrecall --help`` (which reads
+#: ``settings`` for the ``serve`` options) does not load the app and its middleware.
+_EXPORTS = {
+    "create_app": "app",
+    "free_port": "process",
+    "serve_subprocess": "process",
+    "ERROR_STATUS": "settings",
+    "MAX_PAGE": "settings",
+    "ServiceSettings": "settings",
+    "load_token": "settings",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _EXPORTS:
+        raise AttributeError(f"module 'kb.service.http' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"kb.service.http.{_EXPORTS[name]}"), name)
+    globals()[name] = value
+    return value

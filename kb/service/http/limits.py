@@ -9,7 +9,7 @@ from typing import Any
 
 from kb.service.http.settings import ServiceSettings
 
-__all__ = ["PAGE_CSP", "SECURITY_HEADERS", "LimitsMiddleware", "LimitsWrapped"]
+__all__ = ["PAGE_CSP", "SECURITY_HEADERS", "LimitsMiddleware", "LimitsWrapped", "host_name"]
 
 #: Headers on every response.
 SECURITY_HEADERS = ((b"x-content-type-options", b"nosniff"), (b"referrer-policy", b"no-referrer"))
@@ -32,21 +32,34 @@ async def _send_error(send, status: int, error: str, detail: str) -> None:
     await send({"type": "http.response.body", "body": body})
 
 
-class LimitsMiddleware:
-    """Pure ASGI middleware: refuse bodies over ``max_body_bytes`` (413) and answer 504 when the app has not
-    started its response within ``timeout`` seconds (the worker thread finishes in the background; user
-    SQL has its own, shorter, interrupting timeout)."""
+def host_name(header: bytes | None) -> str:
+    """The name of a Host header value, without port, lower case (``[::1]:8000`` -> ``::1``)."""
+    text = (header or b"").decode("latin-1").strip().lower()
+    if text.startswith("["):
+        return text[1:].split("]", 1)[0]
+    return text.rsplit(":", 1)[0] if text.count(":") == 1 else text
 
-    def __init__(self, app, *, max_body_bytes: int, timeout: float):
+
+class LimitsMiddleware:
+    """Pure ASGI middleware: refuse a Host header not in ``allowed_hosts`` (400), bodies over
+    ``max_body_bytes`` (413), and answer 504 when the app has not started its response within ``timeout``
+    seconds (user SQL is stopped before that, see :mod:`kb.sandbox`)."""
+
+    def __init__(self, app, *, max_body_bytes: int, timeout: float, allowed_hosts: tuple[str, ...] = ("*",)):
         self.app = app
         self.max_body_bytes = max_body_bytes
         self.timeout = timeout
+        self.allowed_hosts = frozenset(allowed_hosts)
 
     async def __call__(self, scope, receive, send):
         if scope["type"] != "http":
             await self.app(scope, receive, send)
             return
-        declared = dict(scope.get("headers") or []).get(b"content-length")
+        headers = dict(scope.get("headers") or [])
+        if "*" not in self.allowed_hosts and host_name(headers.get(b"host")) not in self.allowed_hosts:
+            await _send_error(send, 400, "BadRequest", "Host header not allowed (see --allowed-host)")
+            return
+        declared = headers.get(b"content-length")
         too_big = f"request body too large: at most {self.max_body_bytes} bytes"
         if declared is not None:
             try:
@@ -110,7 +123,8 @@ class LimitsWrapped:
         self.app = app
         self.settings = settings
         self._asgi = LimitsMiddleware(
-            app, max_body_bytes=settings.max_body_bytes, timeout=settings.request_timeout
+            app, max_body_bytes=settings.max_body_bytes, timeout=settings.request_timeout,
+            allowed_hosts=settings.allowed_hosts,
         )
 
     async def __call__(self, scope, receive, send):

@@ -25,7 +25,10 @@ from kb.errors import (
 )
 
 __all__ = [
+    "DEFAULT_ALLOWED_HOSTS",
+    "DEFAULT_HEADER_TIMEOUT_S",
     "DEFAULT_PAGE",
+    "ENV_ALLOWED_HOSTS",
     "ENV_SOURCES",
     "ENV_TOKEN",
     "ENV_TOKEN_FILE",
@@ -34,14 +37,24 @@ __all__ = [
     "MAX_TEXT_CHARS",
     "MAX_TOP",
     "SQL_MAX_RESPONSE_BYTES",
+    "SQL_MAX_ROWS",
+    "SQL_MAX_TIMEOUT_S",
     "ServiceSettings",
+    "allowed_hosts_from",
     "load_token",
+    "package_version",
     "status_for",
 ]
 
 ENV_TOKEN = "OBJRECALL_API_TOKEN"
 ENV_TOKEN_FILE = "OBJRECALL_API_TOKEN_FILE"
 ENV_SOURCES = "OBJRECALL_SOURCES"
+ENV_ALLOWED_HOSTS = "OBJRECALL_ALLOWED_HOSTS"
+#: ``objrecall serve`` closes a connection whose request has not fully arrived within this (seconds).
+DEFAULT_HEADER_TIMEOUT_S = 10.0
+#: Host header values served by default: loopback only, so a page on another site that rebinds its DNS
+#: name to 127.0.0.1 cannot read the API (its requests carry its own name as Host).
+DEFAULT_ALLOWED_HOSTS: tuple[str, ...] = ("127.0.0.1", "localhost", "::1")
 
 #: Largest page of any list endpoint.
 MAX_PAGE = 500
@@ -94,6 +107,18 @@ class ServiceSettings:
     snapshot_ttl: float = 1.0
     busy_timeout: float = 30.0
     ingest_command: list[str] = field(default_factory=list)
+    #: Host header names (without port) answered; ``"*"`` answers any. Others get 400.
+    allowed_hosts: tuple[str, ...] = DEFAULT_ALLOWED_HOSTS
+
+
+def allowed_hosts_from(values: list[str] | tuple[str, ...] | None, environ: dict[str, str] | None = None) -> tuple[str, ...]:
+    """The Host allow-list: ``values`` if given, else ``$OBJRECALL_ALLOWED_HOSTS`` (comma-separated), else
+    :data:`DEFAULT_ALLOWED_HOSTS`. Names are lower-cased; IPv6 brackets are dropped."""
+    env = os.environ if environ is None else environ
+    if not values:
+        values = [v for v in (env.get(ENV_ALLOWED_HOSTS) or "").split(",") if v.strip()]
+    names = tuple(dict.fromkeys(v.strip().lower().strip("[]") for v in values if v.strip()))
+    return names or DEFAULT_ALLOWED_HOSTS
 
 
 def load_token(environ: dict[str, str] | None = None) -> str | None:
@@ -111,3 +136,13 @@ def load_token(environ: dict[str, str] | None = None) -> str | None:
             raise ObjrecallError(f"{path}: cannot read the API token file ({err.strerror})") from None
         return token or None
     return None
+
+
+def package_version() -> str:
+    """The installed objrecall version (``0+unknown`` from a source tree that was never installed)."""
+    from importlib.metadata import PackageNotFoundError, version
+
+    try:
+        return version("objrecall")
+    except PackageNotFoundError:  # pragma: no cover - running from a source tree without installing
+        return "0+unknown"

@@ -116,6 +116,32 @@ function showGrasp(plan) {
   if (plan.plans.length > 1) {
     box.append(el("p", "Alternatives: " + plan.plans.slice(1).map((p) => p.grasp_type).join(", "), "meta"));
   }
+  showValidation(box, plan);
+}
+
+// The latest MuJoCo validation of the object (first vs validated choice) and a render of the grasp.
+function showValidation(box, plan) {
+  const v = plan.validation;
+  const line = el("p");
+  line.id = "grasp-validation";
+  let shown = plan.plans[0].grasp_type;
+  if (!v) {
+    line.textContent = "Not validated in simulation with this hand yet (objrecall grasp validate); the render shows the planned grasp.";
+  } else {
+    const first = `First choice ${v.first} ` + (v.first_holds ? "holds in simulation" : `fails in simulation (${v.first_reason})`);
+    const validated = v.validated ? (v.differs ? `; validated choice: ${v.validated}` : "") : `; none of ${v.candidates} candidates holds`;
+    line.textContent = first + validated + ".";
+    if (v.validated) shown = v.validated;
+  }
+  box.append(line);
+  const img = document.createElement("img");
+  img.id = "grasp-render";
+  img.alt = `${plan.object}: ${shown} (simulated)`;
+  img.src = `/grasp/render?object=${encodeURIComponent(plan.object)}&grasp_type=${encodeURIComponent(shown)}`;
+  img.width = 480;
+  img.height = 360;
+  img.loading = "lazy";
+  box.append(img);
 }
 
 async function runRecall(text) {

@@ -1,0 +1,34 @@
+"""``GET /health`` and ``GET /version``."""
+
+from typing import Any
+
+from fastapi import APIRouter
+
+from kb.service.http.routes import State
+from kb.service.http.settings import package_version
+
+router = APIRouter(tags=["service"])
+
+
+@router.get("/health")
+def health(state: State) -> dict[str, Any]:
+    """Liveness: the process answers; ``catalog`` says whether the database file exists."""
+    return {"status": "ok", "catalog": state.settings.db.exists()}
+
+
+@router.get("/version")
+def version(state: State) -> dict[str, Any]:
+    """Versions of the service, the schema and the catalog contents."""
+    from sim.planner import PLANNER_VERSION
+
+    kb = state.knowledge_base()
+    count, max_id, updated = kb.catalog_version()
+    with kb.connect() as con:
+        row = con.execute("SELECT max(version_num) FROM alembic_version").fetchone()
+    return {
+        "objrecall": package_version(),
+        "schema_revision": row[0] if row else None,
+        "catalog": {"objects": count, "max_id": max_id, "updated_at": updated},
+        "planner_version": PLANNER_VERSION,
+        "writes_enabled": state.settings.token is not None,
+    }
