@@ -1,7 +1,7 @@
 """Resolving dimensions: which stated extent is which of the catalog's a >= b >= c.
 
 :func:`read_relations` finds extents stated relative to another ("twice as long as it is wide");
-:func:`resolve_dims` assigns the statements of a :class:`recall.quantities.Reading` (labelled extents,
+:func:`resolve_dims` assigns the statements of a :class:`recall.reading.Reading` (labelled extents,
 tuples, diameters, sides, unlabelled lengths) to ``a_cm``, ``b_cm``, ``c_cm`` by the rules in
 ``recall/PARSER.md``, "Dimensions".
 """
@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 
 from recall import lexicon as lx
 from recall.numbers import number_value
-from recall.quantities import DimStatement, Quantity, Reading, Relation, Stated, limit_refusal
+from recall.reading import DimStatement, Quantity, Reading, Relation, Stated, limit_refusal
 from recall.tokens import Token
 from recall.units import Unit, unit_table
 

@@ -3,13 +3,13 @@
 The first quantity with a mass unit; else contents (a volume in a sentence with a contents word, at
 :data:`recall.lexicon.CONTENTS_DENSITY_G_PER_ML`), which is a lower bound: the container adds its own.
 A mass owned by another object ("my 2 kg dumbbell") counts only when no other mass is stated. A value
-outside the catalog's limits (:func:`recall.quantities.limit_refusal`) is refused, with its reason.
+outside the catalog's limits (:func:`recall.reading.limit_refusal`) is refused, with its reason.
 """
 
 from __future__ import annotations
 
 from recall import lexicon as lx
-from recall.quantities import Reading, Stated, limit_refusal
+from recall.reading import Reading, Stated, limit_refusal
 
 __all__ = ["resolve_mass"]
 

@@ -37,7 +37,8 @@ from recall.categories import read_categories, resolve_categories
 from recall.chunks import GRAMMAR, MAX_SEGMENT_TOKENS, Chunker
 from recall.dimensions import read_relations, resolve_dims
 from recall.mass import resolve_mass
-from recall.quantities import QuantityReader, Reading, Stated
+from recall.quantities import QuantityReader
+from recall.reading import Reading, Stated
 from recall.tags import Tagger
 from recall.tokens import Tokenizer
 from recall.toolkit import Tree

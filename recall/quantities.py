@@ -1,97 +1,30 @@
 """Stage 4 of the description parser (the paper's Fig. 2): reading the chunks into quantities.
 
 :class:`QuantityReader` walks one sentence's chunk tree: a QUANT chunk is read into a
-:class:`Quantity` (hedge, number or range by :mod:`recall.numbers`, unit by :mod:`recall.units`); a DIM
-chunk gives a dimension statement (a role and its quantity), a MULTI chunk a tuple or list of extents;
+:class:`recall.reading.Quantity` (hedge, number or range by :mod:`recall.numbers`, unit by
+:mod:`recall.units`); a DIM chunk gives a dimension statement (a role and its quantity), a MULTI chunk a tuple or list of extents;
 a quantity outside them is a mass, contents (in a sentence with a contents word) or an unlabelled
-length. Everything read is collected, in text order, in a :class:`Reading` that the resolution stages
-(:mod:`recall.dimensions`, :mod:`recall.mass`, :mod:`recall.categories`) turn into features.
+length. Everything read is collected, in text order, in a :class:`recall.reading.Reading` that the
+resolution stages (:mod:`recall.dimensions`, :mod:`recall.mass`, :mod:`recall.categories`) turn into
+features.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
-from kb.errors import InvalidFeature
-from kb.features import validate_features
 from recall import lexicon as lx
 from recall.chunks import size
 from recall.numbers import number_value
+from recall.reading import DimStatement, Quantity, Reading
 from recall.tags import UNIT_TAGS
 from recall.tokens import Token
 from recall.toolkit import Tree
 from recall.units import Unit, unit_table
 
-__all__ = ["DimStatement", "Quantity", "QuantityReader", "Reading", "Relation", "Stated", "limit_refusal"]
-
-
-@dataclass(slots=True)
-class Quantity:
-    value: float
-    low: float | None
-    high: float | None
-    qualifier: str
-    unit: Unit | None
-    start: int
-    end: int
-    pos: int  # token index in the text (for unit inheritance)
-
-
-@dataclass
-class DimStatement:
-    role: str
-    quantities: list[Quantity]
-    start: int
-    end: int
-
-
-@dataclass
-class Relation:
-    """An extent stated relative to another ("twice as long as it is wide"): ``role`` is ``factor``
-    times ``ref`` (None: the extent stated last before it, as in "6 cm wide and three times as long")."""
-
-    role: str
-    factor: float
-    ref: str | None
-    start: int
-    end: int
-
-
-@dataclass
-class Reading:
-    """Everything read from the chunks, in text order, before the features are resolved."""
-
-    dims: list[DimStatement] = field(default_factory=list)
-    multis: list[DimStatement] = field(default_factory=list)
-    sizes: list[DimStatement] = field(default_factory=list)
-    masses: list[tuple[Quantity, bool]] = field(default_factory=list)  # (quantity, is contents)
-    other_masses: list[Quantity] = field(default_factory=list)  # "my 2 kg dumbbell": used only alone
-    contents: list[Quantity] = field(default_factory=list)
-    length_units: list[tuple[int, Unit]] = field(default_factory=list)  # (token index, unit)
-    categories: dict[str, list[tuple[int, int, str, Token]]] = field(default_factory=dict)
-    mass_hints: list[str] = field(default_factory=list)
-    cue_words: set[str] = field(default_factory=set)
-    in_dim_chunk: set[int] = field(default_factory=set)
-    relations: list[Relation] = field(default_factory=list)
-    refused: dict[tuple[int, int], str] = field(default_factory=dict)  # (start, end) -> reason
-
-    def refuse(self, start: int, end: int, reason: str) -> None:
-        """Record a stated value that is not used, with the reason (the first reason given for a span)."""
-        self.refused.setdefault((start, end), reason)
-
-
-@dataclass
-class Stated:
-    """A resolved value in catalog units (cm, g), its bounds and qualifier, and its character span."""
-
-    value: float
-    low: float | None
-    high: float | None
-    qualifier: str
-    start: int
-    end: int
+__all__ = ["QuantityReader"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -388,19 +321,6 @@ class QuantityReader:
             else:
                 r += 1
         return numbers, unit
-
-
-def limit_refusal(feature: str, value: float) -> str | None:
-    """Why ``value`` (catalog units) cannot be ``feature``: :mod:`kb.features`' rule (more than zero,
-    finite, at most MAX_DIM_CM / MAX_MASS_G, the limit itself accepted), or too small to state at the
-    parser's precision (it rounds to 0 at 4 decimals); None when it can."""
-    try:
-        validate_features({feature: value})
-    except InvalidFeature as err:
-        return err.reason
-    if round(value, 4) == 0:
-        return "too small to state (under 0.0001)"
-    return None
 
 
 def _inherit_units(quants: list[Quantity]) -> None:

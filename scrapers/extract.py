@@ -94,7 +94,9 @@ def extract_page(body: str | bytes, url: str, content_type: str | None = None) -
 
 
 def _has_dims_and_mass(observations: list[Observation]) -> bool:
-    found = {o.feature for o in observations if not o.package and o.feature in ("dims", "mass")}
+    found = {
+        o.feature for o in observations if not o.package and o.role == "product" and o.feature in ("dims", "mass")
+    }
     return len(found) == 2
 
 
@@ -142,7 +144,7 @@ def _candidate(o: Observation, decision: str) -> dict:
     out = {
         "feature": o.feature,
         "value": list(o.value) if isinstance(o.value, tuple) else o.value,
-        "role": "package" if o.package else "product",
+        "role": "package" if o.package else o.role,
         "adapter": o.source,
         "rank": o.rank,
         "order": o.order,
@@ -222,6 +224,10 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         out = []
         for o in observations:
             if o.feature != feature or o.package != package:
+                continue
+            if o.role != "product":
+                if not package and len(decisions) < MAX_CANDIDATES:
+                    decisions.append(_candidate(o, f"not the product's: a {o.role}'s value ({o.raw[:60]!r})"))
                 continue
             if feature == "dims":
                 extents = sorted(o.extents(), key=lambda e: -e[1])

@@ -25,7 +25,7 @@ from functools import lru_cache
 
 from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
 
-__all__ = ["AXES", "KINDS", "LabelInfo", "classify_label"]
+__all__ = ["AXES", "KINDS", "LabelInfo", "classify_label", "classify_other"]
 
 #: Single-axis kinds (one length each); "dimensions" is a combined A x B x C value, "size" too but never
 #: a mass (``Size: 10 Ounce (Pack of 1)`` is a net content), "weight" is a mass.
@@ -234,6 +234,10 @@ class LabelInfo:
     #: For a dimensions label, the axes it names in order (``Dimensions (H x W x D)`` -> height, width,
     #: depth; ``Largo x Ancho x Alto``); () when it names none or is ambiguous (``L x L x H``).
     order: tuple[str, ...] = ()
+    #: "product" for every label :func:`classify_label` accepts; "component" (a part's extent or weight:
+    #: ``Cable length``, ``Battery Weight``, ``Schlauchlänge``) or "capacity" (a capacity or rating:
+    #: ``Fassungsvermögen 8 kg``, ``Max Height``, ``容量``) from :func:`classify_other`.
+    role: str = "product"
 
 
 #: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
@@ -404,6 +408,56 @@ def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
     if len({k for k in kinds if k in AXES}) >= 2 or "dimensions" in kinds:
         return LabelInfo("dimensions", package, unit)
     return LabelInfo(kinds[0], package, unit)
+
+
+_CAPACITY_WORDS = {
+    _fold(w)
+    for w in (
+        "capacity capacities load max maximum min minimum supported supports rated rating volume "
+        "fassungsvermögen fassungsvermoegen kapazität kapazitaet füllmenge belastbarkeit tragkraft traglast "
+        "nutzinhalt contenance capacité charge capacidad carga capacità portata capacidade suportado "
+        "pojemność udźwig объем объём вместимость нагрузка грузоподъемность hacim kapasite taşıma inhoud "
+        "draagvermogen"
+    ).split()
+}
+_CJK_CAPACITY = ("容量", "耐荷重", "最大", "容积", "承重", "용량")
+
+
+@lru_cache(maxsize=16384)
+def classify_other(label: object) -> LabelInfo | None:
+    """A measurement label that is *not* the product's (:attr:`LabelInfo.role` says whose), for the
+    chooser's alternatives; None for the product's own labels and for labels that name no measurement.
+    A capacity without a kind word is read as a weight (a washer's ``Fassungsvermögen: 8 kg``)."""
+    try:
+        if not isinstance(label, str) or len(label) > 80 or classify_label(label) is not None:
+            return None
+        text = clean_text(label).rstrip(" :：-–—=").strip()
+        if not text or any(ch.isdigit() for ch in text) or ":" in text:
+            return None  # a label holds no number ("Weight: 1.1 kg" is a pair, not a label)
+        folded = _fold(_BRACKETS.sub(" ", text))
+        if any(token in folded for token in _CJK_CAPACITY):
+            return LabelInfo("weight", role="capacity")
+        words = [w for w in re.split(r"[\W_]+", folded) if w]
+        if not words or len(words) > _MAX_WORDS:
+            return None
+        kinds = [_KIND_WORDS[w] for w in words if w in _KIND_WORDS]
+        kinds += [k for w in words if w not in _KIND_WORDS for k in [_compound_kind(w)] if k]
+        if any(w in _CAPACITY_WORDS for w in words):
+            kind = kinds[0] if kinds else "weight"
+            return LabelInfo("dimensions" if kind == "size" else kind, role="capacity")
+        if kinds:
+            return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component")
+    except Exception:  # noqa: BLE001 - a label we cannot read is no measurement
+        return None
+    return None
+
+
+def _compound_kind(word: str) -> str | None:
+    """The kind a compound's measurement suffix names, whatever its prefix (``schlauchlänge`` -> length)."""
+    for suffix in _COMPOUND_SUFFIXES:
+        if word.endswith(suffix) and len(word) > len(suffix) + 2:
+            return _KIND_WORDS[suffix]
+    return None
 
 
 def _split_compound(word: str) -> tuple[str, bool] | None:

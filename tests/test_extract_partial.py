@@ -263,3 +263,50 @@ def test_the_label_order_gives_a_combined_value_its_roles():
     body = "<table><tr><th>Dimensions (H x W x D)</th><td>17.9 x 359.3 x 235.6 mm</td></tr></table>"
     record = extract_page(_page(body), "https://s.example/p")
     assert _roles(record) == [("width", 35.93), ("depth", 23.56), ("height", 1.79)]
+
+
+# ------------------------------------------------------- parts and capacities are candidates too
+def test_parts_and_capacities_are_listed_but_never_chosen():
+    body = ("<ul><li>Capacity: 1.7 L</li><li>Cable length: 75 cm</li><li>Weight: 1.1 kg</li>"
+            "<li>Max load: 5 kg</li></ul><table><tr><th>Fassungsvermögen</th><td>8 kg</td></tr></table>")  # fmt: skip
+    record = extract_page(_page(body), "https://s.example/p")
+    assert record.dims == [] and record.mass_g == 1100.0
+    roles = {(c["feature"], c["role"], json.dumps(c["value"])) for c in record.candidates}
+    assert ("dims", "component", "[75.0]") in roles
+    assert ("mass", "capacity", "5000.0") in roles and ("mass", "capacity", "8000.0") in roles
+    assert all(c["decision"].startswith("not the product's") for c in record.candidates if c["role"] != "product")
+
+
+def test_a_page_with_only_a_parts_value_states_nothing_of_the_product():
+    from kb.errors import ExtractionError
+
+    with pytest.raises(ExtractionError, match="no product dimensions or mass"):
+        extract_page(_page("<ul><li>Cable length: 75 cm</li><li>Battery weight: 148 g</li></ul>"), "https://s.example/p")
+
+
+@pytest.mark.parametrize(
+    ("label", "role"),
+    [("Cable length", "component"), ("Battery Weight", "component"), ("Schlauchlänge", "component"),
+     ("Fassungsvermögen", "capacity"), ("Max Height", "capacity"), ("耐荷重", "capacity"),
+     ("Weight", None), ("Colour", None), ("Weight: 1.1 kg", None)],
+)
+def test_whose_label_it_is(label, role):
+    from scrapers.labels import classify_other
+
+    info = classify_other(label)
+    assert (info.role if info else None) == role
+
+
+@pytest.mark.parametrize(
+    ("value", "extents", "axes"),
+    [
+        ("<li>Diameter 30cm x Height 15cm</li>", [("diameter", 30.0), ("height", 15.0)], (30.0, 30.0, 15.0)),
+        ("<li>Width: 30 cm x Height 20 cm</li>", [("width", 30.0), ("height", 20.0)], (30.0, 20.0)),
+        ("<li>Size: Width 30 cm x Height 20 cm x Depth 10 cm</li>",
+         [("width", 30.0), ("height", 20.0), ("depth", 10.0)], (30.0, 20.0, 10.0)),
+    ],
+)
+def test_axis_words_inside_one_value_keep_their_roles(value, extents, axes):
+    record = extract_page(_page(f"<ul>{value}</ul>"), "https://s.example/p")
+    assert sorted(_roles(record)) == sorted(extents)
+    assert record.dims_cm == axes

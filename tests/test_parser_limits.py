@@ -131,7 +131,8 @@ def test_a_relation_past_the_limit_is_refused_with_its_words() -> None:
 @pytest.mark.parametrize(
     ("text", "feature", "value"),
     [("500 cm long", "a_cm", 500.0), ("5 m long", "a_cm", 500.0), ("5000 mm", "a_cm", 500.0),
-     ("500 kg", "mass_g", 500_000.0), ("500000 g", "mass_g", 500_000.0), ("0.0001 cm thick", "c_cm", 0.0001)],
+     ("500 kg", "mass_g", 500_000.0), ("500000 g", "mass_g", 500_000.0), ("0.0001 cm thick", "c_cm", 0.0001),
+     ("0.1 mg", "mass_g", 0.0001)],
 )  # fmt: skip
 def test_the_limit_itself_is_accepted(text: str, feature: str, value: float) -> None:
     assert parse(text).values()[feature] == value
@@ -142,6 +143,12 @@ def test_the_limit_itself_is_accepted(text: str, feature: str, value: float) -> 
 def test_just_past_the_limit_is_refused(text: str) -> None:
     assert _numbers(text) == {}
     assert "absurd for a household object" in _refused(text)[0][1]
+
+
+@pytest.mark.parametrize("text", ["0.00009 cm thick", "0.00005 g", "0.05 mg"])
+def test_just_under_the_smallest_stated_value_is_refused(text: str) -> None:
+    assert _numbers(text) == {}  # not rounded up to 0.0001
+    assert "too small to state (under 0.0001)" in _refused(text)[0][1]
 
 
 def test_the_parser_uses_the_catalogs_limits() -> None:

@@ -26,6 +26,7 @@ import httpx
 import pytest
 
 from kb.service.http import serve_subprocess
+from kb.service.http.process import stop_process
 
 pytestmark = pytest.mark.slow
 
@@ -192,11 +193,7 @@ def browser_at(url: str) -> Iterator[DevTools]:
                 tools.wait_for("document.body && document.body.dataset.ready === 'true'")
                 yield tools
         finally:
-            proc.terminate()
-            try:
-                proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
+            stop_process(proc)
 
 
 @needs_chromium

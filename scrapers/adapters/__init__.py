@@ -44,6 +44,9 @@ class Observation:
     note: str | None = None
     source: str = ""
     roles: tuple[str, ...] = ()
+    #: Whose value it is: "product" (package values have ``package``), or "component" / "capacity" (a
+    #: part's extent, a capacity or rating: proposed so the chooser can list it, never chosen).
+    role: str = "product"
 
     def extents(self) -> tuple[tuple[str, float], ...]:
         """``(role, cm)`` per stated extent of a dims observation."""

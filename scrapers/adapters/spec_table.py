@@ -22,7 +22,7 @@ from typing import Any
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
 from scrapers.adapters import Observation, adapter
-from scrapers.labels import AXES, LabelInfo, classify_label
+from scrapers.labels import AXES, LabelInfo, classify_label, classify_other
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page
 from scrapers.quantities import (
@@ -96,6 +96,10 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
                 labelled.append((text[cand_start : sep.start()], info, sep.end()))
                 label_start = cand_start
                 break
+        else:
+            if k == 0 and words and (other := classify_other(text[prev_end + words[0].start() : sep.start()])):
+                labelled.append((text[prev_end + words[0].start() : sep.start()], other, sep.end()))
+                label_start = prev_end + words[0].start()
         starts.append(label_start)
         prev_end = sep.end()
     out: list[tuple[str, str, LabelInfo]] = []
@@ -130,7 +134,7 @@ def _label_then_number(text: str) -> tuple[str, str, LabelInfo] | None:
     if letter:
         cut = letter.start()
     label = text[:cut]
-    info = classify_label(label)
+    info = classify_label(label) or classify_other(label)
     return (label.strip(), text[cut:], info) if info is not None else None
 
 
@@ -147,8 +151,8 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
         if i in column_values:
             continue
         text = line.text
-        info = classify_label(text) if len(text) <= 80 else None
-        if info is not None and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
+        info = (classify_label(text) or classify_other(text)) if len(text) <= 80 else None
+        if info is not None and info.role == "product" and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
             header = _header_row(lines, i)
             if header:
                 pairs.extend(header)
@@ -231,6 +235,9 @@ def observations_from_pairs(
         info = pair.info
         raw = f"{pair.label}: {pair.value}"[:200]
         package = pair.package or info.package
+        if info.role != "product":
+            obs.extend(_other_observations(pair, raw, decimal_comma, rank))
+            continue
         if info.kind in ("dimensions", "size"):
             dims = parse_dims(pair.value, info.unit, decimal_comma)
             rest = pair.value
@@ -274,6 +281,8 @@ def observations_from_pairs(
                     obs.append(
                         Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
                     )
+        elif info.kind in AXES and (joint := _axes_in_one_value(pair, decimal_comma)) is not None:
+            obs.append(joint)  # "Diameter 30cm x Height 15cm": one value naming its axes
         elif info.kind in AXES:
             length = parse_length(pair.value, info.unit, decimal_comma)
             note = None
@@ -285,6 +294,38 @@ def observations_from_pairs(
             axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
     obs.extend(_group_axes(axes))
     return obs
+
+
+def _axes_in_one_value(pair: Pair, decimal_comma: bool | None) -> Observation | None:
+    """``Diameter 30cm x Height 15cm``, ``Width: 30 cm x Height 20 cm``: an axis label whose value goes
+    on with more axes, read as one size with each extent's role; None otherwise."""
+    if " x " not in clean_text(pair.value):
+        return None
+    found = parse_dims(f"{pair.label} {pair.value}", pair.info.unit, decimal_comma)
+    if not found or "extent" in found[0].roles:
+        return None
+    d = found[0]
+    raw = f"{pair.label}: {pair.value}"[:200]
+    return Observation("dims", d.values_cm, pair.package, 1, pair.order, pair.group, raw, roles=d.roles)
+
+
+def _other_observations(pair: Pair, raw: str, decimal_comma: bool | None, rank: int) -> list[Observation]:
+    """A component's or capacity's value as a candidate that is not the product's (the chooser lists it
+    as an alternative and never picks it)."""
+    info = pair.info
+    if info.kind == "weight":
+        mass = parse_mass(pair.value, info.unit, decimal_comma)
+        found = [("mass", mass, ())] if mass is not None else []
+    elif info.kind in ("dimensions", "size"):
+        dims = parse_dims(pair.value, info.unit, decimal_comma)
+        found = [("dims", dims[0].values_cm, dims[0].roles)] if dims else []
+    else:
+        length = parse_length(pair.value, info.unit, decimal_comma)
+        found = [("dims", (length,), (info.kind,))] if length is not None else []
+    return [
+        Observation(f, v, pair.package, rank, pair.order, pair.group, raw, roles=r, role=info.role)
+        for f, v, r in found
+    ]
 
 
 def range_extent(kind: str, rng: tuple[float, float], raw: str) -> tuple[float, str]:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from kb.service.http.jobs import objrecall_command
 
-__all__ = ["free_port", "serve_subprocess"]
+__all__ = ["free_port", "serve_subprocess", "stop_process"]
 
 
 def free_port(host: str = "127.0.0.1") -> int:
@@ -64,10 +64,15 @@ def serve_subprocess(
             time.sleep(0.1)
         yield base
     finally:
-        proc.terminate()
-        try:
-            proc.wait(timeout=10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
+        stop_process(proc)
         log.close()
+
+
+def stop_process(proc: subprocess.Popen, timeout: float = 10.0) -> None:
+    """Ask a child process to stop (SIGTERM), and kill it if it has not within ``timeout`` seconds."""
+    proc.terminate()
+    try:
+        proc.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        proc.wait()
