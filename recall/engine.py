@@ -765,7 +765,7 @@ class Recaller:
                     features={f: getattr(rec, f) for f in FEATURES},
                     name_part=name_part,
                     vague_part=vague_part,
-                    kind=self.kinds.kinds[row],
+                    kind=self.kinds.kind(row),
                 )
             )
         return out
