@@ -84,12 +84,12 @@ def category_queries(draw):
 def test_category_only_descriptions_are_answered_from_the_combinations(query, k):
     """Categories only: the combinations plan (or the scan, on little work), equal to brute force (ties
     by row), for JP and jplog."""
-    from recall.search import SCAN_WORK
+    from recall.search import CATEGORY_SCAN_WORK
 
     brows, bdist = brute_force_top_k(catalog(), query, k)
     for force in (None, "categories"):
         plan, rows, dist = index().plan_and_search(query, k, force=force)
-        small = len(catalog()) * len(query) <= SCAN_WORK
+        small = len(catalog()) * len(query) <= CATEGORY_SCAN_WORK
         assert plan == ("scan" if small and force is None else "categories")
         np.testing.assert_array_equal(rows, brows)
         np.testing.assert_array_equal(dist, bdist)
@@ -257,3 +257,20 @@ def test_jplog_top_k_equals_brute_force(query, k):
     full = distances("jplog", catalog().matrix, query)
     # (the one-hot route takes logarithms of the float32 values in float64; the engine keeps float32 logs)
     np.testing.assert_allclose(full[rows], dist, rtol=1e-5, atol=1e-5)
+
+
+def test_init_installs_every_metrics_macro_and_sql_recalls_like_the_engine(tmp_path):
+    """``objrecall init`` (kb.service.bootstrap.init_db) installs the macros: a recall in plain SQL on
+    the seed catalog names the engine's first match, for the hybrid's default metric and the paper's."""
+    from kb.service.bootstrap import init_db
+    from recall.engine import Recaller
+    from recall.sql import MACRO_NAMES
+
+    kb = init_db(tmp_path / "catalog.duckdb", seed=True)
+    installed = {r[0] for r in kb.sql("SELECT function_name FROM duckdb_functions() WHERE macro_definition IS NOT NULL").rows}
+    assert set(MACRO_NAMES) <= installed
+    values = {"a_cm": 6.5, "b_cm": 6.5, "c_cm": 6.5, "material": "fabric"}
+    recaller = Recaller.from_db(tmp_path / "catalog.duckdb")
+    for metric in ("jplog", "jp"):
+        (name,) = kb.sql(f"SELECT name FROM {metric}_rank(qa := 6.5, qb := 6.5, qc := 6.5, qmaterial := 'fabric') LIMIT 1").rows[0]
+        assert name == recaller.recall_features(values, metric=metric, features_only=True).best.name
