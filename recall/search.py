@@ -59,7 +59,7 @@ __all__ = ["JPIndex", "brute_force_top_k", "index_for", "score_rows", "select_to
 #: Catalogs up to this size are always scanned, and so is any query of at most SCAN_WORK row-features
 #: (below that, the fixed costs of the other plans exceed the scan; measured, see RECALL.md).
 SCAN_BELOW = 32768
-SCAN_WORK = 100_000
+SCAN_WORK = 40_000
 #: Categories only: scanned up to this many row-features, else the combinations (~0.14 ms at any size).
 CATEGORY_SCAN_WORK = 40_000
 #: Rows taken around the description in each stated column for the first bound.
