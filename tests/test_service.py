@@ -336,6 +336,22 @@ def test_request_body_size_limit(client):
     assert_error(client.post("/parse", content=chunks(), headers={"content-type": "application/json"}), 413)
 
 
+@pytest.mark.parametrize("chunked", [False, True])
+def test_request_body_limit_is_exact(shared_db, chunked):
+    """A body of exactly ``max_body_bytes`` is read (the schema then judges it: 422); one byte more is 413,
+    whether the size is declared or arrives in chunks."""
+    limit = 1000
+    small = TestClient(create_app(shared_db, token="", max_body_bytes=limit), **LOCAL)
+
+    def post(n: int):
+        body = b"x" * n
+        content = (body[i : i + 300] for i in range(0, n, 300)) if chunked else body
+        return small.post("/parse", content=content, headers={"content-type": "application/json"})
+
+    assert_error(post(limit), 422, "ValidationError")
+    assert_error(post(limit + 1), 413, "PayloadTooLarge", f"at most {limit} bytes")
+
+
 def test_request_time_limit(shared_db):
     slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), **LOCAL)
     r = slow.post(
