@@ -62,68 +62,86 @@ def _material_rank(segment: list[Token], i: int) -> int:
 
 
 def read_categories(segment: list[Token], base: int, reading: Reading) -> None:
-    n = len(segment)
+    """Add one sentence's cue words, mass hints and category words (with their rank) to ``reading``
+    (``base``: the index of the sentence's first token in the text)."""
     for i, tok in enumerate(segment):
-        pos = base + i
-        tag = tok.tag
-        nxt = segment[i + 1].low if i + 1 < n else ""
-        if tag not in NUMBER_TAGS and not (tok.low == "can" and tag != "SHP"):
-            if nxt in lx.BALL_COMPOUND_HEADS and (
-                tok.low in lx.SPHERE_WORDS or tok.low.endswith(lx.BALL_SUFFIX)
-            ):
-                pass  # "baseball cap", "ball bearing": not a ball
-            elif tok.low in lx.VESSEL_WORDS and i and segment[i - 1].low in ("the", "its", "at"):
-                pass  # "wide at the bowl": a part
-            else:
-                reading.cue_words.add(tok.low)
-                if tok.low.endswith(lx.BALL_SUFFIX) and len(tok.low) > len(lx.BALL_SUFFIX):
-                    reading.cue_words.add(lx.BALL_SUFFIX)  # "softball", "basketball"
-        if tag == "MH":
+        _add_cue(segment, i, reading)
+        if tok.tag == "MH":
             hint = lx.MASS_HINT_WORDS[tok.low]
             if _negated(segment, i):
                 hint = "heavy" if hint == "light" else "light"
             reading.mass_hints.append(hint)
             continue
-        if tag == "DIM" and tok.low in ("long", "elongated") and pos not in reading.in_dim_chunk:
-            if any(t.low == "as" for t in segment[max(0, i - 3) : i]):
-                continue  # "twice as long as it is wide": a proportion, not a long shape
-            if _in_part_phrase(segment, i, True):
-                continue  # "with a long stem", "a long handle": a part is long
-            feature, value, rank = "shape", "long", 2
-        elif tag in CATEGORY_TAGS:
-            feature = CATEGORY_TAGS[tag]
-            if feature == "shape":
-                value, rank = lx.SHAPE_WORDS[tok.low]
-                if nxt in lx.MODIFIED_HEADS and tok.low not in lx.MODIFIED_HEADS:
-                    continue  # "bottle opener", "pen holder": the shape of something else
-                if tok.low == "thin" and i + 1 < n and segment[i + 1].tag == "MAT":
-                    continue  # "thin plastic", "thin glass": the wall, not the object's shape
-                if nxt == "of" and tok.low in lx.MEASURE_NOUNS:
-                    continue  # "a bar of soap"
-                if (nxt == "of" and tok.low in lx.CONTAINER_NOUNS) or _in_part_phrase(segment, i, True):
-                    rank = 0  # "a bar of soap", "with a long stem", "in a tin cup"
-            else:
-                table = lx.TABLES[feature]
-                value = table[tok.low]
-                rank = _material_rank(segment, i) if feature == "material" else 1
-                if feature in ("texture", "fragility") and i >= 1 and segment[i - 1].low in lx.MEDIUM_WORDS:
-                    value = "medium"
-        elif tok.low in lx.MEDIUM_WORDS and i + 1 < len(segment):
-            nxt = segment[i + 1].low
-            if nxt in ("texture", "surface", "roughness", "finish"):
-                feature, value, rank = "texture", "medium", 1
-            elif nxt in ("fragility", "fragile", "strength"):
-                feature, value, rank = "fragility", "medium", 1
-            else:
-                continue
-        else:
+        found = _category(segment, i, base + i, reading)
+        if found is None:
             continue
+        feature, value, rank = found
         if _negated(segment, i):
             if feature == "fragility":
                 value = lx.NEGATED_FRAGILITY[value]
             else:
                 continue
-        reading.categories.setdefault(feature, []).append((rank, pos, value, tok))
+        reading.categories.setdefault(feature, []).append((rank, base + i, value, tok))
+
+
+def _add_cue(segment: list[Token], i: int, reading: Reading) -> None:
+    """The word as a cue of the object's form for the dimension rules (ball, bottle, flat, ...)."""
+    tok = segment[i]
+    if tok.tag in NUMBER_TAGS or (tok.low == "can" and tok.tag != "SHP"):
+        return
+    nxt = segment[i + 1].low if i + 1 < len(segment) else ""
+    if nxt in lx.BALL_COMPOUND_HEADS and (tok.low in lx.SPHERE_WORDS or tok.low.endswith(lx.BALL_SUFFIX)):
+        return  # "baseball cap", "ball bearing": not a ball
+    if tok.low in lx.VESSEL_WORDS and i and segment[i - 1].low in ("the", "its", "at"):
+        return  # "wide at the bowl": a part
+    reading.cue_words.add(tok.low)
+    if tok.low.endswith(lx.BALL_SUFFIX) and len(tok.low) > len(lx.BALL_SUFFIX):
+        reading.cue_words.add(lx.BALL_SUFFIX)  # "softball", "basketball"
+
+
+def _category(segment: list[Token], i: int, pos: int, reading: Reading) -> tuple[str, str, int] | None:
+    """(feature, value, rank) the word at ``i`` states, before negation; None when it states none."""
+    tok = segment[i]
+    tag = tok.tag
+    nxt = segment[i + 1].low if i + 1 < len(segment) else ""
+    if tag == "DIM" and tok.low in ("long", "elongated") and pos not in reading.in_dim_chunk:
+        if any(t.low == "as" for t in segment[max(0, i - 3) : i]):
+            return None  # "twice as long as it is wide": a proportion, not a long shape
+        if _in_part_phrase(segment, i, True):
+            return None  # "with a long stem", "a long handle": a part is long
+        return "shape", "long", 2
+    if tag in CATEGORY_TAGS:
+        feature = CATEGORY_TAGS[tag]
+        if feature == "shape":
+            shape = _shape(segment, i, nxt)
+            return None if shape is None else ("shape", *shape)
+        value = lx.TABLES[feature][tok.low]
+        rank = _material_rank(segment, i) if feature == "material" else 1
+        if feature in ("texture", "fragility") and i >= 1 and segment[i - 1].low in lx.MEDIUM_WORDS:
+            value = "medium"
+        return feature, value, rank
+    if tok.low in lx.MEDIUM_WORDS and nxt:
+        if nxt in ("texture", "surface", "roughness", "finish"):
+            return "texture", "medium", 1
+        if nxt in ("fragility", "fragile", "strength"):
+            return "fragility", "medium", 1
+    return None
+
+
+def _shape(segment: list[Token], i: int, nxt: str) -> tuple[str, int] | None:
+    """(shape, priority) of a shape word, 0 in a part phrase or before "of" of a container; None when it
+    names something else's shape ("bottle opener", "thin plastic", "a bar of soap")."""
+    tok = segment[i]
+    value, rank = lx.SHAPE_WORDS[tok.low]
+    if nxt in lx.MODIFIED_HEADS and tok.low not in lx.MODIFIED_HEADS:
+        return None  # "bottle opener", "pen holder": the shape of something else
+    if tok.low == "thin" and i + 1 < len(segment) and segment[i + 1].tag == "MAT":
+        return None  # "thin plastic", "thin glass": the wall, not the object's shape
+    if nxt == "of" and tok.low in lx.MEASURE_NOUNS:
+        return None  # "a bar of soap"
+    if (nxt == "of" and tok.low in lx.CONTAINER_NOUNS) or _in_part_phrase(segment, i, True):
+        rank = 0  # "a tube of toothpaste", "with a long stem", "in a tin cup"
+    return value, rank
 
 
 def resolve_categories(reading: Reading) -> dict[str, tuple[str, Token]]:

@@ -187,84 +187,95 @@ def number_value(tokens: Sequence[str]) -> float | None:
         toks.pop()
     if not toks:
         return None
-    whole = _Whole()
-    fraction = 0.0
-    numerator: float | None = None  # a small number word right before a fraction word ("three quarters")
-    after_and = False
-    had_fraction = False
-    i = 0
-    if toks[0] in _ARTICLES:
-        i = 1
-    while i < len(toks):
-        tok = toks[i]
-        if tok in _ARTICLES:
-            # only "and a half", "and a quarter" (after and) or "one and a half": the article of a fraction
-            if not (after_and and i + 1 < len(toks) and _is_fraction_token(toks[i + 1])):
+    return _NumberReading(toks).value()
+
+
+class _NumberReading:
+    """Reading one number's tokens left to right: a whole part (:class:`_Whole`), then at most one
+    fraction, joined by "and" ("fifteen and half", "one and a half", "two and three quarters")."""
+
+    def __init__(self, toks: list[str]) -> None:
+        self.toks = toks
+        self.whole = _Whole()
+        self.fraction = 0.0
+        self.numerator: float | None = None  # a small number word before a fraction word ("three quarters")
+        self.after_and = False
+        self.had_fraction = False
+
+    def value(self) -> float | None:
+        """The number, or None when the tokens are not one well-formed number."""
+        toks = self.toks
+        for i in range(1 if toks[0] in _ARTICLES else 0, len(toks)):
+            tok = toks[i]
+            nxt = toks[i + 1] if i + 1 < len(toks) else ""
+            if tok in _ARTICLES:
+                # only "and a half", "and a quarter", "one and a half": the article of a fraction
+                ok = self.after_and and _is_fraction_token(nxt)
+            elif tok == "and":
+                ok = self._and()
+            elif _is_fraction_token(tok):
+                ok = self._fraction(tok)
+            else:
+                ok = self._word(tok, nxt)
+            if not ok:
                 return None
-            i += 1
-            continue
-        if tok == "and":
-            if after_and or not whole.seen or had_fraction:
-                return None
-            after_and = True
-            i += 1
-            continue
-        if _is_fraction_token(tok):
-            if had_fraction and numerator is None:
-                return None
-            f = FRACTION_WORDS.get(tok)
-            if f is None:
-                f = digits_value(tok)
-                if f is None:
-                    return None
-                if numerator is not None:  # "three 1/4" is not a number
-                    return None
-            part = (numerator if numerator is not None else 1.0) * f
-            if numerator is not None and not after_and:
-                # "three quarters": the numerator was counted in the whole part: take it back
-                whole = _Whole()
-            fraction += part
-            numerator = None
-            had_fraction = True
-            i += 1
-            continue
-        if had_fraction:
-            return None  # nothing follows the fraction ("half twenty")
+        if self.after_and and not self.had_fraction:
+            return None
+        if not self.whole.seen and not self.had_fraction:
+            return None
+        return self.whole.value + self.fraction
+
+    def _and(self) -> bool:
+        if self.after_and or not self.whole.seen or self.had_fraction:
+            return False
+        self.after_and = True
+        return True
+
+    def _fraction(self, tok: str) -> bool:
+        if self.had_fraction and self.numerator is None:
+            return False
+        f = FRACTION_WORDS.get(tok)
+        if f is None:
+            f = digits_value(tok)
+            if f is None or self.numerator is not None:  # "three 1/4" is not a number
+                return False
+        part = (self.numerator if self.numerator is not None else 1.0) * f
+        if self.numerator is not None and not self.after_and:
+            # "three quarters": the numerator was counted in the whole part: take it back
+            self.whole = _Whole()
+        self.fraction += part
+        self.numerator = None
+        self.had_fraction = True
+        return True
+
+    def _word(self, tok: str, nxt: str) -> bool:
+        """A number word or digits: part of the whole, or the numerator of the fraction that follows."""
+        if self.had_fraction:
+            return False  # nothing follows the fraction ("half twenty")
         kind_value = _word_kind(tok)
         if kind_value is None:
             value = digits_value(tok)
             if value is None:
-                return None
+                return False
             kind_value = ("digits", value)
         kind, value = kind_value
-        if after_and:
+        whole = self.whole
+        if self.after_and:
             # after "and": a fraction's numerator ("and three quarters") or the rest after a hundred
-            nxt = toks[i + 1] if i + 1 < len(toks) else ""
             if kind == "unit" and _is_fraction_token(nxt) and nxt in FRACTION_WORDS:
-                numerator = value
-                i += 1
-                continue
+                self.numerator = value
+                return True
             if whole.last in ("hundred", "thousand") and kind in ("unit", "teen", "tens"):
                 if not whole.add(kind, value):
-                    return None
-                after_and = False
-                i += 1
-                continue
-            return None
-        nxt = toks[i + 1] if i + 1 < len(toks) else ""
+                    return False
+                self.after_and = False
+                return True
+            return False
         if kind == "unit" and nxt in FRACTION_WORDS and not whole.seen:
-            numerator = value  # "three quarters", "one half"
+            self.numerator = value  # "three quarters", "one half"
             whole.add(kind, value)
-            i += 1
-            continue
-        if not whole.add(kind, value):
-            return None
-        i += 1
-    if after_and and not had_fraction:
-        return None
-    if not whole.seen and not had_fraction:
-        return None
-    return whole.value + fraction
+            return True
+        return whole.add(kind, value)
 
 
 _SPLIT = re.compile(DIGITS_PATTERN + r"|[^\W\d_]+(?:-[^\W\d_]+)*|[" + "".join(UNICODE_FRACTIONS) + "]")

@@ -33,25 +33,36 @@ class DescribedNoun:
 
 
 class KindIndex:
-    """The kind of every catalog row, and the rows of each kind."""
+    """The kind of every catalog row, and the rows of each kind. Lazy: a row's kind is worked out when
+    first asked for (a match shown), the rows of each kind on the first "not in the catalog" answer, so
+    building a recaller over a large catalog costs nothing here."""
 
     def __init__(self, names: Sequence[str], aliases: Sequence[Sequence[str]]):
-        self.kinds: list[str | None] = [
-            kind_of_name(n, a) for n, a in zip(names, aliases, strict=True)
-        ]
-        self.rows: dict[str, list[int]] = {}
-        for row, kind in enumerate(self.kinds):
-            for k in ancestors(kind) if kind else ():
-                self.rows.setdefault(k, []).append(row)
+        self._names = names
+        self._aliases = aliases
+        self._kinds: dict[int, str | None] = {}
+        self._rows: dict[str, list[int]] | None = None
+
+    def kind(self, row: int) -> str | None:
+        if row not in self._kinds:
+            self._kinds[row] = kind_of_name(self._names[row], self._aliases[row])
+        return self._kinds[row]
 
     def rows_of_kind(self, kind: str) -> tuple[str | None, list[int]]:
         """The rows of ``kind`` or of its nearest ancestor that has rows (never the root): (kind used,
         rows); (None, []) when none."""
+        if self._rows is None:
+            rows: dict[str, list[int]] = {}
+            for row in range(len(self._names)):
+                own = self.kind(row)
+                for k in ancestors(own) if own else ():
+                    rows.setdefault(k, []).append(row)
+            self._rows = rows
         for k in ancestors(kind):
             if k == ROOT:
                 break
-            if self.rows.get(k):
-                return k, list(self.rows[k])
+            if self._rows.get(k):
+                return k, list(self._rows[k])
         return None, []
 
 

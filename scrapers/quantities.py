@@ -294,7 +294,9 @@ _DIMS_RE = re.compile(
 )
 # An axis letter or word written before a number inside a dimensions value.
 _AXIS_PREFIX = re.compile(
-    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ)\.?\s*[:=]?\s*(?:約|约)?\s*(?=\d)"
+    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ|(?i:length|width|height|depth|thickness|"
+    r"länge|breite|höhe|tiefe|longueur|largeur|hauteur|profondeur|largo|ancho|alto|altura|profundidad))"
+    r"\.?\s*[:=]?\s*(?:約|约)?\s*(?=\d)"
 )
 _DIAMETER_PREFIX = re.compile(
     rf"(?:(?<=^)|(?<=[\s(:;,]))(?:直径|直徑|[ØøΦφ⌀]|dia\.|diameter|durchmesser|diamètre|diámetro|diametro|"
@@ -558,6 +560,12 @@ AXIS_LETTER_ROLES = {
 }  # fmt: skip
 
 
+_AXIS_WORD_ROLES = {
+    "length": "length", "länge": "length", "longueur": "length", "largo": "length",
+    "width": "width", "breite": "width", "largeur": "width", "ancho": "width",
+    "height": "height", "höhe": "height", "hauteur": "height", "alto": "height", "altura": "height",
+    "depth": "depth", "tiefe": "depth", "profondeur": "depth", "profundidad": "depth", "thickness": "thickness",
+}  # fmt: skip
 _CJK_AXIS_ROLES = {
     "長": "length", "长": "length", "長さ": "length", "寬": "width", "宽": "width", "幅": "width",
     "高": "height", "高さ": "height", "深": "depth", "奥行": "depth", "奥行き": "depth", "厚": "thickness",
@@ -571,6 +579,8 @@ def _letter_role(letter: str | None) -> str:
     letter = letter.strip("()")
     if letter in _CJK_AXIS_ROLES:
         return _CJK_AXIS_ROLES[letter]
+    if letter.lower() in _AXIS_WORD_ROLES:
+        return _AXIS_WORD_ROLES[letter.lower()]
     if letter in ("Ø", "⌀"):
         return "diameter"
     return AXIS_LETTER_ROLES.get(letter.upper(), "extent")
@@ -685,8 +695,10 @@ def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None)
         if any(v is None or v <= 0 for v in values):
             continue
         cm = [round(v * f, 6) for v, f in zip(values, factors, strict=True)]
-        if len(prefixed) == n and all(letter is None for letter in letters):
-            letters = prefixed
+        plain = [i for i, x in enumerate(nums) if x not in diameters]
+        if len(prefixed) == len(plain) and all(letter is None for letter in letters):
+            for i, letter in zip(plain, prefixed, strict=True):  # "Ø 12 x H 20", "Diameter 30 x Height 15"
+                letters[i] = letter
         roles = tuple(
             "diameter" if x in diameters else _letter_role(letter)
             for x, letter in zip(nums, letters, strict=True)

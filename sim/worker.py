@@ -292,11 +292,15 @@ def _tasks_for(
                 image_path = str(image_dir / image_name(obj.name, plan.grasp_type)) if want_image else None
                 if key in stored:
                     skipped += 1
-                    if image_path and not Path(image_path).exists():
-                        tasks.append(TrialTask(obj, plan, rank, seed, fh, ids.get(obj.name), None, render, image_path, hand))
+                    if image_path and not Path(image_path).exists():  # render only: the trial is stored
+                        tasks.append(
+                            TrialTask(obj, plan, rank, seed, fh, ids.get(obj.name), None, render, image_path, hand)
+                        )
                     continue
                 task_render = render if image_path else None
-                tasks.append(TrialTask(obj, plan, rank, seed, fh, ids.get(obj.name), trial, task_render, image_path, hand))
+                tasks.append(
+                    TrialTask(obj, plan, rank, seed, fh, ids.get(obj.name), trial, task_render, image_path, hand)
+                )
     return tasks, wanted, skipped
 
 
@@ -380,8 +384,8 @@ def _validated_renders(
         obj = by_name[c.object_name]
         plan = next(p for p in plan_grasps(obj) if p.grasp_type == c.validated)
         path = image_dir / image_name(obj.name, plan.grasp_type)
-        fh = row["features_hash"]
-        tasks.append(TrialTask(obj, plan, int(row["rank"]), int(row["seed"]), fh, row.get("object_id"), None, render, str(path), hand))
+        rank, seed, oid = int(row["rank"]), int(row["seed"]), row.get("object_id")
+        tasks.append(TrialTask(obj, plan, rank, seed, row["features_hash"], oid, None, render, str(path), hand))
     return tasks
 
 

@@ -295,3 +295,24 @@ def test_whose_label_it_is(label, role):
 
     info = classify_other(label)
     assert (info.role if info else None) == role
+
+
+@pytest.mark.parametrize(
+    ("value", "extents", "axes"),
+    [
+        ("<li>Diameter 30cm x Height 15cm</li>", [("diameter", 30.0), ("height", 15.0)], (30.0, 30.0, 15.0)),
+        ("<li>Width: 30 cm x Height 20 cm</li>", [("width", 30.0), ("height", 20.0)], (30.0, 20.0)),
+        ("<li>Size: Width 30 cm x Height 20 cm x Depth 10 cm</li>",
+         [("width", 30.0), ("height", 20.0), ("depth", 10.0)], (30.0, 20.0, 10.0)),
+    ],
+)
+def test_axis_words_inside_one_value_keep_their_roles(value, extents, axes):
+    record = extract_page(_page(f"<ul>{value}</ul>"), "https://s.example/p")
+    assert sorted(_roles(record)) == sorted(extents)
+    assert record.dims_cm == axes
+
+
+@pytest.mark.parametrize(("label", "role"), [("Case diameter", "diameter"), ("Fabric width", "width")])
+def test_a_case_or_fabric_extent_is_the_products(label, role):
+    record = extract_page(_page(f"<ul><li>{label}: 42 mm</li></ul>"), "https://s.example/p")
+    assert _roles(record) == [(role, 4.2)]

@@ -281,6 +281,8 @@ def observations_from_pairs(
                     obs.append(
                         Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
                     )
+        elif info.kind in AXES and (joint := _axes_in_one_value(pair, decimal_comma)) is not None:
+            obs.append(joint)  # "Diameter 30cm x Height 15cm": one value naming its axes
         elif info.kind in AXES:
             length = parse_length(pair.value, info.unit, decimal_comma)
             note = None
@@ -292,6 +294,19 @@ def observations_from_pairs(
             axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
     obs.extend(_group_axes(axes))
     return obs
+
+
+def _axes_in_one_value(pair: Pair, decimal_comma: bool | None) -> Observation | None:
+    """``Diameter 30cm x Height 15cm``, ``Width: 30 cm x Height 20 cm``: an axis label whose value goes
+    on with more axes, read as one size with each extent's role; None otherwise."""
+    if " x " not in clean_text(pair.value):
+        return None
+    found = parse_dims(f"{pair.label} {pair.value}", pair.info.unit, decimal_comma)
+    if not found or "extent" in found[0].roles:
+        return None
+    d = found[0]
+    raw = f"{pair.label}: {pair.value}"[:200]
+    return Observation("dims", d.values_cm, pair.package, 1, pair.order, pair.group, raw, roles=d.roles)
 
 
 def _other_observations(pair: Pair, raw: str, decimal_comma: bool | None, rank: int) -> list[Observation]:
