@@ -49,6 +49,7 @@ __all__ = [
     "retry_while_locked",
     "run_user_sql",
     "unique_columns",
+    "warm_up",
 ]
 
 #: Settings of every read connection: read-only, no file or network access, no extensions, configuration
@@ -361,6 +362,19 @@ atexit.register(_POOL.close)
 _ERRORS: dict[str, type[ObjrecallError]] = {
     cls.__name__: cls for cls in (QueryRefused, QueryFailed, QueryTimeout, DatabaseBusy, DatabaseError)
 }
+
+
+def warm_up() -> None:
+    """Start one SQL worker now (python and DuckDB take about a second to load), so the first query does
+    not wait for it; the HTTP service calls this at start-up."""
+    worker = _POOL.acquire(time.monotonic() + _STARTUP_TIMEOUT_S)
+    try:
+        worker.wait_ready()
+    except BaseException:
+        worker.kill()
+        _POOL.release(None)
+        raise
+    _POOL.release(worker)
 
 
 def run_user_sql(

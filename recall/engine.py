@@ -235,45 +235,23 @@ class NameIndex:
         materials: Sequence[str | None] | None = None,
     ):
         from recall.lexicon import MATERIAL_WORDS
+        from recall.names import NameTables
 
-        # a generic name ("wood piece", "wooden block": only material words and generic nouns) describes
-        # any object of its material; phrase -> its material, and the catalog's rows by material
-        self.generic: dict[tuple[str, ...], str] = {}
-        self.by_material: dict[str, set[int]] = {}
-        for row, mat in enumerate(materials or ()):
-            if mat:
-                self.by_material.setdefault(mat, set()).add(row)
-
-        self.phrases: dict[tuple[str, ...], set[int]] = {}
-        self.heads: dict[str, set[int]] = {}
-        # (head, row) -> materials its names state ("wood cylinder" -> wood); None: some name states none
-        self.head_materials: dict[tuple[str, int], set[str] | None] = {}
-        for row, (name, alias) in enumerate(zip(names, aliases, strict=True)):
-            for phrase in (name, *alias):
-                words = tuple(normalize_words(phrase))
-                core = name_core(phrase)
-                if words:
-                    self.phrases.setdefault(words, set()).add(row)
-                    self.phrases.setdefault(core, set()).add(row)  # "wood block 2" is a "wood block"
-                    words = core
-                    head = _head(words)
-                    stated = {MATERIAL_WORDS[w] for w in words if w in MATERIAL_WORDS and w != head}
-                    if (
-                        len(stated) == 1
-                        and head in GENERIC_NOUNS
-                        and all(w in GENERIC_NOUNS or w in MATERIAL_WORDS or w == "of" for w in words)
-                    ):
-                        self.generic[words] = next(iter(stated))
-                    for key in (head, *(head[cut:] for cut in range(1, len(head) - self.MIN_SUFFIX + 1))):
-                        self.heads.setdefault(key, set()).add(row)
-                        known = self.head_materials.get((key, row), set())
-                        self.head_materials[(key, row)] = (
-                            None if known is None or not stated else known | stated
-                        )
+        # built column-wise (recall.names): phrases (words and core of every name and alias) -> rows;
+        # generic names ("wood piece", "wooden block": only material words and generic nouns) -> their
+        # material, describing any object of it (rows by material); head nouns and their suffixes ->
+        # rows, and (head, row) -> the materials its names state ("wood cylinder" -> wood; None: some
+        # name states none)
+        tables = NameTables(names, aliases, materials, self.MIN_SUFFIX)
+        self.phrases = tables.phrases
+        self.generic = tables.generic
+        self.by_material = tables.by_material
+        self.heads = tables.heads
+        self.head_materials = tables.head_materials
         # material words name what a thing is made of, not the thing ("made of glass")
         self.not_heads = frozenset(_singular(w) for w in MATERIAL_WORDS if " " not in w)
-        self.vocabulary = frozenset(w for phrase in self.phrases for w in phrase) | frozenset(self.heads)
-        self.longest = max((len(p) for p in self.phrases), default=0)
+        self.vocabulary = tables.vocabulary
+        self.longest = tables.longest
         self.size = len(names)
 
     def unknown_noun(self, text: str) -> str | None:

@@ -2,7 +2,9 @@
 
 A store's ``search`` (see :mod:`scrapers.sources`) answers either
 
-- **an HTML results page**: the product links are the links of the page's main content (``<main>``, or
+- **an HTML results page**: the product links are the ``url`` of every ``ItemList`` entry in its
+  schema.org JSON-LD when it has one (stores that mark up their results say which links are results),
+  else the links of the page's main content (``<main>``, or
   the body without its ``header``, ``nav``, ``footer`` and ``aside``) that stay on the store's host, pass
   the store's include/exclude patterns and are not search pages themselves; the next page is the
   ``rel="next"`` link (``<a>`` or ``<link>``). A page with no such links is a no-results page;
@@ -55,6 +57,34 @@ def _json_urls(data: Any) -> Iterator[str]:
             yield from _json_urls(item)
 
 
+def _item_list_urls(root) -> list[str]:
+    """The entries' URLs of the schema.org ItemLists in the page's JSON-LD (``url`` or ``item.url`` /
+    ``item["@id"]`` of each ``itemListElement``); [] when there are none or the JSON is broken."""
+    urls: list[str] = []
+    for script in root.xpath('//script[@type="application/ld+json"]'):
+        try:
+            data = json.loads(script.text or "")
+        except ValueError:
+            continue
+        stack = [data]
+        while stack:
+            node = stack.pop(0)
+            if isinstance(node, list):
+                stack.extend(node)
+            elif isinstance(node, dict):
+                if node.get("@type") == "ItemList":
+                    for entry in node.get("itemListElement") or []:
+                        item = entry.get("item") if isinstance(entry, dict) else None
+                        found = (entry.get("url") if isinstance(entry, dict) else None) or (
+                            (item.get("url") or item.get("@id")) if isinstance(item, dict) else item
+                        )
+                        if isinstance(found, str):
+                            urls.append(found)
+                else:
+                    stack.extend(v for v in node.values() if isinstance(v, (dict, list)))
+    return urls
+
+
 def _content_links(root) -> Iterator[Any]:
     main = root.find(".//main")
     scope = main if main is not None else root.find(".//body")
@@ -85,7 +115,9 @@ def parse_search_page(body: bytes, url: str, content_type: str | None, store: St
             root = lxml.html.document_fromstring(text)
         except Exception as err:  # noqa: BLE001 - lxml raises several kinds on garbage
             raise ExtractionError(f"{url}: search answer is not an HTML page ({err})") from None
-        candidates = [urljoin(url, a.get("href")) for a in _content_links(root) if a.get("href")]
+        listed = _item_list_urls(root)
+        links = listed or [a.get("href") for a in _content_links(root) if a.get("href")]
+        candidates = [urljoin(url, href) for href in links]
         nexts = root.xpath('//a[@rel="next"]/@href | //link[@rel="next"]/@href')
         if nexts:
             next_url = urljoin(url, nexts[0])

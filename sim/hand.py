@@ -456,101 +456,14 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     if plan.grasp_type not in GRASP_TYPES:
         raise ValueError(f"unknown grasp type {plan.grasp_type!r}")
     program = program_for(plan.grasp_type)
-    wrap = program.control == "wrap"
-    ratio = program.pip_per_mcp
-    pip_max = math.radians(RANGE_DEG["pip"][1])
-
-    def pip_of(q: float) -> float:
-        return min(pip_max, ratio * q)
-
     aperture = max(float(plan.aperture_cm), 0.5)
     width = float(width_cm) if width_cm is not None else max(0.5, aperture - 1.5)
     fingers = program.fingers
     side = min(max(plan.grip_force_n, 0.1), THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(fingers))
-    per_finger = side / len(fingers)
-    lever = program.lever
-    limits = dict.fromkeys(ACTUATOR_NAMES, UNUSED_TORQUE_NM)
-    limits["thumb_rot"] = THUMB_MAX_FORCE_N * _digit_length_cm("thumb", "rot") * CM
-    limits["thumb_flex"] = side * lever * _digit_length_cm("thumb", "flex") * CM
-    for f in fingers:
-        limits[f"{f}_mcp"] = per_finger * lever * _digit_length_cm(f, "mcp") * CM
-        limits[f"{f}_pip"] = per_finger * lever * _digit_length_cm(f, "pip") * CM
-    squeezing = ("thumb_flex", *(f"{f}_{j}" for f in fingers for j in ("mcp", "pip")))
-    closing = dict(limits)
-    for name in squeezing:
-        digit, joint = name.split("_", 1)
-        floor = CLOSING_FORCE_FLOOR_N * lever * _digit_length_cm(digit, joint) * CM
-        closing[name] = max(limits[name], floor)
-
-    open_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
-    close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
-    touch_q: dict[str, float] = {}
-    # Thumb rotation: aim the tip at the centre of the fingers it opposes.
-
-    if wrap:
-        # The object sits under the palm between the hanging thumb and the knuckles, centred between
-        # them when it fits; a wider one overhangs the knuckles (never the thumb, which hangs from the
-        # palm), and the fingers wrap down over its far side.
-        thumb_clear = THUMB.base_cm[1] + THUMB.radius_cm + 0.5
-        knuckle_clear = PALM_HALF_CM[1] - FINGER_BY_NAME["middle"].radius_cm - 0.3
-        center = max(0.5 * (thumb_clear + knuckle_clear), thumb_clear + width / 2.0)
-        # Thumb open: its pad (one radius in front of the tip's axis) at least 5 mm off the near side.
-        open_q["thumb_flex"] = thumb_flex_for(
-            min(center - aperture / 2.0, center - width / 2.0 - 0.5) - THUMB.radius_cm
-        )
-        close_q["thumb_flex"] = math.radians(RANGE_DEG["thumb_flex"][1] + 30.0)
-        for f in fingers:
-            open_q[f"{f}_mcp"] = 0.0
-            open_q[f"{f}_pip"] = math.radians(10.0)
-            close_q[f"{f}_mcp"] = math.radians(program.mcp_close_deg)
-            close_q[f"{f}_pip"] = math.radians(program.pip_close_deg)
-        contact_z = -PALM_HALF_CM[2]
-    else:
-        # Precision and lateral pinch: the pads press on opposite sides at one height (else the squeeze
-        # is a couple that turns the object): choose the pinch centre where, for this width, the thumb
-        # tip and the finger tips touch the object at the same depth below the palm.
-        # Tip positions are capsule axis ends: the pads' surfaces lie one radius closer to the object.
-        r_t = THUMB.radius_cm * TIP_TAPER
-        half_open = aperture / 2.0
-
-        def height_gap(c: float) -> float:
-            thumb_z = thumb_tip(thumb_flex_for(c - width / 2.0 - r_t))[1]
-            zs = []
-            for f in fingers:
-                q = finger_pinch_mcp(f, c + width / 2.0 + FINGER_BY_NAME[f].radius_cm * TIP_TAPER, ratio)
-                zs.append(finger_tip(f, q, pip_of(q))[1])
-            return thumb_z - float(np.mean(zs))
-
-        center = _solve(height_gap, 0.0, -2.0, 8.0)
-        open_q["thumb_flex"] = thumb_flex_for(center - half_open - r_t)
-        close_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t + PRECISION_OVERSHOOT_CM)
-        touch_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t)
-        thumb_contact = thumb_tip(touch_q["thumb_flex"])[1]
-        finger_contacts = []
-        for f in fingers:
-            r_f = FINGER_BY_NAME[f].radius_cm * TIP_TAPER
-            q_open = finger_pinch_mcp(f, center + half_open + r_f, ratio)
-            q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM, ratio)
-            open_q[f"{f}_mcp"], open_q[f"{f}_pip"] = q_open, pip_of(q_open)
-            close_q[f"{f}_mcp"], close_q[f"{f}_pip"] = q_close, pip_of(q_close)
-            q_touch = finger_pinch_mcp(f, center + width / 2.0 + r_f, ratio)
-            touch_q[f"{f}_mcp"], touch_q[f"{f}_pip"] = q_touch, pip_of(q_touch)
-            finger_contacts.append(finger_tip(f, q_touch, pip_of(q_touch))[1])
-        contact_z = 0.5 * (thumb_contact + float(np.mean(finger_contacts)))
-    # Thumb rotation: aim the tip at the centre of the fingers it opposes, at the depth where it touches
-    # (the rotation is about the palm's y axis, so the lateral reach is the tip's depth below the CMC).
-    x_target = (
-        program.thumb_aim
-        if program.thumb_aim is not None
-        else float(np.mean([FINGER_BY_NAME[f].x_cm for f in fingers]))
-    )
-    if wrap:
-        reach = THUMB.metacarpal_cm + sum(THUMB.lengths_cm)
-    else:
-        reach = max(2.0, THUMB.base_cm[2] - thumb_contact)
-    rot = math.asin(max(-1.0, min(1.0, (x_target - THUMB.base_cm[0]) / reach)))
-    rot = max(math.radians(RANGE_DEG["thumb_rot"][0]), min(math.radians(RANGE_DEG["thumb_rot"][1]), rot))
-    open_q["thumb_rot"] = close_q["thumb_rot"] = rot
+    limits, closing, squeezing = _force_limits(program, side)
+    posture = _wrap_posture if program.control == "wrap" else _pinch_posture
+    open_q, close_q, touch_q, center, contact_z, reach = posture(program, aperture, width)
+    open_q["thumb_rot"] = close_q["thumb_rot"] = _thumb_rotation(program, reach)
     return GraspTargets(
         open=np.array([open_q[n] for n in ACTUATOR_NAMES]),
         close=np.array([close_q[n] for n in ACTUATOR_NAMES]),
@@ -563,3 +476,101 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
         contact_z_cm=contact_z,
         side_force_n=side,
     )
+
+
+def _force_limits(program, side: float) -> tuple[dict[str, float], dict[str, float], tuple[str, ...]]:
+    """Holding torque limits (the thumb presses with the squeeze ``side``, the fingers share it), closing
+    limits (at least the closing floor) and the squeezing joints."""
+    fingers, lever = program.fingers, program.lever
+    per_finger = side / len(fingers)
+    limits = dict.fromkeys(ACTUATOR_NAMES, UNUSED_TORQUE_NM)
+    limits["thumb_rot"] = THUMB_MAX_FORCE_N * _digit_length_cm("thumb", "rot") * CM
+    limits["thumb_flex"] = side * lever * _digit_length_cm("thumb", "flex") * CM
+    for f in fingers:
+        limits[f"{f}_mcp"] = per_finger * lever * _digit_length_cm(f, "mcp") * CM
+        limits[f"{f}_pip"] = per_finger * lever * _digit_length_cm(f, "pip") * CM
+    squeezing = ("thumb_flex", *(f"{f}_{j}" for f in fingers for j in ("mcp", "pip")))
+    closing = dict(limits)
+    for name in squeezing:
+        digit, joint = name.split("_", 1)
+        floor = CLOSING_FORCE_FLOOR_N * lever * _digit_length_cm(digit, joint) * CM
+        closing[name] = max(limits[name], floor)
+    return limits, closing, squeezing
+
+
+def _wrap_posture(program, aperture: float, width: float):
+    """A wrap's (open, close, touch, centre y, contact z, thumb reach): the object sits under the palm
+    between the hanging thumb and the knuckles, centred between them when it fits; a wider one overhangs
+    the knuckles (never the thumb, which hangs from the palm), and the fingers wrap down over its far
+    side, driven to the program's closing targets."""
+    open_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
+    close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
+    thumb_clear = THUMB.base_cm[1] + THUMB.radius_cm + 0.5
+    knuckle_clear = PALM_HALF_CM[1] - FINGER_BY_NAME["middle"].radius_cm - 0.3
+    center = max(0.5 * (thumb_clear + knuckle_clear), thumb_clear + width / 2.0)
+    # Thumb open: its pad (one radius in front of the tip's axis) at least 5 mm off the near side.
+    open_q["thumb_flex"] = thumb_flex_for(min(center - aperture / 2.0, center - width / 2.0 - 0.5) - THUMB.radius_cm)
+    close_q["thumb_flex"] = math.radians(RANGE_DEG["thumb_flex"][1] + 30.0)
+    for f in program.fingers:
+        open_q[f"{f}_pip"] = math.radians(10.0)
+        close_q[f"{f}_mcp"] = math.radians(program.mcp_close_deg)
+        close_q[f"{f}_pip"] = math.radians(program.pip_close_deg)
+    reach = THUMB.metacarpal_cm + sum(THUMB.lengths_cm)
+    return open_q, close_q, {}, center, -PALM_HALF_CM[2], reach
+
+
+def _pinch_posture(program, aperture: float, width: float):
+    """A pinch's (open, close, touch, centre y, contact z, thumb reach): the pads press on opposite sides
+    at one height (else the squeeze is a couple that turns the object), so the pinch centre is where, for
+    this width, the thumb tip and the finger tips touch the object at the same depth below the palm. Tip
+    positions are capsule axis ends: the pads' surfaces lie one radius closer to the object."""
+    fingers, ratio = program.fingers, program.pip_per_mcp
+    pip_max = math.radians(RANGE_DEG["pip"][1])
+
+    def pip_of(q: float) -> float:
+        return min(pip_max, ratio * q)
+
+    r_t = THUMB.radius_cm * TIP_TAPER
+    half_open = aperture / 2.0
+
+    def height_gap(c: float) -> float:
+        thumb_z = thumb_tip(thumb_flex_for(c - width / 2.0 - r_t))[1]
+        zs = []
+        for f in fingers:
+            q = finger_pinch_mcp(f, c + width / 2.0 + FINGER_BY_NAME[f].radius_cm * TIP_TAPER, ratio)
+            zs.append(finger_tip(f, q, pip_of(q))[1])
+        return thumb_z - float(np.mean(zs))
+
+    center = _solve(height_gap, 0.0, -2.0, 8.0)
+    open_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
+    close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
+    touch_q: dict[str, float] = {}
+    open_q["thumb_flex"] = thumb_flex_for(center - half_open - r_t)
+    close_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t + PRECISION_OVERSHOOT_CM)
+    touch_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t)
+    thumb_contact = thumb_tip(touch_q["thumb_flex"])[1]
+    finger_contacts = []
+    for f in fingers:
+        r_f = FINGER_BY_NAME[f].radius_cm * TIP_TAPER
+        q_open = finger_pinch_mcp(f, center + half_open + r_f, ratio)
+        q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM, ratio)
+        q_touch = finger_pinch_mcp(f, center + width / 2.0 + r_f, ratio)
+        open_q[f"{f}_mcp"], open_q[f"{f}_pip"] = q_open, pip_of(q_open)
+        close_q[f"{f}_mcp"], close_q[f"{f}_pip"] = q_close, pip_of(q_close)
+        touch_q[f"{f}_mcp"], touch_q[f"{f}_pip"] = q_touch, pip_of(q_touch)
+        finger_contacts.append(finger_tip(f, q_touch, pip_of(q_touch))[1])
+    contact_z = 0.5 * (thumb_contact + float(np.mean(finger_contacts)))
+    # The thumb's rotation is about the palm's y axis: its lateral reach is the tip's depth below the CMC.
+    return open_q, close_q, touch_q, center, contact_z, max(2.0, THUMB.base_cm[2] - thumb_contact)
+
+
+def _thumb_rotation(program, reach: float) -> float:
+    """Thumb rotation (radians) aiming its tip at the program's target x (default: the centre of the
+    fingers it opposes), ``reach`` cm from the CMC; clamped to the joint's range."""
+    x_target = (
+        program.thumb_aim
+        if program.thumb_aim is not None
+        else float(np.mean([FINGER_BY_NAME[f].x_cm for f in program.fingers]))
+    )
+    rot = math.asin(max(-1.0, min(1.0, (x_target - THUMB.base_cm[0]) / reach)))
+    return max(math.radians(RANGE_DEG["thumb_rot"][0]), min(math.radians(RANGE_DEG["thumb_rot"][1]), rot))

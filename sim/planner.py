@@ -45,7 +45,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "7"  # 6: candidates listed once per hand program (sim/programs.py); 7: a fallback wrap
+PLANNER_VERSION = "6"  # 6: candidates listed once per hand program (sim/programs.py)
 
 GRAVITY = 9.81  # m/s^2
 
@@ -568,12 +568,6 @@ _RULES = (
 )  # fmt: skip
 
 
-#: Listed after every rule's own candidates (unless the rules listed it): the whole-hand wrap, the grasp
-#: people fall back on for anything that fills the hand [Feix 2014b], so that a validation of more than the
-#: rules' three candidates (``grasp validate --top 4``) always tries a power wrap. Planner version 7.
-FALLBACK_CANDIDATE = ("medium_wrap", "fallback: the whole hand wrapped round it, when the grasps above fail")
-
-
 def _candidates(o: PlannedObject) -> Candidates:
     """Ordered (grasp type, reason) candidates: the rules' choice first, then sensible alternatives."""
     for rule in _RULES:
@@ -621,7 +615,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
     edge_force = edge_grip_force(o.mass_g, o.b_cm, o.fragility) if is_flat_grasp(o.c_cm, o.b_cm) else 0.0
     plans: list[GraspPlan] = []
     seen: set[str] = set()  # hand programs already listed: a merged type is simulated once
-    for rank, (grasp_type, reason) in enumerate([*_candidates(o), FALLBACK_CANDIDATE]):
+    for rank, (grasp_type, reason) in enumerate(_candidates(o)):
         program = program_for(grasp_type)
         if program.name in seen:
             continue

@@ -577,3 +577,31 @@ def test_hostile_sql_over_http_is_a_400_never_a_500(seeded_db, tmp_path):
         assert response.status_code == 400, (template, response.status_code, response.text)
         assert response.json()["error"] == "QueryRefused" and str(seeded_db.parent) not in response.text
     assert _sha(seeded_db) == before
+
+
+_SQL_WORDS = st.sampled_from([
+    "SELECT", "FROM", "objects", "UPDATE", "EXTENSIONS", "COPY", "TO", "'/tmp/x'", "ATTACH", "PRAGMA", "SET",
+    "EXPLAIN", "ANALYZE", "WITH", "a", "AS", "(", ")", ";", ",", "*", "1", "range(10)", "INSTALL", "LOAD",
+    "duckdb_databases()", "current_setting('x')", "'", '"', "--", "/*", "*/", "CALL", "VALUES", "DROP", "\x00",
+])
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
+@given(words=st.lists(_SQL_WORDS, min_size=1, max_size=12))
+def test_any_statement_is_answered_or_refused_never_a_crash(shared_seeded_db, words):
+    kb = KnowledgeBase.open(shared_seeded_db, read_only=True)
+    try:
+        result = kb.sql(" ".join(words), timeout_s=5, max_rows=5)
+    except (QueryRefused, QueryFailed) as err:
+        assert str(err) and "\n" not in str(err)
+        return
+    assert len(result.rows) <= 5 and len(set(result.columns)) == len(result.columns)
+
+
+@pytest.fixture(scope="module")
+def shared_seeded_db(tmp_path_factory):
+    from kb.service.bootstrap import seed_catalog_path
+
+    db = tmp_path_factory.mktemp("fuzzsql") / "catalog.duckdb"
+    KnowledgeBase.open(db).import_csv(seed_catalog_path())
+    return db

@@ -95,3 +95,11 @@ def test_help_needs_no_value_and_bare_command_shows_help():
     assert "<bool>" not in result.stdout and "OBJRECALL_DB" in result.stdout
     result = runner.invoke(app, [])
     assert result.exit_code == 0 and "Usage:" in result.stdout
+
+
+def test_refused_sql_is_one_line_exit_1(seeded_db):
+    for query in ("UPDATE EXTENSIONS", "UPDATE EXTENSIONS (httpfs)", "SELECT len(range(0, 3000000000))",
+                  "COPY objects TO '/tmp/x.csv'", "select 1; select 2"):
+        result = runner.invoke(app, ["sql", query, "--db", str(seeded_db)])
+        _assert_one_line_error(result, query)
+        assert "refused" in result.stderr or "one statement" in result.stderr

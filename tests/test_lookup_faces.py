@@ -131,3 +131,13 @@ def test_web_page_looks_it_up(db, sources_file):
             assert top == TEAPOT_NAME
             summary = tools.eval("document.getElementById('lookup-summary').textContent")
             assert summary.startswith("Lookup: added from 1 of 1 store(s)")
+
+
+def test_cli_lookup_of_a_file_gives_one_json_line_per_description(db, sources_file, tmp_path):
+    csv_file = tmp_path / "d.csv"
+    csv_file.write_text(f'description\n"{TEAPOT}"\n"a tennis ball, 6.7 cm across, 58 g"\n')
+    res = cli("recall", "--file", csv_file, "--lookup", "--sources", sources_file, "--db", db, "--json")
+    assert res.exit_code == 0, res.output
+    first, second = (json.loads(line) for line in res.stdout.splitlines())
+    assert first["looked_up"] and first["found"] and first["result"]["matches"][0]["name"] == TEAPOT_NAME
+    assert not second["looked_up"] and second["result"]["matches"][0]["name"] == "tennis ball"

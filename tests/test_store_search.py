@@ -162,3 +162,18 @@ def test_garbage_search_answers_never_crash(body):
 def test_query_words_are_lower_case_words(text):
     for word in query_words(text):
         assert word == word.lower() and word.strip() and " " not in word
+
+
+def test_a_results_page_with_an_item_list_is_read_by_its_list():
+    listing = {"@context": "https://schema.org", "@type": "ItemList", "itemListElement": [
+        {"@type": "ListItem", "position": 1, "url": "/p/b.html"},
+        {"@type": "ListItem", "position": 2, "item": {"@type": "Product", "url": "http://127.0.0.1:1/p/c.html"}},
+        {"@type": "ListItem", "position": 3, "item": "/p/d.html"},
+    ]}  # fmt: skip
+    html = (
+        f'<html><head><script type="application/ld+json">{json.dumps({"@graph": [listing]})}</script>'
+        '<script type="application/ld+json">{broken</script></head>'
+        '<body><main><a href="/p/promo.html">promo</a><a href="/p/b.html">b</a></main></body></html>'
+    ).encode()
+    page = parse_search_page(html, "http://127.0.0.1:1/search?q=x", "text/html", source())
+    assert page.product_urls == ["http://127.0.0.1:1/p/b.html", "http://127.0.0.1:1/p/c.html", "http://127.0.0.1:1/p/d.html"]

@@ -83,6 +83,9 @@ class ServiceState:
 
             parse("a smooth plastic cup about 10 cm tall, 200 g")
             self.recaller()
+            from kb.sandbox import warm_up as start_sql_worker
+
+            start_sql_worker()
         except Exception:  # noqa: BLE001 - warming is best effort; the real request reports any error
             pass
 
