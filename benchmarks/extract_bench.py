@@ -104,17 +104,22 @@ def _print_scores(name: str, s: dict, before: dict | None) -> None:
         f"{name:16} {s['n']:3} {_fmt_cell([right, total]):>7} {_fmt_cell(stated[0]):>6} "
         f"{_fmt_cell(stated[1]):>6} {_fmt_cell(stated[2]):>6} {_fmt_cell(s['dims'].get('none')):>6} "
         f"{_fmt_cell(s['mass']):>7} {_fmt_cell(s['mass_none']):>7} {s['ms'] / n:8.1f} {s['lxml'] / n:7.1f}"
+        f" {s['ms'] / max(s['lxml'], 1e-9):5.1f}x"
     )
     print(row)
     if before:
-        print(f"{'  before':16} {'':3} " + " ".join(f"{v:>6}" for v in before.split()[:-1]))
+        widths = (7, 6, 6, 6, 6, 7, 7, 8, 7, 6)
+        print(f"{'  before':16} {'':3} " + " ".join(f"{v:>{w}}" for v, w in zip(before.split(), widths, strict=True)))
 
 
 #: Figures of the extractor before issue 11 (main at b01e090, measured with this script, --repeat 1):
-#: dims, 3/2/1 axes, none, mass, mass none, ms per page. Blind figures: measured once, at the end.
+#: dims, 3/2/1 axes, none, mass, mass none, ms per page, ratio to lxml. The blind split was scored once,
+#: at the end, for both (the machine was loaded then: compare ratios, not ms).
 BEFORE = {
-    "batch1 dev": "9/9 9/9 - - - 7/7 2/2 46.4 ms",
-    "batch2 dev": "15/17 14/15 0/1 1/1 2/2 11/13 5/6 46.9 ms",
+    "batch1 dev": "9/9 9/9 - - - 7/7 2/2 46.4 9.6 4.8x",
+    "batch1 blind": "2/2 2/2 - - 1/1 2/2 1/1 244.9 41.9 5.8x",
+    "batch2 dev": "15/17 14/15 0/1 1/1 2/2 11/13 5/6 46.9 9.8 4.8x",
+    "batch2 blind": "5/6 4/5 - 1/1 1/1 3/3 4/4 207.4 50.7 4.1x",
 }
 
 
@@ -133,7 +138,7 @@ def main(argv: list[str] | None = None) -> None:
     print(f"shared real pages (within {SCORE_TOLERANCE:.0%}); dims by axes the page states; "
           "'none' = no value reported where the page states none")
     print(f"{'pages':16} {'n':>3} {'dims':>7} {'3 ax':>6} {'2 ax':>6} {'1 ax':>6} {'none':>6} "
-          f"{'mass':>7} {'m none':>7} {'ms/page':>8} {'lxml ms':>7}")
+          f"{'mass':>7} {'m none':>7} {'ms/page':>8} {'lxml ms':>7} {'ratio':>6}")
     for batch, folder in (("batch1", shared), ("batch2", shared / "batch2")):
         pages = load_labels(folder)
         if not pages:

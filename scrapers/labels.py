@@ -115,7 +115,7 @@ _QUALIFIERS = {
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
         "ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
-        "chest bust poitrine pecho petto "
+        "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "
         " l b h w d t x х"
     ).split()
 }

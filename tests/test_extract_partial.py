@@ -310,3 +310,9 @@ def test_axis_words_inside_one_value_keep_their_roles(value, extents, axes):
     record = extract_page(_page(f"<ul>{value}</ul>"), "https://s.example/p")
     assert sorted(_roles(record)) == sorted(extents)
     assert record.dims_cm == axes
+
+
+@pytest.mark.parametrize(("label", "role"), [("Case diameter", "diameter"), ("Fabric width", "width")])
+def test_a_case_or_fabric_extent_is_the_products(label, role):
+    record = extract_page(_page(f"<ul><li>{label}: 42 mm</li></ul>"), "https://s.example/p")
+    assert _roles(record) == [(role, 4.2)]

@@ -13,20 +13,31 @@ import pytest
 
 from kb.errors import ExtractionError
 from scrapers.extract import extract_page
-from scrapers.labelled_pages import blind_split, default_pages_dir, load_labels, within
+from scrapers.labelled_pages import default_pages_dir, load_labels, within
 
 TOL = 0.02
 
 
 def _pages():
+    """Every page of both batches (the blind split was scored once, at the end of issue 11; since then it
+    is part of this check too)."""
     out = []
     for folder in (default_pages_dir(), default_pages_dir() / "batch2"):
-        dev, _blind = blind_split(load_labels(folder))
-        out.extend(dev)
+        out.extend(load_labels(folder))
     return out
 
 
-PAGES = _pages()
+#: Known failures, each a class of page not handled yet (found when the blind split was scored, once).
+KNOWN = {
+    "scrapely_tempur_deluxe_hd_mattress.html": "size variants: the product is the selected option of a "
+    "<select>; a size table of the other variants is read instead",
+}
+PAGES = [
+    pytest.param(p, marks=pytest.mark.xfail(reason=KNOWN[p.truth["file"]], strict=True))
+    if p.truth["file"] in KNOWN
+    else p
+    for p in _pages()
+]
 pytestmark = pytest.mark.skipif(not PAGES, reason="../shared/storefront-pages is absent")
 
 
@@ -45,7 +56,7 @@ def _product_lengths(truth) -> list[float]:
     return [v for v in values if isinstance(v, (int, float))]
 
 
-@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.truth["file"])
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: p.truth["file"] if hasattr(p, "truth") else None)
 def test_no_invented_extent_and_no_foreign_value(page):
     truth = page.truth
     try:
