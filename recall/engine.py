@@ -25,6 +25,7 @@ from kb.features import FEATURES, NUMERIC_FEATURES
 from kb.kinds import singular, words_of
 from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
+from recall.names import _VARIANT_WORDS, GENERIC_NOUNS
 from recall.openset import DescribedNoun, KindIndex, described_noun
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
@@ -80,15 +81,6 @@ OPEN_SET_NAMED_THRESHOLD = 0.45
 #: ... and above this when the subject of the description is a noun the catalog does not know ("an
 #: orange", "a watermelon"): an unknown noun alone is not enough (synonyms), with a loose match it is.
 OPEN_SET_UNKNOWN_NOUN_THRESHOLD = 0.15
-#: Nouns that say what kind of thing, not which thing: never unknown-noun evidence ("a plastic thing").
-GENERIC_NOUNS = frozenset(
-    {"thing", "object", "item", "device", "gadget", "tool", "utensil", "implement", "instrument", "piece",
-     "chunk", "bit", "strip", "rectangle", "square", "circle", "replica", "fruit", "vegetable", "vessel",
-     "container", "package", "case", "toy", "accessory", "appliance", "equipment", "stuff", "product",
-     "one", "kind", "sort", "type", "shape", "something", "model", "unit", "set", "pair", "part", "size",
-     "cube", "cuboid", "cylinder", "sphere", "disc", "disk", "rod", "slab", "sheet", "block", "lump", "wedge",
-     "prism", "orb", "globe", "stick", "tube", "ring", "nugget"}
-)  # fmt: skip
 #: Metrics in nats (a name bonus can be subtracted; the margin is a log-likelihood ratio).
 _JP_METRICS = ("jp", "jplog")
 #: The metric when none is given: the paper's JP for features only, JP in log units for the hybrid.
@@ -109,8 +101,6 @@ _singular = singular
 normalize_words = words_of
 
 
-#: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
-_VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})
 
 
 def name_core(name: str) -> tuple[str, ...]:
@@ -235,45 +225,23 @@ class NameIndex:
         materials: Sequence[str | None] | None = None,
     ):
         from recall.lexicon import MATERIAL_WORDS
+        from recall.names import NameTables
 
-        # a generic name ("wood piece", "wooden block": only material words and generic nouns) describes
-        # any object of its material; phrase -> its material, and the catalog's rows by material
-        self.generic: dict[tuple[str, ...], str] = {}
-        self.by_material: dict[str, set[int]] = {}
-        for row, mat in enumerate(materials or ()):
-            if mat:
-                self.by_material.setdefault(mat, set()).add(row)
-
-        self.phrases: dict[tuple[str, ...], set[int]] = {}
-        self.heads: dict[str, set[int]] = {}
-        # (head, row) -> materials its names state ("wood cylinder" -> wood); None: some name states none
-        self.head_materials: dict[tuple[str, int], set[str] | None] = {}
-        for row, (name, alias) in enumerate(zip(names, aliases, strict=True)):
-            for phrase in (name, *alias):
-                words = tuple(normalize_words(phrase))
-                core = name_core(phrase)
-                if words:
-                    self.phrases.setdefault(words, set()).add(row)
-                    self.phrases.setdefault(core, set()).add(row)  # "wood block 2" is a "wood block"
-                    words = core
-                    head = _head(words)
-                    stated = {MATERIAL_WORDS[w] for w in words if w in MATERIAL_WORDS and w != head}
-                    if (
-                        len(stated) == 1
-                        and head in GENERIC_NOUNS
-                        and all(w in GENERIC_NOUNS or w in MATERIAL_WORDS or w == "of" for w in words)
-                    ):
-                        self.generic[words] = next(iter(stated))
-                    for key in (head, *(head[cut:] for cut in range(1, len(head) - self.MIN_SUFFIX + 1))):
-                        self.heads.setdefault(key, set()).add(row)
-                        known = self.head_materials.get((key, row), set())
-                        self.head_materials[(key, row)] = (
-                            None if known is None or not stated else known | stated
-                        )
+        # built column-wise (recall.names): phrases (words and core of every name and alias) -> rows;
+        # generic names ("wood piece", "wooden block": only material words and generic nouns) -> their
+        # material, describing any object of it (rows by material); head nouns and their suffixes ->
+        # rows, and (head, row) -> the materials its names state ("wood cylinder" -> wood; None: some
+        # name states none)
+        tables = NameTables(names, aliases, materials, self.MIN_SUFFIX)
+        self.phrases = tables.phrases
+        self.generic = tables.generic
+        self.by_material = tables.by_material
+        self.heads = tables.heads
+        self.head_materials = tables.head_materials
         # material words name what a thing is made of, not the thing ("made of glass")
         self.not_heads = frozenset(_singular(w) for w in MATERIAL_WORDS if " " not in w)
-        self.vocabulary = frozenset(w for phrase in self.phrases for w in phrase) | frozenset(self.heads)
-        self.longest = max((len(p) for p in self.phrases), default=0)
+        self.vocabulary = tables.vocabulary
+        self.longest = tables.longest
         self.size = len(names)
 
     def unknown_noun(self, text: str) -> str | None:

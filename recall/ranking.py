@@ -113,17 +113,20 @@ def survivors(items, num_cols, cat_cols, rows, s: float) -> np.ndarray:
     return rows
 
 
-def select_top_k(rows: np.ndarray, scores: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
-    """The k smallest (score, row) pairs, ordered by score then row number."""
+def select_top_k(rows: np.ndarray | None, scores: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The k smallest (score, row) pairs, ordered by score then row number (``rows`` None: the rows
+    are 0..n-1, the scores of every row)."""
     if len(scores) > k:
         kth = np.partition(scores, k - 1)[k - 1]
         below = np.flatnonzero(scores < kth)  # fewer than k
         tied = np.flatnonzero(scores == kth)
         need = k - len(below)
         if len(tied) > need:  # many rows at the k-th distance: the lowest row numbers win
-            tied = tied[np.argpartition(rows[tied], need - 1)[:need]]
+            tied = tied[:need] if rows is None else tied[np.argpartition(rows[tied], need - 1)[:need]]
         keep = np.concatenate((below, tied))
-        rows, scores = rows[keep], scores[keep]
+        rows, scores = (keep if rows is None else rows[keep]), scores[keep]
+    elif rows is None:
+        rows = np.arange(len(scores))
     order = np.lexsort((rows, scores))[:k]
     return rows[order].astype(np.int64), scores[order]
 

@@ -87,7 +87,7 @@ def brute_force_top_k(snap: CatalogSnapshot, query: FeatureQuery, k: int) -> tup
     k = min(k, len(snap))
     if k <= 0:
         return np.empty(0, dtype=np.int64), np.empty(0)
-    return select_top_k(np.arange(len(snap)), score_rows(snap, query), k)
+    return select_top_k(None, score_rows(snap, query), k)
 
 
 def top_k(
@@ -306,7 +306,7 @@ class JPIndex:
         """Every row's product Π (1 + d_j) in float32; the rows within the k-th (widened) scored.
         Categories only: every row scored (the distances are few values, ties many)."""
         if not query.numeric:
-            return select_top_k(np.arange(self.n), self.score(query), k)
+            return select_top_k(None, self.score(query), k)
         prod = None
         for item in items:
             f = factors(item, self.num_cols, self.cat_cols)
