@@ -231,6 +231,29 @@ class LabelInfo:
     kind: str
     package: bool = False
     unit: str | None = None
+    #: For a dimensions label, the axes it names in order (``Dimensions (H x W x D)`` -> height, width,
+    #: depth; ``Largo x Ancho x Alto``); () when it names none or is ambiguous (``L x L x H``).
+    order: tuple[str, ...] = ()
+
+
+#: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
+_ORDER_LETTERS = {
+    "l": "length", "w": "width", "b": "width", "h": "height", "d": "depth", "t": "depth",
+    "в": "height", "ш": "width", "г": "depth", "д": "length",
+}  # fmt: skip
+
+
+def _order_of(text: str, kinds: list[str]) -> tuple[str, ...]:
+    """The axes a dimensions label names in order (see :attr:`LabelInfo.order`)."""
+    m = _ORDER_HINT.search(text) or _ORDER_WORD.search(text.lower())
+    if m:
+        letters = re.sub(r"\s+", "", m.group(0))[::2]  # "H x W x D", "ВхШхГ", "B/H/T": every other char
+        roles = tuple(_ORDER_LETTERS.get(ch.lower(), "") for ch in letters)
+    else:
+        roles = tuple(k for k in kinds if k in AXES)
+    if len(roles) < 2 or "" in roles or len(set(roles)) < len(roles):
+        return ()
+    return roles
 
 
 def classify_label(label: object) -> LabelInfo | None:
@@ -256,6 +279,7 @@ def _classify(label: object) -> LabelInfo | None:
     if not text or len(text) > 80 or text[0].isdigit():
         return None  # a label does not start with a number ("1 kg" is a value)
     unit = unit_hint(text)
+    original = text
     text = text.rstrip(" :：-–—=").strip()
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
     text = _ORDER_HINT.sub(" ", text)
@@ -297,12 +321,14 @@ def _classify(label: object) -> LabelInfo | None:
     # "Item Package Dimensions", "Product size": the most specific kind wins; weight beats dimensions
     # only when no axis or dimension word is present.
     if len({k for k in kinds if k in AXES}) >= 2:
-        return LabelInfo("dimensions", package, unit)  # "Width x Height x Depth", "Largo x Ancho x Alto"
+        # "Width x Height x Depth", "Largo x Ancho x Alto"
+        return LabelInfo("dimensions", package, unit, _order_of(original, kinds))
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:
                 return LabelInfo("dimensions", package, unit)  # "Weight & Dimensions"
-            return LabelInfo(kind, package, unit)
+            order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
+            return LabelInfo(kind, package, unit, order)
     return None
 
 

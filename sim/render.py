@@ -26,7 +26,7 @@ from sim.trial import TrialWorld, build_world, run_trial  # noqa: E402
 __all__ = ["encode_png", "render_trial", "render_world"]
 
 #: Camera azimuth (degrees) per approach.
-VIEW_AZIMUTH_DEG = {"top": 155.0, "side": -60.0, "edge": -60.0}
+VIEW_AZIMUTH_DEG = {"top": 155.0, "side": -60.0, "edge": 110.0}
 
 GL_HINT = (
     "offscreen rendering needs an OpenGL backend: set MUJOCO_GL=egl (apt install libegl1 libegl-mesa0 "
@@ -63,6 +63,20 @@ def _headless_backend() -> None:
     gl_context.GLContext = GLContext
 
 
+def _contact_centre(world: TrialWorld) -> np.ndarray:
+    """Where the camera aims: the mean position of the hand's contacts with the object, else between the
+    object and the palm."""
+    data = world.data
+    n = data.ncon
+    if n:
+        g1, g2 = data.contact.geom1[:n], data.contact.geom2[:n]
+        og = world.object_geom
+        mask = ((g1 == og) & world.is_hand[g2]) | ((g2 == og) & world.is_hand[g1])
+        if mask.any():
+            return data.contact.pos[:n][mask].mean(axis=0)
+    return 0.5 * data.xpos[world.object_body] + 0.5 * data.xpos[world.palm_body]
+
+
 def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> np.ndarray:
     """An RGB image (height x width x 3, uint8) of the world's current state, looking at the object
     from slightly above, framed to show the hand around it."""
@@ -71,15 +85,14 @@ def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> n
     model.vis.global_.offheight = max(model.vis.global_.offheight, height)
     cam = mujoco.MjvCamera()
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
-    obj_pos = data.xpos[world.object_body]
-    palm_pos = data.xpos[world.palm_body]
-    cam.lookat[:] = 0.6 * obj_pos + 0.4 * palm_pos
-    size = max(world.obj.dims_cm) * 0.01
-    cam.distance = max(0.4, 2.2 * size)
+    cam.lookat[:] = _contact_centre(world)
+    # Framed on the grasp, not on the whole object: a 45 cm pan seen whole leaves the hand a few pixels.
+    size = min(max(world.obj.dims_cm), 30.0) * 0.01
+    cam.distance = max(0.35, 1.6 * size)
     # Look across the opposition axis so both the thumb and the fingers show: for a top grasp from the
     # index side, for a side grasp from the fingers' side of the object.
     cam.azimuth = VIEW_AZIMUTH_DEG.get(world.approach, 155.0)
-    cam.elevation = -10.0 if world.approach == "edge" else -15.0
+    cam.elevation = -8.0 if world.approach == "edge" else -15.0
     _headless_backend()
     try:
         renderer = mujoco.Renderer(model, height=height, width=width)

@@ -239,3 +239,27 @@ def test_more_label_words(label, kind):
     from scrapers.labels import classify_label
 
     assert classify_label(label).kind == kind
+
+
+@pytest.mark.parametrize(
+    ("label", "order"),
+    [
+        ("Dimensions (H x W x D)", ("height", "width", "depth")),
+        ("Item Dimensions LxWxH", ("length", "width", "height")),
+        ("Габариты (ВхШхГ), см", ("height", "width", "depth")),
+        ("Abmessungen (B/H/T)", ("width", "height", "depth")),
+        ("Largo x Ancho x Alto", ("length", "width", "height")),
+        ("Dimensions de l'article L x L x H", ()),  # ambiguous: no roles
+        ("Product Dimensions", ()),
+    ],
+)
+def test_a_dimensions_label_names_the_order_of_its_axes(label, order):
+    from scrapers.labels import classify_label
+
+    assert classify_label(label).order == order
+
+
+def test_the_label_order_gives_a_combined_value_its_roles():
+    body = "<table><tr><th>Dimensions (H x W x D)</th><td>17.9 x 359.3 x 235.6 mm</td></tr></table>"
+    record = extract_page(_page(body), "https://s.example/p")
+    assert _roles(record) == [("width", 35.93), ("depth", 23.56), ("height", 1.79)]

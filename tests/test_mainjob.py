@@ -24,6 +24,8 @@ def test_demo_runs_end_to_end(tmp_path, cli_env):
     assert teapot["looked_up"] and teapot["added"] == ["glazed ceramic teapot 1.2 l"]
     assert teapot["top"] == "glazed ceramic teapot 1.2 l" and not teapot["open_set"]
     assert not steps["recall"][0]["looked_up"]  # the calculator is known: no lookup
+    orange = steps["recall"][6]  # the paper's open-set case: no orange in the catalog, nor in the stores
+    assert orange["not_in_catalog"] and orange["open_set"] and orange["same_kind"][0] == "apple"
     assert steps["grasp"]["ran"] + steps["grasp"]["skipped"] == steps["grasp"]["trials"] > 0
     assert steps["grasp"]["errors"] == 0
     report = out / "grasp-report" / "index.html"

@@ -135,3 +135,14 @@ def test_grasp_plan_for_a_teapot_plans_for_the_described_object(seeded):
     assert "planned for the described teapot: not in the catalog (no 'teapot')" in " ".join(table.split())
     close = json.loads(run("grasp", "plan", "a tennis ball, 6.5 cm", "--db", seeded, "--json").stdout)
     assert close["object"] == "tennis ball" and close["recalled"]["planned_for"] == "tennis ball"
+
+
+def test_grasp_plan_simulate_a_teapot_simulates_the_described_object(seeded):
+    res = run(
+        "grasp", "plan", "a ceramic teapot about 22 cm wide, 900 g", "--db", seeded, "--simulate", "--json",
+        "--top", "1",
+    )  # fmt: skip
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.stdout)
+    assert out["object"] == "described teapot" and out["recalled"]["open_set"]
+    assert out["trial"]["outcome"] in ("success", "failure", "error") and out["features"]["mass_g"] == 900

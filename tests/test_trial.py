@@ -256,3 +256,22 @@ def test_credit_card_lateral_pinch_holds():
     assert H.grasp_targets(plan, 0.076).fingers == ("index", "middle")  # the index's side: two pads long
     r = run_trial(card, plan, seed=0)
     assert r.outcome == "success", r.reason
+
+
+def test_render_camera_aims_at_the_hands_contacts_on_the_object():
+    """The picture is framed on the grasp (where the hand touches the object), not on the whole object."""
+    from sim.render import _contact_centre
+
+    book = ObjectRecord.create("wide book", a_cm=30, b_cm=22, c_cm=2, mass_g=300, shape="thin", material="paper")
+    plan = _plan("thumb_4_finger", 4.0, 12.0)
+    world = build_world(book, plan, seed=0)
+    run_trial(book, plan, seed=0, stop_after="hold", world=world)
+    centre = _contact_centre(world)
+    n = world.data.ncon
+    pos = world.data.contact.pos[:n]
+    touching = [p for k, p in enumerate(pos) if world.object_geom in (world.data.contact.geom1[k], world.data.contact.geom2[k])
+                and world.is_hand[world.data.contact.geom1[k] if world.data.contact.geom2[k] == world.object_geom else world.data.contact.geom2[k]]]  # fmt: skip
+    assert touching, "the hand holds the book at the end of the hold"
+    assert np.allclose(centre, np.mean(touching, axis=0))
+    # the pinch is at the book's edge, far from its centre: the camera does not aim at the centre
+    assert np.linalg.norm(centre[:2] - world.data.xpos[world.object_body][:2]) > 0.05

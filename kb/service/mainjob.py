@@ -109,7 +109,7 @@ def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
 
     with demo_descriptions_path().open(newline="", encoding="utf-8") as fh:
         descriptions = [row["description"] for row in csv.DictReader(fh)]
-    table = Table("description", "recalled", "distance", "confidence", "open set", "lookup", show_lines=True)
+    table = Table("description", "recalled", "score", "confidence", "open set", "lookup", show_lines=True)
     rows = []
     with DemoStore(port=0, crawl_delay=None) as store, requests.Session() as session:
         sources = load_sources(DEMO_SOURCES, base_url=store.base_url, delay_s=0)
@@ -123,6 +123,8 @@ def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
                 "distance": best.distance if best else None,
                 "confidence": res.confidence,
                 "open_set": res.open_set,
+                "not_in_catalog": res.not_in_catalog,
+                "same_kind": [m.name for m in res.same_kind],
                 "alternatives": [m.name for m in res.matches[1:]],
                 "looked_up": looked.looked_up,
                 "lookup": looked.message if looked.why else None,
@@ -131,13 +133,21 @@ def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
             table.add_row(
                 escape(text if len(text) < 90 else text[:87] + "..."),
                 escape(best.name) if best else "-",
-                f"{best.distance:.2f}" if best else "-",
+                f"{best.score:.2f}" if best else "-",
                 f"{res.confidence:.2f}",
-                "yes" if res.open_set else "no",
+                escape(_open_set_cell(res)),
                 escape(looked.message) if looked.why else "-",
             )
     console.print(table)
     return rows
+
+
+def _open_set_cell(res) -> str:
+    """"not in the catalog (no orange; closest fruit: apple)", "yes" (not a close match) or "no"."""
+    if res.not_in_catalog and res.described is not None:
+        kind = f"; closest {res.same_kind_as}: {res.same_kind[0].name}" if res.same_kind else ""
+        return f"not in the catalog (no {res.described.noun}{kind})"
+    return "yes" if res.open_set else "no"
 
 
 def _validate_grasps(

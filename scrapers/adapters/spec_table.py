@@ -243,6 +243,8 @@ def observations_from_pairs(
                         d, note = again[0], "read with a decimal comma (the other reading is absurd)"
                 rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
                 values, roles = d.values_cm, d.roles
+                if len(info.order) == len(values) and set(roles) <= {"extent"}:
+                    roles = info.order  # "Dimensions (H x W x D): 17.9 x 359.3 x 235.6 mm"
                 if len(values) == 2:
                     extra = third_axis(rest, decimal_comma)  # "8\" x 10\" and is 3/4\" thick"
                     if extra is not None:

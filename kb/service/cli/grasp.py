@@ -11,6 +11,7 @@ MuJoCo, matplotlib and Ray are imported inside the command bodies (``objrecall -
 from __future__ import annotations
 
 import csv
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -50,8 +51,39 @@ def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
     and named in the row's ``warnings``; a row without a name gets ``error`` instead of a plan, so the
     output always has one line per row.
     """
-    from kb.features import FEATURES, ObjectRecord
     from sim.planner import plan_grasps
+
+    out: list[dict[str, Any]] = []
+    for lineno, row in _lenient_rows(path):
+        name = row.get("name", "")
+        obj, warnings, error = _lenient_record(name, row)
+        if obj is None:
+            out.append({"name": name, "row": lineno, "error": error})
+            continue
+        plans = plan_grasps(obj, top=top)
+        best = plans[0]
+        line = {
+            "name": name,
+            "grasp_type": best.grasp_type,
+            "family": best.family,
+            "grasped_dim": best.grasped_dim,
+            "aperture_cm": best.aperture_cm,
+            "approach": best.approach,
+            "grip_force_n": best.grip_force_n,
+            "score": best.score,
+            "rationale": list(best.rationale),
+            "alternatives": [{"grasp_type": p.grasp_type, "family": p.family, "score": p.score} for p in plans[1:]],
+        }
+        if warnings:
+            line["warnings"] = warnings
+        out.append(line)
+    return out
+
+
+def _lenient_rows(path: Path) -> Iterator[tuple[int, dict[str, str]]]:
+    """(line number, row) of a catalog CSV, with header words mapped to feature names (:data:`HEADER_ALIASES`)
+    and cells stripped; the first non-blank cell wins when two columns map to one feature."""
+    from kb.features import FEATURES
 
     with Path(path).open(newline="", encoding="utf-8-sig") as fh:
         reader = csv.DictReader(fh)
@@ -59,7 +91,6 @@ def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
         keys = {h: (h if h in (*FEATURES, "name") else HEADER_ALIASES.get(h, h)) for h in header}
         if "name" not in keys.values():
             raise CatalogError(f"{path}: no 'name' column in the header")
-        out: list[dict[str, Any]] = []
         for lineno, raw in enumerate(reader, start=2):
             row: dict[str, str] = {}
             for k, v in raw.items():
@@ -68,46 +99,28 @@ def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
                 key = keys.get(k.strip().lower(), k.strip().lower())
                 if key not in row or not row[key]:
                     row[key] = (v or "").strip()
-            name = row.get("name", "")
-            values: dict[str, Any] = {f: row.get(f) or None for f in FEATURES}
-            warnings: list[str] = []
-            obj = None
-            for _ in range(len(FEATURES) + 1):
-                try:
-                    obj = ObjectRecord.create(name, **values)
-                    break
-                except InvalidFeature as err:
-                    if err.field in values and values[err.field] is not None:
-                        warnings.append(f"{err}: treated as unknown")
-                        values[err.field] = None
-                    elif err.field == "dimensions":
-                        warnings.append(f"{err}: treated as unknown")
-                        values.update(a_cm=None, b_cm=None, c_cm=None)
-                    else:
-                        out.append({"name": name, "row": lineno, "error": str(err)})
-                        break
-            if obj is None:
-                continue
-            plans = plan_grasps(obj, top=top)
-            best = plans[0]
-            line = {
-                "name": name,
-                "grasp_type": best.grasp_type,
-                "family": best.family,
-                "grasped_dim": best.grasped_dim,
-                "aperture_cm": best.aperture_cm,
-                "approach": best.approach,
-                "grip_force_n": best.grip_force_n,
-                "score": best.score,
-                "rationale": list(best.rationale),
-                "alternatives": [
-                    {"grasp_type": p.grasp_type, "family": p.family, "score": p.score} for p in plans[1:]
-                ],
-            }
-            if warnings:
-                line["warnings"] = warnings
-            out.append(line)
-    return out
+            yield lineno, row
+
+
+def _lenient_record(name: str, row: dict[str, str]) -> tuple[Any, list[str], str | None]:
+    """(record, warnings, None) with each invalid value dropped and named in a warning, or (None, [], error)
+    when the row cannot be a record at all (no name)."""
+    from kb.features import FEATURES, ObjectRecord
+
+    values: dict[str, Any] = {f: row.get(f) or None for f in FEATURES}
+    warnings: list[str] = []
+    for _ in range(len(FEATURES) + 1):
+        try:
+            return ObjectRecord.create(name, **values), warnings, None
+        except InvalidFeature as err:
+            if err.field in values and values[err.field] is not None:
+                values[err.field] = None
+            elif err.field == "dimensions":
+                values.update(a_cm=None, b_cm=None, c_cm=None)
+            else:
+                return None, [], str(err)
+            warnings.append(f"{err}: treated as unknown")
+    return None, [], "too many invalid values"  # pragma: no cover - each round clears one value
 
 
 def _recall(db: Path, description: str) -> tuple[Any, dict[str, Any]]:
@@ -169,7 +182,6 @@ def plan(
 ) -> None:
     """Plan how a five-fingered hand should grasp an object: ranked grasps with their rationale."""
     from rich.console import Console
-    from rich.markup import escape
 
     console = Console()
     if catalog is not None:
@@ -178,24 +190,8 @@ def plan(
         rows = catalog_plans(catalog, top=top)
         if json_out:
             emit_lines(rows)
-            return
-        from rich.table import Table
-
-        table = Table("name", "grasp type", "family", "aperture cm", "force N", "alternatives")
-        for r in rows:
-            if "error" in r:
-                table.add_row(r["name"], "[red]error[/]", "", "", "", r["error"])
-            else:
-                alts = ", ".join(a["grasp_type"] for a in r["alternatives"])
-                table.add_row(
-                    r["name"],
-                    r["grasp_type"],
-                    r["family"],
-                    f"{r['aperture_cm']:g}",
-                    f"{r['grip_force_n']:g}",
-                    alts,
-                )
-        console.print(table)
+        else:
+            _print_catalog_plans(console, rows)
         return
     if description is None or not description.strip():
         raise ObjrecallError("give a DESCRIPTION of the object (or --catalog FILE.csv)")
@@ -219,7 +215,31 @@ def plan(
         out["choice"] = choice.to_dict()
     if json_out:
         emit(out)
-        return
+    else:
+        _print_plans(console, obj, how, plans, out.get("trials"), out.get("choice"))
+
+
+def _print_catalog_plans(console, rows: list[dict[str, Any]]) -> None:
+    """``grasp plan --catalog``: one table row per CSV row, errors in red."""
+    from rich.table import Table
+
+    table = Table("name", "grasp type", "family", "aperture cm", "force N", "alternatives")
+    for r in rows:
+        if "error" in r:
+            table.add_row(r["name"], "[red]error[/]", "", "", "", r["error"])
+        else:
+            alts = ", ".join(a["grasp_type"] for a in r["alternatives"])
+            table.add_row(
+                r["name"], r["grasp_type"], r["family"], f"{r['aperture_cm']:g}", f"{r['grip_force_n']:g}", alts
+            )
+    console.print(table)
+
+
+def _print_plans(console, obj, how: dict[str, Any], plans, trials, choice) -> None:
+    """``grasp plan``: the object and how it was found, each plan with its rationale, and with
+    ``--simulate`` each plan's trial and the first vs validated choice."""
+    from rich.markup import escape
+
     conf = f", confidence {how['confidence']:.2f}" if "confidence" in how else ""
     console.print(f"[bold]{escape(obj.name)}[/] ({how['method']}{conf})", highlight=False)
     if "why" in how:
@@ -231,15 +251,15 @@ def plan(
         )
         for line in p.rationale:
             console.print(f"     - {line}", markup=False, highlight=False)
-        if simulate:
-            t = out["trials"][i - 1]
+        if trials is not None:
+            t = trials[i - 1]
             console.print(
                 f"     trial ({t.get('program')} program): [bold]{t.get('outcome')}[/] "
                 f"{escape(t.get('reason') or '')}; slip {t.get('slip_cm')} cm, turn {t.get('rotation_deg')} deg",
                 highlight=False,
             )
-    if simulate:
-        console.print(_choice_line(out["choice"]), highlight=False)
+    if choice is not None:
+        console.print(_choice_line(choice), highlight=False)
 
 
 def _choice_line(c: dict[str, Any]) -> str:
@@ -305,8 +325,14 @@ def validate(
     )
     if json_out:
         emit(summary.to_dict())
-        return
+    else:
+        _print_validation(summary)
+
+
+def _print_validation(summary) -> None:
+    """``grasp validate``: the counts, the first vs validated choices that differ, the report's place."""
     from rich.console import Console
+    from rich.markup import escape
 
     console = Console()
     console.print(
@@ -318,8 +344,6 @@ def validate(
     if summary.not_stored:
         console.print(f"[yellow]{summary.not_stored} trials raised unexpected errors and were not stored[/]")
     console.print(summary.choice_summary.describe(), highlight=False)
-    from rich.markup import escape
-
     for c in summary.choices:
         if c.differs:
             console.print(f"  {escape(c.object_name)}: {_choice_line(c.to_dict())}", highlight=False)

@@ -61,9 +61,7 @@ def register(app: typer.Typer) -> None:
 
         With --lookup, an object the catalog does not know is looked up in the stores' search first."""
         from kb.errors import DescriptionError, RecallError
-        from kb.service.cli.common import emit, emit_lines, resolve_db
-        from recall.descriptions import read_description_column
-        from recall.engine import Recaller
+        from kb.service.cli.common import resolve_db
         from recall.metrics import METRICS
 
         if (text is None) == (file is None):
@@ -75,23 +73,8 @@ def register(app: typer.Typer) -> None:
             plan = _lookup_sources(sources, base_url)
             limits = dict(budget_s=budget, max_pages=max_pages, force=force_lookup)
             _lookup_command(resolve_db(db), text, file, plan, {**options, **limits}, json_out)
-            return
-        recaller = Recaller.from_db(resolve_db(db))
-        if file is not None:
-            rows = read_description_column(file)
-            results = (recaller.recall_text(row, **options) for row in rows)
-            if json_out:
-                emit_lines(r.to_dict() for r in results)
-            else:
-                for row, result in zip(rows, results, strict=True):
-                    _print_result(result, title=row)
-            return
-        assert text is not None
-        result = recaller.recall_text(text, **options)
-        if json_out:
-            emit(result.to_dict())
         else:
-            _print_result(result)
+            _recall_command(resolve_db(db), text, file, options, json_out)
 
     @app.command("evaluate")
     def evaluate_command(
@@ -117,6 +100,29 @@ def register(app: typer.Typer) -> None:
             emit(report.to_dict())
         else:
             _print_report(report)
+
+
+def _recall_command(db: Path, text: str | None, file: Path | None, options: dict, json_out: bool) -> None:
+    """``recall``: one description, or each of a CSV's, recalled from the catalog."""
+    from kb.service.cli.common import emit, emit_lines
+    from recall.descriptions import read_description_column
+    from recall.engine import Recaller
+
+    recaller = Recaller.from_db(db)
+    if file is not None:
+        rows = read_description_column(file)
+        results = (recaller.recall_text(row, **options) for row in rows)
+        if json_out:
+            emit_lines(r.to_dict() for r in results)
+        else:
+            for row, result in zip(rows, results, strict=True):
+                _print_result(result, title=row)
+        return
+    result = recaller.recall_text(text or "", **options)
+    if json_out:
+        emit(result.to_dict())
+    else:
+        _print_result(result)
 
 
 def _lookup_sources(path: Path | None, base_url: str | None):
