@@ -17,6 +17,7 @@ Usage::
     python scripts/readme_figures.py              # rewrite README.md's tables from the saved results
     python scripts/readme_figures.py --evaluate   # re-run objrecall evaluate first, then rewrite
     python scripts/readme_figures.py --check      # exit 1 if README.md differs from the saved results
+    python scripts/readme_figures.py --adopt      # save benchmark rows edited in README.md by hand as results
 """
 
 from __future__ import annotations
@@ -121,6 +122,38 @@ def render_benchmark_table(rows: list[dict]) -> str:
     return "\n".join(lines)
 
 
+def adopt_benchmark_rows(text: str, results: Path = RESULTS) -> int:
+    """Save the README's benchmark rows as result files (a row edited by hand replaces the saved one, a new
+    row gets a file, a saved row the README no longer has is removed); returns how many files changed."""
+    block = _block(text, "benchmarks")
+    rows = [[c.strip() for c in line.strip().strip("|").split("|", 1)] for line in block.splitlines()[2:] if line.strip()]
+    saved = {r["benchmark"]: r for r in load_benchmark_rows(results)}
+    changed = 0
+    for i, (bench, result) in enumerate(rows):
+        old = saved.pop(bench, None)
+        name = old["_file"] if old else re.sub(r"[^a-z0-9]+", "_", bench.lower()).strip("_")[:40] + ".json"
+        record = {k: v for k, v in (old or {}).items() if k != "_file"}
+        if old and old["result"] == result and old.get("order") == (i + 1) * 10:
+            continue
+        if not old or old["result"] != result:
+            record["source"] = "written in README.md by hand (adopted by readme_figures --adopt)"
+        record.update(benchmark=bench, result=result, order=(i + 1) * 10)
+        (results / (name if name.endswith(".json") else name + ".json")).write_text(
+            json.dumps(record, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+        changed += 1
+    for gone in saved.values():
+        (results / gone["_file"]).unlink()
+        changed += 1
+    return changed
+
+
+def _block(text: str, name: str) -> str:
+    match = re.search(rf"<!-- figures:{re.escape(name)} -->\n(.*?)<!-- /figures:{re.escape(name)} -->", text, re.S)
+    if match is None:
+        raise FiguresError(f"README has no <!-- figures:{name} --> block")
+    return match.group(1)
+
+
 def replace_block(text: str, name: str, content: str) -> str:
     """``text`` with the lines between ``<!-- figures:name -->`` and ``<!-- /figures:name -->`` replaced."""
     pattern = re.compile(rf"(<!-- figures:{re.escape(name)} -->\n)(.*?)(<!-- /figures:{re.escape(name)} -->)", re.S)
@@ -140,6 +173,7 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--evaluate", action="store_true", help="re-run objrecall evaluate first")
     parser.add_argument("--check", action="store_true", help="exit 1 if README.md is not up to date")
+    parser.add_argument("--adopt", action="store_true", help="save README.md's benchmark rows as results first")
     args = parser.parse_args(argv)
     readme = REPO / "README.md"
     try:
@@ -147,6 +181,8 @@ def main(argv: list[str] | None = None) -> int:
             RESULTS.mkdir(parents=True, exist_ok=True)
             EVALUATE_JSON.write_text(json.dumps(run_evaluate(), indent=1) + "\n", encoding="utf-8")
         text = readme.read_text(encoding="utf-8")
+        if args.adopt:
+            print(f"readme_figures: {adopt_benchmark_rows(text)} benchmark result files changed", file=sys.stderr)
         new = render_readme(text)
     except FiguresError as err:
         print(f"readme_figures: {err}", file=sys.stderr)

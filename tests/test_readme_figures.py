@@ -55,3 +55,17 @@ def test_saved_evaluation_is_what_evaluate_prints_now():
     for key in saved:
         assert now[key]["n"] == saved[key]["n"]
         assert now[key]["scores"] == saved[key]["scores"], f"{key}: run python scripts/readme_figures.py --evaluate"
+
+
+def test_rows_edited_by_hand_are_adopted(tmp_path):
+    results = tmp_path / "results"
+    results.mkdir()
+    (results / "evaluate.json").write_text(figures.EVALUATE_JSON.read_text(encoding="utf-8"))
+    (results / "a.json").write_text(json.dumps({"benchmark": "alpha", "result": "1 op/s", "order": 10}))
+    (results / "gone.json").write_text(json.dumps({"benchmark": "old", "result": "x", "order": 20}))
+    text = "<!-- figures:benchmarks -->\n| benchmark | result |\n|---|---|\n| alpha | 2 op/s |\n| beta | 3 |\n<!-- /figures:benchmarks -->\n"
+    assert figures.adopt_benchmark_rows(text, results) == 3
+    rows = figures.load_benchmark_rows(results)
+    assert [(r["benchmark"], r["result"]) for r in rows] == [("alpha", "2 op/s"), ("beta", "3")]
+    assert figures.replace_block(text, "benchmarks", figures.render_benchmark_table(rows)) == text
+    assert figures.adopt_benchmark_rows(text, results) == 0
