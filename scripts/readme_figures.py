@@ -190,7 +190,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.check:
         if new != text:
             print("readme_figures: README.md's figures differ from benchmarks/results; run "
-                  "python scripts/readme_figures.py", file=sys.stderr)
+                  "python scripts/readme_figures.py --adopt (rows edited by hand) or --evaluate", file=sys.stderr)
             return 1
         return 0
     if new != text:

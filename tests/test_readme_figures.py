@@ -17,7 +17,10 @@ _spec.loader.exec_module(figures)
 
 def test_readme_tables_match_the_saved_results():
     text = (REPO / "README.md").read_text(encoding="utf-8")
-    assert figures.render_readme(text) == text, "run: python scripts/readme_figures.py"
+    assert figures.render_readme(text) == text, (
+        "README figures differ from benchmarks/results: after editing a benchmark row by hand run "
+        "`python scripts/readme_figures.py --adopt`; after changing recall run it with `--evaluate`"
+    )
     assert figures.main(["--check"]) == 0
 
 
