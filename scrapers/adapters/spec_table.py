@@ -407,11 +407,35 @@ def material_observations(lines: list[Line]) -> list[Observation]:
     return obs
 
 
+def selected_variant(page: Page) -> list[Observation]:
+    """The size of the variant a page has selected (``<option selected>Mattress 2'6" x 6'6" (75 x 200 x 22
+    cm)</option>``): a page that sells several sizes shows the product's in its picker, while its size
+    table lists every variant. The most complete size in the option's text, rank 0 (it beats the table's
+    rows); nothing when the option names no size."""
+    tree = page.tree
+    if tree is None:
+        return []
+    obs = []
+    for option in tree.xpath("//select//option[@selected]")[:20]:
+        text = " ".join(option.itertext()).strip()[:300]
+        found = parse_dims(text, None, page.decimal_comma) if _DIGIT.search(text) else []
+        if found:
+            best = max(found, key=lambda d: len(d.values_cm))
+            obs.append(
+                Observation(
+                    "dims", best.values_cm, rank=0, raw=f"selected option: {text}"[:200], roles=best.roles,
+                    note=f"the size of the selected variant ({text[:80]!r})",
+                )
+            )  # fmt: skip
+    return obs[:1]
+
+
 @adapter("spec_table", priority=50)
 def spec_table(page: Page) -> list[Observation]:
-    """Spec tables, definition lists, detail bullets and label/value lines of the visible page."""
+    """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
+    size of the selected variant."""
     obs = observations_from_pairs(pairs_from_lines(page.lines), page.decimal_comma)
-    return obs + material_observations(page.lines)
+    return obs + selected_variant(page) + material_observations(page.lines)
 
 
 _LABEL_KEYS = ("title", "name", "label", "key", "attributeName", "attribute", "displayName", "property")
