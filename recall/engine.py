@@ -25,6 +25,7 @@ from kb.features import FEATURES, NUMERIC_FEATURES
 from kb.kinds import singular, words_of
 from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
+from recall.names import _VARIANT_WORDS, GENERIC_NOUNS
 from recall.openset import DescribedNoun, KindIndex, described_noun
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
@@ -80,15 +81,6 @@ OPEN_SET_NAMED_THRESHOLD = 0.45
 #: ... and above this when the subject of the description is a noun the catalog does not know ("an
 #: orange", "a watermelon"): an unknown noun alone is not enough (synonyms), with a loose match it is.
 OPEN_SET_UNKNOWN_NOUN_THRESHOLD = 0.15
-#: Nouns that say what kind of thing, not which thing: never unknown-noun evidence ("a plastic thing").
-GENERIC_NOUNS = frozenset(
-    {"thing", "object", "item", "device", "gadget", "tool", "utensil", "implement", "instrument", "piece",
-     "chunk", "bit", "strip", "rectangle", "square", "circle", "replica", "fruit", "vegetable", "vessel",
-     "container", "package", "case", "toy", "accessory", "appliance", "equipment", "stuff", "product",
-     "one", "kind", "sort", "type", "shape", "something", "model", "unit", "set", "pair", "part", "size",
-     "cube", "cuboid", "cylinder", "sphere", "disc", "disk", "rod", "slab", "sheet", "block", "lump", "wedge",
-     "prism", "orb", "globe", "stick", "tube", "ring", "nugget"}
-)  # fmt: skip
 #: Metrics in nats (a name bonus can be subtracted; the margin is a log-likelihood ratio).
 _JP_METRICS = ("jp", "jplog")
 #: The metric when none is given: the paper's JP for features only, JP in log units for the hybrid.
@@ -109,8 +101,6 @@ _singular = singular
 normalize_words = words_of
 
 
-#: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
-_VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})
 
 
 def name_core(name: str) -> tuple[str, ...]:

@@ -19,6 +19,18 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 
+#: Nouns that say what kind of thing, not which thing: never unknown-noun evidence ("a plastic thing").
+GENERIC_NOUNS = frozenset(
+    {"thing", "object", "item", "device", "gadget", "tool", "utensil", "implement", "instrument", "piece",
+     "chunk", "bit", "strip", "rectangle", "square", "circle", "replica", "fruit", "vegetable", "vessel",
+     "container", "package", "case", "toy", "accessory", "appliance", "equipment", "stuff", "product",
+     "one", "kind", "sort", "type", "shape", "something", "model", "unit", "set", "pair", "part", "size",
+     "cube", "cuboid", "cylinder", "sphere", "disc", "disk", "rod", "slab", "sheet", "block", "lump", "wedge",
+     "prism", "orb", "globe", "stick", "tube", "ring", "nugget"}
+)  # fmt: skip
+#: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
+_VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})
+
 __all__ = ["NameTables", "RowsByKey"]
 
 _PARENS = r"\([^)]*\)|\[[^\]]*\]"
@@ -186,7 +198,7 @@ class _Vocabulary:
 
     def __init__(self, words: pa.Array, core: pa.Array):
         from kb.features import CATEGORIES
-        from recall.engine import _VARIANT_WORDS, GENERIC_NOUNS, _singular
+        from kb.kinds import singular as _singular
         from recall.lexicon import MATERIAL_WORDS
 
         enc = pa.concat_arrays([words, core]).dictionary_encode()

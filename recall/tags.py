@@ -67,7 +67,8 @@ class Tagger:
 
 def fix_tags(tokens: list[Token]) -> list[Token]:
     """Tags that depend on the neighbours; one linear pass (two for dropped hyphens). Returns the tokens
-    kept: a tolerance with its number and unit, a joining hyphen and an abbreviation's dot are dropped."""
+    kept: a tolerance with its number and unit, a joining hyphen, a minus sign (marked on its number) and
+    an abbreviation's dot are dropped."""
     out: list[Token] = []
     n = len(tokens)
     _tuple_labels(tokens)

@@ -24,6 +24,7 @@ from kb.features import MATERIALS, axes_from_extents
 from scrapers.adapters import (  # noqa: F401
     ADAPTERS,
     Observation,
+    embedded_json,
     jsonld,
     microdata,
     shopify,
@@ -211,87 +212,89 @@ def _collapse_repeats(values: list) -> list:
     return values
 
 
-def fuse(observations: list[Observation], url: str) -> ProductRecord:
-    """One record from all adapters' observations (the rule is in the module doc)."""
-    warnings: list[str] = []
-    decisions: list[dict] = []
-    raw: dict[str, str] = {}
+def _valid(
+    observations: list[Observation], feature: str, package: bool, warnings: list[str], decisions: list[dict]
+) -> list[Observation]:
+    """The product's (or the package's) candidates of ``feature`` that pass the catalog limits; a part's
+    or a capacity's value and a refused value get their decision (and a refusal its warning)."""
+    out = []
     for o in observations:
-        if o.feature == "warning" and len(warnings) < MAX_CANDIDATES:
-            warnings.append(str(o.value))
+        if o.feature != feature or o.package != package:
+            continue
+        if o.role != "product":
+            if not package and len(decisions) < MAX_CANDIDATES:
+                decisions.append(_candidate(o, f"not the product's: a {o.role}'s value ({o.raw[:60]!r})"))
+            continue
+        if feature == "dims":
+            extents = sorted(o.extents(), key=lambda e: -e[1])
+            o.value, o.roles = tuple(v for _, v in extents), tuple(r for r, _ in extents)
+            reason = check_dims(o.value)
+        else:
+            reason = check_mass(o.value)
+        if reason and len(decisions) < MAX_CANDIDATES:
+            decisions.append(_candidate(o, f"refused: {reason}"))
+        if reason and len(warnings) < MAX_CANDIDATES:
+            warnings.append(
+                f"{'package ' if package else ''}{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})"
+            )
+        elif not reason:
+            out.append(o)
+    return out
 
-    def valid(feature: str, package: bool) -> list[Observation]:
-        out = []
-        for o in observations:
-            if o.feature != feature or o.package != package:
-                continue
-            if o.role != "product":
-                if not package and len(decisions) < MAX_CANDIDATES:
-                    decisions.append(_candidate(o, f"not the product's: a {o.role}'s value ({o.raw[:60]!r})"))
-                continue
-            if feature == "dims":
-                extents = sorted(o.extents(), key=lambda e: -e[1])
-                o.value, o.roles = tuple(v for _, v in extents), tuple(r for r, _ in extents)
-                reason = check_dims(o.value)
-            else:
-                reason = check_mass(o.value)
-            if reason and len(decisions) < MAX_CANDIDATES:
-                decisions.append(_candidate(o, f"refused: {reason}"))
-            if reason and len(warnings) < MAX_CANDIDATES:
-                warnings.append(
-                    f"{'package ' if package else ''}{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})"
-                )
-            elif not reason:
-                out.append(o)
-        return out
 
-    dims_obs = _choose(valid("dims", False), _dims_agree, "dims", warnings, decisions)
-    mass_obs = _choose(valid("mass", False), _close, "mass", warnings, decisions)
+def _packages(cands: list[Observation], feature: str, raw: dict[str, str], decisions: list[dict]) -> list:
+    """Package values as listed by the highest-priority adapter that states any, in page order."""
+    if not cands:
+        return []
+    best_source = min(cands, key=_priority).source
+    chosen = sorted((o for o in cands if o.source == best_source), key=lambda o: o.order)
+    decisions.extend(
+        _candidate(o, "package value, kept apart" if o.source == best_source else
+                   f"package value not listed: {best_source} lists the packages")
+        for o in cands[:MAX_CANDIDATES]
+    )  # fmt: skip
+    raw[f"package_{feature}"] = " | ".join(o.raw for o in chosen)[:500]
+    return _collapse_repeats([o.value for o in chosen[:MAX_CANDIDATES]])
 
-    package_dims: list[tuple[float, ...]] = []
-    package_mass: list[float] = []
-    for feature, target in (("dims", package_dims), ("mass", package_mass)):
-        cands = valid(feature, True)
-        if cands:
-            best_source = min(cands, key=_priority).source
-            chosen = sorted((o for o in cands if o.source == best_source), key=lambda o: o.order)
-            decisions.extend(
-                _candidate(o, "package value, kept apart" if o.source == best_source else
-                           f"package value not listed: {best_source} lists the packages")
-                for o in cands[:MAX_CANDIDATES]
-            )  # fmt: skip
-            target.extend(_collapse_repeats([o.value for o in chosen[:MAX_CANDIDATES]]))
-            raw[f"package_{feature}"] = " | ".join(o.raw for o in chosen)[:500]
 
-    names = sorted((o for o in observations if o.feature == "name"), key=lambda o: (o.rank, _priority(o)))
-    name = names[0].value if names else None
-    gtins = sorted((o for o in observations if o.feature == "gtin"), key=_priority)
-    urls = sorted(
-        (o for o in observations if o.feature == "canonical_url"), key=lambda o: (o.rank, _priority(o))
-    )
-
-    material = None
+def _material(observations: list[Observation], raw: dict[str, str]) -> str | None:
     for o in sorted((o for o in observations if o.feature == "material"), key=_priority):
         material = o.value if o.value in MATERIALS else material_from_text(o.value)
         if material:
             raw["material"] = o.raw
-            break
+            return material
+    return None
 
+
+def _first(observations: list[Observation], feature: str, by_rank: bool = True):
+    found = [o for o in observations if o.feature == feature]
+    found.sort(key=(lambda o: (o.rank, _priority(o))) if by_rank else _priority)
+    return found[0].value if found else None
+
+
+def fuse(observations: list[Observation], url: str) -> ProductRecord:
+    """One record from all adapters' observations (the rule is in the module doc)."""
+    warnings = [str(o.value) for o in observations if o.feature == "warning"][:MAX_CANDIDATES]
+    decisions: list[dict] = []
+    raw: dict[str, str] = {}
+    dims_obs = _choose(_valid(observations, "dims", False, warnings, decisions), _dims_agree, "dims", warnings, decisions)
+    mass_obs = _choose(_valid(observations, "mass", False, warnings, decisions), _close, "mass", warnings, decisions)
+    package_dims = _packages(_valid(observations, "dims", True, warnings, decisions), "dims", raw, decisions)
+    package_mass = _packages(_valid(observations, "mass", True, warnings, decisions), "mass", raw, decisions)
+    name = _first(observations, "name")
+    material = _material(observations, raw)
     if dims_obs is None and mass_obs is None and not package_dims and not package_mass:
         what = f" for {name!r}" if name else ""
         reasons = "; ".join(warnings[:3])
         raise ExtractionError(
             f"{url}: no product dimensions or mass found{what}" + (f" ({reasons})" if reasons else "")
         )
-
     for o in (dims_obs, mass_obs):
         if o is not None:
             raw["dims" if o.feature == "dims" else "mass"] = o.raw
             if o.note:
                 warnings.append(f"{o.feature}: {o.note}")
     dims = tuple(round(v, 4) for v in axes_from_extents(dims_obs.extents())) if dims_obs else None
-    extents = [{"role": r, "cm": round(v, 4)} for r, v in dims_obs.extents()] if dims_obs else []
-    shape = shape_from_name(name) or shape_from_dims(dims)
     used = dims_obs or mass_obs
     adapter = (
         used.source
@@ -301,15 +304,15 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
     return ProductRecord(
         name=name,
         url=url,
-        canonical_url=urls[0].value if urls else None,
-        gtin=gtins[0].value if gtins else None,
+        canonical_url=_first(observations, "canonical_url"),
+        gtin=_first(observations, "gtin", by_rank=False),
         dims_cm=dims,
-        dims=extents,
+        dims=[{"role": r, "cm": round(v, 4)} for r, v in dims_obs.extents()] if dims_obs else [],
         mass_g=round(mass_obs.value, 4) if mass_obs else None,
         package_dims_cm=[tuple(round(v, 4) for v in p) for p in package_dims],
         package_mass_g=[round(m, 4) for m in package_mass],
         material=material,
-        shape=shape,
+        shape=shape_from_name(name) or shape_from_dims(dims),
         adapter=adapter,
         warnings=list(dict.fromkeys(warnings)),
         raw=raw,

@@ -245,30 +245,12 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     program = program_for(plan.grasp_type)
     wrap = program.control == "wrap"
 
-    # Where the object's centre sits in the hand frame (cm).
     depth = ext[2] if approach == "top" else ext[0]  # extent along the approach axis
-    overhang = 0.0
-    if flat:
-        # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the
-        # object's centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
-        overhang = edge_overhang_cm(depth)
-    palm_face = -H.PALM_HALF_CM[2]
-    grip_depth = 0.0  # precision: how far below the near face the pads meet the object (cm)
-    if wrap:
-        x_c = 0.0
-        z_c = palm_face - program.palm_gap_cm - depth / 2.0
-    else:
-        x_c = float(np.mean([H.FINGER_BY_NAME[f].x_cm for f in targets.fingers]))
-        # Pads meet the object's sides at its centre (no gravity torque about the pinch axis) when they
-        # reach that far, else 3 cm below its near face.
-        grip_depth = min(depth / 2.0, 3.0)
-        if flat:  # as near its centre of mass as the pads reach, their pads under the overhang
-            grip_depth = edge_grip_in_cm(depth)
-        z_c = min(
-            targets.contact_z_cm - depth / 2.0 + grip_depth,
-            palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,
-        )
-    center_h = np.array([x_c, targets.center_y_cm, z_c]) * H.CM
+    # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the object's
+    # centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
+    overhang = edge_overhang_cm(depth) if flat else 0.0
+    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat)
+    center_h = center_cm * H.CM
 
     obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
     rot = np.zeros(9)
@@ -337,6 +319,24 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         },
     )
     return world
+
+
+def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: bool) -> tuple[np.ndarray, float]:
+    """Where the object's centre sits in the hand frame (cm) at the grasp pose, and how far below its near
+    face the pads meet it (pinches; 0 for wraps). ``depth``: its extent along the approach axis."""
+    palm_face = -H.PALM_HALF_CM[2]
+    if program.control == "wrap":  # pressed to the palm, or held in the fingers by the program's gap
+        return np.array([0.0, targets.center_y_cm, palm_face - program.palm_gap_cm - depth / 2.0]), 0.0
+    x_c = float(np.mean([H.FINGER_BY_NAME[f].x_cm for f in targets.fingers]))
+    # Pads meet the object's sides at its centre (no gravity torque about the pinch axis) when they reach
+    # that far, else 3 cm below its near face; flat objects as near their centre of mass as the pads
+    # reach under the overhang.
+    grip_depth = edge_grip_in_cm(depth) if flat else min(depth / 2.0, 3.0)
+    z_c = min(
+        targets.contact_z_cm - depth / 2.0 + grip_depth,
+        palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,
+    )
+    return np.array([x_c, targets.center_y_cm, z_c]), grip_depth
 
 
 def _precision_backoff_m(model, data, is_hand, object_geom, wrist_qpos, approach_dir, max_cm: float) -> float:

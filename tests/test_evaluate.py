@@ -173,3 +173,25 @@ def test_description_header_in_any_case_or_with_name(tmp_path):
     path.write_text('thing,text\ncup,"a cup"\n')
     with pytest.raises(RecallError, match="missing column"):
         read_descriptions(path)
+
+
+@pytest.mark.parametrize(
+    ("descriptions", "open_set", "flagged", "max_brier"),
+    [
+        # when written (issue 16): 15/15, 1/242 false flags, Brier 0.020; hold-out 6/10, 0/120, 0.027
+        (DEV_SET, Path(DEV_SET).with_name("open_set_descriptions.csv"), 14, 0.04),
+        (
+            Path(__file__).parent / "data" / "holdout" / "holdout_descriptions.csv",
+            Path(__file__).parent / "data" / "holdout" / "holdout_open_set.csv",
+            6,
+            0.05,
+        ),
+    ],
+)
+def test_open_set_detection_false_flags_and_calibration_floors(descriptions, open_set, flagged, max_brier):
+    report = evaluate(SEED_CATALOG, descriptions, open_set_csv=open_set)
+    assert report.open_set["jplog+names"] >= flagged
+    assert report.false_flags["jplog+names"] <= 0.02 * report.n  # the goal for full descriptions
+    cal = report.calibration("jplog+names")
+    assert cal.n == report.n + report.open_set_n and cal.brier <= max_brier and cal.ece <= 0.08
+    assert report.to_dict()["calibration"]["jplog+names"]["brier"] == cal.brier

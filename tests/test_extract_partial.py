@@ -316,3 +316,18 @@ def test_axis_words_inside_one_value_keep_their_roles(value, extents, axes):
 def test_a_case_or_fabric_extent_is_the_products(label, role):
     record = extract_page(_page(f"<ul><li>{label}: 42 mm</li></ul>"), "https://s.example/p")
     assert _roles(record) == [(role, 4.2)]
+
+
+# ------------------------------------------------------------------------ size variants
+def test_the_selected_variants_size_beats_the_size_table_of_all_variants():
+    body = ("<select name='size'><option>Mattress 3' x 6'3\" (90 x 190 x 22 cm)</option>"
+            "<option selected>Mattress 2'6\" x 6'6\" (75 x 200 x 22 cm)</option></select>"
+            "<table><tr><th>Size</th><td>3' x 6'3\"</td></tr><tr><th>Size</th><td>4'6\" x 6'3\"</td></tr></table>")
+    record = extract_page(_page(body), "https://s.example/p")
+    assert record.dims_cm == (200.0, 75.0, 22.0)
+    assert any("selected variant" in w for w in record.warnings)
+
+
+def test_a_selected_option_without_a_size_adds_nothing():
+    body = "<select><option selected>Blue</option></select><ul><li>Dimensions: 30 x 20 x 10 cm</li></ul>"
+    assert extract_page(_page(body), "https://s.example/p").dims_cm == (30.0, 20.0, 10.0)

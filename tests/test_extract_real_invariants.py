@@ -27,11 +27,8 @@ def _pages():
     return out
 
 
-#: Known failures, each a class of page not handled yet (found when the blind split was scored, once).
-KNOWN = {
-    "scrapely_tempur_deluxe_hd_mattress.html": "size variants: the product is the selected option of a "
-    "<select>; a size table of the other variants is read instead",
-}
+#: Known failures, each a class of page not handled yet (xfailed, strict: a fix must remove its entry).
+KNOWN: dict[str, str] = {}
 PAGES = [
     pytest.param(p, marks=pytest.mark.xfail(reason=KNOWN[p.truth["file"]], strict=True))
     if p.truth["file"] in KNOWN

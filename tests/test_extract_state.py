@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from scrapers.adapters.spec_table import _key_label, _names_product
+from scrapers.adapters.embedded_json import _key_label, _names_product
 from scrapers.extract import extract_page
 
 TITLE = "Stoneware Pasta Bowl Set Sage"

@@ -180,6 +180,9 @@ def test_validate_end_to_end_with_real_physics_report_and_resume(db, tmp_path):
                for c in summary["choices"])  # fmt: skip
     text = invoke(*args).output
     assert "first choice holds for" in text and "a validated grasp" in text
+    for c in summary["choices"]:
+        assert (f"{c['object_name']}: first choice" in text) == c["differs"]
+    assert text.count("    why: ") == sum(c["validated"] is None for c in summary["choices"])
 
     report = tmp_path / "report"
     again = json.loads(invoke(*args, "--report", str(report), "--json").output)
@@ -192,3 +195,16 @@ def test_validate_end_to_end_with_real_physics_report_and_resume(db, tmp_path):
     page = (report / "index.html").read_text()
     assert all(f"images/{p.name}" in page for p in images)
     assert len(json.loads((report / "results.json").read_text())["results"]) == 4
+
+
+def test_validate_says_why_nothing_holds_in_the_hands_terms(tmp_path):
+    csv = tmp_path / "big.csv"
+    csv.write_text(CSV.splitlines()[0] + "\nbeach ball,30,30,30,300,radial,smooth,medium,plastic,squeezable\n")
+    path = tmp_path / "big.duckdb"
+    KnowledgeBase.open(path).import_csv(csv)
+    out = invoke("grasp", "validate", "beach ball", "--top", "1", "--db", str(path), "--no-progress").output
+    text = " ".join(out.split())  # rich wraps long lines
+    assert "a validated grasp (best-ranked that holds) for 0" in text
+    assert "validated choice: none of the 1 candidates holds" in text
+    assert "why: aperture: every side is wider than the hand's span (needs two hands)" in text
+    assert out.count("    why: ") == 1

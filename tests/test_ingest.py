@@ -226,13 +226,17 @@ def _seed_records():
     return read_catalog_csv(SEED_CSV).records
 
 
-def test_second_run_changes_nothing(first_run, store, tmp_path):
-    path, first, _ = first_run
+def _copy_of(first_run, tmp_path):
+    """A copy of the first run's catalog, with its objects and observation count before a second run."""
     copy = tmp_path / "again.duckdb"
-    shutil.copy(path, copy)
+    shutil.copy(first_run[0], copy)
     kb = KnowledgeBase.open(copy)
-    objects_before = rows(kb, "SELECT * FROM objects ORDER BY id")
-    obs_before = rows(kb, "SELECT count(*) FROM observations")
+    return kb, rows(kb, "SELECT * FROM objects ORDER BY id"), rows(kb, "SELECT count(*) FROM observations")
+
+
+def test_second_run_changes_nothing(first_run, store, tmp_path):
+    first = first_run[1]
+    kb, objects_before, obs_before = _copy_of(first_run, tmp_path)
     log_start = len(store.log)
     with requests.Session() as session:
         report = run_ingestion(kb, sources_for(store), session=session)
@@ -249,12 +253,7 @@ def test_second_run_changes_nothing(first_run, store, tmp_path):
 
 def test_a_second_run_on_another_port_changes_nothing(first_run, tmp_path):
     """The main job starts the demo store on a free port each time: the pages are the same pages."""
-    path, first, _ = first_run
-    copy = tmp_path / "again.duckdb"
-    shutil.copy(path, copy)
-    kb = KnowledgeBase.open(copy)
-    objects_before = rows(kb, "SELECT * FROM objects ORDER BY id")
-    obs_before = rows(kb, "SELECT count(*) FROM observations")
+    kb, objects_before, obs_before = _copy_of(first_run, tmp_path)
     with DemoStore(crawl_delay=None, slow_s=2.5) as other, requests.Session() as session:
         report = run_ingestion(kb, sources_for(other), session=session)
     assert report.new == report.updated == report.observations_added == 0

@@ -80,6 +80,8 @@ def test_a_range_of_fractions_stays_a_range() -> None:
     assert (ev.qualifier, ev.low, ev.high) == ("range", approx(1.27), approx(1.905))
     ev = parse("1-3/2 inches thick").features["c_cm"]  # 3/2 is no proper fraction: a range, 1 to 1.5
     assert (ev.qualifier, ev.low, ev.high) == ("range", approx(2.54), approx(3.81))
+    assert parse("2-2/2 inches thick").features["c_cm"].qualifier == "range"  # 2/2 is no proper fraction
+    assert parse("2-1/2 inches thick").features["c_cm"].qualifier == "exact"  # 2 1/2
     assert parse("2-3 cm").features["a_cm"].qualifier == "range"
 
 
@@ -238,3 +240,42 @@ def test_a_negative_never_parses_to_a_positive(item, thousandths: int, sign: str
     p = parse(before + text)
     assert not any(f in p.values() for f in NUMERIC), p.values()
     assert p.refused  # and it says so
+
+
+# ------------------------------------------------------------------ the parser's own documented limits
+def test_a_text_of_exactly_the_longest_length_is_parsed() -> None:
+    from kb.errors import DescriptionError
+    from recall.parser import MAX_TEXT_CHARS
+
+    text = ("a 20 cm box " * (MAX_TEXT_CHARS // 12 + 1))[:MAX_TEXT_CHARS]
+    assert len(text) == MAX_TEXT_CHARS
+    assert parse(text).values()["a_cm"] == 20
+    with pytest.raises(DescriptionError, match="too long: 1,000,001 characters"):
+        parse(text + " ")
+
+
+def test_sentences_are_cut_at_exactly_max_segment_tokens() -> None:
+    from recall.chunks import MAX_SEGMENT_TOKENS, Chunker
+    from recall.tokens import Token
+
+    def tokens(n: int) -> list[Token]:
+        return [Token("w", "w", i, i + 1) for i in range(n)]
+
+    assert [len(s) for s in Chunker.segments(tokens(MAX_SEGMENT_TOKENS))] == [MAX_SEGMENT_TOKENS]
+    assert [len(s) for s in Chunker.segments(tokens(MAX_SEGMENT_TOKENS + 1))] == [MAX_SEGMENT_TOKENS, 1]
+    ends = tokens(3)
+    ends[1].tag = "SEP"  # a sentence end closes its segment
+    assert [len(s) for s in Chunker.segments(ends)] == [2, 1]
+
+
+def test_the_tag_cache_stops_growing_at_its_size_and_tags_stay_right(monkeypatch) -> None:
+    from recall import tags
+    from recall.parser import DescriptionParser
+
+    monkeypatch.setattr(tags, "TAG_CACHE_SIZE", 3)
+    parser = DescriptionParser()
+    parser.parse("zyx qwv ppq")  # under the size (0 < 3): all three remembered
+    assert set(parser.tagger.cache) == {"zyx", "qwv", "ppq"}
+    p = parser.parse("a metallic dddq bottle, 20 cm tall")  # at the size: tagged, not remembered
+    assert set(parser.tagger.cache) == {"zyx", "qwv", "ppq"}
+    assert p.values()["a_cm"] == 20 and p.values()["material"] == "metal"

@@ -336,6 +336,49 @@ def test_request_body_size_limit(client):
     assert_error(client.post("/parse", content=chunks(), headers={"content-type": "application/json"}), 413)
 
 
+def test_request_body_limit_is_exact(shared_db):
+    """A body of exactly ``max_body_bytes`` is read (the schema then judges it: 422); one byte more is 413."""
+    limit = 1000
+    small = TestClient(create_app(shared_db, token="", max_body_bytes=limit), **LOCAL)
+    for n, status in ((limit, 422), (limit + 1, 413)):
+        assert small.post("/parse", content=b"x" * n, headers={"content-type": "application/json"}).status_code == status
+
+
+@pytest.mark.parametrize("declared", [False, True])
+@pytest.mark.parametrize("sizes, passed", [
+    ((250, 250, 250, 250), True),  # exactly the limit, in chunks
+    ((250, 250, 250, 250, 1), False),  # one byte over, after a chunk that ends at the limit
+    ((1001,), False),
+])  # fmt: skip
+def test_body_limit_over_asgi_chunks(sizes, passed, declared):
+    """The middleware itself, fed ASGI body messages: the app sees the whole body or the client gets 413."""
+    import asyncio
+
+    from kb.service.http.limits import LimitsMiddleware
+
+    seen: list[bytes] = []
+
+    async def app(scope, receive, send):
+        seen.append((await receive())["body"])
+        await send({"type": "http.response.start", "status": 200, "headers": []})
+        await send({"type": "http.response.body", "body": b""})
+
+    messages = [{"type": "http.request", "body": b"x" * n, "more_body": i < len(sizes) - 1} for i, n in enumerate(sizes)]
+    sent: list[dict] = []
+
+    async def receive():
+        return messages.pop(0)
+
+    async def send(message):
+        sent.append(message)
+
+    headers = [(b"content-length", str(sum(sizes)).encode())] if declared else []
+    middleware = LimitsMiddleware(app, max_body_bytes=1000, timeout=5.0)
+    asyncio.run(middleware({"type": "http", "path": "/parse", "headers": headers}, receive, send))
+    assert sent[0]["status"] == (200 if passed else 413)
+    assert seen == ([b"x" * 1000] if passed else [])
+
+
 def test_request_time_limit(shared_db):
     slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), **LOCAL)
     r = slow.post(

@@ -8,9 +8,8 @@ page's visible text lines (:attr:`scrapers.page.Page.lines`) into (label, value)
 label :func:`scrapers.labels.classify_label` recognises, and reads their values. Separate length, width,
 height... fields become one dimensions observation (see :func:`observations_from_pairs`).
 
-The ``embedded_json`` adapter does the same for label/value data that pages ship as JSON inside scripts
-(collapsed tabs rendered by JavaScript): ``{"title": "Overall Weight", "value": "8", "unit_string": "lb."}``
-and ``"Width: 12\\""`` strings.
+The ``embedded_json`` adapter (:mod:`scrapers.adapters.embedded_json`) reads the page's embedded state into
+the same pairs.
 """
 
 from __future__ import annotations
@@ -18,7 +17,6 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
 from scrapers.adapters import Observation, adapter
@@ -407,119 +405,32 @@ def material_observations(lines: list[Line]) -> list[Observation]:
     return obs
 
 
+def selected_variant(page: Page) -> list[Observation]:
+    """The size of the variant a page has selected (``<option selected>Mattress 2'6" x 6'6" (75 x 200 x 22
+    cm)</option>``): a page that sells several sizes shows the product's in its picker, while its size
+    table lists every variant. The most complete size in the option's text, rank 0 (it beats the table's
+    rows); nothing when the option names no size."""
+    tree = page.tree
+    if tree is None:
+        return []
+    obs = []
+    for option in tree.xpath("//select//option[@selected]")[:20]:
+        text = " ".join(option.itertext()).strip()[:300]
+        found = parse_dims(text, None, page.decimal_comma) if _DIGIT.search(text) else []
+        if found:
+            best = max(found, key=lambda d: len(d.values_cm))
+            obs.append(
+                Observation(
+                    "dims", best.values_cm, rank=0, raw=f"selected option: {text}"[:200], roles=best.roles,
+                    note=f"the size of the selected variant ({text[:80]!r})",
+                )
+            )  # fmt: skip
+    return obs[:1]
+
+
 @adapter("spec_table", priority=50)
 def spec_table(page: Page) -> list[Observation]:
-    """Spec tables, definition lists, detail bullets and label/value lines of the visible page."""
+    """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
+    size of the selected variant."""
     obs = observations_from_pairs(pairs_from_lines(page.lines), page.decimal_comma)
-    return obs + material_observations(page.lines)
-
-
-_LABEL_KEYS = ("title", "name", "label", "key", "attributeName", "attribute", "displayName", "property")
-_UNIT_KEYS = ("unit_string", "unit", "unitText", "unitCode", "units", "uom")
-_MAX_NODES = 200_000
-
-
-_CAMEL = re.compile(r"(?<=[a-z])(?=[A-Z])|[_\-.]+")
-_NAME_KEYS = ("name", "title", "productName", "product_name", "displayName")
-_TOKEN = re.compile(r"[^\W\d_]{3,}")
-#: Share of a state object's name words that must appear in the page title for its keyed values to count
-#: as the product's (page state also holds recommended and recently viewed products).
-NAME_MATCH = 0.6
-
-
-def _key_label(key: str) -> str:
-    """A JSON key as label words: ``itemWeight`` -> ``item Weight``, ``product_width`` -> ``product width``."""
-    return _CAMEL.sub(" ", key).strip()
-
-
-def _names_product(name: str, title_words: frozenset[str]) -> bool:
-    words = [w.lower() for w in _TOKEN.findall(name)]
-    return bool(words) and sum(w in title_words for w in words) >= NAME_MATCH * len(words)
-
-
-def _keyed_value(node: dict, key: str, value: Any) -> str | None:
-    """The value text of a measurement key: a string as it is, a number with its unit from a sibling key
-    (``weightUnit``, ``unit``) or a ``{"value": 1.2, "unit": "kg"}`` object; None without a unit."""
-    if isinstance(value, dict):
-        inner = value.get("value", value.get("amount"))
-        unit = next((value[k] for k in _UNIT_KEYS if isinstance(value.get(k), str)), None)
-        return f"{inner} {unit}" if isinstance(inner, (int, float, str)) and unit else None
-    if isinstance(value, str):
-        return value if _DIGIT.search(value) and len(value) < 200 else None
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
-        for k in (f"{key}Unit", f"{key}_unit", f"{key}Uom", *_UNIT_KEYS):
-            if isinstance(node.get(k), str) and node[k].strip():
-                return f"{value} {node[k]}"
-    return None
-
-
-def _keyed_pairs(node: dict, order: int) -> list[Pair]:
-    """``{"itemWeight": "1.2 kg", "width": {"value": 30, "unit": "cm"}}``: keys that are measurement labels."""
-    pairs = []
-    for key, value in node.items():
-        if not isinstance(key, str) or len(key) > 60 or key in _UNIT_KEYS or key == "value":
-            continue
-        if isinstance(value, (list, bool)) or value is None:
-            continue
-        info = classify_label(_key_label(key))
-        if info is None:
-            continue
-        text = _keyed_value(node, key, value)
-        if text is not None:
-            pairs.append(Pair(_key_label(key), text, info, order=order))
-    return pairs
-
-
-def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
-    """Label/value pairs of page state: ``{"title": "Overall Weight", "value": "8", "unit_string": "lb."}``
-    entries, ``"Width: 12\""`` strings, and measurement keys (:func:`_keyed_pairs`) of objects that are
-    the product's: objects under a named object count only when that name is the product's (its words in
-    the page ``title``, :data:`NAME_MATCH`)."""
-    title_words = frozenset(w.lower() for w in _TOKEN.findall(title or ""))
-    pairs: list[Pair] = []
-    stack: list[tuple[Any, bool]] = [(data, True)]
-    seen = 0
-    order = 0
-    while stack and seen < _MAX_NODES:
-        node, own = stack.pop()
-        seen += 1
-        order += 1
-        if isinstance(node, dict):
-            label = next((node[k] for k in _LABEL_KEYS if isinstance(node.get(k), str)), None)
-            value = node.get("value")
-            if label and isinstance(value, (str, int, float)) and not isinstance(value, bool):
-                info = classify_label(label)
-                if info is not None:
-                    unit = next((node[k] for k in _UNIT_KEYS if isinstance(node.get(k), str)), "")
-                    pairs.append(Pair(label, f"{value} {unit}".strip(), info, order=order))
-            name = next((node[k] for k in _NAME_KEYS if isinstance(node.get(k), str)), None)
-            if name and title_words and classify_label(name) is None:
-                own = _names_product(name, title_words)
-            if own:
-                pairs.extend(_keyed_pairs(node, order))
-            stack.extend((child, own) for child in reversed(list(node.values())))
-        elif isinstance(node, list):
-            stack.extend((child, own) for child in reversed(node))
-        elif (
-            own
-            and isinstance(node, str)
-            and 3 < len(node) < 200
-            and ":" in node
-            and _DIGIT.search(node)
-            and not _CODE.search(node)
-        ):
-            for label, value, info in split_inline(node):
-                pairs.append(Pair(label, value, info, order=order))
-    return pairs
-
-
-@adapter("embedded_json", priority=60, fallback=True)
-def embedded_json(page: Page) -> list[Observation]:
-    """Label/value data shipped as JSON inside the page's scripts (tabs rendered by JavaScript)."""
-    obs: list[Observation] = []
-    for payload in page.script_payloads:
-        pairs = _json_pairs(payload, page.title)
-        if pairs:
-            # JSON order is not visual order: group axes only among neighbouring entries.
-            obs.extend(observations_from_pairs(pairs, page.decimal_comma, rank=1))
-    return obs
+    return obs + selected_variant(page) + material_observations(page.lines)

@@ -344,9 +344,14 @@ def _print_validation(summary) -> None:
     if summary.not_stored:
         console.print(f"[yellow]{summary.not_stored} trials raised unexpected errors and were not stored[/]")
     console.print(summary.choice_summary.describe(), highlight=False)
+    from sim.report import failure_cause
+
     for c in summary.choices:
         if c.differs:
             console.print(f"  {escape(c.object_name)}: {_choice_line(c.to_dict())}", highlight=False)
+        if c.validated is None:  # why, in the hand's terms (aperture, mass and friction, moment)
+            first = next(r for r in summary.results if r["object_name"] == c.object_name and r["grasp_type"] == c.first)
+            console.print(f"    why: {escape(failure_cause(first))}", highlight=False)
     if summary.report:
         console.print(f"report: {summary.report}", highlight=False)
 

@@ -51,40 +51,56 @@ class LimitsMiddleware:
         self.timeout = timeout
         self.allowed_hosts = frozenset(allowed_hosts)
 
-    async def __call__(self, scope, receive, send):
-        if scope["type"] != "http":
-            await self.app(scope, receive, send)
-            return
-        headers = dict(scope.get("headers") or [])
+    @property
+    def _too_big(self) -> str:
+        return f"request body too large: at most {self.max_body_bytes} bytes"
+
+    def _refusal(self, headers: dict[bytes, bytes]) -> tuple[int, str, str] | None:
+        """(status, error, detail) for a request refused on its headers alone: a Host not allowed, or a
+        declared body over the limit; None to go on."""
         if "*" not in self.allowed_hosts and host_name(headers.get(b"host")) not in self.allowed_hosts:
-            await _send_error(send, 400, "BadRequest", "Host header not allowed (see --allowed-host)")
-            return
+            return 400, "BadRequest", "Host header not allowed (see --allowed-host)"
         declared = headers.get(b"content-length")
-        too_big = f"request body too large: at most {self.max_body_bytes} bytes"
-        if declared is not None:
-            try:
-                if int(declared) > self.max_body_bytes:
-                    await _send_error(send, 413, "PayloadTooLarge", too_big)
-                    return
-            except ValueError:
-                await _send_error(send, 400, "BadRequest", "invalid Content-Length header")
-                return
-        # read the whole (small) body first, so a chunked upload cannot exceed the limit either
+        if declared is None:
+            return None
+        try:
+            too_big = int(declared) > self.max_body_bytes
+        except ValueError:
+            return 400, "BadRequest", "invalid Content-Length header"
+        return (413, "PayloadTooLarge", self._too_big) if too_big else None
+
+    async def _read_body(self, receive) -> bytes | None:
+        """The request body, read up to one chunk past the limit (None when the client disconnects)."""
         chunks: list[bytes] = []
         size = 0
         more = True
         while more:
             message = await receive()
             if message["type"] == "http.disconnect":
-                return
+                return None
             chunk = message.get("body", b"")
             size += len(chunk)
-            if size > self.max_body_bytes:
-                await _send_error(send, 413, "PayloadTooLarge", too_big)
-                return
             chunks.append(chunk)
+            if size > self.max_body_bytes:
+                break
             more = message.get("more_body", False)
-        body = b"".join(chunks)
+        return b"".join(chunks)
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        refusal = self._refusal(dict(scope.get("headers") or []))
+        if refusal is not None:
+            await _send_error(send, *refusal)
+            return
+        # read the whole (small) body first, so a chunked upload cannot exceed the limit either
+        body = await self._read_body(receive)
+        if body is None:  # the client went away
+            return
+        if len(body) > self.max_body_bytes:
+            await _send_error(send, 413, "PayloadTooLarge", self._too_big)
+            return
         replayed = False
 
         async def replay():
