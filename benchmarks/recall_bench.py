@@ -13,7 +13,8 @@ masks, one thread, CPU time per query, the fastest of ``--repeat`` runs (``--wal
   faster), build times and memory per object (every array the engine holds).
 
     nice -n 10 python benchmarks/recall_bench.py --sizes 10000,100000,1000000 [--queries 200]
-    nice -n 10 python benchmarks/recall_bench.py --sizes 10000000 --queries 100 --sql-queries 3
+    nice -n 10 python benchmarks/recall_bench.py --sizes 10000000 --queries 20 --repeat 1 --sql-queries 0
+    (``--save``: the largest size's summary becomes the README row, ``benchmarks/results/recall_bench.json``)
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from kb.features import CATEGORICAL_FEATURES, CATEGORIES, NUMERIC_FEATURES  # noqa: E402
 from recall import search  # noqa: E402
@@ -150,7 +152,7 @@ def _index_bytes(snap) -> int:
     return int(index.nbytes)
 
 
-def run_size(n, args, rng):
+def run_size(n, args, rng, summaries):
     t = _clock()
     snap = synthetic_snapshot(n, rng)
     gen = _clock() - t
@@ -167,7 +169,8 @@ def run_size(n, args, rng):
     print(f"\n== {n:,} objects (generated in {gen:.1f} s; index build: jp {build_jp:.2f} s, jplog {build_log:.2f} s)")
     head = f"{'mask':<26} {'method':<18} {'p50':>8} {'p99':>8} {'max':>8}  {'scan32/engine p50':>17} {'p99':>6}"
     print(head)
-    bad = 0
+    bad, summary = 0, []
+    summaries.append((n, summary))
     for family in FAMILIES:
         queries = _queries(snap, rng, family, args.queries)
         times = {m: [] for m in ("engine jp", "engine jplog", "scan float32", "scan float64", "DuckDB macro")}
@@ -184,6 +187,8 @@ def run_size(n, args, rng):
                 brows, bdist = brute_force_top_k(snap.log_scaled, q.log_scaled(), K)
                 bad += not (np.array_equal(lrows, brows) and np.array_equal(ldist, bdist))
         scan50, scan99, _ = _stats(times["scan float32"])
+        jp50, jp99, _ = _stats(times["engine jp"])
+        summary.append((family[0], jp50, jp99, scan50 / jp50, scan99 / jp99))
         for method, samples in times.items():
             if not samples:
                 continue
@@ -221,6 +226,7 @@ def main() -> None:
     ap.add_argument("--wall", action="store_true", help="wall-clock time instead of CPU time")
     ap.add_argument("--repeat", type=int, default=3, help="runs per query, the fastest kept")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--save", action="store_true", help="save the largest size's summary as the README row")
     args = ap.parse_args()
     REPEAT = max(1, args.repeat)
     if args.wall:
@@ -233,7 +239,16 @@ def main() -> None:
         pass
     rng = np.random.default_rng(args.seed)
     print(f"exact top-{K}, one thread, {'wall-clock' if args.wall else 'CPU'} time in ms per query")
-    bad = sum(run_size(int(n), args, rng) for n in args.sizes.split(","))
+    summaries = []
+    bad = sum(run_size(int(n), args, rng, summaries) for n in args.sizes.split(","))
+    if args.save and summaries:
+        from saved import save_result
+
+        n, rows = summaries[-1]
+        text = "; ".join(f"{fam}: JP p50 {p50:.2f} ms, p99 {p99:.2f} ms ({r50:.0f}x / {r99:.0f}x the float32 scan)"
+                         for fam, p50, p99, r50, r99 in rows)  # fmt: skip
+        save_result("recall_bench", benchmark=f"recall, exact top-5, one thread, CPU time, {n:,} synthetic objects",
+                    result=text, order=10, data={"size": n, "rows": rows})  # fmt: skip
     if bad:
         print(f"{bad} answers differ from the brute force")
         sys.exit(1)
