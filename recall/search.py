@@ -159,8 +159,10 @@ class JPIndex:
         return CombinationIndex(self.cat_cols)
 
     def warm(self) -> JPIndex:
-        """Build the parts built on first use (cells, combinations) now."""
+        """Build the parts built on first use (cells, combinations) now, and run one query (NumPy's
+        first call of some routines imports modules: ~40 ms, not to be paid by the first description)."""
         _ = self.cells, self.combinations
+        self.plan_and_search(FeatureQuery.from_values({"a_cm": 10.0, "material": "wood"}), 1)
         return self
 
     @property
