@@ -25,7 +25,7 @@ from kb.features import FEATURES, NUMERIC_FEATURES
 from kb.kinds import singular, words_of
 from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
-from recall.names import _VARIANT_WORDS, GENERIC_NOUNS
+from recall.names import GENERIC_NOUNS, name_core
 from recall.openset import DescribedNoun, KindIndex, described_noun
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
@@ -103,16 +103,6 @@ normalize_words = words_of
 
 
 
-def name_core(name: str) -> tuple[str, ...]:
-    """The words of a catalog name without what tells variants apart: parentheses ("tennis ball (small)")
-    and trailing numbers or labels ("wood block 2", "cup no. 3", "box b"), so that its head noun is the
-    noun ("block", not "2") and the text "a wood block" names every numbered wood block."""
-    words = normalize_words(re.sub(r"\([^)]*\)|\[[^\]]*\]", " ", name)) or normalize_words(name)
-    while len(words) > 1 and (words[-1].isdigit() or len(words[-1]) == 1 or words[-1] in _VARIANT_WORDS):
-        words.pop()
-    return tuple(words)
-
-
 #: A name followed by one of these words only describes the object ("lemon-shaped", "pen-like").
 #: ("die-cast": made in a die, not a die).
 _AFTER_COMPARISON = frozenset(
@@ -132,13 +122,6 @@ def _comparison(words: list[str], start: int, end: int) -> bool:
     return (
         len(before) >= 2 and before[-2:] in (["size", "of"], ["size", "a"]) or before[-3:-1] == ["size", "of"]
     )
-
-
-def _head(words: tuple[str, ...]) -> str:
-    """The head noun of a name: the word before "of" ("bottle of water"), else the last word."""
-    if "of" in words[1:]:
-        return words[words.index("of", 1) - 1]
-    return words[-1]
 
 
 #: Words that end the subject noun phrase: function words, pronouns and the commonest verbs of a
@@ -225,14 +208,14 @@ class NameIndex:
         materials: Sequence[str | None] | None = None,
     ):
         from recall.lexicon import MATERIAL_WORDS
-        from recall.names import NameTables
+        from recall.names import name_tables
 
         # built column-wise (recall.names): phrases (words and core of every name and alias) -> rows;
         # generic names ("wood piece", "wooden block": only material words and generic nouns) -> their
         # material, describing any object of it (rows by material); head nouns and their suffixes ->
         # rows, and (head, row) -> the materials its names state ("wood cylinder" -> wood; None: some
         # name states none)
-        tables = NameTables(names, aliases, materials, self.MIN_SUFFIX)
+        tables = name_tables(names, aliases, materials, self.MIN_SUFFIX)
         self.phrases = tables.phrases
         self.generic = tables.generic
         self.by_material = tables.by_material

@@ -13,11 +13,13 @@ rows, ``get``). A test checks them against the name-by-name rules on real and ra
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
+from types import SimpleNamespace
 
 import numpy as np
-import pyarrow as pa
-import pyarrow.compute as pc
+
+from kb.kinds import words_of
 
 #: Nouns that say what kind of thing, not which thing: never unknown-noun evidence ("a plastic thing").
 GENERIC_NOUNS = frozenset(
@@ -31,7 +33,77 @@ GENERIC_NOUNS = frozenset(
 #: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
 _VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})
 
-__all__ = ["NameTables", "RowsByKey"]
+__all__ = ["COLUMNWISE_FROM", "NameTables", "RowsByKey", "name_core", "name_tables", "tables_by_rules"]
+
+#: Catalogs with at least this many names and aliases are built column-wise; smaller ones name by name
+#: (pyarrow's import alone, ~0.3 s, costs more than the rules on a few thousand names).
+COLUMNWISE_FROM = 20_000
+
+
+def name_core(name: str) -> tuple[str, ...]:
+    """The words of a catalog name without what tells variants apart: parentheses ("tennis ball (small)")
+    and trailing numbers or labels ("wood block 2", "cup no. 3", "box b"), so that its head noun is the
+    noun ("block", not "2") and the text "a wood block" names every numbered wood block."""
+    words = words_of(re.sub(r"\([^)]*\)|\[[^\]]*\]", " ", name)) or words_of(name)
+    while len(words) > 1 and (words[-1].isdigit() or len(words[-1]) == 1 or words[-1] in _VARIANT_WORDS):
+        words.pop()
+    return tuple(words)
+
+
+
+def _head(words: tuple[str, ...]) -> str:
+    """The head noun of a name: the word before "of" ("bottle of water"), else the last word."""
+    if "of" in words[1:]:
+        return words[words.index("of", 1) - 1]
+    return words[-1]
+
+
+
+def name_tables(names: Sequence[str], aliases: Sequence[Sequence[str]], materials, min_suffix: int):
+    """The tables of :class:`recall.engine.NameIndex`: column-wise from :data:`COLUMNWISE_FROM`
+    phrases, else by the rules one name at a time (the same tables; a test checks they are equal)."""
+    if len(names) + sum(len(a) for a in aliases) >= COLUMNWISE_FROM:
+        return NameTables(names, aliases, materials, min_suffix)
+    return tables_by_rules(names, aliases, materials, min_suffix)
+
+
+def tables_by_rules(names, aliases, materials, min_suffix: int) -> SimpleNamespace:
+    """The tables built one name at a time (``words_of``, :func:`name_core`, ``_head``): plain dicts."""
+    from recall.lexicon import MATERIAL_WORDS
+
+    generic, by_material, phrases, heads, head_materials = {}, {}, {}, {}, {}
+    for row, mat in enumerate(materials or ()):
+        if mat:
+            by_material.setdefault(mat, set()).add(row)
+    for row, (name, alias) in enumerate(zip(names, aliases, strict=True)):
+        for phrase in (name, *alias):
+            words = tuple(words_of(phrase))
+            if not words:
+                continue
+            core = name_core(phrase)
+            phrases.setdefault(words, set()).add(row)
+            phrases.setdefault(core, set()).add(row)  # "wood block 2" is a "wood block"
+            head = _head(core)
+            stated = {MATERIAL_WORDS[w] for w in core if w in MATERIAL_WORDS and w != head}
+            if (
+                len(stated) == 1
+                and head in GENERIC_NOUNS
+                and all(w in GENERIC_NOUNS or w in MATERIAL_WORDS or w == "of" for w in core)
+            ):
+                generic[core] = next(iter(stated))
+            for key in (head, *(head[cut:] for cut in range(1, len(head) - min_suffix + 1))):
+                heads.setdefault(key, set()).add(row)
+                known = head_materials.get((key, row), set())
+                head_materials[(key, row)] = None if known is None or not stated else known | stated
+    return SimpleNamespace(
+        phrases=phrases,
+        generic=generic,
+        by_material=by_material,
+        heads=heads,
+        head_materials=head_materials,
+        vocabulary=frozenset(w for p in phrases for w in p) | frozenset(heads),
+        longest=max((len(p) for p in phrases), default=0),
+    )
 
 _PARENS = r"\([^)]*\)|\[[^\]]*\]"
 _SEPARATORS = "[^a-z0-9]+"
@@ -121,6 +193,8 @@ class NameTables:
     """Phrases, generic phrases, head keys with their stated materials, vocabulary (see the module)."""
 
     def __init__(self, names: Sequence[str], aliases: Sequence[Sequence[str]], materials, min_suffix: int):
+        import pyarrow as pa
+
         texts, owners = list(names), list(range(len(names)))
         for row, alias in enumerate(aliases):
             texts.extend(alias)
@@ -196,7 +270,10 @@ class NameTables:
 class _Vocabulary:
     """The distinct words of the phrases: raw token -> singular word id, and per word id what it is."""
 
-    def __init__(self, words: pa.Array, core: pa.Array):
+    def __init__(self, words, core):
+        import pyarrow as pa
+        import pyarrow.compute as pc
+
         from kb.features import CATEGORIES
         from kb.kinds import singular as _singular
         from recall.lexicon import MATERIAL_WORDS
@@ -231,23 +308,27 @@ class _Vocabulary:
     def words(self, ids: np.ndarray) -> list[str]:
         return [self.singular[i] for i in ids.tolist()]
 
-    def join(self, ids: np.ndarray, par: np.ndarray, n: int) -> pa.Array:
+    def join(self, ids: np.ndarray, par: np.ndarray, n: int):
         """Per phrase, its words joined by spaces ("" when it has none)."""
+        import pyarrow as pa
+        import pyarrow.compute as pc
+
         offsets = pa.array(np.searchsorted(par, np.arange(n + 1)).astype(np.int64))
         lists = pa.LargeListArray.from_arrays(offsets, self.array.take(pa.array(ids)))
         return pc.binary_join(lists, pa.scalar(" ", type=pa.large_string()))
 
 
-def _encode(values: pa.Array) -> tuple[np.ndarray, list[str]]:
+def _encode(values) -> tuple[np.ndarray, list[str]]:
     """Distinct strings (hashing, no sort) and the index of each value among them."""
     enc = values.dictionary_encode()
     return np.asarray(enc.indices.to_numpy(zero_copy_only=False), dtype=np.int64), enc.dictionary.to_pylist()
 
 
-def _tokens(texts: list[str], strip_parens: bool) -> tuple[pa.Array, np.ndarray]:
+def _tokens(texts: list[str], strip_parens: bool):
     """Lower-case word tokens (apostrophes dropped) of each text, as flat words and their text's index
     (``recall.engine.normalize_words`` before the singular); non-ASCII texts go through Python."""
-    import re
+    import pyarrow as pa
+    import pyarrow.compute as pc
 
     from kb.kinds import _WORD  # the tokens of kb.kinds.words_of (letters of any script)
 

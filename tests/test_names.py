@@ -3,62 +3,40 @@
 from __future__ import annotations
 
 from pathlib import Path
+from types import SimpleNamespace
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from kb.csvio import read_catalog_csv
-from recall.engine import GENERIC_NOUNS, NameIndex, _head, name_core, normalize_words
-from recall.lexicon import MATERIAL_WORDS
+from recall.engine import NameIndex
+from recall.names import NameTables, tables_by_rules
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def reference(names, aliases, materials):
-    """The tables built one name at a time, by the rules (normalize_words, name_core, _head)."""
-    generic, by_material, phrases, heads, head_materials = {}, {}, {}, {}, {}
-    for row, mat in enumerate(materials):
-        if mat:
-            by_material.setdefault(mat, set()).add(row)
-    for row, (name, alias) in enumerate(zip(names, aliases, strict=True)):
-        for phrase in (name, *alias):
-            words = tuple(normalize_words(phrase))
-            core = name_core(phrase)
-            if not words:
-                continue
-            phrases.setdefault(words, set()).add(row)
-            phrases.setdefault(core, set()).add(row)
-            head = _head(core)
-            stated = {MATERIAL_WORDS[w] for w in core if w in MATERIAL_WORDS and w != head}
-            if (
-                len(stated) == 1
-                and head in GENERIC_NOUNS
-                and all(w in GENERIC_NOUNS or w in MATERIAL_WORDS or w == "of" for w in core)
-            ):
-                generic[core] = next(iter(stated))
-            for key in (head, *(head[cut:] for cut in range(1, len(head) - NameIndex.MIN_SUFFIX + 1))):
-                heads.setdefault(key, set()).add(row)
-                known = head_materials.get((key, row), set())
-                head_materials[(key, row)] = None if known is None or not stated else known | stated
-    vocabulary = frozenset(w for p in phrases for w in p) | frozenset(heads)
-    longest = max((len(p) for p in phrases), default=0)
-    return generic, by_material, phrases, heads, head_materials, vocabulary, longest
-
-
 def assert_same(names, aliases, materials):
-    index = NameIndex(names, aliases, materials)
-    generic, by_material, phrases, heads, head_materials, vocabulary, longest = reference(
-        names, aliases, materials
-    )
-    assert index.generic == generic
-    assert set(index.phrases) == set(phrases)
-    assert all(index.phrases[p] == rows for p, rows in phrases.items())
-    assert set(index.heads) == set(heads)
-    assert all(index.heads[h] == rows for h, rows in heads.items())
-    assert all(index.head_materials.get(key) == value for key, value in head_materials.items())
-    assert index.head_materials.get(("no such head", 0)) is None
-    assert all(index.by_material.get(m) == rows for m, rows in by_material.items())
-    assert index.vocabulary == vocabulary and index.longest == longest
+    """The column-wise tables equal the tables built by the rules, name by name."""
+    cols = NameTables(names, aliases, materials, NameIndex.MIN_SUFFIX)
+    rules = tables_by_rules(names, aliases, materials, NameIndex.MIN_SUFFIX)
+    assert cols.generic == rules.generic
+    assert set(cols.phrases) == set(rules.phrases)
+    assert all(cols.phrases[p] == rows for p, rows in rules.phrases.items())
+    assert set(cols.heads) == set(rules.heads)
+    assert all(cols.heads[h] == rows for h, rows in rules.heads.items())
+    assert all(cols.head_materials.get(key) == value for key, value in rules.head_materials.items())
+    assert cols.head_materials.get(("no such head", 0)) is None
+    assert all(cols.by_material.get(m) == rows for m, rows in rules.by_material.items())
+    assert cols.vocabulary == rules.vocabulary and cols.longest == rules.longest
+
+
+def test_small_catalogs_are_built_by_the_rules_large_ones_column_wise():
+    from recall.names import COLUMNWISE_FROM, name_tables
+
+    for n, kind in ((COLUMNWISE_FROM - 1, SimpleNamespace), (COLUMNWISE_FROM, NameTables)):
+        assert isinstance(name_tables([f"cup {i}" for i in range(n)], [()] * n, None, 4), kind)
+    index = NameIndex(["wood block 2", "tennis ball (small)"], [(), ("ball",)], ["wood", "rubber"])
+    assert list(index.find("a tennis ball").exact) == [1] and 0 in index.find("a wood block").head
 
 
 def test_the_real_catalogs_give_the_same_tables():
