@@ -39,3 +39,8 @@ def test_demo_runs_end_to_end(tmp_path, cli_env):
     grasp_line = next(line for line in lines if line.startswith("grasp: "))
     assert f"{steps['grasp']['trials']} trials" in grasp_line and f"{steps['grasp']['succeeded']} succeeded" in grasp_line
     assert not any("grasp trials" in line for line in lines) and "\r" not in proc.stderr  # no progress bar
+    # the closed-loop outcome counts every trial, stored before or run now
+    choice = steps["grasp"]["choice_summary"]
+    joined = " ".join(proc.stderr.split())
+    assert f"first choice holds for {choice['first_holds']} of {choice['objects']} objects" in joined
+    assert f"a validated grasp for {choice['validated']}" in joined

@@ -68,8 +68,9 @@ def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers
     names = list(dict.fromkeys(r["top"] for r in recalled if r["top"]))
     result.steps["grasp"] = g = _validate_grasps(kb, names, out_dir, workers, progress=console.is_terminal)
     console.print(f"grasp: {g.get('objects', 0)} objects, {g.get('trials', 0)} trials "
-                  f"({g.get('ran', 0)} run now, {g.get('skipped', 0)} stored before): {g.get('succeeded', 0)} "
-                  f"succeeded, {g.get('failed', 0)} failed, {g.get('errors', 0)} errors")
+                  f"({g.get('ran', 0)} run now: {g.get('succeeded', 0)} succeeded, {g.get('failed', 0)} failed, "
+                  f"{g.get('errors', 0)} errors; {g.get('skipped', 0)} stored before); "
+                  f"{_choice_line(g.get('choice_summary') or {})}")
 
     console.rule("[bold]5. report")
     report = result.steps["grasp"].get("report")
@@ -148,6 +149,12 @@ def _open_set_cell(res) -> str:
         kind = f"; closest {res.same_kind_as}: {res.same_kind[0].name}" if res.same_kind else ""
         return f"not in the catalog (no {res.described.noun}{kind})"
     return "yes" if res.open_set else "no"
+
+
+def _choice_line(c: dict[str, Any]) -> str:
+    """The closed-loop outcome over every trial, run now or stored before."""
+    return (f"first choice holds for {c.get('first_holds', 0)} of {c.get('objects', 0)} objects, "
+            f"a validated grasp for {c.get('validated', 0)}")
 
 
 def _validate_grasps(
