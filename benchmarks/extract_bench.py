@@ -10,12 +10,14 @@ Part 2: generated spec dumps (20,000 rows of weights and sizes, ~1-4 MB) that to
 extraction was bounded (:data:`scrapers.page.MAX_LINES`, :data:`scrapers.adapters.spec_table.MAX_PAIRS`):
 seconds per page, again against an lxml-only parse.
 
-Run: ``python benchmarks/extract_bench.py [--repeat N]``.
+Run: ``python benchmarks/extract_bench.py [--repeat N] [--save]`` (``--save``: the real dev pages' figures and the
+spec dumps' become the README row, ``benchmarks/results/extract_bench.json``).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import time
 from pathlib import Path
@@ -95,7 +97,7 @@ def _fmt_cell(cell) -> str:
     return f"{cell[0]}/{cell[1]}" if cell and cell[1] else "-"
 
 
-def _print_scores(name: str, s: dict, before: dict | None) -> None:
+def _print_scores(name: str, s: dict, before: str | None) -> None:
     stated = [s["dims"].get(k) for k in ("3", "2", "1")]
     right = sum(c[0] for c in stated if c)
     total = sum(c[1] for c in stated if c)
@@ -132,6 +134,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--blind", action="store_true", help="also score the blind split (done once, at the end)"
     )
+    parser.add_argument("--save", action="store_true", help="save the real dev pages' figures as the README row")
     args = parser.parse_args(argv)
 
     shared = default_pages_dir()
@@ -139,6 +142,7 @@ def main(argv: list[str] | None = None) -> None:
           "'none' = no value reported where the page states none")
     print(f"{'pages':16} {'n':>3} {'dims':>7} {'3 ax':>6} {'2 ax':>6} {'1 ax':>6} {'none':>6} "
           f"{'mass':>7} {'m none':>7} {'ms/page':>8} {'lxml ms':>7} {'ratio':>6}")
+    scores: dict[str, dict] = {}
     for batch, folder in (("batch1", shared), ("batch2", shared / "batch2")):
         pages = load_labels(folder)
         if not pages:
@@ -149,11 +153,43 @@ def main(argv: list[str] | None = None) -> None:
             if split == "blind" and not args.blind:
                 print(f"{batch + ' blind':16} {len(subset):3} (not scored: run with --blind once, at the end)")
                 continue
-            _print_scores(f"{batch} {split}", _score(subset, args.repeat), BEFORE.get(f"{batch} {split}"))
+            scores[f"{batch} {split}"] = _score(subset, args.repeat)
+            _print_scores(f"{batch} {split}", scores[f"{batch} {split}"], BEFORE.get(f"{batch} {split}"))
     print()
     _print_other_folders(extract_page, judge, load_labels, package_matches, args.repeat)
     print()
-    _print_spec_dumps(extract_page, args.repeat)
+    dumps = _print_spec_dumps(extract_page, args.repeat)
+    if args.save:
+        _save({k: v for k, v in scores.items() if k.endswith(" dev")}, dumps)
+
+
+def _save(dev: dict[str, dict], dumps: dict[str, float]) -> None:
+    """The README row: extraction ms per real dev page against lxml alone, dims/mass right, spec dumps."""
+    from saved import save_result
+
+    if not dev:
+        print("not saved: the real pages are absent (set OBJRECALL_STOREFRONT_PAGES)")
+        return
+    n = sum(s["n"] for s in dev.values())
+    ms, lxml_ms = sum(s["ms"] for s in dev.values()), sum(s["lxml"] for s in dev.values())
+    stated = [c for s in dev.values() for k, c in s["dims"].items() if k != "none"]
+    dims = [sum(c[0] for c in stated), sum(c[1] for c in stated)]
+    mass = [sum(s["mass"][0] for s in dev.values()), sum(s["mass"][1] for s in dev.values())]
+    load = os.getloadavg()[0]
+    result = (
+        f"real pages (dev split, {n} pages of both batches): {ms / n:.0f} ms per page, {ms / lxml_ms:.1f}× an lxml "
+        f"parse alone; dims right {dims[0]}/{dims[1]}, mass {mass[0]}/{mass[1]} (within 2 %); a 20 000-row "
+        f"generated spec dump {min(dumps.values()):.1f}–{max(dumps.values()):.1f} s; 2 shared cores, load {load:.0f}"
+    )
+    data = {
+        "pages": n, "ms_per_page": round(ms / n, 1), "lxml_ms_per_page": round(lxml_ms / n, 1),
+        "ratio_to_lxml": round(ms / lxml_ms, 2), "dims_right": dims, "mass_right": mass,
+        "by_split": {k: {"n": s["n"], "ms_per_page": round(s["ms"] / max(s["n"], 1), 1), "dims": s["dims"],
+                         "mass": s["mass"], "mass_none": s["mass_none"]} for k, s in dev.items()},
+        "spec_dump_s": {k: round(v, 2) for k, v in dumps.items()}, "load_average": round(load, 1),
+    }  # fmt: skip
+    path = save_result("extract_bench", benchmark="extraction, real pages", result=result, data=data, order=30)
+    print(f"saved {path}")
 
 
 def _print_other_folders(extract_page, judge, load_labels, package_matches, repeat: int) -> None:
@@ -188,8 +224,11 @@ def _print_other_folders(extract_page, judge, load_labels, package_matches, repe
         )
 
 
-def _print_spec_dumps(extract_page, repeat: int) -> None:
+def _print_spec_dumps(extract_page, repeat: int) -> dict[str, float]:
+    """Seconds to extract each 20,000-row spec dump (printed against an lxml-only parse); returned by kind."""
     import lxml.html
+
+    seconds = {}
 
     print(f"{'spec dump':24} {'MB':>5} {'extract s':>10} {'lxml s':>7} {'ratio':>6}  dims / mass")
     for kind in ("weights", "sizes"):
@@ -197,10 +236,12 @@ def _print_spec_dumps(extract_page, repeat: int) -> None:
         record = extract_page(body, "https://shop.example.de/liste", "text/html")
         s = _median_s(lambda b=body: extract_page(b, "https://shop.example.de/liste", "text/html"), repeat)
         b = _median_s(lambda b=body: lxml.html.document_fromstring(b), repeat)
+        seconds[kind] = s
         print(
             f"{'20,000 rows of ' + kind:24} {len(body) / 1e6:5.1f} {s:10.2f} {b:7.2f} {s / b:6.2f}  "
             f"{record.dims_cm} / {record.mass_g}"
         )
+    return seconds
 
 
 if __name__ == "__main__":

@@ -12,12 +12,14 @@ catalog, cold (every page new) and warm (a second run: 304s). Baseline measured 
 URLs fetched by a bare ``requests.Session`` (no robots.txt, no extraction, no database). The slow, flaky
 and huge demo pages are left out of this part (they measure timeouts, not throughput).
 
-Run: ``python benchmarks/ingest_bench.py [--repeat N] [--runs N] [--skip-extraction] [--skip-end-to-end]``.
+Run: ``python benchmarks/ingest_bench.py [--repeat N] [--runs N] [--skip-extraction] [--skip-end-to-end] [--save]``
+(``--save``: the end-to-end figures become the README row, ``benchmarks/results/ingest_bench.json``).
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
 import time
 from pathlib import Path
@@ -176,11 +178,32 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--runs", type=int, default=3, help="end-to-end runs (median reported)")
     parser.add_argument("--skip-extraction", action="store_true", help="only the end-to-end part")
     parser.add_argument("--skip-end-to-end", action="store_true", help="only the extraction part")
+    parser.add_argument("--save", action="store_true", help="save the end-to-end figures as the README row")
     args = parser.parse_args(argv)
     if not args.skip_extraction:
         bench_extraction(args.pages, args.repeat)
     if not args.skip_end_to_end:
-        bench_end_to_end(args.runs)
+        result = bench_end_to_end(args.runs)
+        if args.save:
+            _save(result, args.runs)
+
+
+def _save(result: dict[str, Any], runs: int) -> None:
+    """The README row: pages/s cold and warm against bare fetching, and the write transaction."""
+    from saved import save_result
+
+    load = os.getloadavg()[0]
+    text = (
+        f"demo store (data written here), {result['pages']} pages, median of {runs} runs: "
+        f"{result['cold_pages_per_s']:.0f} pages/s first run ({result['cold_ratio']:.2f}× bare fetching at "
+        f"{result['bare_fetch_pages_per_s']:.0f} pages/s), {result['warm_pages_per_s']:.0f} pages/s all-304 rerun "
+        f"({result['warm_ratio']:.2f}×); write transaction {result['write_ms'] / 1000:.2f} s; "
+        f"2 shared cores, load {load:.0f}"
+    )
+    data = {k: (round(v, 3) if isinstance(v, float) else v) for k, v in result.items()}
+    data.update(runs=runs, load_average=round(load, 1))
+    path = save_result("ingest_bench", benchmark="ingestion, demo store, delay 0", result=text, data=data, order=40)
+    print(f"saved {path}")
 
 
 if __name__ == "__main__":

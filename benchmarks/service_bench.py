@@ -1,7 +1,8 @@
 """Knowledge-service benchmark: recall requests per second and latency percentiles over HTTP on loopback,
 with and without a concurrent ingestion.
 
-Run: ``python benchmarks/service_bench.py [--requests 300] [--clients 4] [--quick]``. It seeds a temporary
+Run: ``python benchmarks/service_bench.py [--requests 300] [--clients 4] [--quick] [--save]`` (``--save``: the
+figures become the README row, ``benchmarks/results/service_bench.json``). It seeds a temporary
 catalog, serves it with a real ``objrecall serve`` on a free 127.0.0.1 port, and sends recall requests
 (descriptions from the development set) from ``--clients`` threads:
 
@@ -135,6 +136,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--clients", type=int, default=4, help="concurrent HTTP clients")
     parser.add_argument("--quick", action="store_true", help="60 requests per phase")
     parser.add_argument("--json", action="store_true", help="print the results as JSON")
+    parser.add_argument("--save", action="store_true", help="save the figures as the README row")
     args = parser.parse_args(argv)
     n = 60 if args.quick else max(10, args.requests)
     texts = descriptions(n)
@@ -174,6 +176,8 @@ def main(argv: list[str] | None = None) -> int:
         "ingesting_rps_vs_idle": busy["rps"] / idle["rps"],
         "ingesting_p99_vs_idle": busy["p99_ms"] / idle["p99_ms"],
     }
+    if args.save:
+        _save(results, ratios, n, args.clients)
     if args.json:
         print(json.dumps({"clients": args.clients, "results": results, "ratios": ratios}))
         return 0
@@ -190,6 +194,25 @@ def main(argv: list[str] | None = None) -> int:
     for key, value in ratios.items():
         print(f"{key:28} {value:8.2f}x")
     return 1 if idle["errors"] or busy["errors"] else 0
+
+
+def _save(results: list[dict[str, Any]], ratios: dict[str, float], n: int, clients: int) -> None:
+    """The README row: HTTP recall req/s and p99, idle and during an ingestion, against in-process recall."""
+    from saved import save_result
+
+    baseline, idle, busy = results
+    load = os.getloadavg()[0]
+    text = (
+        f"seed catalog, demo store ingestion (data written here), {n} requests per phase, {clients} clients: "
+        f"HTTP recall {idle['rps']:.0f} req/s idle (p99 {idle['p99_ms']:.0f} ms; {ratios['idle_rps_vs_in_process']:.2f}× "
+        f"in-process recall at {baseline['rps']:.0f}/s), {busy['rps']:.0f} req/s during an ingestion "
+        f"(p99 {busy['p99_ms']:.0f} ms, {busy['ingestion_runs']} ingestion run{'s' * (busy['ingestion_runs'] != 1)}, "
+        f"{busy['ingestion_failures']} failed); "
+        f"{idle['errors'] + busy['errors']} errors; 2 shared cores, load {load:.0f}"
+    )
+    data = {"requests_per_phase": n, "clients": clients, "results": results, "ratios": ratios,
+            "load_average": round(load, 1)}  # fmt: skip
+    print(f"saved {save_result('service_bench', benchmark='service', result=text, data=data, order=70)}")
 
 
 if __name__ == "__main__":
