@@ -144,8 +144,13 @@ def _rate_table(rates: list[dict[str, Any]], key: str, label: str) -> str:
     )
 
 
+def _outcome_class(r: dict[str, Any]) -> str:
+    """The CSS class of a trial's outcome: an unknown outcome is shown as a failure."""
+    return r["outcome"] if r["outcome"] in ("success", "failure", "error") else "failure"
+
+
 def _row_html(r: dict[str, Any]) -> str:
-    outcome = r["outcome"] if r["outcome"] in ("success", "failure", "error") else "failure"
+    outcome = _outcome_class(r)
     return (
         f"<tr><td>{_e(r.get('object_name'))}</td><td class='num'>{_e(r.get('rank'))}</td>"
         f"<td>{_e(r.get('grasp_type'))}</td><td>{_e(r.get('family'))}</td><td class='num'>{_e(r.get('seed'))}</td>"
@@ -184,7 +189,7 @@ def _figure(r: dict[str, Any], out_dir: Path, label: str) -> str:
         pic = f"<img src='images/{_e(image)}' alt='{_e(name)}: {_e(r.get('grasp_type'))}' loading='lazy'>"
     else:
         pic = "<div class='noimg'>no image rendered</div>"
-    outcome = r["outcome"] if r["outcome"] in ("success", "failure", "error") else "failure"
+    outcome = _outcome_class(r)
     return (
         f"<figure>{pic}<figcaption><b>{_e(name)}</b>: {_e(label)}<br>{_e(r.get('grasp_type'))} "
         f"({_e(r.get('family'))}; {_e(r.get('program'))} program): <span class='{outcome}'>"
