@@ -14,6 +14,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -26,7 +27,6 @@ import httpx
 import pytest
 
 from kb.service.http import serve_subprocess
-from kb.service.http.process import stop_process
 
 pytestmark = pytest.mark.slow
 
@@ -73,16 +73,53 @@ def site(tmp_path_factory):
         yield base
 
 
+def _stop_browser(proc: subprocess.Popen, grace: float = 10.0) -> None:
+    """Stop Chromium and every helper process it forked (they share its session and go on writing
+    into the profile directory after the browser itself exits, which made the profile's removal fail).
+    """
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(proc.pid, sig)
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            proc.wait(timeout=grace)
+        deadline = time.monotonic() + grace
+        while time.monotonic() < deadline and _group_alive(proc.pid):
+            time.sleep(0.1)
+        if not _group_alive(proc.pid):
+            return
+
+
+def _group_alive(pgid: int) -> bool:
+    """Whether any process of the group still runs (zombies waiting for a reaper do not count)."""
+    for status in Path("/proc").glob("[0-9]*/stat"):
+        with contextlib.suppress(OSError):
+            fields = status.read_text().rsplit(")", 1)[1].split()
+            if int(fields[2]) == pgid and fields[0] != "Z":  # fields: state, ppid, pgrp
+                return True
+    return False
+
+
+@contextlib.contextmanager
+def _profile_dir(prefix: str) -> Iterator[str]:
+    # a crashed helper may leave a lock file behind; the directory is scratch either way
+    with tempfile.TemporaryDirectory(prefix=prefix, ignore_cleanup_errors=True) as profile:
+        yield profile
+
+
 def dump_dom(url: str) -> str:
     """The page's DOM after its scripts ran (virtual time lets the fetches finish first)."""
-    with tempfile.TemporaryDirectory(prefix="objrecall-chromium-") as profile:
-        r = subprocess.run(
+    with _profile_dir("objrecall-chromium-") as profile:
+        proc = subprocess.Popen(
             [CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--virtual-time-budget=20000",
              "--dump-dom", url],
-            capture_output=True, text=True, timeout=180,
+            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
         )  # fmt: skip
-    assert r.returncode == 0, r.stderr[-2000:]
-    return r.stdout
+        try:
+            out, err = proc.communicate(timeout=180)
+        finally:
+            _stop_browser(proc)
+    assert proc.returncode == 0, err[-2000:]
+    return out
 
 
 @needs_chromium
@@ -130,13 +167,13 @@ def _cdp_browser(profile: str) -> tuple[subprocess.Popen, str]:
     proc = subprocess.Popen(
         [CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}", "--remote-debugging-port=0",
          "--remote-allow-origins=*", "about:blank"],
-        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
     )  # fmt: skip
     port_file = Path(profile) / "DevToolsActivePort"
     deadline = time.monotonic() + 60
     while not port_file.exists() or not port_file.read_text().strip():
         if time.monotonic() > deadline or proc.poll() is not None:
-            proc.kill()
+            _stop_browser(proc)
             pytest.fail("chromium did not open its DevTools port")
         time.sleep(0.1)
     port = int(port_file.read_text().split()[0])
@@ -183,7 +220,7 @@ def browser_at(url: str) -> Iterator[DevTools]:
     sync_client = pytest.importorskip(
         "websockets.sync.client", reason="the websockets package drives Chromium"
     )
-    with tempfile.TemporaryDirectory(prefix="objrecall-cdp-") as profile:
+    with _profile_dir("objrecall-cdp-") as profile:
         proc, ws_url = _cdp_browser(profile)
         try:
             with sync_client.connect(ws_url, max_size=None) as ws:
@@ -193,7 +230,7 @@ def browser_at(url: str) -> Iterator[DevTools]:
                 tools.wait_for("document.body && document.body.dataset.ready === 'true'")
                 yield tools
         finally:
-            stop_process(proc)
+            _stop_browser(proc)
 
 
 @needs_chromium
