@@ -24,7 +24,7 @@ def _words(kind: str, text: str) -> dict[str, str]:
 KIND_WORDS: dict[str, str] = {
     **_words(
         "length",
-        "length len long länge laenge longueur longitud largo lunghezza comprimento długość dlugosc dĺžka "
+        "length len long boy boyu länge laenge longueur longitud largo lunghezza comprimento długość dlugosc dĺžka "
         "délka длина довжина lengte längd længde lengde uzunluk uzunluğu lungime pituus hossz hosszúság μήκος panjang garums ilgis pikkus dolžina dužina duljina дължина אורך الطول طول",
     ),
     **_words(
@@ -93,7 +93,7 @@ QUALIFIERS = {
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
-        "ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
+        "starting at from per piece each pro stück je unit pièce unidad adet ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
         "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "
         " l b h w d t x х"
     ).split()
@@ -236,3 +236,33 @@ CAPACITY_WORDS = {
     ).split()
 }
 CJK_CAPACITY = ("容量", "耐荷重", "最大", "容积", "承重", "용량")
+
+
+#: Package words that name shipping rather than the product in its box (gross weight, the parcel sent):
+#: whole words, and stems found inside compounds and CJK labels (``Versandgewicht``, ``発送重量``, ``毛重``).
+SHIPPING_WORDS = {
+    fold(w)
+    for w in "shipping shipment ship gross brutto bruto lordo brut kargo kargolu gönderi parcel envío envio "
+    "spedizione expédition expedition versand frakt przesyłki wysyłki zásilky доставки посылки отправления".split()
+}
+SHIPPING_STEMS = tuple(fold(w) for w in "versand verzend frakt brutto 発送 配送 出荷 毛重 shipping".split())
+#: Whole labels of one short word that is a qualifier elsewhere: Turkish ``En`` (width), ``Eni``.
+SHORT_LABELS = {"en": "width", "eni": "width"}
+#: Words naming the product's own main body: an unknown word beside them names the object whose body it is
+#: (``Body of lamp width``, ``Lamp body width``, ``Depth of fitting from wall``).
+BODY_WORDS = {
+    fold(w)
+    for w in "body fitting corps cuerpo corpo korpus gövde gövdesi gehäuse gehause kompletter".split()
+}
+#: Words naming a part of a product: a label with one names that part's extent or weight (``Cable length``,
+#: ``Lid diameter``, ``Stand height``, ``Wall bracket width``), never the product's.
+PART_WORDS = {
+    fold(w)
+    for w in (
+        "cable cord hose lid cap handle stand base bracket bracked bulb blade strap chain battery seat "
+        "leg arm armrest screen display drawer shelf door opening inner interior pipe tube wire plug "
+        "cushion mattress pillow heel sole shaft spout nozzle filter bowl cup glass jar tray basket wheel "
+        "kabel schlauch deckel griff fuß sockel akku câble couvercle poignée pied cable tapa asa pie "
+        "cavo coperchio manico piede kablo kapak sap ayak kordon"
+    ).split()
+}

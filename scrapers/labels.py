@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 from scrapers.label_vocabulary import (
+    BODY_WORDS,
     CAPACITY_WORDS,
     CJK_CAPACITY,
     CJK_LABELS,
@@ -34,7 +35,11 @@ from scrapers.label_vocabulary import (
     NEGATIONS,
     OVERALL,
     PACKAGE_WORDS,
+    PART_WORDS,
     QUALIFIERS,
+    SHIPPING_STEMS,
+    SHIPPING_WORDS,
+    SHORT_LABELS,
     fold,
 )
 from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
@@ -75,6 +80,11 @@ class LabelInfo:
     #: ``Cable length``, ``Battery Weight``, ``Schlauchlänge``) or "capacity" (a capacity or rating:
     #: ``Fassungsvermögen 8 kg``, ``Max Height``, ``容量``) from :func:`classify_other`.
     role: str = "product"
+    #: A package value that is the shipment's (``Shipping Weight``, ``Bruttogewicht``, ``発送重量``: the
+    #: parcel sent, gross) rather than the product in its own box; kept apart from package values.
+    shipping: bool = False
+    #: For a component's label, the part it names (``cable`` of ``Cable length``), else None.
+    part: str | None = None
 
 
 #: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
@@ -123,20 +133,23 @@ def _classify(label: object) -> LabelInfo | None:
     original = text
     text = text.rstrip(" :：-–—=").strip()
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
-    text = _ORDER_HINT.sub(" ", text)
+    text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
     folded = fold(text)
     squashed = re.sub(r"[\W_]+", "", folded)
     if squashed in CJK_LABELS:
         kind, package = CJK_LABELS[squashed]
-        return LabelInfo(kind, package, unit)
+        return LabelInfo(kind, package, unit, shipping=_ships(package, [squashed]))
     if any(_is_cjk(ch) for ch in squashed):
         return _classify_cjk(squashed, unit)
     words = [w for w in re.split(r"[\W_]+", folded) if w]
     if not words or len(words) > _MAX_WORDS:
         return None
+    if len(words) == 1 and words[0] in SHORT_LABELS:
+        return LabelInfo(SHORT_LABELS[words[0]], False, unit)  # Turkish "En: 30 cm"
     kinds: list[str] = []
     package = False
     negated = False
+    unknown: list[str] = []
     for word in words:
         if word in KIND_WORDS:
             kinds.append(KIND_WORDS[word])
@@ -151,10 +164,13 @@ def _classify(label: object) -> LabelInfo | None:
         else:
             compound = _split_compound(word)
             if compound is None:
-                return None
+                unknown.append(word)
+                continue
             kind, is_package = compound
             kinds.append(kind)
             package = package or (is_package and not negated)
+    if unknown and not _names_the_body(words, unknown):
+        return None
     if not kinds:
         if set(words) <= OVERALL:
             return LabelInfo("size", package, unit)  # Wayfair's "Overall: 15.5'' H x 12'' W x 12'' D"
@@ -163,14 +179,36 @@ def _classify(label: object) -> LabelInfo | None:
     # only when no axis or dimension word is present.
     if len({k for k in kinds if k in AXES}) >= 2:
         # "Width x Height x Depth", "Largo x Ancho x Alto"
-        return LabelInfo("dimensions", package, unit, _order_of(original, kinds))
+        return LabelInfo("dimensions", package, unit, _order_of(original, kinds), shipping=_ships(package, words))
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:
-                return LabelInfo("dimensions", package, unit)  # "Weight & Dimensions"
+                return LabelInfo("dimensions", package, unit, shipping=_ships(package, words))  # "Weight & Dimensions"
             order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
-            return LabelInfo(kind, package, unit, order)
+            return LabelInfo(kind, package, unit, order, shipping=_ships(package, words))
     return None
+
+
+#: Directions that do not change what a label measures: a wall light's "Depth of fitting from wall".
+_FROM_WALL = re.compile(r"\b(?:from|to|off)\s+(?:the\s+)?(?:wall|ceiling)\b", re.IGNORECASE)
+
+
+def _names_the_body(words: list[str], unknown: list[str]) -> bool:
+    """Whether a label's unknown words only name the object whose main body it measures: a body word
+    (``body``, ``fitting``, ``Gehäuse``...) is present, no unknown word is a part word, and at most two
+    are unknown (``Body of lamp width``, ``Lamp body width``)."""
+    return (
+        any(w in BODY_WORDS for w in words)
+        and len(unknown) <= 2
+        and all(w.isalpha() and w not in PART_WORDS for w in unknown)
+    )
+
+
+def _ships(package: bool, words: list[str]) -> bool:
+    """Whether a package label names the shipment (gross, the parcel) rather than the product's box."""
+    if not package:
+        return False
+    return any(w in SHIPPING_WORDS or any(stem in w for stem in SHIPPING_STEMS) for w in words)
 
 
 
@@ -208,11 +246,10 @@ def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
         i += n
     if not kinds:
         return None
+    shipping = _ships(package, [squashed])
     if len({k for k in kinds if k in AXES}) >= 2 or "dimensions" in kinds:
-        return LabelInfo("dimensions", package, unit)
-    return LabelInfo(kinds[0], package, unit)
-
-
+        return LabelInfo("dimensions", package, unit, shipping=shipping)
+    return LabelInfo(kinds[0], package, unit, shipping=shipping)
 
 
 @lru_cache(maxsize=16384)
@@ -238,7 +275,9 @@ def classify_other(label: object) -> LabelInfo | None:
             kind = kinds[0] if kinds else "weight"
             return LabelInfo("dimensions" if kind == "size" else kind, role="capacity")
         if kinds:
-            return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component")
+            part = " ".join(w for w in words if w not in KIND_WORDS and w not in QUALIFIERS and not _compound_kind(w))
+            part = part or next((w[: -len(s)] for w in words for s in COMPOUND_SUFFIXES if w.endswith(s)), "")
+            return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component", part=part or None)
     except Exception:  # noqa: BLE001 - a label we cannot read is no measurement
         return None
     return None
