@@ -152,6 +152,7 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
     score = 1.0 - 0.2 * rank
     capacity = side_force_capacity(grasp_type)
     force = _planned_force(ctx, rationale)
+    needed = force
     force_ok = force <= capacity
     if not force_ok:
         score *= 0.4
@@ -173,6 +174,7 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
             "friction": o.friction,
             "safety_factor": SAFETY_FACTOR.get(o.fragility, 2.4),
             "required_force_n": ctx.base_force,
+            "needed_force_n": needed,
             "force_within_capacity": force_ok,
             "feasible": ctx.feasible,
             "two_hands": not ctx.feasible,

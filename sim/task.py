@@ -14,7 +14,7 @@ import importlib
 import json
 import re
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -24,7 +24,8 @@ from kb.features import ObjectRecord
 from sim.grasps import GraspPlan
 from sim.planner import PLANNER_VERSION
 
-__all__ = ["DEFAULT_RENDER", "DEFAULT_TRIAL", "Trial", "TrialTask", "current_hand_version", "image_name", "run_task"]
+__all__ = [
+    "row_details","DEFAULT_RENDER", "DEFAULT_TRIAL", "Trial", "TrialTask", "current_hand_version", "image_name", "run_task"]
 
 #: The trial function, as "module:function", resolved inside each worker process.
 DEFAULT_TRIAL = "sim.trial:run_trial"
@@ -154,3 +155,15 @@ def run_task(task: TrialTask) -> dict[str, Any]:
             details["image_error"] = f"{type(err).__name__}: {err}"
     row["details"] = json.dumps(details, default=str)
     return row
+
+
+def row_details(row: Mapping[str, Any]) -> dict[str, Any]:
+    """The ``details`` JSON of a stored grasp-validation row as a dict ({} when absent or malformed)."""
+    raw = row.get("details")
+    if isinstance(raw, Mapping):
+        return dict(raw)
+    try:
+        out = json.loads(raw) if raw else {}
+    except (TypeError, ValueError):
+        return {}
+    return out if isinstance(out, dict) else {}

@@ -29,7 +29,6 @@ from kb.features import ObjectRecord
 from sim.choice import ChoiceSummary, GraspChoice, choose, summarize_choices
 from sim.executors import Executor, make_executor
 from sim.planner import plan_grasps
-from sim.report import row_details as _details
 from sim.task import (
     DEFAULT_RENDER,
     DEFAULT_TRIAL,
@@ -39,6 +38,7 @@ from sim.task import (
     image_name,
     run_task,
 )
+from sim.task import row_details as _details
 
 __all__ = [
     "DEFAULT_TOP",
