@@ -25,7 +25,7 @@ from kb.features import FEATURES, NUMERIC_FEATURES
 from kb.kinds import singular, words_of
 from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
-from recall.names import GENERIC_NOUNS, name_core
+from recall.names import GENERIC_NOUNS, MIN_SUFFIX, name_core
 from recall.openset import DescribedNoun, KindIndex, described_noun
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
@@ -199,23 +199,25 @@ class NameIndex:
     names."""
 
     #: Shortest head noun matched as the end of a compound ("spoon" in "teaspoon").
-    MIN_SUFFIX = 4
+    MIN_SUFFIX = MIN_SUFFIX
 
     def __init__(
         self,
         names: Sequence[str],
         aliases: Sequence[Sequence[str]],
         materials: Sequence[str | None] | None = None,
+        tables: Any = None,
     ):
         from recall.lexicon import MATERIAL_WORDS
         from recall.names import name_tables
 
-        # built column-wise (recall.names): phrases (words and core of every name and alias) -> rows;
-        # generic names ("wood piece", "wooden block": only material words and generic nouns) -> their
-        # material, describing any object of it (rows by material); head nouns and their suffixes ->
-        # rows, and (head, row) -> the materials its names state ("wood cylinder" -> wood; None: some
-        # name states none)
-        tables = name_tables(names, aliases, materials, self.MIN_SUFFIX)
+        # built column-wise (recall.names; or read back by recall.stored_index): phrases (words and core
+        # of every name and alias) -> rows; generic names ("wood piece", "wooden block": only material
+        # words and generic nouns) -> their material, describing any object of it (rows by material);
+        # head nouns and their suffixes -> rows, and (head, row) -> the materials its names state
+        # ("wood cylinder" -> wood; None: some name states none)
+        if tables is None:
+            tables = name_tables(names, aliases, materials, self.MIN_SUFFIX)
         self.phrases = tables.phrases
         self.generic = tables.generic
         self.by_material = tables.by_material
@@ -488,22 +490,30 @@ class Recaller:
     """Recall objects from one catalog snapshot. Build with :meth:`from_db`, :meth:`from_csv`,
     :meth:`from_records` or from a snapshot. Thread-safe for reading."""
 
-    def __init__(self, snapshot: CatalogSnapshot):
+    def __init__(self, snapshot: CatalogSnapshot, name_tables: Any = None):
+        """``name_tables``: the snapshot's name tables when already built (:mod:`recall.stored_index`)."""
         if len(snapshot) == 0:
             raise RecallError("the catalog is empty: import objects first (objrecall catalog import)")
         self.snapshot = snapshot
-        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+        from recall.stored_index import build_tables
 
-        codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
-        materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
-        self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
+        tables = build_tables(snapshot) if name_tables is None else name_tables
+        self.names = NameIndex(snapshot.names, snapshot.aliases, tables=tables)
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._geometry: ShapeGeometry | None = None
         self._kdtrees: dict = {}
 
     @classmethod
     def from_db(cls, db: str | Path) -> Recaller:
-        return cls(load_snapshot(db))
+        """A recaller over the catalog at ``db``, its index reloaded from beside the catalog when the
+        catalog has not changed since it was stored (:func:`recall.stored_index.load_index`)."""
+        from recall.stored_index import load_index
+
+        path = Path(db)
+        if not path.exists() or path.suffix.lower() == ".csv":
+            return cls(load_snapshot(path))  # the snapshot's own error, or a catalog CSV
+        index = load_index(path)
+        return cls(index.snapshot, index.tables)
 
     @classmethod
     def from_csv(cls, path: str | Path) -> Recaller:
