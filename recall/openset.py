@@ -16,7 +16,24 @@ from dataclasses import dataclass
 
 from kb.kinds import ROOT, Noun, ancestors, kind_of_name, noun_in, words_of
 
-__all__ = ["DescribedNoun", "KindIndex", "described_noun"]
+__all__ = [
+    "OPEN_SET_NAMED_THRESHOLD",
+    "OPEN_SET_THRESHOLD",
+    "OPEN_SET_UNKNOWN_NOUN_THRESHOLD",
+    "DescribedNoun",
+    "KindIndex",
+    "described_noun",
+    "is_open_set",
+]
+
+#: Open set: the best match's closeness (mean relative error over the stated features, see
+#: :func:`recall.metrics.relative_errors`) above this means "not a close match" ...
+OPEN_SET_THRESHOLD = 0.30
+#: ... above this when the description names the match by a whole name or alias (a name is evidence) ...
+OPEN_SET_NAMED_THRESHOLD = 0.45
+#: ... and above this when the subject of the description is a noun the catalog does not know ("an
+#: orange", "a watermelon"): an unknown noun alone is not enough (synonyms), with a loose match it is.
+OPEN_SET_UNKNOWN_NOUN_THRESHOLD = 0.15
 
 
 @dataclass(frozen=True)
@@ -93,3 +110,16 @@ def described_noun(
         for words in (noun.words, english)
     )
     return DescribedNoun(noun.text, noun.kind, noun.english, known)
+
+
+def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) -> bool:
+    """The open-set rule (RECALL.md): the best match is not a close match when its closeness (mean
+    relative error) exceeds :data:`OPEN_SET_THRESHOLD`, :data:`OPEN_SET_NAMED_THRESHOLD` when the text
+    names it exactly, or :data:`OPEN_SET_UNKNOWN_NOUN_THRESHOLD` when the subject is an unknown noun."""
+    if closeness is None:
+        return False
+    if named:
+        return closeness > OPEN_SET_NAMED_THRESHOLD
+    if unknown_noun is not None:
+        return closeness > OPEN_SET_UNKNOWN_NOUN_THRESHOLD
+    return closeness > OPEN_SET_THRESHOLD

@@ -41,6 +41,7 @@ from scrapers.normalize import (
 )
 from scrapers.page import MAX_LINES, Page
 from scrapers.records import ProductRecord
+from scrapers.trail import category_trail
 
 __all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "extract_page", "fuse"]
 
@@ -87,7 +88,10 @@ def extract_page(body: str | bytes, url: str, content_type: str | None = None) -
             observations.append(
                 Observation("warning", f"page has over {MAX_LINES} text lines; only the first were read")
             )
-        return fuse(observations, str(url or ""))
+        record = fuse(observations, str(url or ""))
+        trail = category_trail(page)
+        record.breadcrumbs, record.categories = trail.breadcrumbs, trail.categories
+        return record
     except ExtractionError:
         raise
     except Exception as err:  # noqa: BLE001 - the contract: ExtractionError or a record, never a crash

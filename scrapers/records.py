@@ -39,6 +39,10 @@ class ProductRecord:
     adapter: str | None = None
     warnings: list[str] = field(default_factory=list)
     raw: dict[str, str] = field(default_factory=dict)
+    #: The page's category trail (:mod:`scrapers.trail`): breadcrumbs and JSON-LD ``category`` texts,
+    #: which name the object's kind when its title does not (``kb.kinds.assign_kind``).
+    breadcrumbs: tuple[str, ...] = ()
+    categories: tuple[str, ...] = ()
     #: Every dims and mass value the adapters proposed, with its role, adapter, rank, page text and what
     #: the chooser decided about it (``objrecall extract --json --explain``).
     candidates: list[dict[str, Any]] = field(default_factory=list, repr=False, compare=False)
