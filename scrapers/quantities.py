@@ -14,15 +14,13 @@ import re
 from kb.measures.numbers import DECIMAL_COMMA_LANGUAGES, DOT_GROUPED, decimal_comma_for, parse_number
 from kb.measures.numbers import NUMBER_PATTERN as _NUMBER
 from kb.measures.text import MAX_TEXT, clean_text
-from kb.measures.units import LENGTH_UNITS, MASS_UNITS, VOLUME_WORDS, length_unit, mass_unit, unit_key
 from kb.measures.units import UNIT_PATTERN as _UNIT
+from kb.measures.units import length_unit, mass_unit, volume_unit
 from scrapers.sizes import AXIS_LETTER_ROLES, Dims, parse_dims
 
 __all__ = [
     "AXIS_LETTER_ROLES",
     "DECIMAL_COMMA_LANGUAGES",
-    "LENGTH_UNITS",
-    "MASS_UNITS",
     "Dims",
     "clean_text",
     "decimal_comma_for",
@@ -85,7 +83,7 @@ def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: b
             if convert(default_unit) is None:
                 continue
             other = length_unit(unit) or mass_unit(unit)
-            if other is not None or unit_key(unit) in VOLUME_WORDS:
+            if other is not None or volume_unit(unit) is not None:
                 continue
         if factor is None and default_unit:
             factor = convert(default_unit)

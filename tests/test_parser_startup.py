@@ -1,10 +1,9 @@
 """The parser's start-up (issue 12): NLTK imported without its optional scipy/sklearn bridges
-(recall/toolkit.py), the unit table read from its stored copy (recall/units.py), kb's lazy package init."""
+(recall/toolkit.py), the unit table read from its stored copy (kb/measures/units.py, tested in test_measures_units.py), kb's lazy package init."""
 
 from __future__ import annotations
 
 import json
-import math
 import subprocess
 import sys
 import threading
@@ -12,7 +11,6 @@ from pathlib import Path
 
 import pytest
 
-from recall import lexicon, units
 from recall.toolkit import OPTIONAL_EXTRAS, _LazyPackages, _WithoutExtras, init_origins
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -161,64 +159,6 @@ def test_a_lazy_package_runs_its_init_only_for_names_only_the_init_defines(tmp_p
     finally:
         for name in [n for n in sys.modules if n.startswith("lazydemo_pkg")]:
             del sys.modules[name]
-
-
-# ---------------------------------------------------------------------------------------- unit table
-def test_stored_unit_table_equals_a_fresh_pint_build() -> None:
-    fresh = units.build_unit_table()
-    stored = units._read_stored(units.STORED_TABLE)
-    assert stored is not None, f"{units.STORED_TABLE} is stale: run python -m recall.units --write"
-    assert list(stored) == list(fresh)  # same words, same order
-    assert stored == fresh  # same kind, pint name and factor, exactly
-    assert dict(units.unit_table()) == fresh
-
-
-def test_stored_unit_table_is_what_the_writer_writes() -> None:
-    assert units.STORED_TABLE.read_text(encoding="utf-8") == units.table_to_json(units.build_unit_table())
-
-
-def _stored() -> dict:
-    return json.loads(units.STORED_TABLE.read_text(encoding="utf-8"))
-
-
-def _edit(data: dict, word: str, row) -> dict:
-    data["units"][word] = row
-    return data
-
-
-@pytest.mark.parametrize(
-    "change",
-    [
-        lambda d: d["units"].pop("cm") and d,  # a lexicon word missing
-        lambda d: _edit(d, "parsec", ["length", "parsec", 3.0857e18]),  # a word the lexicon lacks
-        lambda d: _edit(d, "cm", ["length", "meter", 1.0]),  # another pint name
-        lambda d: _edit(d, "cm", ["mass", "centimeter", 1.0]),  # another kind
-        lambda d: _edit(d, "cm", ["length", "centimeter", 0.0]),  # not positive
-        lambda d: _edit(d, "cm", ["length", "centimeter", -1.0]),
-        lambda d: _edit(d, "cm", ["length", "centimeter", math.inf]),
-        lambda d: _edit(d, "cm", ["length", "centimeter", "1.0"]),  # not a number
-    ],
-)
-def test_a_stale_or_damaged_stored_table_is_not_used(change, tmp_path: Path) -> None:
-    path = tmp_path / "units.json"
-    path.write_text(json.dumps(change(_stored())), encoding="utf-8")
-    assert units._read_stored(path) is None  # unit_table() then builds it with pint
-
-
-def test_a_missing_or_unreadable_stored_table_is_not_used(tmp_path: Path) -> None:
-    assert units._read_stored(tmp_path / "absent.json") is None
-    (tmp_path / "bad.json").write_text("{not json", encoding="utf-8")
-    assert units._read_stored(tmp_path / "bad.json") is None
-    (tmp_path / "short.json").write_text(json.dumps({"units": {"cm": ["length", "centimeter"]}}), "utf-8")
-    assert units._read_stored(tmp_path / "short.json") is None
-
-
-def test_the_stored_table_lists_every_lexicon_unit() -> None:
-    rows = _stored()["units"]
-    for kind, words in (("length", lexicon.LENGTH_UNITS), ("mass", lexicon.MASS_UNITS),
-                        ("volume", lexicon.VOLUME_UNITS)):  # fmt: skip
-        for word, name in words.items():
-            assert rows[word][:2] == [kind, name]
 
 
 # ------------------------------------------------------------------------------------------ kb init

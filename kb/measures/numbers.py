@@ -1,4 +1,9 @@
-"""Numbers as storefront pages write them: digits with decimal commas or points and thousands separators.
+"""Numbers written in digits, as pages and descriptions write them: decimal commas or points, thousands
+separators, fractions (``3/4``, ``½``), scientific notation and powers (:func:`digits_value`).
+
+The decimal mark is decided by a locale rule passed in (``decimal_comma``: True for a page in a
+decimal-comma language, False for one that writes decimal points, None when unknown, as for the
+parser's English descriptions), one rule for everyone:
 
 A comma followed by other than exactly three digits is a decimal comma (``4,7``); with both ``.`` and
 ``,`` the last one is the decimal mark; ``1,643,215`` is grouped. A single comma followed by exactly three
@@ -13,11 +18,35 @@ from __future__ import annotations
 import math
 import re
 
-__all__ = ["DECIMAL_COMMA_LANGUAGES", "NUMBER_PATTERN", "decimal_comma_for", "format_decimal", "parse_number"]
+__all__ = [
+    "DECIMAL_COMMA_LANGUAGES",
+    "DIGITS_PATTERN",
+    "NUMBER_PATTERN",
+    "VULGAR_FRACTIONS",
+    "decimal_comma_for",
+    "digits_value",
+    "format_decimal",
+    "parse_number",
+]
 
 #: One number in digits (atomic: no backtracking), or a leading-dot decimal like ".5" after a space, an
 #: opening bracket or a colon.
 NUMBER_PATTERN = r"(?:(?<![\d.,])(?>\d+(?:[.,]\d+)*)|(?<![^\s(:])(?>\.\d+))"
+#: Regular expression for one number written with digits; the parser's tokenizer uses it as is. It
+#: stays linear on long digit-comma chains ("1,234,567,..."): a thousands group only needs no digit
+#: after it, so a failed match backs off one group and succeeds.
+DIGITS_PATTERN = (
+    r"\d+(?:\.\d+)?(?:[eE]|\*\*|\^)[+-]?\d+"  # scientific notation and powers: 1.5e2, 10**3, 10^3
+    r"|\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
+)
+#: Unicode vulgar fractions, alone ("½") or after digits ("7½").
+VULGAR_FRACTIONS: dict[str, float] = {
+    "½": 1 / 2, "⅓": 1 / 3, "⅔": 2 / 3, "¼": 1 / 4, "¾": 3 / 4, "⅕": 1 / 5, "⅖": 2 / 5, "⅗": 3 / 5,
+    "⅘": 4 / 5, "⅙": 1 / 6, "⅚": 5 / 6, "⅛": 1 / 8, "⅜": 3 / 8, "⅝": 5 / 8, "⅞": 7 / 8,
+}  # fmt: skip
+_FRACTION = re.compile(r"(\d+)/(\d+)")
+_SCIENTIFIC = re.compile(r"\d+(?:\.\d+)?[eE][+-]?\d+")
+_POWER = re.compile(r"(\d+(?:\.\d+)?)(?:\*\*|\^)([+-]?\d+)")
 #: A number grouped by dots ("1.200"), read as thousands for a gram or a millimetre.
 DOT_GROUPED = re.compile(r"\d{1,3}(?:\.\d{3})+")
 
@@ -65,12 +94,22 @@ def format_decimal(value: float) -> str:
 
 
 def parse_number(text: str, decimal_comma: bool | None = None) -> float | None:
-    """The number written in ``text`` (one number, separators as described in the module doc), or None."""
+    """The number written in ``text`` (one number, separators as described in the module doc), or None
+    (also for a number too large for a float)."""
     if not isinstance(text, str):
         return None
     s = text.strip().replace(" ", "")
     if s.startswith(".") and s[1:].isdigit():
         s = "0" + s  # ".5 Pounds"
+    plain = _plain(s, decimal_comma)
+    if plain is None:
+        return None
+    value = float(plain)
+    return value if math.isfinite(value) else None
+
+
+def _plain(s: str, decimal_comma: bool | None) -> str | None:
+    """``s`` (one number in digits, no spaces) with its grouping removed and a decimal point, or None."""
     if not re.fullmatch(NUMBER_PATTERN, s):
         return None
     commas, dots = s.count(","), s.count(".")
@@ -80,28 +119,41 @@ def parse_number(text: str, decimal_comma: bool | None = None) -> float | None:
         s = s.replace(grp, "")
         if s.count(dec) > 1:
             return None
-        s = s.replace(dec, ".")
-    elif commas:
+        return s.replace(dec, ".")
+    if commas:
         parts = s.split(",")
         if commas > 1:
-            if not all(len(p) == 3 for p in parts[1:]):
-                return None
-            s = "".join(parts)
-        elif len(parts[1]) == 3 and not decimal_comma and parts[0] not in ("0", ""):
-            s = "".join(parts)
-        else:
-            s = ".".join(parts)
-    elif dots > 1:
+            return "".join(parts) if all(len(p) == 3 for p in parts[1:]) else None
+        if len(parts[1]) == 3 and not decimal_comma and parts[0] not in ("0", ""):
+            return "".join(parts)
+        return ".".join(parts)
+    if dots > 1:
         parts = s.split(".")
-        if not all(len(p) == 3 for p in parts[1:]):
-            return None
-        s = "".join(parts)
-    elif dots == 1:
+        return "".join(parts) if all(len(p) == 3 for p in parts[1:]) else None
+    if dots == 1:
         whole, frac = s.split(".")
         if decimal_comma and len(frac) == 3 and whole not in ("0", ""):
-            s = whole + frac
-    try:
-        value = float(s)
-    except ValueError:
-        return None
-    return value if math.isfinite(value) else None
+            return whole + frac
+    return s
+
+
+def digits_value(token: str, decimal_comma: bool | None = None) -> float | None:
+    """Value of one token written in digits (``15``, ``7.5``, ``7,5``, ``1,000``, ``3/4``, ``½``, ``1.5e2``,
+    ``10**3``, ``10^3``): separators by :func:`parse_number`'s rule. A value too large for a float is
+    ``inf`` (for the caller to refuse), never another number ("1e308" is not 308)."""
+    if token in VULGAR_FRACTIONS:
+        return VULGAR_FRACTIONS[token]
+    if _SCIENTIFIC.fullmatch(token):
+        return float(token)  # "1e400" is inf
+    m = _POWER.fullmatch(token)
+    if m:
+        try:
+            return float(m.group(1)) ** float(m.group(2))  # a 5,000-digit exponent is inf, not an error
+        except OverflowError:
+            return math.inf
+    m = _FRACTION.fullmatch(token)
+    if m:
+        den = int(m.group(2))
+        return int(m.group(1)) / den if den else None
+    plain = _plain(token, decimal_comma)
+    return float(plain) if plain is not None else None  # "9" * 400 is inf

@@ -13,6 +13,7 @@ from __future__ import annotations
 import re
 import unicodedata
 
+from kb.measures.numbers import VULGAR_FRACTIONS as _VULGAR_VALUES
 from kb.measures.numbers import format_decimal
 from kb.measures.units import length_unit
 
@@ -70,10 +71,6 @@ def clean_text(text: object) -> str:
 
 
 # Fractions as imperial measurements are written: "23½", "10 1/2 in", "10-1/2", "3/4 lb", "5' 3\"".
-_VULGAR_VALUES = {
-    "½": 1 / 2, "¼": 1 / 4, "¾": 3 / 4, "⅓": 1 / 3, "⅔": 2 / 3, "⅛": 1 / 8, "⅜": 3 / 8, "⅝": 5 / 8,
-    "⅞": 7 / 8, "⅕": 1 / 5, "⅖": 2 / 5, "⅗": 3 / 5, "⅘": 4 / 5, "⅙": 1 / 6, "⅚": 5 / 6,
-}  # fmt: skip
 _HAS_VULGAR = re.compile(f"[{''.join(_VULGAR_VALUES)}]")
 _VULGAR_RE = re.compile(rf"(?<![\d.,])(\d{{1,4}})?[ \u00a0-]?([{''.join(_VULGAR_VALUES)}])")
 #: Denominators of the fractions shops write (halves to sixty-fourths of an inch, thirds); "4/5 stars"
