@@ -45,7 +45,9 @@ from recall.openset import (
     DescribedNoun,
     KindIndex,
     described_noun,
+    foreign_modifier,
     is_open_set,
+    material_of_word,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
@@ -149,12 +151,15 @@ class Recaller:
         material = parsed.values().get("material")
         names = NameEvidence() if features_only else self.names.find(text, spans, material)
         soft = noun = None
+        subject: tuple[str, ...] = ()
         if not features_only:  # the paper's method uses the stated features only
             soft = soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols)
+            subject = subject_phrase(text)
             noun = self.described(text)
         result = self._recall(
-            query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun
-        )
+            query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun,
+            subject=subject,
+        )  # fmt: skip
         result.text = text
         result.parsed = parsed.to_dict()
         result.parsed.pop("text", None)
@@ -179,7 +184,10 @@ class Recaller:
             else self.names.find(text, (), query.values().get("material"))
         )
         noun = self.described(text) if text and not features_only else None
-        result = self._recall(query, names, top=top, metric=metric, features_only=features_only, noun=noun)
+        subject = subject_phrase(text) if text and not features_only else ()
+        result = self._recall(
+            query, names, top=top, metric=metric, features_only=features_only, noun=noun, subject=subject
+        )
         result.text = text
         return result
 
@@ -225,6 +233,7 @@ class Recaller:
         features_only: bool,
         soft: SoftEvidence | None = None,
         noun: DescribedNoun | None = None,
+        subject: tuple[str, ...] = (),
     ) -> RecallResult:
         metric = _checked(metric, features_only, top)
         qdict = {
@@ -247,7 +256,9 @@ class Recaller:
         errors = relative_errors(self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query)
         closeness = float(np.mean(list(errors.values()))) if errors else None
         not_in_catalog = not_in_catalog and not matches[0].matched_by_name
-        open_set = not_in_catalog or is_open_set(closeness, matches[0].matched_by_name, names.unknown_noun)
+        modifier = self._foreign_modifier(subject, int(rows[0]), names)
+        trusted = matches[0].matched_by_name and modifier is None and _same_material(subject, matches[0])
+        open_set = not_in_catalog or is_open_set(closeness, trusted, names.unknown_noun or modifier)
         confidence = _confidence(matches, closeness, names, metric, competitors, open_set, not_in_catalog)
         same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
         return RecallResult(
@@ -264,8 +275,18 @@ class Recaller:
             same_kind_as=same_kind_as,
             vague=list(soft.words) if soft is not None else [],
             competitors=competitors,
+            foreign_modifier=modifier,
             **base,
         )
+
+    def _foreign_modifier(self, subject: tuple[str, ...], row: int, names: NameEvidence) -> str | None:
+        """The noun before the subject's head that none of the named best match's names has
+        (:func:`recall.openset.foreign_modifier`); None when the text does not name that row."""
+        if not subject or (row not in names.exact and row not in names.head):
+            return None
+        snap = self.snapshot
+        words = frozenset(w for name in (snap.names[row], *snap.aliases[row]) for w in words_of(name))
+        return foreign_modifier(subject, words)
 
     def _candidates(
         self, query: FeatureQuery, named: list[int], top: int, metric: str, every_row: bool
@@ -330,6 +351,15 @@ class Recaller:
         arr, dist = select_top_k(arr, dist, min(k, len(arr)))
         parts = {int(r): (float(d), 0.0, 0.0) for r, d in zip(arr, dist, strict=True)}
         return kind, self._matches(arr, dist, parts, query, metric, set())
+
+
+def _same_material(subject: tuple[str, ...], match: Match) -> bool:
+    """Whether no material word before the subject's head contradicts the match's material (either
+    unknown counts as agreeing): a name is trusted as evidence only then ("a wooden spoon" named "spoon"
+    is no steel spoon)."""
+    own = match.features.get("material")
+    stated = {material_of_word(w) for w in subject[:-1]} - {None}
+    return own is None or not stated or own in stated
 
 
 def _checked(metric: str | None, features_only: bool, top: int) -> str:
