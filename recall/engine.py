@@ -96,22 +96,30 @@ class Recaller:
     """Recall objects from one catalog snapshot. Build with :meth:`from_db`, :meth:`from_csv`,
     :meth:`from_records` or from a snapshot. Thread-safe for reading."""
 
-    def __init__(self, snapshot: CatalogSnapshot):
+    def __init__(self, snapshot: CatalogSnapshot, name_tables: Any = None):
+        """``name_tables``: the snapshot's name tables when already built (:mod:`recall.stored_index`)."""
         if len(snapshot) == 0:
             raise RecallError("the catalog is empty: import objects first (objrecall catalog import)")
         self.snapshot = snapshot
-        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+        from recall.stored_index import build_tables
 
-        codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
-        materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
-        self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
+        tables = build_tables(snapshot) if name_tables is None else name_tables
+        self.names = NameIndex(snapshot.names, snapshot.aliases, tables=tables)
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._geometry: ShapeGeometry | None = None
         self._kdtrees: dict = {}
 
     @classmethod
     def from_db(cls, db: str | Path) -> Recaller:
-        return cls(load_snapshot(db))
+        """A recaller over the catalog at ``db``, its index reloaded from beside the catalog when the
+        catalog has not changed since it was stored (:func:`recall.stored_index.load_index`)."""
+        from recall.stored_index import load_index
+
+        path = Path(db)
+        if not path.exists() or path.suffix.lower() == ".csv":
+            return cls(load_snapshot(path))  # the snapshot's own error, or a catalog CSV
+        index = load_index(path)
+        return cls(index.snapshot, index.tables)
 
     @classmethod
     def from_csv(cls, path: str | Path) -> Recaller:
