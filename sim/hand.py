@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from sim.bodies import GEOMETRY_VERSION
 from sim.grasps import FINGER_MAX_FORCE_N, GRASP_TYPES, THUMB_MAX_FORCE_N, GraspPlan, active_fingers
 from sim.programs import PROGRAMS_VERSION, program_for
 
@@ -52,7 +53,8 @@ __all__ = [
     "thumb_tip",
 ]
 
-HAND_VERSION = f"ar10like-6.{PROGRAMS_VERSION}"  # 6: one hand program per grasp type (sim/programs.py)
+# 6: one hand program per grasp type (sim/programs.py); g: object geometry (sim/bodies.py), same re-run rule
+HAND_VERSION = f"ar10like-6.{PROGRAMS_VERSION}-g{GEOMETRY_VERSION}"
 
 CM = 0.01  # metres per centimetre
 
