@@ -37,7 +37,7 @@ def category_terms(feature: str, value: str) -> np.ndarray:
 
 
 @functools.cache
-def _by_byte(feature: str, value: str, factor: bool) -> np.ndarray:
+def byte_table(feature: str, value: str, factor: bool) -> np.ndarray:
     """The term (float64) or factor e^term (float32: 1, 2, 4, exact) of a category indexed by the code's
     byte (0..127 codes, 255 = unknown -1), so that int8 codes index it without a conversion."""
     terms = category_terms(feature, value)
@@ -50,7 +50,7 @@ def _by_byte(feature: str, value: str, factor: bool) -> np.ndarray:
 
 
 def _category_lookup(feature: str, value: str, codes: np.ndarray, factor: bool) -> np.ndarray:
-    return _by_byte(feature, value, factor)[codes.view(np.uint8)]
+    return byte_table(feature, value, factor)[codes.view(np.uint8)]
 
 
 def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None) -> np.ndarray:

@@ -261,11 +261,14 @@ class JPIndex:
         if len(query) == 0:
             return "empty", np.arange(k, dtype=np.int64), np.zeros(k)
         items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
-        small = self.n <= SCAN_BELOW or self.n * len(items) <= SCAN_WORK
         if not query.numeric:
-            small = self.n * len(items) <= CATEGORY_SCAN_WORK
-            if force == "categories" or force is None and not small:
+            if force == "categories":
                 return "categories", *self.combinations.top_k(query, k)
+            if force == "scan":
+                return "scan", *self.combinations.scan(query, k)
+            if force is None:
+                return self.combinations.search(query, k)
+        small = self.n <= SCAN_BELOW or self.n * len(items) <= SCAN_WORK
         if force == "scan" or (force is None and small):
             return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
@@ -285,12 +288,10 @@ class JPIndex:
         lead = min(range(len(items)), key=lambda i: sizes[i])
         if sizes[lead] <= SMALL_WINDOW:
             return "window", *self._window(query, items, lead, k, best_rows, best_scores)
-        # a better bound first: the rows of the few cells nearest the description
+        # a better bound first: the rows of the cells with the smallest bounds
         lb = self.cells.bounds(query)
-        best_rows, best_scores = self.cells.top_k(query, k, best_rows, best_scores, lb, max_rows=PROBE_ROWS)
+        best_rows, best_scores = self.cells.probe(query, k, best_rows, best_scores, lb, PROBE_ROWS)
         s = float(best_scores[-1])
-        if s == 0.0:
-            return "zero", *self._zero_ties(query, items, k)
         sizes = [self._window_size(it, s) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
         cost = {
@@ -299,20 +300,16 @@ class JPIndex:
             "scan": COST["scan"] * self.n * len(items),
         }
         plan = min(cost, key=cost.__getitem__)
+        if plan == "scan" and s == 0.0:
+            return "zero", *self._zero_ties(query, items, k)
         if plan == "scan":
             return "scan", *self._scan(query, items, k)
         if plan == "window":
             return "window", *self._window(query, items, lead, k, best_rows, best_scores)
-        rows, scores = self.cells.top_k(query, k, best_rows, best_scores, lb, stop_at_zero=True)
-        if float(scores[-1]) == 0.0:
-            return "zero", *self._zero_ties(query, items, k)
-        return "cells", rows, scores
+        return "cells", *self.cells.top_k(query, k, best_rows, best_scores, lb)
 
     def _scan(self, query: FeatureQuery, items: list, k: int):
-        """Every row's product Π (1 + d_j) in float32; the rows within the k-th (widened) scored.
-        Categories only: every row scored (the distances are few values, ties many)."""
-        if not query.numeric:
-            return select_top_k(None, self.score(query), k)
+        """Every row's product Π (1 + d_j) in float32; the rows within the k-th (widened) scored."""
         prod = None
         for item in items:
             f = factors(item, self.num_cols, self.cat_cols)
