@@ -19,41 +19,38 @@ import numpy as np
 from recall.metrics import CATEGORY_CODES, FeatureQuery
 from recall.ranking import CAT_INDEX, FILTER_SLACK, NUM_INDEX, jp_scores, merge_top_k, survivors
 
-__all__ = ["CellIndex", "cell_levels"]
+__all__ = ["CellIndex"]
 
 #: Objects per cell the split aims at.
 CELL_ROWS = 64
-#: Split order and the most bits of the cell number each level may take (2^16 cells at most).
+#: Split order; a parent is split into about (rows / rows per cell)^(1 / levels left) parts, at most
+#: MAX_SPLIT; rows per cell are CELL_ROWS, or more above 2^MAX_BITS cells.
 CELL_ORDER = ("a_cm", "mass_g", "b_cm", "c_cm")
 MAX_BITS = 16
+MAX_SPLIT = 256
 #: Rows scored per step of the best-first search (the bound tightens between steps).
 CELL_BATCH = 4096
-
-
-def cell_levels(n: int) -> tuple[tuple[str, int], ...]:
-    """(feature, parts) of each split for a catalog of ``n`` objects: bits dealt round-robin."""
-    bits = max(2, min(MAX_BITS, int(math.log2(max(n, 1) / CELL_ROWS) + 0.5)))
-    per = [0] * len(CELL_ORDER)
-    for i in range(bits):
-        per[i % len(CELL_ORDER)] += 1
-    return tuple((f, 1 << b) for f, b in zip(CELL_ORDER, per, strict=True) if b)
 
 
 class CellIndex:
     """The cells of one snapshot's columns (see the module docstring)."""
 
-    def __init__(self, num_cols: list[np.ndarray], cat_cols: list[np.ndarray]):
+    def __init__(self, num_cols: list[np.ndarray], cat_cols: list[np.ndarray], groups: np.ndarray | None = None):
         n = len(num_cols[0])
-        cell = np.zeros(n, dtype=np.int64)
-        for feat, split in cell_levels(n):
+        per_cell = max(CELL_ROWS, n >> MAX_BITS)
+        cell = np.zeros(n, dtype=np.int64) if groups is None else groups.astype(np.int64)
+        for depth, feat in enumerate(CELL_ORDER):
             col = num_cols[NUM_INDEX[feat]]
             order = np.lexsort((col, cell))  # NaN sorts last within the cell
             sorted_cell = cell[order]
             starts = np.searchsorted(sorted_cell, sorted_cell, "left")
-            ends = np.searchsorted(sorted_cell, sorted_cell, "right")
-            part = ((np.arange(n) - starts) * split) // np.maximum(ends - starts, 1)
+            size = np.searchsorted(sorted_cell, sorted_cell, "right") - starts
+            left = len(CELL_ORDER) - depth
+            split = np.ceil(size / per_cell) if left == 1 else np.rint((size / per_cell) ** (1.0 / left))
+            split = np.clip(split, 1, MAX_SPLIT)
+            part = ((np.arange(n) - starts) * split.astype(np.int64)) // size
             new = np.empty(n, dtype=np.int64)
-            new[order] = sorted_cell * split + part
+            new[order] = sorted_cell * MAX_SPLIT + part
             cell = new
         perm = np.argsort(cell, kind="stable")
         ids, first = np.unique(cell[perm], return_index=True)

@@ -73,6 +73,30 @@ def test_every_plan_on_its_own_equals_brute_force(query, k, plan):
     np.testing.assert_array_equal(dist, bdist)
 
 
+@settings(max_examples=120, deadline=None)
+@given(
+    feature=st.sampled_from(NUMERIC_FEATURES),
+    value=st.one_of(st.sampled_from([1.0, 2.0, 2.5, 12.0, 100.0, 150.0]), st.floats(0.05, 400.0)),
+    qualifier=st.sampled_from(["about", "at_least", "at_most"]),
+    k=st.sampled_from([1, 2, 5, 40, 300]),
+    unknown=st.booleans(),
+)
+def test_one_number_from_its_sorted_column_equals_brute_force(feature, value, qualifier, k, unknown):
+    """One number: the column plan, with ties beyond the rows it reads (thousands of objects share a
+    rounded value) and unknown values at the k-th distance, equals the brute force."""
+    query = FeatureQuery.from_values({feature: value}, {feature: qualifier})
+    if unknown:  # the unknown rows' penalty equal to the distance of common values
+        (cond,) = query.numeric
+        query = FeatureQuery((type(cond)(cond.feature, cond.value, cond.low, cond.high, cond.qualifier, 1.0),))
+    brows, bdist = brute_force_top_k(catalog(), query, k)
+    for most in (4096, 8):  # 8: the rows of one value at 0 are more than it reads
+        found = index().one_column(catalog().num_cols, catalog().cat_cols, query, k, most=most)
+        if found is not None:
+            np.testing.assert_array_equal(found[0], brows)
+            np.testing.assert_array_equal(found[1], bdist)
+    _assert_same(query, k)
+
+
 @st.composite
 def category_queries(draw):
     feats = draw(st.lists(st.sampled_from(sorted(CATEGORIES)), min_size=1, max_size=5, unique=True))
