@@ -30,6 +30,7 @@ MAX_BITS = 16
 MAX_SPLIT = 256
 #: Rows scored per step of the best-first search (the bound tightens between steps).
 CELL_BATCH = 4096
+MAX_BATCH = 32768
 
 
 class CellIndex:
@@ -132,12 +133,15 @@ class CellIndex:
         best_rows: np.ndarray,
         best_scores: np.ndarray,
         lb: np.ndarray | None = None,
+        items: list | None = None,
     ):
         """Improve a top-k (rows, scores) whose k-th score bounds the answer (none: every cell), visiting
-        the cells within the bound best first, in batches of about CELL_BATCH rows (the bound tightens
-        between batches)."""
+        the cells within the bound best first, in batches of CELL_BATCH / 4 rows growing to MAX_BATCH
+        (the bound tightens between batches). ``items``: the stated features in the order to filter
+        by (the most selective first; default the query's order)."""
         lb = self.bounds(query) if lb is None else lb
-        items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
+        if items is None:
+            items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
         s = float(best_scores[-1]) if len(best_scores) >= k else math.inf
         order = np.flatnonzero(lb <= _limit(s)) if math.isfinite(s) else np.arange(len(lb))
         order = order[np.argsort(lb[order], kind="stable")]
@@ -146,7 +150,7 @@ class CellIndex:
         while i < len(order):
             j = max(i + 1, int(np.searchsorted(ends, (ends[i - 1] if i else 0) + budget, "right")))
             batch = order[i:j]
-            i, budget = j, CELL_BATCH
+            i, budget = j, min(max(budget * 2, CELL_BATCH), MAX_BATCH)
             limit = _limit(s)
             if lb[batch[0]] > limit:
                 break

@@ -118,12 +118,12 @@ def select_top_k(rows: np.ndarray | None, scores: np.ndarray, k: int) -> tuple[n
     are 0..n-1, the scores of every row)."""
     if len(scores) > k:
         kth = np.partition(scores, k - 1)[k - 1]
-        below = np.flatnonzero(scores < kth)  # fewer than k
-        tied = np.flatnonzero(scores == kth)
-        need = k - len(below)
-        if len(tied) > need:  # many rows at the k-th distance: the lowest row numbers win
+        keep = np.flatnonzero(scores <= kth)
+        if len(keep) > k:  # more rows at the k-th distance than needed: the lowest row numbers win
+            below, tied = keep[scores[keep] < kth], keep[scores[keep] == kth]
+            need = k - len(below)
             tied = tied[:need] if rows is None else tied[np.argpartition(rows[tied], need - 1)[:need]]
-        keep = np.concatenate((below, tied))
+            keep = np.concatenate((below, tied))
         rows, scores = (keep if rows is None else rows[keep]), scores[keep]
     elif rows is None:
         rows = np.arange(len(scores))

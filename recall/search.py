@@ -60,8 +60,9 @@ SCAN_WORK = 40_000
 CATEGORY_SCAN_WORK = 40_000
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
-#: A window of at most this many rows is filtered without weighing the other plans.
-SMALL_WINDOW = 16384
+#: A window of at most this many row-features (rows x stated features) is filtered without weighing the
+#: other plans.
+SMALL_WINDOW = 8192
 #: Relative cost per row (per stated feature) of each plan's work, measured (see the module docstring).
 COST = {"scan": 1.0, "window": 3.0, "cells": 4.0}
 #: Rows of the nearest cells scored to tighten the first bound before choosing a plan.
@@ -223,7 +224,7 @@ class JPIndex(SortedColumns):
             return "zero", *self._zero_ties(query, items, k)
         sizes = [self._window_size(it, s) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
-        if sizes[lead] <= SMALL_WINDOW:
+        if sizes[lead] * len(items) <= SMALL_WINDOW:
             return "window", *self._window(query, items, lead, k, best_rows, best_scores)
         # a better bound first: the rows of the cells with the smallest bounds
         lb = self.cells.bounds(query)
@@ -236,14 +237,17 @@ class JPIndex(SortedColumns):
             "cells": COST["cells"] * self.cells.rows_within(lb, s) * len(items) + CELLS_FIXED,
             "scan": COST["scan"] * self.n * len(items),
         }
+        if s == 0.0:
+            cost["zero"] = COST["window"] * min(self._zero_reads(items, k)[0], self.n) * len(items)
         plan = min(cost, key=cost.__getitem__)
-        if plan == "scan" and s == 0.0:
+        if plan == "zero" or (plan == "scan" and s == 0.0):
             return "zero", *self._zero_ties(query, items, k)
         if plan == "scan":
             return "scan", *self._scan(query, items, k)
         if plan == "window":
             return "window", *self._window(query, items, lead, k, best_rows, best_scores)
-        return "cells", *self.cells.top_k(query, k, best_rows, best_scores, lb)
+        selective = [items[i] for i in sorted(range(len(items)), key=lambda i: sizes[i])]
+        return "cells", *self.cells.top_k(query, k, best_rows, best_scores, lb, selective)
 
     def _scan(self, query: FeatureQuery, items: list, k: int):
         """Every row's product Π (1 + d_j) in float32; the rows within the k-th (widened) scored."""
@@ -274,14 +278,22 @@ class JPIndex(SortedColumns):
             start, step = start + step, min(step * 2, MAX_CHUNK)
         return best_rows, best_scores
 
-    def _zero_ties(self, query: FeatureQuery, items: list, k: int):
-        """The k lowest rows at distance 0, given that at least k rows are at 0."""
+    def _zero_reads(self, items: list, k: int) -> tuple[float, int, bool]:
+        """(rows the zero plan reads, the smallest window at 0, whether to read every row in row order):
+        in row order until k rows at 0, estimated as if the features were independent, or the rows of
+        the smallest window at 0 (sorted into row order up to ZERO_SORT numeric rows)."""
         sizes = [self._window_size(it, 0.0) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
-        # rows read in row order until k are at 0, if the features were independent
         zeros = self.n * math.prod(size / self.n for size in sizes)
-        in_order = k * self.n / max(zeros, 1.0)
+        in_order = max(CHUNK, k * self.n / max(zeros, 1.0))
         if in_order < sizes[lead] or (items[lead][0] == "num" and sizes[lead] > ZERO_SORT):
+            return in_order, lead, True
+        return sizes[lead], lead, False
+
+    def _zero_ties(self, query: FeatureQuery, items: list, k: int):
+        """The k lowest rows at distance 0, given that at least k rows are at 0."""
+        _, lead, in_order = self._zero_reads(items, k)
+        if in_order:
             return self._first_zeros(query, items, None, k)
         source = self._window_rows(items[lead], 0.0)
         if items[lead][0] == "num":
