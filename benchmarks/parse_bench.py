@@ -130,9 +130,9 @@ STARTUP_CASES: tuple[tuple[str, str], ...] = (
     ("python -c pass (baseline)", "pass"),
     ("import nltk (plain)", "import nltk"),
     ("import recall.toolkit (NLTK, no scipy/sklearn)", "import recall.toolkit"),
-    ("unit table built with pint", "from recall.units import build_unit_table; build_unit_table()"),
-    ("unit table read from units.json", "from recall.units import unit_table; unit_table()"),
-    ("parser start, as before (plain NLTK, pint)", "import nltk; from recall.units import build_unit_table; "
+    ("unit table built with pint", "from kb.measures.units import build_unit_table; build_unit_table()"),
+    ("unit table read from units.json", "from kb.measures.units import unit_table; unit_table()"),
+    ("parser start, as before (plain NLTK, pint)", "import nltk; from kb.measures.units import build_unit_table; "
      "build_unit_table(); " + _FIRST),
     ("parser start now (import, build, 1st parse)", _FIRST),
 )  # fmt: skip

@@ -20,21 +20,20 @@ So a reader waits at most one write transaction, and a writer waits at most for 
 
 from __future__ import annotations
 
-import hashlib
-import threading
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager
-from dataclasses import dataclass, field
-from datetime import UTC, datetime
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
 import duckdb
 
-from kb.csvio import SkippedRow, read_catalog_csv, write_catalog_csv
+from kb.csvio import read_catalog_csv, write_catalog_csv
 from kb.errors import DatabaseError, ObjectNotFound, QueryFailed
-from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES, ObjectRecord, normalize_name
+from kb.features import CATEGORICAL_FEATURES, FEATURES, ObjectRecord, normalize_name
+from kb.locks import lock_for
 from kb.sandbox import ALLOWED_STATEMENTS, SANDBOX_CONFIG, retry_while_locked, run_user_sql
+from kb.upserts import ARROW_TYPES, OBJECT_COLUMNS, ImportReport, bulk_execute, features_hash, upsert_records
 
 __all__ = [
     "ALLOWED_STATEMENTS",
@@ -52,8 +51,6 @@ DEFAULT_BUSY_TIMEOUT = 30.0
 DEFAULT_MAX_ROWS = 10_000
 DEFAULT_SQL_TIMEOUT = 10.0
 
-_OBJECT_COLUMNS = ("id", "name", *FEATURES, "source")
-
 
 @dataclass
 class QueryResult:
@@ -70,77 +67,6 @@ class QueryResult:
         return {"columns": self.columns, "rows": [list(r) for r in self.rows], "truncated": self.truncated}
 
 
-@dataclass
-class ImportReport:
-    """What an import did: objects created, updated, unchanged, and rows skipped (with reasons)."""
-
-    source: str
-    new: list[str] = field(default_factory=list)
-    updated: list[str] = field(default_factory=list)
-    unchanged: int = 0
-    skipped: list[SkippedRow] = field(default_factory=list)
-
-    def to_dict(self) -> dict[str, Any]:
-        return {
-            "source": self.source,
-            "new": len(self.new),
-            "updated": len(self.updated),
-            "unchanged": self.unchanged,
-            "skipped": [{"row": s.row, "column": s.column, "reason": s.reason} for s in self.skipped],
-        }
-
-
-def features_hash(record: ObjectRecord) -> str:
-    """A short stable hash of an object's feature values (changes when any catalog value changes)."""
-    text = "|".join(f"{f}={getattr(record, f)!r}" for f in FEATURES)
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
-
-
-class _ReadWriteLock:
-    """Many readers or one writer, inside one process."""
-
-    def __init__(self) -> None:
-        self._cond = threading.Condition()
-        self._readers = 0
-        self._writer = False
-
-    @contextmanager
-    def read(self) -> Iterator[None]:
-        with self._cond:
-            while self._writer:
-                self._cond.wait()
-            self._readers += 1
-        try:
-            yield
-        finally:
-            with self._cond:
-                self._readers -= 1
-                self._cond.notify_all()
-
-    @contextmanager
-    def write(self) -> Iterator[None]:
-        with self._cond:
-            while self._writer or self._readers:
-                self._cond.wait()
-            self._writer = True
-        try:
-            yield
-        finally:
-            with self._cond:
-                self._writer = False
-                self._cond.notify_all()
-
-
-_LOCKS: dict[str, _ReadWriteLock] = {}
-_LOCKS_GUARD = threading.Lock()
-
-
-def _lock_for(path: Path) -> _ReadWriteLock:
-    key = str(path.resolve())
-    with _LOCKS_GUARD:
-        return _LOCKS.setdefault(key, _ReadWriteLock())
-
-
 class KnowledgeBase:
     """The object catalog in one DuckDB file. Open it with :meth:`open`."""
 
@@ -148,7 +74,7 @@ class KnowledgeBase:
         self.path = Path(path)
         self.read_only = read_only
         self.busy_timeout = busy_timeout
-        self._lock = _lock_for(self.path)
+        self._lock = lock_for(self.path)
 
     # ------------------------------------------------------------------ opening
     @classmethod
@@ -227,7 +153,7 @@ class KnowledgeBase:
                 aliases.setdefault(oid, []).append(alias)
         out = []
         for row in rows:
-            values = dict(zip(_OBJECT_COLUMNS, row, strict=True))
+            values = dict(zip(OBJECT_COLUMNS, row, strict=True))
             out.append(
                 ObjectRecord(
                     name=values["name"],
@@ -240,7 +166,7 @@ class KnowledgeBase:
 
     def list_objects(self, *, limit: int | None = None, offset: int = 0) -> list[ObjectRecord]:
         """Objects ordered by name, with their aliases."""
-        sql = f"SELECT {', '.join(_OBJECT_COLUMNS)} FROM objects ORDER BY name"
+        sql = f"SELECT {', '.join(OBJECT_COLUMNS)} FROM objects ORDER BY name"
         params: list[Any] = []
         if limit is not None:
             sql += " LIMIT ? OFFSET ?"
@@ -257,7 +183,7 @@ class KnowledgeBase:
         key = normalize_name(name)
         with self.connect() as con:
             rows = con.execute(
-                f"SELECT {', '.join(_OBJECT_COLUMNS)} FROM objects WHERE name = ? "
+                f"SELECT {', '.join(OBJECT_COLUMNS)} FROM objects WHERE name = ? "
                 "OR id = (SELECT object_id FROM object_aliases WHERE alias = ?) ORDER BY name = ? DESC LIMIT 1",
                 [key, key, key],
             ).fetchall()
@@ -349,65 +275,14 @@ class KnowledgeBase:
             with self.connect(write=True) as own:
                 own.begin()
                 try:
-                    self._upsert(own, records, report, source, adapter, run_id)
+                    upsert_records(own, records, report, source=source, adapter=adapter, run_id=run_id)
                     own.commit()
                 except BaseException:
                     own.rollback()
                     raise
         else:
-            self._upsert(con, records, report, source, adapter, run_id)
+            upsert_records(con, records, report, source=source, adapter=adapter, run_id=run_id)
         return report
-
-    def _upsert(self, con, records, report, source, adapter, run_id) -> None:
-        existing = {
-            row[1]: dict(zip(_OBJECT_COLUMNS, row, strict=True))
-            for row in con.execute(f"SELECT {', '.join(_OBJECT_COLUMNS)} FROM objects").fetchall()
-        }
-        taken_aliases = {a for (a,) in con.execute("SELECT alias FROM object_aliases").fetchall()}
-        now = datetime.now(UTC).replace(tzinfo=None)
-        inserts, updates, observations, alias_rows = [], [], [], []
-        for rec in records:
-            known = rec.known_features()
-            old = existing.get(rec.name)
-            if old is None:
-                inserts.append([rec.name, *(getattr(rec, f) for f in FEATURES), rec.source, now, now])
-                changed = known
-                report.new.append(rec.name)
-            else:
-                changed = {f: v for f, v in known.items() if old[f] != v}
-                new_source = rec.source if rec.source and rec.source != old["source"] else None
-                if changed or new_source:
-                    merged = {f: (changed[f] if f in changed else old[f]) for f in FEATURES}
-                    updates.append([*(merged[f] for f in FEATURES), new_source or old["source"], now, rec.name])
-                    report.updated.append(rec.name)
-                else:
-                    report.unchanged += 1
-            for feat, value in changed.items():
-                numeric = feat in NUMERIC_FEATURES
-                observations.append(
-                    [rec.name, feat, value if numeric else None, None if numeric else value, "product",
-                     rec.source or source, adapter, now, str(value), run_id]
-                )
-            for alias in rec.aliases:
-                if alias not in taken_aliases and alias not in existing and alias != rec.name:
-                    taken_aliases.add(alias)
-                    alias_rows.append([alias, rec.name])
-        bulk_execute(con, "new_objects", ["name", *FEATURES, "source", "created_at", "updated_at"], inserts,
-              f"INSERT INTO objects (name, {', '.join(FEATURES)}, source, created_at, updated_at) "
-              f"SELECT name, {', '.join(FEATURES)}, source, created_at, updated_at FROM new_objects")
-        sets = ", ".join(f"{f} = u.{f}" for f in FEATURES)
-        bulk_execute(con, "changed_objects", [*FEATURES, "source", "updated_at", "name"], updates,
-              f"UPDATE objects SET {sets}, source = u.source, updated_at = u.updated_at "
-              "FROM changed_objects u WHERE objects.name = u.name")
-        obs_cols = ["name", "feature", "value_num", "value_text", "role", "source", "adapter", "fetched_at",
-                    "raw_text", "run_id"]
-        bulk_execute(con, "new_observations", obs_cols, observations,
-              "INSERT INTO observations (object_id, feature, value_num, value_text, role, source, adapter, "
-              "fetched_at, raw_text, run_id) SELECT o.id, i.feature, i.value_num, i.value_text, i.role, i.source, "
-              "i.adapter, i.fetched_at, i.raw_text, i.run_id FROM new_observations i JOIN objects o ON o.name = i.name")
-        bulk_execute(con, "new_aliases", ["alias", "name"], alias_rows,
-              "INSERT INTO object_aliases (alias, object_id) SELECT a.alias, o.id FROM new_aliases a "
-              "JOIN objects o ON o.name = a.name")
 
     def delete_object(self, name: str) -> None:
         obj = self.get_object(name)
@@ -508,51 +383,3 @@ class KnowledgeBase:
             cur = con.execute("SELECT * FROM ingestion_runs ORDER BY id DESC LIMIT ?", [limit])
             cols = [d[0] for d in cur.description]
             return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
-
-
-#: Arrow types of catalog columns for :func:`bulk_execute` (other columns are strings).
-ARROW_TYPES: dict[str, str] = {
-    "id": "int64",
-    "object_id": "int64",
-    "run_id": "int64",
-    "status": "int32",
-    "value_num": "float64",
-    **{f: "float64" for f in NUMERIC_FEATURES},
-    "created_at": "timestamp",
-    "updated_at": "timestamp",
-    "fetched_at": "timestamp",
-    "occurred_at": "timestamp",
-}
-
-
-def bulk_execute(
-    con: duckdb.DuckDBPyConnection,
-    view: str,
-    columns: Sequence[str],
-    rows: Sequence[Sequence[Any]] | Sequence[Mapping[str, Any]],
-    sql: str,
-) -> None:
-    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (an Arrow table): one set-based
-    statement per batch, not one statement per row. Rows are sequences in ``columns`` order or mappings
-    (a missing key is NULL); column types come from :data:`ARROW_TYPES`."""
-    if not rows:
-        return
-    import pyarrow as pa
-
-    by_name = isinstance(rows[0], Mapping)
-    arrays, fields = [], []
-    for i, c in enumerate(columns):
-        kind = ARROW_TYPES.get(c, "string")
-        typ = pa.timestamp("us") if kind == "timestamp" else getattr(pa, kind)()
-        values = [r.get(c) for r in rows] if by_name else [r[i] for r in rows]
-        arrays.append(pa.array(values, type=typ))
-        fields.append(pa.field(c, typ))
-    con.register(view, pa.Table.from_arrays(arrays, schema=pa.schema(fields)))
-    try:
-        con.execute(sql)
-    finally:
-        con.unregister(view)
-
-
-def _first_line(err: Exception) -> str:
-    return str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__

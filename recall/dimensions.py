@@ -11,11 +11,12 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
+from kb.measures.aliases import PARSER_LANGUAGES
+from kb.measures.units import Unit, unit_table
+from kb.measures.words import number_value
 from recall import lexicon as lx
-from recall.numbers import number_value
 from recall.reading import DimStatement, Quantity, Reading, Relation, Stated, limit_refusal
 from recall.tokens import Token
-from recall.units import Unit, unit_table
 
 __all__ = ["read_relations", "resolve_dims"]
 
@@ -68,7 +69,7 @@ def _unit_for(q: Quantity, reading: Reading) -> Unit | None:
     after = [u for p, u in reading.length_units if p > q.pos]
     if after:
         return after[0]
-    return unit_table()["cm"]
+    return unit_table(PARSER_LANGUAGES)["cm"]
 
 
 def _to_cm(q: Quantity, reading: Reading, stmt: DimStatement, scale: float = 1.0) -> Stated | None:

@@ -351,7 +351,7 @@ def evaluate(
 # ------------------------------------------------------------------------------------------ calibration
 def confidence_inputs(result: RecallResult) -> list[float]:
     """The confidence model's inputs of a result: margin (capped), closeness, unknown noun (0/1)."""
-    from recall.engine import MAX_MARGIN
+    from recall.confidence import MAX_MARGIN
 
     margin = result.matches[1].score - result.matches[0].score if len(result.matches) > 1 else MAX_MARGIN
     return [
@@ -365,7 +365,7 @@ def confidence_inputs(result: RecallResult) -> list[float]:
 def fit_confidence(cases: list[Case], open_set: list[RecallResult] = ()) -> tuple[tuple[float, ...], int]:
     """Logistic fit of P(first match right) on :func:`confidence_inputs`, over the features-only and the
     hybrid results of the development set and the results of the open set (never right). Returns the
-    coefficients (a, b, c, d, e) of ``recall.engine.CONFIDENCE_COEF`` and the number of points.
+    coefficients (a, b, c, d, e) of ``recall.confidence.CONFIDENCE_COEF`` and the number of points.
     Results reported not in the catalog are left out: their confidence is capped by rule."""
     from sklearn.linear_model import LogisticRegression
 
@@ -410,17 +410,17 @@ def _main() -> None:  # pragma: no cover - a calibration script
     for m in report.misses:
         print(f"[{m.mode}] {m.object} -> {m.got}: {m.reason}\n    {m.description}")
     if args.fit:
-        import recall.engine as engine
+        import recall.name_index as name_index
 
         for w_name, w_head in ((0.6, 0.3), (0.6, 0.4), (0.7, 0.3), (0.7, 0.4), (0.5, 0.3)):
-            engine.NAME_WEIGHT, engine.HEAD_WEIGHT = w_name, w_head
+            name_index.NAME_WEIGHT, name_index.HEAD_WEIGHT = w_name, w_head
             r = evaluate(args.catalog, args.descriptions)
             print(
                 f"NAME_WEIGHT {w_name} HEAD_WEIGHT {w_head}: hybrid top-1 "
                 f"{r.score(DEFAULT_METRIC[False], False).top1_pct:.1f} % (jp + names "
                 f"{r.score('jp', False).top1_pct:.1f} %)"
             )
-        engine.NAME_WEIGHT, engine.HEAD_WEIGHT = NAME_WEIGHT, HEAD_WEIGHT
+        name_index.NAME_WEIGHT, name_index.HEAD_WEIGHT = NAME_WEIGHT, HEAD_WEIGHT
         recaller = Recaller.from_csv(args.catalog)
         opens = [r for fo in (False, True) for r in open_set_results(recaller, OPEN_SET, fo)]
         coef, k = fit_confidence(report.cases, opens)

@@ -41,61 +41,27 @@ from __future__ import annotations
 
 from types import MappingProxyType
 
+from kb.measures import words as _words
+from kb.measures.aliases import PARSER_LANGUAGES
+from kb.measures.numbers import VULGAR_FRACTIONS
+from kb.measures.units import aliases_of
+
 # --------------------------------------------------------------------------------------------- numbers
-#: Number words and their values (tag NW). "couple" is 2 ("a couple of centimeters"), "dozen" 12.
-NUMBER_WORDS: dict[str, int] = {
-    "zero": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
-    "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15,
-    "sixteen": 16, "seventeen": 17, "eighteen": 18, "nineteen": 19, "twenty": 20, "thirty": 30,
-    "forty": 40, "fourty": 40, "fifty": 50, "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90,
-    "dozen": 12, "couple": 2,
-}  # fmt: skip
-#: Magnitude words (tag NMAG): they multiply what precedes them ("two hundred", "a thousand").
-MAGNITUDE_WORDS: dict[str, int] = {"hundred": 100, "thousand": 1000}
-#: Fraction words (tag FRC): "half", "a quarter", "three quarters", "seven and quarter".
-FRACTION_WORDS: dict[str, float] = {
-    "half": 0.5, "halves": 0.5, "quarter": 0.25, "quarters": 0.25, "third": 1 / 3, "thirds": 1 / 3,
-    "fifth": 0.2, "fifths": 0.2, "sixth": 1 / 6, "sixths": 1 / 6, "eighth": 0.125, "eighths": 0.125,
-    "tenth": 0.1, "tenths": 0.1, "sixteenth": 0.0625, "sixteenths": 0.0625,
-}  # fmt: skip
+#: Number words (tag NW), magnitude words (tag NMAG) and fraction words (tag FRC): the number
+#: grammar's (:mod:`kb.measures.words`).
+NUMBER_WORDS, MAGNITUDE_WORDS, FRACTION_WORDS = _words.NUMBER_WORDS, _words.MAGNITUDE_WORDS, _words.FRACTION_WORDS
 #: Fraction words that are also ordinals or nouns ("the top quarter", "the third"): numbers only after a
 #: number, "a"/"an" or "and" ("three eighths", "an eighth", "two and a quarter").
 ORDINAL_FRACTIONS: frozenset[str] = frozenset(FRACTION_WORDS) - {"half", "halves"}
 #: Unicode vulgar fractions (tag FRC), alone ("½") or after digits ("7½").
-UNICODE_FRACTIONS: dict[str, float] = {
-    "½": 1 / 2, "⅓": 1 / 3, "⅔": 2 / 3, "¼": 1 / 4, "¾": 3 / 4, "⅕": 1 / 5, "⅖": 2 / 5, "⅗": 3 / 5,
-    "⅘": 4 / 5, "⅙": 1 / 6, "⅚": 5 / 6, "⅛": 1 / 8, "⅜": 3 / 8, "⅝": 5 / 8, "⅞": 7 / 8,
-}  # fmt: skip
+UNICODE_FRACTIONS = VULGAR_FRACTIONS
 
 # ----------------------------------------------------------------------------------------------- units
-#: Unit words -> pint unit names. The conversion factors to catalog units are computed once by
-#: :mod:`recall.units` with pint; number words never reach pint.
-LENGTH_UNITS: dict[str, str] = {
-    "mm": "millimeter", "millimeter": "millimeter", "millimeters": "millimeter", "millimetre": "millimeter",
-    "millimetres": "millimeter", "mms": "millimeter",
-    "cm": "centimeter", "cms": "centimeter", "centimeter": "centimeter", "centimeters": "centimeter",
-    "centimetre": "centimeter", "centimetres": "centimeter", "centimter": "centimeter",
-    "centimters": "centimeter", "centimeteres": "centimeter",
-    "m": "meter", "meter": "meter", "meters": "meter", "metre": "meter", "metres": "meter",
-    "in": "inch", "inch": "inch", "inches": "inch", '"': "inch", "''": "inch", "”": "inch", "″": "inch",
-    "ft": "foot", "foot": "foot", "feet": "foot", "'": "foot", "′": "foot", "’": "foot",
-}  # fmt: skip
-MASS_UNITS: dict[str, str] = {
-    "mg": "milligram", "g": "gram", "gm": "gram", "gms": "gram", "gr": "gram", "gram": "gram",
-    "grams": "gram", "gramme": "gram", "grammes": "gram",
-    "kg": "kilogram", "kgs": "kilogram", "kilo": "kilogram", "kilos": "kilogram", "kilogram": "kilogram",
-    "kilograms": "kilogram", "kilogramme": "kilogram", "kilogrammes": "kilogram",
-    "oz": "ounce", "ozs": "ounce", "ounce": "ounce", "ounces": "ounce",
-    "lb": "pound", "lbs": "pound", "pound": "pound", "pounds": "pound",
-}  # fmt: skip
-VOLUME_UNITS: dict[str, str] = {
-    "ml": "milliliter", "mls": "milliliter", "milliliter": "milliliter", "milliliters": "milliliter",
-    "millilitre": "milliliter", "millilitres": "milliliter", "cc": "milliliter",
-    "cl": "centiliter", "dl": "deciliter",
-    "l": "liter", "liter": "liter", "liters": "liter", "litre": "liter", "litres": "liter", "ltr": "liter",
-    "fl oz": "fluid_ounce", "fluid ounce": "fluid_ounce", "fluid ounces": "fluid_ounce",
-    "gallon": "gallon", "gallons": "gallon", "cup": "cup", "cups": "cup",
-}  # fmt: skip
+#: Unit words -> pint unit names: the English and language-neutral words of the one unit table
+#: (:mod:`kb.measures.aliases`); the factors are computed once with pint (:mod:`kb.measures.units`).
+LENGTH_UNITS: dict[str, str] = aliases_of("length", PARSER_LANGUAGES)
+MASS_UNITS: dict[str, str] = aliases_of("mass", PARSER_LANGUAGES)
+VOLUME_UNITS: dict[str, str] = aliases_of("volume", PARSER_LANGUAGES)
 #: Density assumed for contents (g per ml): "filled with half a liter of water" weighs at least 500 g.
 CONTENTS_DENSITY_G_PER_ML = 1.0
 

@@ -117,9 +117,10 @@ def search_terms(result: RecallResult) -> tuple[str, ...]:
     """The search words to try, most specific first: the subject phrase, then its head noun (in English
     when the recall recognised the noun, ``described``). Units and
     generic nouns ("5 grams", "something") name nothing to search for."""
-    from recall.units import unit_table
+    from kb.measures.aliases import PARSER_LANGUAGES
+    from kb.measures.units import unit_table
 
-    units = unit_table()
+    units = unit_table(PARSER_LANGUAGES)
     phrase = tuple(w for w in subject_phrase(result.text or "") if w not in units and w not in GENERIC_NOUNS)
     described = result.described.english if result.described is not None else None
     noun = described or result.unknown_noun or (phrase[-1] if phrase else None)

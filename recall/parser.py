@@ -14,8 +14,8 @@ records. The pipeline (the paper's Fig. 2) is one module per stage:
    HEDGE, RANGE, QUANT, MULTI and DIM chunks, one sentence at a time (sentences are capped at
    :data:`MAX_SEGMENT_TOKENS` tokens, which bounds the regular expressions' work: no catastrophic
    backtracking on long or hostile input).
-4. :mod:`recall.quantities`: the chunks are read into quantities (numbers by :mod:`recall.numbers`,
-   units by :mod:`recall.units`, pint once) and dimension statements; :mod:`recall.categories` reads
+4. :mod:`recall.quantities`: the chunks are read into quantities (numbers by :mod:`kb.measures.words`,
+   units by :mod:`kb.measures.units`, pint once) and dimension statements; :mod:`recall.categories` reads
    the category words.
 5. Resolution: :mod:`recall.dimensions` assigns the extents to a >= b >= c, :mod:`recall.mass` picks
    the mass, :mod:`recall.categories` one word per category (rules in ``recall/PARSER.md``).

@@ -1,8 +1,8 @@
 """Stage 4 of the description parser (the paper's Fig. 2): reading the chunks into quantities.
 
 :class:`QuantityReader` walks one sentence's chunk tree: a QUANT chunk is read into a
-:class:`recall.reading.Quantity` (hedge, number or range by :mod:`recall.numbers`, unit by
-:mod:`recall.units`); a DIM chunk gives a dimension statement (a role and its quantity), a MULTI chunk a tuple or list of extents;
+:class:`recall.reading.Quantity` (hedge, number or range by :mod:`kb.measures.words`, unit by
+:mod:`kb.measures.units`); a DIM chunk gives a dimension statement (a role and its quantity), a MULTI chunk a tuple or list of extents;
 a quantity outside them is a mass, contents (in a sentence with a contents word) or an unlabelled
 length. Everything read is collected, in text order, in a :class:`recall.reading.Reading` that the
 resolution stages (:mod:`recall.dimensions`, :mod:`recall.mass`, :mod:`recall.categories`) turn into
@@ -15,14 +15,15 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from kb.measures.aliases import PARSER_LANGUAGES
+from kb.measures.units import Unit, unit_table
+from kb.measures.words import number_value
 from recall import lexicon as lx
 from recall.chunks import size
-from recall.numbers import number_value
 from recall.reading import DimStatement, Quantity, Reading
 from recall.tags import UNIT_TAGS
 from recall.tokens import Token
 from recall.toolkit import Tree
-from recall.units import Unit, unit_table
 
 __all__ = ["QuantityReader"]
 
@@ -41,7 +42,7 @@ class QuantityReader:
     """Reads chunk trees into a :class:`Reading`, with the unit table (built once); thread-safe."""
 
     def __init__(self) -> None:
-        self._units = unit_table()
+        self._units = unit_table(PARSER_LANGUAGES)
 
     def read(self, tree: Tree, segment: list[Token], base: int, reading: Reading) -> None:
         """Read one sentence's chunks (``segment`` its tokens, ``base`` the index of its first token)."""

@@ -12,8 +12,8 @@ from dataclasses import dataclass, field
 
 from kb.errors import InvalidFeature
 from kb.features import validate_features
+from kb.measures.units import Unit
 from recall.tokens import Token
-from recall.units import Unit
 
 __all__ = ["MIN_STATED", "DimStatement", "Quantity", "Reading", "Relation", "Stated", "limit_refusal"]
 

@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import re
 
+from kb.measures.aliases import PARSER_LANGUAGES
+from kb.measures.numbers import DIGITS_PATTERN
+from kb.measures.units import unit_table
 from recall import lexicon as lx
-from recall.numbers import DIGITS_PATTERN
 from recall.tokens import FRACTION_CHARS, Token
 from recall.toolkit import RegexpTagger, UnigramTagger
-from recall.units import unit_table
 
 __all__ = ["CATEGORY_TAGS", "NUMBER_TAGS", "UNIT_TAGS", "Tagger", "fix_tags"]
 
@@ -298,7 +299,7 @@ _METRIC_LENGTH = frozenset({"millimeter", "centimeter", "meter"})
 def _imperial_text(tokens: list[Token]) -> bool:
     """True when the text's units are imperial (an ounce, pound, inch or foot) and none is a metric
     length: there "7 in diameter" is seven inches."""
-    table = unit_table()
+    table = unit_table(PARSER_LANGUAGES)
     imperial = False
     for tok in tokens:
         if tok.tag in UNIT_TAGS:
@@ -341,7 +342,7 @@ def _smaller_unit_after(out: list[Token], tok: Token) -> bool:
         k -= 1
     if k == len(out) - 1 or k < 1 or out[k].tag not in UNIT_TAGS or out[k - 1].tag not in NUMBER_TAGS:
         return False
-    table = unit_table()
+    table = unit_table(PARSER_LANGUAGES)
     first, second = table.get(out[k].low), table.get(tok.low)
     return (
         first is not None

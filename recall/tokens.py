@@ -13,8 +13,8 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+from kb.measures.numbers import DIGITS_PATTERN
 from recall import lexicon as lx
-from recall.numbers import DIGITS_PATTERN
 from recall.toolkit import RegexpTokenizer
 
 __all__ = ["FRACTION_CHARS", "TOKEN_PATTERN", "Token", "Tokenizer"]

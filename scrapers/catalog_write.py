@@ -179,7 +179,7 @@ def _update_matched(con, matched, index, report, object_of_page, run_id, now) ->
 def _insert_aliases(con, fresh, matched, index, object_of_page, report, events) -> None:
     """Other names a product goes by (a second store's title matched by URL or GTIN) become aliases, and
     so does the English name of a title in another language (:func:`kb.kinds.assign_kind`: "caffettiera
-    moka ..." -> "moka pot"), recorded as a ``naming`` page event with where it came from."""
+    moka ..." -> "moka pot"; else of the page's JSON-LD categories or breadcrumbs), recorded as a ``naming`` page event with where it came from."""
     from kb.kinds import assign_kind
 
     alias_rows = []
@@ -191,7 +191,12 @@ def _insert_aliases(con, fresh, matched, index, object_of_page, report, events) 
             if p.clean.name not in taken:
                 taken.add(p.clean.name)
                 alias_rows.append({"alias": p.clean.name, "object_id": oid})
-            named = assign_kind(p.clean.name)
+            trail = p.record
+            named = assign_kind(
+                p.clean.name,
+                breadcrumbs=trail.breadcrumbs if trail is not None else (),
+                categories=trail.categories if trail is not None else (),
+            )
             if named is not None and named.english and named.english not in taken:
                 taken.add(named.english)
                 alias_rows.append({"alias": named.english, "object_id": oid})

@@ -63,6 +63,9 @@ FAMILIES: tuple[str, ...] = ("power", "intermediate", "precision")
 #: wrap nor matched the planner's 60 N power capacity.)
 FINGER_MAX_FORCE_N = 15.0
 THUMB_MAX_FORCE_N = 60.0
+#: Widest opening of a human-sized hand (AR10-like): thumb tip to finger tips about 12 cm, the span that
+#: holds a 12 cm ball in a power sphere grasp. Wider extents cannot be held in one hand.
+HAND_MAX_APERTURE_CM = 12.0
 
 #: Fingers each grasp type uses (the thumb always opposes them); types not listed use all four. The
 #: lateral pinch presses the object on the radial side of the index's middle phalanx, a ~2.5 cm long
@@ -73,6 +76,10 @@ ACTIVE_FINGERS: dict[str, tuple[str, ...]] = {
     "thumb_2_finger": ("index", "middle"),
     "tripod": ("index", "middle"),
     "thumb_3_finger": ("index", "middle", "ring"),
+    # fingertips round a ball or a rim: the little finger, at the end of a row no abduction spreads, misses
+    # balls under 8 cm (sim/programs.py, precision_circular)
+    "precision_disk": ("index", "middle", "ring"),
+    "precision_sphere": ("index", "middle", "ring"),
 }
 ALL_FINGERS: tuple[str, ...] = ("index", "middle", "ring", "little")
 

@@ -21,7 +21,8 @@ import numpy as np  # noqa: E402
 from kb.errors import SimulationError  # noqa: E402
 from kb.features import ObjectRecord  # noqa: E402
 from sim.grasps import GraspPlan  # noqa: E402
-from sim.trial import TrialWorld, build_world, run_trial  # noqa: E402
+from sim.trial import run_trial  # noqa: E402
+from sim.world import TrialWorld, build_world  # noqa: E402
 
 __all__ = ["encode_png", "render_trial", "render_world"]
 

@@ -29,6 +29,8 @@ from string import Template
 from typing import Any
 
 from kb.jsonable import to_jsonable
+from sim.diagnosis import failure_cause
+from sim.task import row_details
 
 __all__ = ["CSV_FIELDS", "success_rates", "write_report"]
 
@@ -47,18 +49,6 @@ _SAFE_IMAGE = re.compile(r"^[A-Za-z0-9._-]+\.png$")
 def _e(value: Any) -> str:
     """Escaped text for HTML (None as an en dash)."""
     return "\u2013" if value is None else html.escape(str(value), quote=True)
-
-
-def row_details(row: Mapping[str, Any]) -> dict[str, Any]:
-    """The ``details`` JSON of a stored grasp-validation row as a dict ({} when absent or malformed)."""
-    raw = row.get("details")
-    if isinstance(raw, Mapping):
-        return dict(raw)
-    try:
-        out = json.loads(raw) if raw else {}
-    except (TypeError, ValueError):
-        return {}
-    return out if isinstance(out, dict) else {}
 
 
 def _normalise(row: Mapping[str, Any]) -> dict[str, Any]:
@@ -158,28 +148,6 @@ def _row_html(r: dict[str, Any]) -> str:
         f"<td class='num'>{_fmt(r.get('rotation_deg'), 1)}</td><td class='num'>{_fmt(r.get('grip_force_n'))}</td>"
         f"<td class='num'>{_fmt(r.get('max_contact_force_n'))}</td><td>{_e(r.get('reason'))}</td></tr>"
     )
-
-
-def failure_cause(row: Mapping[str, Any]) -> str:
-    """Why a grasp did not hold, in the hand's terms: aperture, mass and friction, or the weight's moment."""
-    reason = str(row.get("reason") or "")
-    params = row_details(row).get("plan", {}).get("params", {})
-    if params.get("feasible") is False:
-        return "aperture: every side is wider than the hand's span (needs two hands)"
-    if "inside" in reason:
-        return "aperture: the hand cannot open round it (starts inside the object)"
-    if params.get("force_within_capacity") is False:
-        return (
-            f"mass and friction: it needs {params.get('required_force_n')} N of squeeze at friction "
-            f"{params.get('friction')}, more than this grasp gives"
-        )
-    if "no contact" in reason:
-        return "size: the digits closed past it (too small or thin for the pads)"
-    if reason.startswith("turned"):
-        return "moment: its weight or a push turned it out of the grip (friction and pad lever too small)"
-    if reason.startswith(("slipped", "not lifted")):
-        return "mass and friction: squeeze times friction did not carry its weight"
-    return reason or "failed"
 
 
 def _figure(r: dict[str, Any], out_dir: Path, label: str) -> str:

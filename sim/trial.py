@@ -2,7 +2,7 @@
 
 Protocol (constants below; sim/PHYSICS.md explains them):
 
-1. Build a world for this object and plan: a table (top at z = 0), the object resting on it with the
+1. Build a world for this object and plan (sim/world.py): a table (top at z = 0), the object resting on it with the
    grasped dimension along world y (the hand's opposition axis), the hand above it (``top``) or beside it
    (``side``), pre-shaped to the plan's aperture. If the pre-shaped hand, at its grasp pose, already
    overlaps the object by more than :data:`PENETRATION_TOL_M`, the trial is a failure: the hand would
@@ -30,12 +30,12 @@ from typing import Any
 import mujoco
 import numpy as np
 
-from kb.errors import PhysicsError, SimulationError
+from kb.errors import PhysicsError
 from kb.features import ObjectRecord
 from sim import hand as H
-from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
-from sim.objects import ObjectModel, add_object, add_table, object_model
+from sim.grasps import GraspPlan
 from sim.programs import program_for
+from sim.world import APPROACH_M, PENETRATION_TOL_M, TrialWorld, build_world
 
 __all__ = [
     "LIFT_M",
@@ -57,13 +57,6 @@ MAX_ROTATION_DEG = 15.0
 #: Lift height and the fraction of it the object must follow to count as lifted.
 LIFT_M = 0.10
 LIFTED_FRACTION = 0.5
-#: The hand starts this far back along the approach direction.
-APPROACH_M = 0.06
-#: Gap between the palm face and the object above it in pinches (cm); a wrap's gap is its hand program's
-#: ``palm_gap_cm`` (sim/programs.py: 0.4 cm pressed to the palm, 1 cm held in the fingers).
-PRECISION_PALM_CLEARANCE_CM = 1.0
-#: Deeper overlap than this at the pre-grasp pose means the hand starts inside the object.
-PENETRATION_TOL_M = 0.002
 #: Phase durations (s). Closing ramps for CLOSE_RAMP_S then settles; each perturbation lasts PUSH_S.
 SETTLE_S = 0.04
 APPROACH_S = 0.3
@@ -127,232 +120,6 @@ class TrialResult:
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
-
-
-# ---------------------------------------------------------------------------------------------------------
-# The world
-# ---------------------------------------------------------------------------------------------------------
-@dataclass
-class TrialWorld:
-    """A compiled world for one (object, plan) and the indices the trial reads."""
-
-    model: mujoco.MjModel
-    data: mujoco.MjData
-    obj: ObjectModel
-    plan: GraspPlan
-    targets: H.GraspTargets
-    approach_dir: np.ndarray
-    object_body: int
-    palm_body: int
-    is_hand: np.ndarray  # per geom: does it belong to the hand
-    object_geom: int
-    wrist_act: np.ndarray
-    digit_act: np.ndarray
-    wrist_qpos: np.ndarray
-    approach: str = "top"  # as built: the plan's, or "edge" for a flat object grasped at a table edge
-    geom_digit: dict[int, str] = field(default_factory=dict)  # hand geom id -> digit it belongs to
-    digit_qpos: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))  # qpos index per digit joint
-
-    def palm_pose(self) -> tuple[np.ndarray, np.ndarray]:
-        return self.data.xpos[self.palm_body].copy(), self.data.xmat[self.palm_body].reshape(3, 3).copy()
-
-    def object_in_palm(self) -> tuple[np.ndarray, np.ndarray]:
-        """Object position and orientation matrix in the palm frame."""
-        p, r = self.palm_pose()
-        po = self.data.xpos[self.object_body]
-        ro = self.data.xmat[self.object_body].reshape(3, 3)
-        return r.T @ (po - p), r.T @ ro
-
-    def digit_forces(self) -> dict[str, float]:
-        """Total normal force (N) each digit presses on the object with (its fingertip sensors)."""
-        d = self.data
-        n = d.ncon
-        out = dict.fromkeys(H.DIGITS, 0.0)
-        if n == 0:
-            return out
-        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        other = np.where(g1 == self.object_geom, g2, np.where(g2 == self.object_geom, g1, -1))
-        ok = (other >= 0) & (d.contact.efc_address[:n] >= 0)
-        for k in np.flatnonzero(ok):
-            digit = self.geom_digit.get(int(other[k]))
-            if digit is not None:
-                out[digit] += float(d.efc_force[d.contact.efc_address[k]])
-        return out
-
-    def hand_contacts(self) -> tuple[np.ndarray, np.ndarray]:
-        """Normal forces (N) and distances (m) of the active hand-object contacts.
-
-        With elliptic cones a contact's first constraint row is its normal force (what
-        ``mj_contactForce`` returns as force[0]); reading ``efc_force`` directly avoids a Python loop.
-        """
-        d = self.data
-        n = d.ncon
-        if n == 0:
-            return _EMPTY, _EMPTY
-        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        mask = ((g1 == self.object_geom) & self.is_hand[g2]) | ((g2 == self.object_geom) & self.is_hand[g1])
-        mask &= d.contact.efc_address[:n] >= 0
-        if not mask.any():
-            return _EMPTY, _EMPTY
-        return d.efc_force[d.contact.efc_address[:n][mask]], d.contact.dist[:n][mask]
-
-
-_EMPTY = np.zeros(0)
-
-
-def _placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
-    """World axis of each catalog dimension: the grasped one along y (the opposition axis); of the other
-    two, for a top approach the larger along x and the smaller up (lying on its broad side); for a side
-    approach the larger up (standing, like a bottle) and the smaller along x, towards the palm."""
-    rest = sorted((d for d in "abc" if d != plan.grasped_dim), key=obj.extent_cm, reverse=True)
-    if plan.approach == "top":
-        return {plan.grasped_dim: 1, rest[0]: 0, rest[1]: 2}
-    return {plan.grasped_dim: 1, rest[0]: 2, rest[1]: 0}
-
-
-def _is_flat(obj: ObjectModel, plan: GraspPlan) -> bool:
-    """Does ``plan`` grasp a flat object across its thickness? Such objects lie flat, overhanging a table
-    edge, and are grasped from the edge (thumb on top, fingers underneath), as people pick up a plate or
-    a book; standing them on edge for a top or side grasp would be neither stable nor realistic."""
-    dims = sorted("abc", key=obj.extent_cm)
-    thin, middle = dims[0], dims[1]
-    return plan.grasped_dim == thin and is_flat_grasp(obj.extent_cm(thin), obj.extent_cm(middle))
-
-
-def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
-    """Flat on the table (grasped thickness up), its longest side along the table edge (world y, where the
-    fingers spread) and the other across it (world x, overhanging)."""
-    rest = sorted((d for d in "abc" if d != plan.grasped_dim), key=obj.extent_cm, reverse=True)
-    return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
-
-
-def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
-    """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
-    if plan.grasp_type not in GRASP_TYPES:
-        raise SimulationError(f"unknown grasp type {plan.grasp_type!r}")
-    if plan.approach not in H.APPROACH_QUAT:
-        raise SimulationError(f"unknown approach {plan.approach!r}: expected top or side")
-    model_obj = obj if isinstance(obj, ObjectModel) else object_model(obj)
-    rng = np.random.default_rng(seed)
-    flat = _is_flat(model_obj, plan)
-    approach = "edge" if flat else plan.approach
-    axes = _edge_placement(model_obj, plan) if flat else _placement(model_obj, plan)
-    ext = np.zeros(3)
-    for dim, ax in axes.items():
-        ext[ax] = model_obj.extent_cm(dim)
-    width = ext[2] if flat else ext[1]
-    targets = H.grasp_targets(plan, width)
-    program = program_for(plan.grasp_type)
-    wrap = program.control == "wrap"
-
-    depth = ext[2] if approach == "top" else ext[0]  # extent along the approach axis
-    # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the object's
-    # centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
-    overhang = edge_overhang_cm(depth) if flat else 0.0
-    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat)
-    center_h = center_cm * H.CM
-
-    obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
-    rot = np.zeros(9)
-    mujoco.mju_quat2Mat(rot, np.array(H.APPROACH_QUAT[approach]))
-    rot = rot.reshape(3, 3)
-    palm_pos = obj_pos - rot @ center_h
-    if approach == "side":
-        # Keep the palm's lower edge above the table: the fingers spread vertically from its centre.
-        palm_pos[2] = max(palm_pos[2], (H.PALM_HALF_CM[0] + 0.3) * H.CM)
-    approach_dir = np.array([0.0, 0.0, 1.0]) if approach == "top" else np.array([1.0, 0.0, 0.0])
-
-    spec = mujoco.MjSpec()
-    spec.modelname = "grasp_trial"
-    H.configure_options(spec)
-    spec.worldbody.add_light(pos=[0.3, -0.3, 0.8], dir=[-0.3, 0.3, -0.8], diffuse=[0.7, 0.7, 0.7])
-    add_table(spec, (depth / 2.0 - overhang) * H.CM if flat else None)
-    add_object(spec, model_obj, axes, obj_pos)
-    H.add_hand(spec, approach=approach, mount_m=palm_pos, torque_limits=targets.closing_limits)
-    try:
-        model = spec.compile()
-    except Exception as exc:
-        raise SimulationError(f"could not compile the trial model: {exc}") from exc
-    data = mujoco.MjData(model)
-
-    wrist_act = np.array([model.actuator(n).id for n in H.WRIST_ACTUATOR_NAMES])
-    digit_act = np.array([model.actuator(n).id for n in H.ACTUATOR_NAMES])
-    wrist_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.WRIST_JOINT_NAMES])
-    digit_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.JOINT_NAMES])
-    object_body = model.body("object").id
-    # Hand geoms: every geom on a body other than the world (the table) and the object.
-    is_hand = (model.geom_bodyid != 0) & (model.geom_bodyid != object_body)
-
-    noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
-    open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
-    data.qpos[digit_qpos] = open_q
-    if not wrap:
-        # Round objects bulge above their equator into the fingers that reach down to it: pinch higher,
-        # in 5 mm steps up to 1 cm below the top, until the pre-shaped hand clears the object.
-        backoff = _precision_backoff_m(
-            model, data, is_hand, model.geom("object_geom").id, wrist_qpos, approach_dir, grip_depth - 1.0
-        )
-        noise = noise + backoff * approach_dir
-    data.qpos[wrist_qpos] = noise
-    data.ctrl[digit_act] = open_q
-    data.ctrl[wrist_act] = noise
-    world = TrialWorld(
-        model=model,
-        data=data,
-        obj=model_obj,
-        plan=plan,
-        targets=targets,
-        approach_dir=approach_dir,
-        object_body=object_body,
-        palm_body=model.body("palm").id,
-        is_hand=is_hand,
-        object_geom=model.geom("object_geom").id,
-        wrist_act=wrist_act,
-        digit_act=digit_act,
-        wrist_qpos=wrist_qpos,
-        digit_qpos=digit_qpos,
-        approach=approach,
-        geom_digit={
-            g: model.geom(g).name.split("_")[0]
-            for g in range(model.ngeom)
-            if model.geom(g).name.split("_")[0] in H.DIGITS
-        },
-    )
-    return world
-
-
-def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: bool) -> tuple[np.ndarray, float]:
-    """Where the object's centre sits in the hand frame (cm) at the grasp pose, and how far below its near
-    face the pads meet it (pinches; 0 for wraps). ``depth``: its extent along the approach axis."""
-    palm_face = -H.PALM_HALF_CM[2]
-    if program.control == "wrap":  # pressed to the palm, or held in the fingers by the program's gap
-        return np.array([0.0, targets.center_y_cm, palm_face - program.palm_gap_cm - depth / 2.0]), 0.0
-    x_c = float(np.mean([H.FINGER_BY_NAME[f].x_cm for f in targets.fingers]))
-    # Pads meet the object's sides at its centre (no gravity torque about the pinch axis) when they reach
-    # that far, else 3 cm below its near face; flat objects as near their centre of mass as the pads
-    # reach under the overhang.
-    grip_depth = edge_grip_in_cm(depth) if flat else min(depth / 2.0, 3.0)
-    z_c = min(
-        targets.contact_z_cm - depth / 2.0 + grip_depth,
-        palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,
-    )
-    return np.array([x_c, targets.center_y_cm, z_c]), grip_depth
-
-
-def _precision_backoff_m(model, data, is_hand, object_geom, wrist_qpos, approach_dir, max_cm: float) -> float:
-    """Smallest back-off (m, along the approach, 5 mm steps up to ``max_cm``) at which the pre-shaped hand
-    does not overlap the object; 0 if none does (the trial then fails as starting inside)."""
-    steps = int(max(0.0, max_cm) // 0.5)
-    for k in range(steps + 1):
-        offset = k * 0.005
-        data.qpos[wrist_qpos] = offset * approach_dir
-        mujoco.mj_forward(model, data)
-        n = data.ncon
-        g1, g2 = data.contact.geom1[:n], data.contact.geom2[:n]
-        mine = ((g1 == object_geom) & is_hand[g2]) | ((g2 == object_geom) & is_hand[g1])
-        if not (data.contact.dist[:n][mine] < -PENETRATION_TOL_M).any():
-            return offset
-    return 0.0
 
 
 def check_physics(model: mujoco.MjModel, data: mujoco.MjData, where: str = "") -> None:

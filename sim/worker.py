@@ -7,18 +7,16 @@ hash), runs the rest through an :class:`~sim.executors.Executor` and stores ever
 ``flush_seconds``), each through a short write connection: the database is never held while simulating,
 and a run that is interrupted keeps what it finished, so running it again resumes.
 
-The trial function runs in the worker processes. By default it is ``sim.trial:run_trial`` (MuJoCo is
-imported there, not here); any picklable module-level callable ``fn(obj, plan, *, seed) -> result``
-can be injected instead, where ``result`` is a TrialResult-like object (``to_dict()``) or a dict.
+The trial function runs in the worker processes (one :class:`~sim.task.TrialTask` each, sim/task.py). By
+default it is ``sim.trial:run_trial`` (MuJoCo is imported there, not here); any picklable module-level
+callable ``fn(obj, plan, *, seed) -> result`` can be injected instead, where ``result`` is a
+TrialResult-like object (``to_dict()``) or a dict.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import importlib
 import json
-import re
 import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
@@ -26,13 +24,21 @@ from pathlib import Path
 from typing import Any
 
 from kb.catalog import KnowledgeBase, features_hash
-from kb.errors import ObjrecallError, SimulationError
+from kb.errors import ObjrecallError
 from kb.features import ObjectRecord
 from sim.choice import ChoiceSummary, GraspChoice, choose, summarize_choices
 from sim.executors import Executor, make_executor
-from sim.grasps import GraspPlan
-from sim.planner import PLANNER_VERSION, plan_grasps
-from sim.report import row_details as _details
+from sim.planner import plan_grasps
+from sim.task import (
+    DEFAULT_RENDER,
+    DEFAULT_TRIAL,
+    Trial,
+    TrialTask,
+    current_hand_version,
+    image_name,
+    run_task,
+)
+from sim.task import row_details as _details
 
 __all__ = [
     "DEFAULT_TOP",
@@ -47,136 +53,6 @@ __all__ = [
 
 #: Candidate grasps validated per object.
 DEFAULT_TOP = 3
-#: The trial function, as "module:function", resolved inside each worker process.
-DEFAULT_TRIAL = "sim.trial:run_trial"
-DEFAULT_RENDER = "sim.render:render_trial"
-#: Rendered image size (pixels) for reports.
-IMAGE_SIZE = (480, 360)
-
-Trial = Callable[..., Any] | str
-
-
-def _resolve(fn: Trial) -> Callable[..., Any]:
-    if callable(fn):
-        return fn
-    module, _, name = str(fn).partition(":")
-    return getattr(importlib.import_module(module), name)
-
-
-def current_hand_version() -> str:
-    """The simulated hand's version string (stored with every result; a new hand re-runs the trials)."""
-    try:
-        hand = importlib.import_module("sim.hand")
-    except ModuleNotFoundError:
-        return ""
-    for attr in ("HAND_VERSION", "VERSION", "__version__"):
-        if hasattr(hand, attr):
-            return str(getattr(hand, attr))
-    return ""
-
-
-def image_name(object_name: str, grasp_type: str) -> str:
-    """A safe file name for an object's grasp image (names may hold any text from scraped pages)."""
-    slug = re.sub(r"[^a-z0-9]+", "-", object_name.lower()).strip("-")[:40] or "object"
-    digest = hashlib.sha1(f"{object_name}\x00{grasp_type}".encode()).hexdigest()[:10]
-    return f"{slug}-{grasp_type}-{digest}.png"
-
-
-@dataclass(frozen=True)
-class TrialTask:
-    """One unit of work for a worker process: a trial, a render, or both."""
-
-    obj: ObjectRecord
-    plan: GraspPlan
-    rank: int
-    seed: int
-    features_hash: str
-    object_id: int | None = None
-    trial: Trial | None = DEFAULT_TRIAL  # None: render only (the trial is stored already)
-    render: Trial | None = None
-    image_path: str | None = None
-    hand_version: str = ""
-
-
-def _result_dict(result: Any) -> dict[str, Any]:
-    if isinstance(result, dict):
-        return dict(result)
-    if hasattr(result, "to_dict"):
-        return dict(result.to_dict())
-    if dataclasses.is_dataclass(result) and not isinstance(result, type):
-        return dataclasses.asdict(result)
-    raise SimulationError(f"trial returned {type(result).__name__}, not a result record")
-
-
-def _num(value: Any) -> float | None:
-    try:
-        out = float(value)
-    except (TypeError, ValueError):
-        return None
-    return None if out != out else out  # NaN -> None
-
-
-def run_task(task: TrialTask) -> dict[str, Any]:
-    """Run one task (in a worker process) and return its ``grasp_validations`` row.
-
-    A :class:`SimulationError` from the trial is a result (outcome ``error``) and is stored; any other
-    exception is a bug or a missing dependency: the row gets ``store = False`` so a rerun tries again.
-    """
-    row: dict[str, Any] = {
-        "object_name": task.obj.name,
-        "object_id": task.object_id,
-        "features_hash": task.features_hash,
-        "grasp_type": task.plan.grasp_type,
-        "family": task.plan.family,
-        "rank": task.rank,
-        "seed": task.seed,
-        "planner_version": PLANNER_VERSION,
-        "hand_version": task.hand_version,
-        "store": task.trial is not None,
-    }
-    details: dict[str, Any] = {"plan": task.plan.to_dict()}
-    if task.trial is not None:
-        start, cpu_start = time.perf_counter(), time.process_time()
-        try:
-            res = _result_dict(_resolve(task.trial)(task.obj, task.plan, seed=task.seed))
-        except SimulationError as err:
-            res = {"outcome": "error", "success": False, "reason": str(err)}
-        except Exception as err:  # noqa: BLE001 - reported, not stored
-            res = {"outcome": "error", "success": False, "reason": f"{type(err).__name__}: {err}"}
-            row["store"] = False
-        outcome = res.get("outcome") or ("success" if res.get("success") else "failure")
-        row.update(
-            outcome=outcome,
-            success=bool(res.get("success")) and outcome == "success",
-            reason=res.get("reason"),
-            slip_cm=_num(res.get("slip_cm")),
-            rotation_deg=_num(res.get("rotation_deg")),
-            grip_force_n=_num(res.get("grip_force_n", task.plan.grip_force_n)),
-            max_contact_force_n=_num(res.get("max_contact_force_n")),
-            simulator=res.get("simulator"),
-        )
-        if res.get("hand_version") and str(res["hand_version"]) != task.hand_version:
-            details["trial_hand_version"] = str(res["hand_version"])  # the key keeps the planned version
-        for key in ("program", "lifted", "perturbation", "closed_posture", "sim_time_s", "wall_time_s"):
-            if key in res:
-                details[key] = res[key]
-        details.setdefault("wall_time_s", round(time.perf_counter() - start, 4))
-        details["cpu_time_s"] = round(time.process_time() - cpu_start, 4)
-    if task.render is not None and task.image_path:
-        try:
-            png = _resolve(task.render)(
-                task.obj, task.plan, seed=task.seed, width=IMAGE_SIZE[0], height=IMAGE_SIZE[1]
-            )
-            path = Path(task.image_path)
-            path.parent.mkdir(parents=True, exist_ok=True)
-            path.write_bytes(png)
-            details["image"] = path.name
-        except Exception as err:  # noqa: BLE001 - a report without one image is still a report
-            details["image_error"] = f"{type(err).__name__}: {err}"
-    row["details"] = json.dumps(details, default=str)
-    return row
-
-
 @dataclass
 class ValidationSummary:
     """What a validation run did. ``results`` holds every requested trial's row (run now or stored

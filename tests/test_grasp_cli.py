@@ -206,5 +206,5 @@ def test_validate_says_why_nothing_holds_in_the_hands_terms(tmp_path):
     text = " ".join(out.split())  # rich wraps long lines
     assert "a validated grasp (best-ranked that holds) for 0" in text
     assert "validated choice: none of the 1 candidates holds" in text
-    assert "why: aperture: every side is wider than the hand's span (needs two hands)" in text
+    assert "why: aperture: its smallest side (30 cm) is wider than the hand's 12 cm span: it needs two hands" in text
     assert out.count("    why: ") == 1

@@ -1,4 +1,4 @@
-"""The number grammar of descriptions (recall/numbers.py)."""
+"""The number grammar of descriptions (kb/measures/words.py, digits by kb/measures/numbers.py)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from recall.numbers import digits_value, is_number_token, number_value, parse_number
+from kb.measures.numbers import digits_value
+from kb.measures.words import is_number_token, number_value
+from kb.measures.words import parse_number_words as parse_number
 
 CASES = [
     ("15", 15),

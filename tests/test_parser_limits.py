@@ -11,10 +11,11 @@ from hypothesis import strategies as st
 from typer.testing import CliRunner
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
+from kb.measures.aliases import PARSER_LANGUAGES
+from kb.measures.numbers import digits_value
+from kb.measures.units import unit_table
 from kb.service.cli import app
-from recall.numbers import digits_value
 from recall.parser import parse
-from recall.units import unit_table
 
 approx = pytest.approx
 NUMERIC = ("a_cm", "b_cm", "c_cm", "mass_g")
@@ -201,7 +202,7 @@ def test_json_and_the_cli_show_what_was_refused() -> None:
 
 
 # ----------------------------------------------------------------------------------- properties
-_UNITS = sorted(unit_table().items())
+_UNITS = sorted(unit_table(PARSER_LANGUAGES).items())
 _LIMIT = {"length": MAX_DIM_CM, "mass": MAX_MASS_G, "volume": MAX_MASS_G}
 
 

@@ -147,8 +147,8 @@ def test_report_shows_first_and_validated_choice_and_why_nothing_holds(tmp_path)
     assert "first choice" in page and "validated choice (planner&#x27;s rank 2)" in page
     assert f"images/{img_first}" in page and f"images/{img_val}" in page
     assert "no candidate holds" in page
-    assert "aperture: the hand cannot open round it" in page  # the soccer ball: why, not just "failure"
-    assert "mass and friction: it needs 80 N" in page  # the anvil
+    assert "aperture: the hand, opened for a" in page and "cannot get round it" in page  # the soccer ball: why
+    assert "mass: holding it needs a squeeze of 80 N, more than the 30 N a thumb 2 finger gives" in page  # the anvil
     doc = json.loads((tmp_path / "results.json").read_text())
     assert doc["summary"]["choices"] == {"objects": 3, "first_holds": 0, "validated": 1, "differs": 3}
     remote = next(c for c in doc["choices"] if c["object_name"] == "remote")

@@ -14,9 +14,10 @@ import re
 from typing import Any
 
 from scrapers.adapters import Observation, adapter
-from scrapers.adapters.spec_table import _CODE, _DIGIT, Pair, observations_from_pairs, split_inline
+from scrapers.adapters.spec_table import observations_from_pairs
 from scrapers.labels import classify_label
 from scrapers.page import Page
+from scrapers.spec_pairs import CODE, DIGIT, Pair, split_inline
 
 __all__ = ["NAME_MATCH", "embedded_json"]
 
@@ -51,7 +52,7 @@ def _keyed_value(node: dict, key: str, value: Any) -> str | None:
         unit = next((value[k] for k in _UNIT_KEYS if isinstance(value.get(k), str)), None)
         return f"{inner} {unit}" if isinstance(inner, (int, float, str)) and unit else None
     if isinstance(value, str):
-        return value if _DIGIT.search(value) and len(value) < 200 else None
+        return value if DIGIT.search(value) and len(value) < 200 else None
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         for k in (f"{key}Unit", f"{key}_unit", f"{key}Uom", *_UNIT_KEYS):
             if isinstance(node.get(k), str) and node[k].strip():
@@ -111,8 +112,8 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
             and isinstance(node, str)
             and 3 < len(node) < 200
             and ":" in node
-            and _DIGIT.search(node)
-            and not _CODE.search(node)
+            and DIGIT.search(node)
+            and not CODE.search(node)
         ):
             for label, value, info in split_inline(node):
                 pairs.append(Pair(label, value, info, order=order))

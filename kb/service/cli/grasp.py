@@ -344,7 +344,7 @@ def _print_validation(summary) -> None:
     if summary.not_stored:
         console.print(f"[yellow]{summary.not_stored} trials raised unexpected errors and were not stored[/]")
     console.print(summary.choice_summary.describe(), highlight=False)
-    from sim.report import failure_cause
+    from sim.diagnosis import failure_cause
 
     for c in summary.choices:
         if c.differs:

@@ -1,13 +1,12 @@
-"""The number grammar of descriptions: digits, decimals, fractions and number words.
-
-People write numbers as ``15``, ``7.5``, ``7,5``, ``1/2``, ``½``, ``7 1/4``, ``fifteen``, ``twenty one``,
+"""Numbers written in English words, as people describe objects: ``fifteen``, ``twenty one``,
 ``fifteen and half``, ``one and a half``, ``seven and quarter``, ``three quarters``, ``a dozen``,
-``a couple``, ``a hundred and fifty``. Number-word libraries read "fifteen and half" as 15; this small
-grammar does not.
+``a couple``, ``a hundred and fifty``, and digits among them (``7 1/4``, ``7 and 1/2``). Number-word
+libraries read "fifteen and half" as 15; this small grammar does not.
 
-The parser's chunker groups the tokens of one number into a ``NUM`` chunk; :func:`number_value` reads
-such a token list (lower case) and returns its value, or ``None`` when the words are not one well-formed
-number ("three four", "half twenty"). :func:`parse_number` does the same for a string.
+:func:`number_value` reads a token list (lower case; the parser's NUM chunk) and returns its value, or
+``None`` when the words are not one well-formed number ("three four", "half twenty").
+:func:`parse_number_words` does the same for a string. Digit tokens are read by
+:func:`kb.measures.numbers.digits_value`.
 
 Grammar (informal)::
 
@@ -15,71 +14,41 @@ Grammar (informal)::
     whole    := DIGITS | words
     words    := [unit|teen|tens [unit]] [hundred [and] rest] | ... thousand ... | [unit] dozen | couple
     fraction := half | quarter(s) | third(s) | unit fraction ("three quarters") | 1/4 | ¼
-
-Digits: ``1,000`` (three digits after a comma) is a thousands separator; ``7,5`` (one or two digits) is
-a decimal comma. ``7.5`` and ``.5`` are decimals; ``1.5e2`` (scientific notation), ``10**3`` and
-``10^3`` (powers) are read as the numbers they write, ``inf`` when too large for a float: the parser
-refuses those by the catalog's limits, never reads them as another number ("1e308" is not 308).
-The sign of a negative number is read by the tagger (:mod:`recall.tags`), not here.
 """
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Sequence
 
-from recall.lexicon import FRACTION_WORDS, MAGNITUDE_WORDS, NUMBER_WORDS, UNICODE_FRACTIONS
+from kb.measures.numbers import DIGITS_PATTERN, VULGAR_FRACTIONS, digits_value
 
-__all__ = ["DIGITS_PATTERN", "digits_value", "is_number_token", "number_value", "parse_number"]
+__all__ = ["FRACTION_WORDS", "MAGNITUDE_WORDS", "NUMBER_WORDS", "is_number_token", "number_value", "parse_number_words"]
 
-#: Regular expression for one number written with digits; the parser's tokenizer uses it as is. It
-#: stays linear on long digit-comma chains ("1,234,567,..."): a thousands group only needs no digit
-#: after it, so a failed match backs off one group and succeeds.
-DIGITS_PATTERN = (
-    r"\d+(?:\.\d+)?(?:[eE]|\*\*|\^)[+-]?\d+"  # scientific notation and powers: 1.5e2, 10**3, 10^3
-    r"|\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
-)
+#: Number words and their values (tag NW). "couple" is 2 ("a couple of centimeters"), "dozen" 12.
+NUMBER_WORDS: dict[str, int] = {
+    "zero": 0, "one": 1, "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "seven": 7, "eight": 8,
+    "nine": 9, "ten": 10, "eleven": 11, "twelve": 12, "thirteen": 13, "fourteen": 14, "fifteen": 15,
+    "sixteen": 16, "seventeen": 17, "eighteen": 18, "nineteen": 19, "twenty": 20, "thirty": 30,
+    "forty": 40, "fourty": 40, "fifty": 50, "sixty": 60, "seventy": 70, "eighty": 80, "ninety": 90,
+    "dozen": 12, "couple": 2,
+}  # fmt: skip
+#: Magnitude words (tag NMAG): they multiply what precedes them ("two hundred", "a thousand").
+MAGNITUDE_WORDS: dict[str, int] = {"hundred": 100, "thousand": 1000}
+#: Fraction words (tag FRC): "half", "a quarter", "three quarters", "seven and quarter".
+FRACTION_WORDS: dict[str, float] = {
+    "half": 0.5, "halves": 0.5, "quarter": 0.25, "quarters": 0.25, "third": 1 / 3, "thirds": 1 / 3,
+    "fifth": 0.2, "fifths": 0.2, "sixth": 1 / 6, "sixths": 1 / 6, "eighth": 0.125, "eighths": 0.125,
+    "tenth": 0.1, "tenths": 0.1, "sixteenth": 0.0625, "sixteenths": 0.0625,
+}  # fmt: skip
 
-_THOUSANDS = re.compile(r"\d{1,3}(?:,\d{3})+(?:\.\d+)?")
-_DECIMAL_COMMA = re.compile(r"\d+,\d{1,2}")
-_DECIMAL = re.compile(r"\d*\.\d+|\d+")
-_FRACTION = re.compile(r"(\d+)/(\d+)")
-_SCIENTIFIC = re.compile(r"\d+(?:\.\d+)?[eE][+-]?\d+")
-_POWER = re.compile(r"(\d+(?:\.\d+)?)(?:\*\*|\^)([+-]?\d+)")
 _HYPHEN_WORDS = re.compile(r"[a-z]+(?:-[a-z]+)+")
 _ARTICLES = frozenset({"a", "an"})
-
-
-def digits_value(token: str) -> float | None:
-    """Value of a token written in digits (``15``, ``7.5``, ``7,5``, ``1,000``, ``3/4``, ``½``, ``1.5e2``,
-    ``10**3``, ``10^3``). A value too large for a float is ``inf`` (for the caller to refuse), never another
-    number."""
-    if token in UNICODE_FRACTIONS:
-        return UNICODE_FRACTIONS[token]
-    if _SCIENTIFIC.fullmatch(token):
-        return float(token)  # "1e400" is inf
-    m = _POWER.fullmatch(token)
-    if m:
-        try:
-            return float(m.group(1)) ** float(m.group(2))  # a 5,000-digit exponent is inf, not an error
-        except OverflowError:
-            return math.inf
-    if _THOUSANDS.fullmatch(token):
-        return float(token.replace(",", ""))
-    if _DECIMAL_COMMA.fullmatch(token):
-        return float(token.replace(",", "."))
-    if _DECIMAL.fullmatch(token):
-        return float(token)
-    m = _FRACTION.fullmatch(token)
-    if m:
-        den = int(m.group(2))
-        return int(m.group(1)) / den if den else None
-    return None
+_SIMPLE_FRACTION = re.compile(r"(\d+)/(\d+)")
 
 
 def _is_fraction_token(token: str) -> bool:
-    return token in FRACTION_WORDS or token in UNICODE_FRACTIONS or _FRACTION.fullmatch(token) is not None
+    return token in FRACTION_WORDS or token in VULGAR_FRACTIONS or _SIMPLE_FRACTION.fullmatch(token) is not None
 
 
 def is_number_token(token: str) -> bool:
@@ -278,10 +247,10 @@ class _NumberReading:
         return whole.add(kind, value)
 
 
-_SPLIT = re.compile(DIGITS_PATTERN + r"|[^\W\d_]+(?:-[^\W\d_]+)*|[" + "".join(UNICODE_FRACTIONS) + "]")
+_SPLIT = re.compile(DIGITS_PATTERN + r"|[^\W\d_]+(?:-[^\W\d_]+)*|[" + "".join(VULGAR_FRACTIONS) + "]")
 
 
-def parse_number(text: str) -> float | None:
+def parse_number_words(text: str) -> float | None:
     """Value of ``text`` when all of it is one number ("twenty one and a half", "7½", "1,5"), else None."""
     if not isinstance(text, str):
         return None

@@ -1,0 +1,255 @@
+"""The one unit table: unit words to catalog units (cm, g; ml for contents), factors computed by pint.
+
+:func:`unit_table` gives one :class:`Unit` per word of :data:`kb.measures.aliases.ALIASES` (``"inches"``
+-> length, 2.54 cm), for every language or for the ones asked (the parser asks for
+:data:`~kb.measures.aliases.PARSER_LANGUAGES`). Only the aliases' pint unit *names* reach pint, never
+the text of a page or a description (pint reads "quarter" as a mass unit).
+
+Building the table with pint costs 135-170 ms (most of it pint's registry), so it is built once, when
+the aliases change, and stored as package data (``kb/measures/data/units.json``, written by ``python -m
+kb.measures.units --write``); :func:`unit_table` reads it when it lists exactly the aliases' words with
+the same kinds and pint names, and builds the table with pint otherwise. A test checks that the stored
+table equals a freshly built one, factor for factor.
+
+:func:`length_unit` and :func:`mass_unit` look a unit token up the way pages write it (any case, a
+trailing dot, accents or not); :func:`combine` is the rule for one quantity written in two units
+("1 lb 2 oz", "5 ft 3 in", "1 kg 450 g").
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import json
+import math
+import unicodedata
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any, Literal
+
+from kb.measures.aliases import ALIASES, KINDS
+
+__all__ = [
+    "CATALOG_UNITS",
+    "STORED_TABLE",
+    "UNIT_PATTERN",
+    "Unit",
+    "aliases_of",
+    "build_unit_table",
+    "combine",
+    "convert",
+    "length_unit",
+    "lookup",
+    "mass_unit",
+    "strip_accents",
+    "unit_key",
+    "unit_table",
+    "volume_unit",
+]
+
+Kind = Literal["length", "mass", "volume"]
+#: The catalog unit of each kind of quantity (volume is contents, turned into grams by the parser).
+CATALOG_UNITS: dict[str, str] = {"length": "centimeter", "mass": "gram", "volume": "milliliter"}
+_SYMBOL = {"length": "cm", "mass": "g", "volume": "ml"}
+#: The table built with pint, stored as package data.
+STORED_TABLE = Path(__file__).resolve().parent / "data" / "units.json"
+#: A unit token after a number: a word (any script), a CJK unit character, an inch or foot mark; "lb." ends
+#: with a dot.
+UNIT_PATTERN = r"(?:''|[\"″′']|(?![xX]\b)[^\W\d_]+\.?)"
+_MARKS = frozenset({"''", '"', "'", "″", "′"})
+
+
+@dataclass(frozen=True)
+class Unit:
+    """One unit word: its kind, its pint unit, the factor to the catalog unit of that kind, its language
+    (``""``: every language)."""
+
+    word: str
+    kind: Kind
+    pint_name: str
+    factor: float  # catalog units per one of this unit
+    language: str = ""
+
+    @property
+    def catalog_symbol(self) -> str:
+        return _SYMBOL[self.kind]
+
+
+def _alias_rows() -> list[tuple[str, str, str, str]]:
+    """(word, kind, pint name, language) for every alias, in the aliases' order."""
+    return [
+        (word.replace("_", " "), KINDS[name], name, lang)
+        for name, by_lang in ALIASES.items()
+        for lang, words in by_lang.items()
+        for word in words.split()
+    ]
+
+
+def aliases_of(kind: str, languages: frozenset[str] | None = None) -> dict[str, str]:
+    """Word -> pint name for the ``kind``'s words in ``languages`` (all when None), without pint."""
+    return {w: n for w, k, n, lang in _alias_rows() if k == kind and (languages is None or lang in languages)}
+
+
+@functools.cache
+def unit_table(languages: frozenset[str] | None = None) -> MappingProxyType[str, Unit]:
+    """Unit word (lower case) -> :class:`Unit`, for ``languages`` (every language when None): the stored
+    table when it matches the aliases, else built with pint; once per process."""
+    if languages is not None:
+        full = unit_table()
+        return MappingProxyType({w: u for w, u in full.items() if u.language in languages})
+    stored = _read_stored(STORED_TABLE)
+    return MappingProxyType(stored if stored is not None else build_unit_table())
+
+
+def build_unit_table() -> dict[str, Unit]:
+    """The table computed with one pint registry, factors to 12 significant digits. Raises ValueError when a word names two units."""
+    import pint
+
+    ureg = pint.UnitRegistry()
+    factors: dict[str, float] = {}
+    table: dict[str, Unit] = {}
+    for word, kind, name, lang in _alias_rows():
+        if name not in factors:
+            # 12 significant digits: the definitions' exact decimals (pint's foot is 30.479999999999997 cm)
+            factors[name] = float(f"{ureg.Quantity(1.0, name).to(CATALOG_UNITS[kind]).magnitude:.12g}")
+        if word in table and table[word].pint_name != name:
+            raise ValueError(f"unit word {word!r} names both {table[word].pint_name} and {name}")
+        table.setdefault(word, Unit(word, kind, name, factors[name], lang))  # type: ignore[arg-type]
+    return table
+
+
+def _read_stored(path: Path) -> dict[str, Unit] | None:
+    """The stored table, or None when it is missing, unreadable or not the aliases' units."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        return table_from_json(data)
+    except (OSError, ValueError, TypeError, KeyError):
+        return None
+
+
+def table_from_json(data: Any) -> dict[str, Unit] | None:
+    """The table stored as ``{"units": {word: [kind, pint name, factor, language]}}``, or None unless it
+    lists exactly the aliases' words, each with its kind, pint name and language, and a positive finite
+    factor."""
+    rows = data["units"]
+    expected: dict[str, tuple[str, str, str]] = {}
+    for word, kind, name, lang in _alias_rows():
+        expected.setdefault(word, (kind, name, lang))
+    if set(rows) != set(expected):
+        return None
+    table: dict[str, Unit] = {}
+    for word, (kind, name, lang) in expected.items():  # the aliases' order, as build_unit_table
+        row_kind, row_name, factor, row_lang = rows[word]
+        if (row_kind, row_name, row_lang) != (kind, name, lang):
+            return None
+        if not isinstance(factor, float) or not 0 < factor < math.inf:
+            return None
+        table[word] = Unit(word, kind, name, factor, lang)  # type: ignore[arg-type]
+    return table
+
+
+def table_to_json(table: Mapping[str, Unit]) -> str:
+    """The stored form: one line per unit word, ``"word": [kind, pint name, factor, language]``."""
+    import pint
+
+    rows = ",\n".join(
+        f"  {json.dumps(w, ensure_ascii=False)}: {json.dumps([u.kind, u.pint_name, u.factor, u.language], ensure_ascii=False)}"
+        for w, u in table.items()
+    )
+    note = "written by `python -m kb.measures.units --write` from kb/measures/aliases.py with pint; do not edit"
+    head = f' "note": {json.dumps(note)},\n "pint": {json.dumps(pint.__version__)},\n'
+    return "{\n" + head + ' "units": {\n' + rows + "\n }\n}\n"
+
+
+def convert(value: float, word: str) -> tuple[str, float]:
+    """(kind, value in catalog units) of ``value`` ``word`` ("3", "inches" -> ("length", 7.62)).
+
+    Raises KeyError for a word that is not a unit."""
+    unit = unit_table()[word.lower()]
+    return unit.kind, value * unit.factor
+
+
+# ------------------------------------------------------------------------------- lookups as pages write
+def strip_accents(text: str) -> str:
+    decomposed = unicodedata.normalize("NFKD", text)
+    return "".join(ch for ch in decomposed if not unicodedata.combining(ch))
+
+
+def unit_key(unit: str | None) -> str:
+    """The lookup key of a unit token: lower case, without a trailing dot (marks kept as they are)."""
+    if not unit:
+        return ""
+    u = unit.strip().lower()
+    if u not in _MARKS:
+        u = u.rstrip(".")
+    return u
+
+
+@functools.cache
+def _index() -> dict[str, Unit]:
+    """Every word of every language, and each written without its accents."""
+    table = unit_table()
+    index = {strip_accents(w): u for w, u in table.items()}
+    index.update(table)
+    return index
+
+
+def lookup(unit: str | None) -> Unit | None:
+    """The :class:`Unit` a token names, in any language (``"Cm."``, ``"centimetros"``), or None."""
+    key = unit_key(unit)
+    if not key:
+        return None
+    index = _index()
+    found = index.get(key)
+    return found if found is not None else index.get(strip_accents(key))
+
+
+def _factor(unit: str | None, kind: str) -> float | None:
+    found = lookup(unit)
+    return found.factor if found is not None and found.kind == kind else None
+
+
+def length_unit(unit: str | None) -> float | None:
+    """Centimetres per ``unit`` (a unit word, symbol or UN/CEFACT code), or None if not a length unit."""
+    return _factor(unit, "length")
+
+
+def mass_unit(unit: str | None) -> float | None:
+    """Grams per ``unit`` (a unit word, symbol or UN/CEFACT code), or None if not a mass unit."""
+    return _factor(unit, "mass")
+
+
+def volume_unit(unit: str | None) -> float | None:
+    """Millilitres per ``unit``, or None if not a volume unit."""
+    return _factor(unit, "volume")
+
+
+def combine(value: float, unit: Unit, sub_value: float, sub_unit: Unit) -> float | str:
+    """One quantity written in two units of a kind, the second smaller ("1 lb 2 oz", "5 ft 3 in"): the
+    value in ``unit``, or the reason it is not one quantity (another kind, a second unit not smaller, or
+    a second value worth a whole first unit or more, as "5 ft 12 in"; 1e-9 absorbs pint's rounding)."""
+    if unit.kind != sub_unit.kind or sub_unit.factor >= unit.factor:
+        return f"{sub_unit.pint_name} is not a smaller unit of {unit.pint_name}'s kind"
+    if sub_value * sub_unit.factor >= unit.factor * (1 - 1e-9):
+        return f"{sub_value:g} {sub_unit.pint_name} is not less than 1 {unit.pint_name}"
+    return value + sub_value * sub_unit.factor / unit.factor
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(prog="python -m kb.measures.units", description="Build the unit table with pint.")
+    ap.add_argument("--write", action="store_true", help=f"store it as {STORED_TABLE.name} (package data)")
+    args = ap.parse_args(argv)
+    text = table_to_json(build_unit_table())
+    if args.write:
+        STORED_TABLE.parent.mkdir(exist_ok=True)
+        STORED_TABLE.write_text(text, encoding="utf-8")
+        print(f"wrote {STORED_TABLE}")
+    else:
+        print(text, end="")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,153 @@
+"""The subject of a description: its first noun phrase, and which words can head one.
+
+:func:`subject_phrase` finds the description's subject noun phrase without a part-of-speech tagger ("A
+plush dinosaur toy, 35 cm" -> plush dinosaur toy); :func:`feature_words` and
+:func:`adjective_feature_words` are the parser-lexicon words that state a feature rather than name an
+object, so that the name index and the open set can tell a noun from a feature word. A heuristic, used
+only as evidence (``recall/RECALL.md``, "Unknown subject noun").
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+
+from kb.kinds import singular, words_of
+
+__all__ = [
+    "adjective_feature_words",
+    "feature_words",
+    "is_adjective",
+    "is_participle",
+    "subject_head",
+    "subject_phrase",
+]
+
+_WORD = re.compile(r"[a-z0-9]+")
+
+#: Words that end the subject noun phrase: function words, pronouns and the commonest verbs of a
+#: description ("a fuzzy ball *with* ...", "an orange *of* 7 cm", "a cork *from* a bottle").
+_PHRASE_ENDS = frozenset(
+    "is are was were be been being with without of from for that which who about around roughly approximately "
+    "nearly almost over under weighs weigh weighing weighed measuring measures measure measured made covered "
+    "in on at into onto inside and or but has have had it its i im me my we our you your he she they their "
+    "this these those there here whose when while if so to by like maybe probably "
+    # irregular participles ("a wood piece cut at a slant")
+    "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
+)
+_PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: Verbs of measuring that also make compound nouns ("a glass *measuring* cup", "a *weighing* scale").
+_COMPOUND_VERBS = frozenset({"measuring", "weighing"})
+#: Words skipped inside the subject phrase (determiners, vague size words).
+_PHRASE_SKIP = frozenset(
+    "a an the some one just very really little small big large tiny huge old new".split()
+)
+
+
+def subject_head(text: str) -> str | None:
+    """The last word of :func:`subject_phrase`, or None."""
+    phrase = subject_phrase(text)
+    return phrase[-1] if phrase else None
+
+
+def subject_phrase(text: str) -> tuple[str, ...]:
+    """The words of the description's subject noun phrase, singular; the last is its head noun: the first
+    noun phrase of the first sentence (words up to a comma, a number or a word of :data:`_PHRASE_ENDS`; determiners and vague size
+    words skipped), singular. "A plush dinosaur toy, 35 cm" -> toy; "An orange of 7 cm" -> orange;
+    "My daughter's teddy bear" -> bear. No part-of-speech tagger: a heuristic, used only as evidence."""
+    low = text.lower().replace("\u2019", "'")
+    low = re.sub(r"\b(it|that|there|what|he|she)'s\b", r"\1 is", low).replace("'s", "").replace("'", "")
+    sentence = re.split(r"[.!?;:\n]", low, maxsplit=1)[0]
+    for chunk in re.split(r"[,()\[\]\d\"/&+*=-]", sentence):
+        phrase: list[str] = []
+        previous = ""
+        words = _WORD.findall(chunk)
+        for i, word in enumerate(words):
+            if word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
+                if phrase:
+                    break
+            elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
+                pass
+            elif word not in _PHRASE_SKIP:
+                phrase.append(word)
+            previous = word
+        if phrase:
+            return tuple(singular(w) for w in phrase)
+    return ()
+
+
+def _compound_verb(word: str, following: list[str]) -> bool:
+    """Whether ``word`` is the first part of a compound noun, not the phrase's verb: "measuring" or
+    "weighing" followed by a word that is no function word, number or hedge ("a
+    measuring cup"; not "a box measuring about ..." or "measuring twelve inches")."""
+    if word not in _COMPOUND_VERBS or not following:
+        return False
+    nxt = following[0]
+    return nxt not in _PHRASE_ENDS and nxt not in _PHRASE_SKIP and nxt not in _amount_words()
+
+
+@functools.cache
+def _amount_words() -> frozenset[str]:
+    """Words that start an amount after a verb of measuring: numbers, fractions, hedges ("twelve",
+    "half", "roughly")."""
+    from recall import lexicon as lx
+
+    tables = (lx.NUMBER_WORDS, lx.MAGNITUDE_WORDS, lx.FRACTION_WORDS, lx.HEDGES)
+    return frozenset(w for table in tables for phrase in table for w in words_of(phrase))
+
+
+@functools.cache
+def feature_words() -> frozenset[str]:
+    """Single words of the parser's lexicon that state a feature, a unit, a number or a hedge. Colour
+    words and the object nouns among the shape words ("orange", "candle", "vase") are left out: as the
+    head of the subject they name the object; of the shape words only adjectives ("round", "cylindrical",
+    "ball-shaped") are kept."""
+    from recall import lexicon as lx
+
+    words: set[str] = set()
+    tables = (
+        lx.MATERIAL_WORDS, lx.RIGIDITY_WORDS, lx.TEXTURE_WORDS, lx.FRAGILITY_WORDS, lx.MASS_HINT_WORDS,
+        lx.DIMENSION_WORDS, lx.NUMBER_WORDS, lx.MAGNITUDE_WORDS, lx.FRACTION_WORDS, lx.HEDGES,
+        lx.LENGTH_UNITS, lx.MASS_UNITS, lx.VOLUME_UNITS, lx.MEDIUM_WORDS, lx.DIMENSION_NOUNS, lx.FILL_WORDS,
+        lx.CAPACITY_WORDS, lx.NEGATIONS,
+    )  # fmt: skip
+    for table in tables:
+        for phrase in table:
+            words.update(words_of(phrase))
+    shape_words = set(lx.SHAPE_WORDS) | lx.SPHERE_WORDS | lx.CUBE_WORDS | lx.FLAT_WORDS | lx.ROUND_WORDS
+    for word in shape_words | lx.CYLINDER_WORDS | lx.DISC_WORDS:
+        if _ADJECTIVE.search(word) or word in _SHAPE_ADJECTIVES:
+            words.update(words_of(word))
+    return frozenset(words)
+
+
+@functools.cache
+def adjective_feature_words() -> frozenset[str]:
+    """Single words that state a mass hint, texture, rigidity or fragility ("light", "soft"): adjectives,
+    never a head noun, although a catalog name may end in one ("tea light")."""
+    from recall import lexicon as lx
+
+    tables = (lx.MASS_HINT_WORDS, lx.TEXTURE_WORDS, lx.RIGIDITY_WORDS, lx.FRAGILITY_WORDS)
+    return frozenset(w for table in tables for w in table if " " not in w)
+
+
+_ADJECTIVE = re.compile(r"(al|ic|ed|y|ish|ar|shaped|like)$")
+_SHAPE_ADJECTIVES = frozenset(
+    {"flat", "round", "long", "thin", "slim", "slender", "compact", "oval", "squat", "floppy"}
+)
+
+
+#: Participles and adjectives that end a phrase ("full", "filled", "folded", "useful"): never a head.
+_PARTICIPLE = re.compile(r"^(full|play|fake|toy)$|..(ed|ful|ous|able|ible)$")
+
+
+def is_participle(word: str) -> bool:
+    """Whether ``word`` is a participle or adjective that never heads a subject ("full", "filled")."""
+    return _PARTICIPLE.search(word) is not None
+
+
+def is_adjective(word: str) -> bool:
+    """Whether ``word`` looks like an adjective or participle by its ending or is a shape adjective
+    ("metallic", "round", "folded"); a heuristic without a tagger (nouns such as "garlic" match too:
+    callers check the noun lexicon first)."""
+    return bool(_ADJECTIVE.search(word)) or word in _SHAPE_ADJECTIVES or is_participle(word)

@@ -1,0 +1,103 @@
+"""Why a grasp did not hold, in the hand's terms: aperture, mass, friction, the weight's moment, or size.
+
+A trial says *what* happened (``not lifted``, ``slipped 9.6 cm``, ``turned 26 deg``, ``hand starts inside
+the object``, ``no contact``: sim/trial.py); :func:`diagnose` says *why*, from that reason and the plan's
+numbers (stored with every result: its ``params`` and grip force, sim/planner.py):
+
+| cause | when | what it means |
+|---|---|---|
+| ``aperture`` | the plan is infeasible (every side wider than the hand's span), or the hand, opened for this grasp, starts inside the object | the hand cannot open round it |
+| ``mass`` | the squeeze its weight needs (against friction, or against the moment of its weight at a table edge) is more than this grasp can give | too heavy for this grasp: a stronger grasp, or two hands |
+| ``size`` | the digits closed without touching it | too small or thin for the pads |
+| ``friction`` | not lifted, or slipped past the limit, with a squeeze within the grasp's strength | squeeze times friction did not carry its weight and the push |
+| ``moment`` | turned past the limit with a squeeze within the grasp's strength | the weight's moment about the grip, or a push, turned it out of the pads |
+
+The checks run in that order: the first that applies is the cause. Report and ``grasp validate`` show it
+beside the trial's reason, never instead of it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from sim.grasps import HAND_MAX_APERTURE_CM, side_force_capacity
+from sim.grip_force import GRAVITY
+from sim.task import row_details
+
+__all__ = ["CAUSES", "Cause", "diagnose", "failure_cause"]
+
+CAUSES = ("aperture", "mass", "size", "friction", "moment")
+
+
+@dataclass(frozen=True)
+class Cause:
+    """A failed grasp's cause (one of :data:`CAUSES`) and a sentence with the numbers behind it."""
+
+    kind: str
+    text: str
+
+    def __str__(self) -> str:
+        return f"{self.kind}: {self.text}"
+
+
+def _num(value: Any, default: float = 0.0) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return default
+
+
+def diagnose(row: Mapping[str, Any]) -> Cause | None:
+    """The cause of a failed trial row (``reason``, ``grip_force_n``, ``details.plan``), or None when it held.
+
+    An ``error`` row (the simulation diverged) has no physical cause: its reason is returned as it is.
+    """
+    reason = str(row.get("reason") or "")
+    outcome = row.get("outcome") or ("success" if row.get("success") else "failure")
+    if outcome == "success":
+        return None
+    if outcome == "error":
+        return Cause("error", reason or "the simulation could not run")
+    plan = row_details(row).get("plan") or {}
+    params = plan.get("params") or {}
+    grasp = str(plan.get("grasp_type") or row.get("grasp_type") or "")
+    width = _num(params.get("width_cm"))
+    mass = _num(params.get("assumed_mass_g"))
+    mu = _num(params.get("friction"), 0.45)
+    capacity = side_force_capacity(grasp) if grasp else _num(plan.get("grip_force_n"))
+    if params.get("feasible") is False:
+        return Cause(
+            "aperture", f"its smallest side ({width:g} cm) is wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span: it needs two hands"
+        )
+    if "inside" in reason:
+        return Cause("aperture", f"the hand, opened for a {grasp.replace('_', ' ')}, cannot get round it ({width:g} cm across)")
+    if params.get("force_within_capacity") is False:
+        needed = _num(params.get("needed_force_n"), _num(params.get("required_force_n")))
+        return Cause(
+            "mass",
+            f"holding {f'its {mass:.0f} g' if mass else 'it'} needs a squeeze of {needed:g} N, more than the {capacity:g} N a "
+            f"{grasp.replace('_', ' ')} gives",
+        )
+    if "no contact" in reason:
+        return Cause("size", f"the digits closed past it ({width:g} cm across): too small or thin for the pads")
+    squeeze = _num(row.get("grip_force_n")) or _num(plan.get("grip_force_n"))
+    weight = mass / 1000.0 * GRAVITY
+    if reason.startswith("turned"):
+        return Cause(
+            "moment",
+            f"its weight's moment about the grip or a push turned it out of the pads (squeeze {squeeze:.3g} N, "
+            f"friction {mu:g}, within the grasp's {capacity:g} N)",
+        )
+    return Cause(
+        "friction",
+        f"a squeeze of {squeeze:.3g} N at friction {mu:g} carries about {2 * mu * squeeze:.3g} N; its weight is "
+        f"{weight:.3g} N and the pushes add as much again",
+    )
+
+
+def failure_cause(row: Mapping[str, Any]) -> str:
+    """:func:`diagnose` as one line (``"mass: ..."``); the reason itself for a held or unexplained row."""
+    cause = diagnose(row)
+    return str(cause) if cause is not None else str(row.get("reason") or "held")
