@@ -40,6 +40,10 @@ AXIS_GROUP_GAP = 8
 NARROW_RANGE = 1.5
 
 
+#: A value of numbers only (``923 x 253 x 659.4``, ``19.4``): its unit must come from the label or a heading.
+_UNITLESS = re.compile(r"[\d\s.,x×*/()-]+")
+
+
 def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
     """Whether a range's unit (written after it, or the label's) is a mass unit."""
     m = re.search(r"\d\s*([^\W\d_]+)\.?\s*(?:\(|$|[,;])", clean_text(value))
@@ -70,7 +74,19 @@ def observations_from_pairs(
     obs: list[Observation] = []
     axes: list[tuple[str, float, Pair, int, str | None]] = []
     for pair in pairs:
+        n_axes = len(axes)
         found = _pair_observations(pair, decimal_comma, rank, axes)
+        if pair.unit_context:
+            said = f"no unit beside the value ({pair.label}: {pair.value}): {pair.unit_context}"
+            for o in found:
+                o.note = "; ".join(filter(None, [o.note, said]))
+            if len(axes) > n_axes:
+                kind, length, p, r, note = axes[-1]
+                axes[-1] = (kind, length, p, r, "; ".join(filter(None, [note, said])))
+        unread = not found and len(axes) == n_axes
+        if unread and pair.info.role == "product" and _UNITLESS.fullmatch(clean_text(pair.value)):
+            found = [Observation("warning", f"{pair.label}: {pair.value}: no unit stated (not in the value, "
+                                 "its label or a heading above it); not used", order=pair.order)]
         if pair.info.shipping:
             for o in found:
                 if o.feature in ("dims", "mass"):
