@@ -90,11 +90,13 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
             out.append((label, value, info))
     if not seps:
         # "Gewicht 4,7 kg"; "Length 70 cm, chest width 52 cm, in size L": each clause a label and a number
-        clauses = _CLAUSE.split(text)
+        # "サイズ 文庫判/ページ数 170p/高さ 16cm": fields separated by slashes, each its own clause
+        fields = _FIELD_SLASH.search(text) is not None
+        clauses = _FIELD_SLASH.split(text) if fields else _CLAUSE.split(text)
         for clause in clauses:
             found = _label_then_number(clause)
             if found is None:
-                if clause is clauses[0]:
+                if clause is clauses[0] and not fields:
                     break
                 continue
             out.append(found if len(clauses) == 1 else (found[0], found[1].strip(" ,;"), found[2]))
@@ -102,6 +104,9 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
 
 
 # A clause boundary: a comma or semicolon, a space and a word ("4,7 kg", "H21.6, W9.1" have none).
+#: A slash between fields (``文庫判/ページ数 170p/高さ 16cm``): followed by two letters, so ``30/20/10 cm`` and
+#: ``cm/inch`` are not split.
+_FIELD_SLASH = re.compile(r"\s*/\s*(?=[^\W\d_]{2})(?![^\W\d_]{1,6}\b\s*$)")
 _CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
 
 

@@ -369,9 +369,37 @@ def selected_variant(page: Page) -> list[Observation]:
     return obs[:1]
 
 
+#: Regions whose stores write lengths in inches when they write no unit (Barnes & Noble's
+#: ``5.20(w) x 8.00(h) x 0.40(d)``). Only a declared region counts (``en-US``, ``og:locale en_US``).
+INCH_REGIONS = frozenset({"us"})
+_LENGTH_KINDS = frozenset({*AXES, "dimensions", "size"})
+
+
+def _inch_locale(lang: str | None) -> bool:
+    parts = re.split(r"[-_]", (lang or "").strip().lower())
+    return len(parts) > 1 and parts[0] == "en" and parts[1] in INCH_REGIONS
+
+
+def _with_locale_inches(pair: Pair, lang: str | None) -> Pair:
+    """A length pair written with no unit anywhere, read in inches on a page of an inch locale (said so)."""
+    if pair.info.unit is not None or pair.info.kind not in _LENGTH_KINDS or pair.info.role != "product":
+        return pair
+    if not _UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
+        return pair
+    return replace(pair, info=replace(pair.info, unit="in"),
+                   unit_context=f"inches, the unit of the page's locale ({lang})")  # fmt: skip
+
+
+#: Numbers only, maybe with axis letters in brackets: ``5.20(w) x 8.00(h) x 0.40(d)``, ``923 x 253``.
+_UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
+
+
 @adapter("spec_table", priority=50)
 def spec_table(page: Page) -> list[Observation]:
     """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
     size of the selected variant."""
-    obs = observations_from_pairs(pairs_from_lines(page.lines), page.decimal_comma)
+    pairs = pairs_from_lines(page.lines)
+    if _inch_locale(page.lang):
+        pairs = [_with_locale_inches(p, page.lang) for p in pairs]
+    obs = observations_from_pairs(pairs, page.decimal_comma)
     return obs + selected_variant(page) + material_observations(page.lines)
