@@ -53,6 +53,7 @@ from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
 from recall.subject import subject_head, subject_phrase
+from recall.submaterials import SubmaterialIndex
 from recall.vague import SoftEvidence, soft_evidence
 
 __all__ = [
@@ -96,22 +97,35 @@ class Recaller:
     """Recall objects from one catalog snapshot. Build with :meth:`from_db`, :meth:`from_csv`,
     :meth:`from_records` or from a snapshot. Thread-safe for reading."""
 
-    def __init__(self, snapshot: CatalogSnapshot):
+    def __init__(self, snapshot: CatalogSnapshot, name_tables: Any = None):
+        """``name_tables``: the snapshot's name tables when already built (:mod:`recall.stored_index`)."""
         if len(snapshot) == 0:
             raise RecallError("the catalog is empty: import objects first (objrecall catalog import)")
         self.snapshot = snapshot
-        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+        from recall.stored_index import build_tables
 
-        codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
-        materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
-        self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
+        tables = build_tables(snapshot) if name_tables is None else name_tables
+        self.names = NameIndex(snapshot.names, snapshot.aliases, tables=tables)
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._geometry: ShapeGeometry | None = None
         self._kdtrees: dict = {}
+        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+
+        material = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
+        other = CATEGORIES["material"].index("other")
+        self._submaterials = SubmaterialIndex(snapshot.names, snapshot.aliases, material == other)
 
     @classmethod
     def from_db(cls, db: str | Path) -> Recaller:
-        return cls(load_snapshot(db))
+        """A recaller over the catalog at ``db``, its index reloaded from beside the catalog when the
+        catalog has not changed since it was stored (:func:`recall.stored_index.load_index`)."""
+        from recall.stored_index import load_index
+
+        path = Path(db)
+        if not path.exists() or path.suffix.lower() == ".csv":
+            return cls(load_snapshot(path))  # the snapshot's own error, or a catalog CSV
+        index = load_index(path)
+        return cls(index.snapshot, index.tables)
 
     @classmethod
     def from_csv(cls, path: str | Path) -> Recaller:
@@ -145,7 +159,10 @@ class Recaller:
         soft = noun = None
         subject: tuple[str, ...] = ()
         if not features_only:  # the paper's method uses the stated features only
-            soft = soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols)
+            soft = _with_submaterial(
+                soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols),
+                self._submaterial(parsed),
+            )
             subject = subject_phrase(text)
             noun = self.described(text)
         result = self._recall(
@@ -196,6 +213,13 @@ class Recaller:
             return query
         cats = tuple((f, shape if f == "shape" else v) for f, v in query.categorical)
         return dataclasses.replace(query, categorical=cats)
+
+    def _submaterial(self, parsed: Any) -> tuple[str, np.ndarray] | None:
+        """The finer-material evidence of a stated ``other`` material (:mod:`recall.submaterials`)."""
+        ev = parsed.features.get("material")
+        if ev is None or ev.value != "other":
+            return None
+        return self._submaterials.penalty(ev.words or "")
 
     def described(self, text: str) -> DescribedNoun | None:
         """The lexicon noun the description's subject names, and whether the catalog has it."""
@@ -343,6 +367,16 @@ class Recaller:
         arr, dist = select_top_k(arr, dist, min(k, len(arr)))
         parts = {int(r): (float(d), 0.0, 0.0) for r, d in zip(arr, dist, strict=True)}
         return kind, self._matches(arr, dist, parts, query, metric, set())
+
+
+def _with_submaterial(soft: SoftEvidence | None, sub: tuple[str, np.ndarray] | None) -> SoftEvidence | None:
+    """The vague words' soft evidence plus the finer-material evidence (:mod:`recall.submaterials`)."""
+    if sub is None:
+        return soft
+    word, penalty = sub
+    if soft is None:
+        return SoftEvidence((word,), penalty)
+    return dataclasses.replace(soft, words=(*soft.words, word), penalty=soft.penalty + penalty)
 
 
 def _same_material(subject: tuple[str, ...], match: Match) -> bool:

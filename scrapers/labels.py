@@ -132,6 +132,8 @@ def _classify(label: object) -> LabelInfo | None:
     unit = unit_hint(text)
     original = text
     text = text.rstrip(" :：-–—=").strip()
+    if any(_names_a_capacity(m.group(0)) for m in _BRACKETS.finditer(text)):
+        return None  # "Weight (maximum)": another configuration's or a rating, see classify_other
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
     text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
     folded = fold(text)
@@ -266,12 +268,14 @@ def classify_other(label: object) -> LabelInfo | None:
         folded = fold(_BRACKETS.sub(" ", text))
         if any(token in folded for token in CJK_CAPACITY):
             return LabelInfo("weight", role="capacity")
+        if any(_is_cjk(ch) for ch in folded):
+            return _cjk_component(re.sub(r"[\W_]+", "", folded))
         words = [w for w in re.split(r"[\W_]+", folded) if w]
         if not words or len(words) > _MAX_WORDS:
             return None
         kinds = [KIND_WORDS[w] for w in words if w in KIND_WORDS]
         kinds += [k for w in words if w not in KIND_WORDS for k in [_compound_kind(w)] if k]
-        if any(w in CAPACITY_WORDS for w in words):
+        if any(w in CAPACITY_WORDS for w in words) or _names_a_capacity(text):
             kind = kinds[0] if kinds else "weight"
             return LabelInfo("dimensions" if kind == "size" else kind, role="capacity")
         if kinds:
@@ -280,6 +284,24 @@ def classify_other(label: object) -> LabelInfo | None:
             return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component", part=part or None)
     except Exception:  # noqa: BLE001 - a label we cannot read is no measurement
         return None
+    return None
+
+
+def _names_a_capacity(text: str) -> bool:
+    return any(w in CAPACITY_WORDS for w in re.split(r"[\W_]+", fold(text)) if w)
+
+
+def _cjk_component(squashed: str) -> LabelInfo | None:
+    """A CJK label ending in a measurement token after a part's name (``電源コードの長さ``: the cord's
+    length, ``取っ手の高さ``): a component's value naming that part."""
+    for n in CJK_TOKEN_LENGTHS:
+        if len(squashed) <= n:
+            continue
+        hit = CJK_TOKENS.get(squashed[-n:])
+        if hit is not None and hit[0] == "kind":
+            part = squashed[:-n].rstrip("の的")
+            if part and part not in CJK_TOKENS:
+                return LabelInfo(hit[1], role="component", part=part)
     return None
 
 

@@ -41,7 +41,8 @@ _ONE = re.compile(r"\((?:pack|set)\s+of\s+1\)|\b1[\s-]*(?:pack|pcs?|piece|count|
 _PER_ITEM = re.compile(
     r"\b(?:each|per\s+(?:item|piece|unit|pc|bowl|mug|plate|glass|panel|curtain)|single|individual|"
     r"je\s+stück|pro\s+stück|einzeln|pièce|l'unité|par\s+pièce|cada\s+uno|por\s+unidad|ciascuno|"
-    r"cadauno|adet\s+başı|tanesi)\b|1個あたり|1枚あたり|1個|単品|单个|每个|每件",
+    r"cadauno|adet\s+başı|tanesi)\b|[(（]\s*1\s*(?:個|枚|本|点|pc|pcs|piece|stück|adet)\s*[)）]|1個あたり|1枚あたり|1本あたり|"
+    r"単品|单个|每个|每件",
     re.IGNORECASE,
 )
 

@@ -12,11 +12,11 @@ turns the visible lines (:attr:`scrapers.page.Page.lines`) into :class:`Pair` s 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from scrapers.labels import LabelInfo, classify_label, classify_other
 from scrapers.page import Line
-from scrapers.quantities import clean_text, length_unit, mass_unit
+from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
 
 __all__ = ["DIGIT", "MAX_PAIRS", "Pair", "is_unit", "pairs_from_lines", "split_inline"]
 
@@ -43,6 +43,9 @@ class Pair:
     package: bool = False
     order: int = 0
     group: int | None = None
+    #: Where the unit of a value written without one comes from (a heading line ``Dimensions (mm)`` above
+    #: the pairs), for ``--explain``; None when the label or the value states it.
+    unit_context: str | None = None
 
 
 def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
@@ -87,11 +90,13 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
             out.append((label, value, info))
     if not seps:
         # "Gewicht 4,7 kg"; "Length 70 cm, chest width 52 cm, in size L": each clause a label and a number
-        clauses = _CLAUSE.split(text)
+        # "サイズ 文庫判/ページ数 170p/高さ 16cm": fields separated by slashes, each its own clause
+        fields = _FIELD_SLASH.search(text) is not None
+        clauses = _FIELD_SLASH.split(text) if fields else _CLAUSE.split(text)
         for clause in clauses:
             found = _label_then_number(clause)
             if found is None:
-                if clause is clauses[0]:
+                if clause is clauses[0] and not fields:
                     break
                 continue
             out.append(found if len(clauses) == 1 else (found[0], found[1].strip(" ,;"), found[2]))
@@ -99,6 +104,9 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
 
 
 # A clause boundary: a comma or semicolon, a space and a word ("4,7 kg", "H21.6, W9.1" have none).
+#: A slash between fields (``文庫判/ページ数 170p/高さ 16cm``): followed by two letters, so ``30/20/10 cm`` and
+#: ``cm/inch`` are not split.
+_FIELD_SLASH = re.compile(r"\s*/\s*(?=[^\W\d_]{2})(?![^\W\d_]{1,6}\b\s*$)")
 _CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
 
 
@@ -120,37 +128,85 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
     between them is skipped; a unit alone on the line after a bare number joins it), or pairs within
     one line."""
     pairs: list[Pair] = []
-    n = len(lines)
     column_values: set[int] = set()  # value lines already paired by a header row
+    headings: dict[str, tuple[str, str, int]] = {}  # unit family -> (unit, heading text, line)
     for i, line in enumerate(lines):
         if len(pairs) >= MAX_PAIRS:
             break
         if i in column_values:
             continue
         text = line.text
-        info = (classify_label(text) or classify_other(text)) if len(text) <= 80 else None
-        if info is not None and info.role == "product" and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
-            header = _header_row(lines, i)
-            if header:
-                pairs.extend(header)
-                column_values.update(p.order for p in header)
-                continue
-        if info is not None:
-            j = i + 1
-            while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
-                j += 1
-            if j < n:
-                nxt = lines[j]
-                value = nxt.text
-                if DIGIT.search(value) and classify_label(value) is None:
-                    if j + 1 < n and _BARE_NUMBER.fullmatch(value) and is_unit(lines[j + 1].text):
-                        value = f"{value} {lines[j + 1].text}"
-                    pairs.append(Pair(text, value, info, line.package or nxt.package, line.index, nxt.group))
-                    continue  # the value line is still read for pairs of its own ("Width: 30 cm")
-        if DIGIT.search(text) and len(text) <= 600:
-            for label, value, label_info in split_inline(text):
-                pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
+        if (heading := _heading_unit(text)) is not None:
+            headings[heading[0]] = (heading[1], text, i)
+        before = len(pairs)
+        _pairs_at(lines, i, pairs, column_values)
+        if headings and len(pairs) > before:
+            pairs[before:] = [_with_heading_unit(p, headings, i) for p in pairs[before:]]
     return pairs
+
+
+def _pairs_at(lines: list[Line], i: int, pairs: list[Pair], column_values: set[int]) -> None:
+    """The pairs line ``i`` starts, appended to ``pairs``."""
+    n = len(lines)
+    line = lines[i]
+    text = line.text
+    info = (classify_label(text) or classify_other(text)) if len(text) <= 80 else None
+    if info is not None and info.role == "product" and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
+        header = _header_row(lines, i)
+        if header:
+            pairs.extend(header)
+            column_values.update(p.order for p in header)
+            return
+    if info is not None:
+        j = i + 1
+        while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
+            j += 1
+        if j < n:
+            nxt = lines[j]
+            value = nxt.text
+            if DIGIT.search(value) and classify_label(value) is None:
+                if j + 1 < n and _BARE_NUMBER.fullmatch(value) and is_unit(lines[j + 1].text):
+                    value = f"{value} {lines[j + 1].text}"
+                pairs.append(Pair(text, value, info, line.package or nxt.package, line.index, nxt.group))
+                return  # the value line is still read for pairs of its own ("Width: 30 cm")
+    if DIGIT.search(text) and len(text) <= 600:
+        for label, value, label_info in split_inline(text):
+            pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
+
+
+#: A heading's unit applies to the pairs of the next this many lines (one spec block).
+HEADING_SCOPE = 40
+_LENGTH_KINDS = frozenset({"length", "width", "height", "depth", "diameter", "thickness", "dimensions", "size"})
+
+
+#: What a label stating its unit has (``(mm)``, ``, см``, ``in cm``): a cheap test before :func:`unit_hint`.
+_UNIT_HINT_MARK = re.compile(r"[(\[（,]|\s(?:in|en|em)\s", re.IGNORECASE)
+
+
+def _heading_unit(text: str) -> tuple[str, str] | None:
+    """("length" or "mass", unit) for a heading line that states a unit for what follows and holds no
+    value (``Dimensions (mm)``, ``Maße in cm``, ``Weight (kg)``, ``寸法(mm)``), else None."""
+    if len(text) > 60 or DIGIT.search(text) or not _UNIT_HINT_MARK.search(text):
+        return None
+    unit = unit_hint(text)
+    if unit is None or classify_label(text) is None:
+        return None
+    if length_unit(unit) is not None:
+        return "length", unit
+    return ("mass", unit) if mass_unit(unit) is not None else None
+
+
+def _with_heading_unit(pair: Pair, headings: dict[str, tuple[str, str, int]], i: int) -> Pair:
+    """``pair`` with the unit of the heading above it when its label states none (a Play.com style
+    ``Dimensions (mm)`` block of ``Width: 923`` rows)."""
+    if pair.info.unit is not None or pair.info.role != "product":
+        return pair
+    family = "length" if pair.info.kind in _LENGTH_KINDS else "mass"
+    found = headings.get(family)
+    if found is None or i - found[2] > HEADING_SCOPE or found[2] == pair.order:
+        return pair
+    unit, heading, _ = found
+    return replace(pair, info=replace(pair.info, unit=unit), unit_context=f"the unit of the heading {heading!r}")
 
 
 def _label_line(line: Line) -> bool:

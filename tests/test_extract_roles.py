@@ -223,3 +223,45 @@ def test_axis_words_each_with_a_number_inside_one_value():
 def test_a_size_of_one_length_is_one_unnamed_extent():
     record = extract_page(_page("<p>サイズ：19cm／240p</p>", lang="ja"), "https://s.example/p")
     assert record.dims == [{"role": "extent", "cm": 19.0}]
+
+
+# ---------------------------------------------------------------- values written without a unit
+def _tv(body: str):
+    return extract_page(_page(body, "Samsung LE37B550 TV"), "https://s.example/p")
+
+
+def test_a_headings_unit_reads_the_unitless_values_under_it_and_says_so():
+    record = _tv("<h3>Dimensions (mm)</h3><ul><li>Width: 923</li><li>Depth: 253</li><li>Height: 659.4</li></ul>"
+                 "<h3>Weight (kg)</h3><ul><li>Net weight: 19.4</li></ul>")  # fmt: skip
+    assert record.dims_cm == (92.3, 65.94, 25.3) and record.mass_g == 19400.0
+    assert any("heading 'Dimensions (mm)'" in w for w in record.warnings)
+
+
+def test_a_column_headings_unit_reads_the_row_under_it():
+    record = _tv("<table><tr><th>Width (cm)</th><th>Height (cm)</th></tr><tr><td>30</td><td>20</td></tr></table>")
+    assert sorted((e["role"], e["cm"]) for e in record.dims) == [("height", 20.0), ("width", 30.0)]
+
+
+def test_a_unitless_value_with_no_unit_anywhere_is_refused_with_the_reason():
+    from kb.errors import ExtractionError
+
+    with pytest.raises(ExtractionError, match="no unit stated"):
+        _tv("<h3>Dimensions</h3><ul><li>Width: 923</li><li>Depth: 253</li><li>Weight: 19.4</li></ul>")
+
+
+def test_a_headings_unit_reaches_only_its_own_block():
+    from scrapers.page import Line
+    from scrapers.spec_pairs import HEADING_SCOPE, pairs_from_lines
+
+    def unit_after(gap: int):
+        texts = ["Dimensions (mm)", *(["Colour black"] * gap), "Width: 923"]
+        (pair,) = pairs_from_lines([Line(t, False, i, i) for i, t in enumerate(texts)])
+        return pair.info.unit
+
+    assert unit_after(HEADING_SCOPE - 1) == "mm"
+    assert unit_after(HEADING_SCOPE) is None
+
+
+def test_a_mass_headings_unit_is_not_a_lengths():
+    record = _tv("<h3>Weight (kg)</h3><ul><li>Width: 92 cm</li><li>Weight: 19.4</li></ul>")
+    assert record.dims_cm == (92.0,) and record.mass_g == 19400.0

@@ -40,6 +40,10 @@ AXIS_GROUP_GAP = 8
 NARROW_RANGE = 1.5
 
 
+#: A value of numbers only (``923 x 253 x 659.4``, ``19.4``): its unit must come from the label or a heading.
+_UNITLESS = re.compile(r"[\d\s.,x×*/()-]+")
+
+
 def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
     """Whether a range's unit (written after it, or the label's) is a mass unit."""
     m = re.search(r"\d\s*([^\W\d_]+)\.?\s*(?:\(|$|[,;])", clean_text(value))
@@ -70,7 +74,19 @@ def observations_from_pairs(
     obs: list[Observation] = []
     axes: list[tuple[str, float, Pair, int, str | None]] = []
     for pair in pairs:
+        n_axes = len(axes)
         found = _pair_observations(pair, decimal_comma, rank, axes)
+        if pair.unit_context:
+            said = f"no unit beside the value ({pair.label}: {pair.value}): {pair.unit_context}"
+            for o in found:
+                o.note = "; ".join(filter(None, [o.note, said]))
+            if len(axes) > n_axes:
+                kind, length, p, r, note = axes[-1]
+                axes[-1] = (kind, length, p, r, "; ".join(filter(None, [note, said])))
+        unread = not found and len(axes) == n_axes
+        if unread and pair.info.role == "product" and _UNITLESS.fullmatch(clean_text(pair.value)):
+            found = [Observation("warning", f"{pair.label}: {pair.value}: no unit stated (not in the value, "
+                                 "its label or a heading above it); not used", order=pair.order)]
         if pair.info.shipping:
             for o in found:
                 if o.feature in ("dims", "mass"):
@@ -353,9 +369,37 @@ def selected_variant(page: Page) -> list[Observation]:
     return obs[:1]
 
 
+#: Regions whose stores write lengths in inches when they write no unit (Barnes & Noble's
+#: ``5.20(w) x 8.00(h) x 0.40(d)``). Only a declared region counts (``en-US``, ``og:locale en_US``).
+INCH_REGIONS = frozenset({"us"})
+_LENGTH_KINDS = frozenset({*AXES, "dimensions", "size"})
+
+
+def _inch_locale(lang: str | None) -> bool:
+    parts = re.split(r"[-_]", (lang or "").strip().lower())
+    return len(parts) > 1 and parts[0] == "en" and parts[1] in INCH_REGIONS
+
+
+def _with_locale_inches(pair: Pair, lang: str | None) -> Pair:
+    """A length pair written with no unit anywhere, read in inches on a page of an inch locale (said so)."""
+    if pair.info.unit is not None or pair.info.kind not in _LENGTH_KINDS or pair.info.role != "product":
+        return pair
+    if not _UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
+        return pair
+    return replace(pair, info=replace(pair.info, unit="in"),
+                   unit_context=f"inches, the unit of the page's locale ({lang})")  # fmt: skip
+
+
+#: Numbers only, maybe with axis letters in brackets: ``5.20(w) x 8.00(h) x 0.40(d)``, ``923 x 253``.
+_UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
+
+
 @adapter("spec_table", priority=50)
 def spec_table(page: Page) -> list[Observation]:
     """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
     size of the selected variant."""
-    obs = observations_from_pairs(pairs_from_lines(page.lines), page.decimal_comma)
+    pairs = pairs_from_lines(page.lines)
+    if _inch_locale(page.lang):
+        pairs = [_with_locale_inches(p, page.lang) for p in pairs]
+    obs = observations_from_pairs(pairs, page.decimal_comma)
     return obs + selected_variant(page) + material_observations(page.lines)
