@@ -53,6 +53,7 @@ from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
 from recall.subject import subject_head, subject_phrase
+from recall.submaterials import SubmaterialIndex
 from recall.vague import SoftEvidence, soft_evidence
 
 __all__ = [
@@ -108,6 +109,11 @@ class Recaller:
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._geometry: ShapeGeometry | None = None
         self._kdtrees: dict = {}
+        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+
+        material = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
+        other = CATEGORIES["material"].index("other")
+        self._submaterials = SubmaterialIndex(snapshot.names, snapshot.aliases, material == other)
 
     @classmethod
     def from_db(cls, db: str | Path) -> Recaller:
@@ -153,7 +159,10 @@ class Recaller:
         soft = noun = None
         subject: tuple[str, ...] = ()
         if not features_only:  # the paper's method uses the stated features only
-            soft = soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols)
+            soft = _with_submaterial(
+                soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols),
+                self._submaterial(parsed),
+            )
             subject = subject_phrase(text)
             noun = self.described(text)
         result = self._recall(
@@ -204,6 +213,13 @@ class Recaller:
             return query
         cats = tuple((f, shape if f == "shape" else v) for f, v in query.categorical)
         return dataclasses.replace(query, categorical=cats)
+
+    def _submaterial(self, parsed: Any) -> tuple[str, np.ndarray] | None:
+        """The finer-material evidence of a stated ``other`` material (:mod:`recall.submaterials`)."""
+        ev = parsed.features.get("material")
+        if ev is None or ev.value != "other":
+            return None
+        return self._submaterials.penalty(ev.words or "")
 
     def described(self, text: str) -> DescribedNoun | None:
         """The lexicon noun the description's subject names, and whether the catalog has it."""
@@ -351,6 +367,16 @@ class Recaller:
         arr, dist = select_top_k(arr, dist, min(k, len(arr)))
         parts = {int(r): (float(d), 0.0, 0.0) for r, d in zip(arr, dist, strict=True)}
         return kind, self._matches(arr, dist, parts, query, metric, set())
+
+
+def _with_submaterial(soft: SoftEvidence | None, sub: tuple[str, np.ndarray] | None) -> SoftEvidence | None:
+    """The vague words' soft evidence plus the finer-material evidence (:mod:`recall.submaterials`)."""
+    if sub is None:
+        return soft
+    word, penalty = sub
+    if soft is None:
+        return SoftEvidence((word,), penalty)
+    return dataclasses.replace(soft, words=(*soft.words, word), penalty=soft.penalty + penalty)
 
 
 def _same_material(subject: tuple[str, ...], match: Match) -> bool:

@@ -7,6 +7,7 @@ from __future__ import annotations
 import functools
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from recall.engine import Match, Recaller, _same_material
@@ -143,3 +144,29 @@ def test_a_shape_noun_after_a_material_or_colour_is_a_piece_not_an_object():
 )
 def test_measuring_starts_a_compound_only_before_a_noun(text, expected):
     assert subject_phrase(text) == expected
+
+
+# ------------------------------------------------------------------ finer materials from names
+def test_a_stated_finer_material_costs_other_objects_whose_names_say_another():
+    from recall.metrics import MISMATCH_TERM
+    from recall.submaterials import SubmaterialIndex
+
+    names = ["coffee mug", "candle", "river stone", "plastic bowl", "tealight"]
+    aliases = [("ceramic mug",), ("wax candle",), ("stone",), (), ()]
+    index = SubmaterialIndex(names, aliases, np.array([True, True, True, False, True]))
+    word, penalty = index.penalty("Ceramic")
+    assert word.startswith("ceramic")
+    # the mug says ceramic; the candle (wax) and the stone say another; the bowl is plastic (its category
+    # pays); the tealight's names say no material: unknown is no evidence
+    assert penalty.tolist() == [0.0, MISMATCH_TERM, MISMATCH_TERM, 0.0, 0.0]
+    assert index.penalty("porcelain")[1].tolist() == penalty.tolist()  # a synonym of the same material
+    assert index.penalty("plastic") is None and index.penalty("") is None
+
+
+def test_a_ceramic_thing_of_mug_size_is_the_mug_not_the_candle():
+    text = "Ceramic, 4 inches tall, about 12 ounces."
+    hybrid = seed().recall_text(text)
+    assert hybrid.best.name == "coffee mug"
+    assert any(w.startswith("ceramic") for w in hybrid.vague)
+    # features only (no names, so no finer material) the candle's 10 cm fit better in log units
+    assert seed().recall_text(text, features_only=True, metric="jplog").best.name == "candle"
