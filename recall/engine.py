@@ -45,12 +45,15 @@ from recall.openset import (
     DescribedNoun,
     KindIndex,
     described_noun,
+    foreign_modifier,
     is_open_set,
+    material_of_word,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
 from recall.subject import subject_head, subject_phrase
+from recall.submaterials import SubmaterialIndex
 from recall.vague import SoftEvidence, soft_evidence
 
 __all__ = [
@@ -94,22 +97,35 @@ class Recaller:
     """Recall objects from one catalog snapshot. Build with :meth:`from_db`, :meth:`from_csv`,
     :meth:`from_records` or from a snapshot. Thread-safe for reading."""
 
-    def __init__(self, snapshot: CatalogSnapshot):
+    def __init__(self, snapshot: CatalogSnapshot, name_tables: Any = None):
+        """``name_tables``: the snapshot's name tables when already built (:mod:`recall.stored_index`)."""
         if len(snapshot) == 0:
             raise RecallError("the catalog is empty: import objects first (objrecall catalog import)")
         self.snapshot = snapshot
-        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+        from recall.stored_index import build_tables
 
-        codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
-        materials = [CATEGORIES["material"][c] if c >= 0 else None for c in codes.tolist()]
-        self.names = NameIndex(snapshot.names, snapshot.aliases, materials)
+        tables = build_tables(snapshot) if name_tables is None else name_tables
+        self.names = NameIndex(snapshot.names, snapshot.aliases, tables=tables)
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._geometry: ShapeGeometry | None = None
         self._kdtrees: dict = {}
+        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+
+        material = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
+        other = CATEGORIES["material"].index("other")
+        self._submaterials = SubmaterialIndex(snapshot.names, snapshot.aliases, material == other)
 
     @classmethod
     def from_db(cls, db: str | Path) -> Recaller:
-        return cls(load_snapshot(db))
+        """A recaller over the catalog at ``db``, its index reloaded from beside the catalog when the
+        catalog has not changed since it was stored (:func:`recall.stored_index.load_index`)."""
+        from recall.stored_index import load_index
+
+        path = Path(db)
+        if not path.exists() or path.suffix.lower() == ".csv":
+            return cls(load_snapshot(path))  # the snapshot's own error, or a catalog CSV
+        index = load_index(path)
+        return cls(index.snapshot, index.tables)
 
     @classmethod
     def from_csv(cls, path: str | Path) -> Recaller:
@@ -141,12 +157,18 @@ class Recaller:
         material = parsed.values().get("material")
         names = NameEvidence() if features_only else self.names.find(text, spans, material)
         soft = noun = None
+        subject: tuple[str, ...] = ()
         if not features_only:  # the paper's method uses the stated features only
-            soft = soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols)
+            soft = _with_submaterial(
+                soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols),
+                self._submaterial(parsed),
+            )
+            subject = subject_phrase(text)
             noun = self.described(text)
         result = self._recall(
-            query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun
-        )
+            query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun,
+            subject=subject,
+        )  # fmt: skip
         result.text = text
         result.parsed = parsed.to_dict()
         result.parsed.pop("text", None)
@@ -171,7 +193,10 @@ class Recaller:
             else self.names.find(text, (), query.values().get("material"))
         )
         noun = self.described(text) if text and not features_only else None
-        result = self._recall(query, names, top=top, metric=metric, features_only=features_only, noun=noun)
+        subject = subject_phrase(text) if text and not features_only else ()
+        result = self._recall(
+            query, names, top=top, metric=metric, features_only=features_only, noun=noun, subject=subject
+        )
         result.text = text
         return result
 
@@ -188,6 +213,13 @@ class Recaller:
             return query
         cats = tuple((f, shape if f == "shape" else v) for f, v in query.categorical)
         return dataclasses.replace(query, categorical=cats)
+
+    def _submaterial(self, parsed: Any) -> tuple[str, np.ndarray] | None:
+        """The finer-material evidence of a stated ``other`` material (:mod:`recall.submaterials`)."""
+        ev = parsed.features.get("material")
+        if ev is None or ev.value != "other":
+            return None
+        return self._submaterials.penalty(ev.words or "")
 
     def described(self, text: str) -> DescribedNoun | None:
         """The lexicon noun the description's subject names, and whether the catalog has it."""
@@ -217,6 +249,7 @@ class Recaller:
         features_only: bool,
         soft: SoftEvidence | None = None,
         noun: DescribedNoun | None = None,
+        subject: tuple[str, ...] = (),
     ) -> RecallResult:
         metric = _checked(metric, features_only, top)
         qdict = {
@@ -239,7 +272,9 @@ class Recaller:
         errors = relative_errors(self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query)
         closeness = float(np.mean(list(errors.values()))) if errors else None
         not_in_catalog = not_in_catalog and not matches[0].matched_by_name
-        open_set = not_in_catalog or is_open_set(closeness, matches[0].matched_by_name, names.unknown_noun)
+        modifier = self._foreign_modifier(subject, int(rows[0]), names)
+        trusted = matches[0].matched_by_name and modifier is None and _same_material(subject, matches[0])
+        open_set = not_in_catalog or is_open_set(closeness, trusted, names.unknown_noun or modifier)
         confidence = _confidence(matches, closeness, names, metric, competitors, open_set, not_in_catalog)
         same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
         return RecallResult(
@@ -256,8 +291,18 @@ class Recaller:
             same_kind_as=same_kind_as,
             vague=list(soft.words) if soft is not None else [],
             competitors=competitors,
+            foreign_modifier=modifier,
             **base,
         )
+
+    def _foreign_modifier(self, subject: tuple[str, ...], row: int, names: NameEvidence) -> str | None:
+        """The noun before the subject's head that none of the named best match's names has
+        (:func:`recall.openset.foreign_modifier`); None when the text does not name that row."""
+        if not subject or (row not in names.exact and row not in names.head):
+            return None
+        snap = self.snapshot
+        words = frozenset(w for name in (snap.names[row], *snap.aliases[row]) for w in words_of(name))
+        return foreign_modifier(subject, words)
 
     def _candidates(
         self, query: FeatureQuery, named: list[int], top: int, metric: str, every_row: bool
@@ -322,6 +367,25 @@ class Recaller:
         arr, dist = select_top_k(arr, dist, min(k, len(arr)))
         parts = {int(r): (float(d), 0.0, 0.0) for r, d in zip(arr, dist, strict=True)}
         return kind, self._matches(arr, dist, parts, query, metric, set())
+
+
+def _with_submaterial(soft: SoftEvidence | None, sub: tuple[str, np.ndarray] | None) -> SoftEvidence | None:
+    """The vague words' soft evidence plus the finer-material evidence (:mod:`recall.submaterials`)."""
+    if sub is None:
+        return soft
+    word, penalty = sub
+    if soft is None:
+        return SoftEvidence((word,), penalty)
+    return dataclasses.replace(soft, words=(*soft.words, word), penalty=soft.penalty + penalty)
+
+
+def _same_material(subject: tuple[str, ...], match: Match) -> bool:
+    """Whether no material word before the subject's head contradicts the match's material (either
+    unknown counts as agreeing): a name is trusted as evidence only then ("a wooden spoon" named "spoon"
+    is no steel spoon)."""
+    own = match.features.get("material")
+    stated = {material_of_word(w) for w in subject[:-1]} - {None}
+    return own is None or not stated or own in stated
 
 
 def _checked(metric: str | None, features_only: bool, top: int) -> str:

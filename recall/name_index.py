@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from kb.kinds import singular, words_of
-from recall.names import GENERIC_NOUNS
+from recall.names import GENERIC_NOUNS, MIN_SUFFIX
 from recall.subject import adjective_feature_words, feature_words, is_participle, subject_phrase
 
 __all__ = ["HEAD_WEIGHT", "NAME_WEIGHT", "NameEvidence", "NameIndex"]
@@ -74,23 +74,25 @@ class NameIndex:
     names."""
 
     #: Shortest head noun matched as the end of a compound ("spoon" in "teaspoon").
-    MIN_SUFFIX = 4
+    MIN_SUFFIX = MIN_SUFFIX
 
     def __init__(
         self,
         names: Sequence[str],
         aliases: Sequence[Sequence[str]],
         materials: Sequence[str | None] | None = None,
+        tables=None,
     ):
         from recall.lexicon import MATERIAL_WORDS
         from recall.names import name_tables
 
-        # built column-wise (recall.names): phrases (words and core of every name and alias) -> rows;
-        # generic names ("wood piece", "wooden block": only material words and generic nouns) -> their
-        # material, describing any object of it (rows by material); head nouns and their suffixes ->
-        # rows, and (head, row) -> the materials its names state ("wood cylinder" -> wood; None: some
-        # name states none)
-        tables = name_tables(names, aliases, materials, self.MIN_SUFFIX)
+        # built column-wise (recall.names; or read back by recall.stored_index): phrases (words and core
+        # of every name and alias) -> rows; generic names ("wood piece", "wooden block": only material
+        # words and generic nouns) -> their material, describing any object of it (rows by material);
+        # head nouns and their suffixes -> rows, and (head, row) -> the materials its names state
+        # ("wood cylinder" -> wood; None: some name states none)
+        if tables is None:
+            tables = name_tables(names, aliases, materials, self.MIN_SUFFIX)
         self.phrases = tables.phrases
         self.generic = tables.generic
         self.by_material = tables.by_material

@@ -33,7 +33,10 @@ GENERIC_NOUNS = frozenset(
 #: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
 _VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})
 
-__all__ = ["COLUMNWISE_FROM", "NameTables", "RowsByKey", "name_core", "name_tables", "tables_by_rules"]
+__all__ = ["COLUMNWISE_FROM", "MIN_SUFFIX", "NameTables", "RowsByKey", "name_core", "name_tables", "tables_by_rules"]
+
+#: Shortest head noun matched as the end of a compound ("spoon" in "teaspoon").
+MIN_SUFFIX = 4
 
 #: Catalogs with at least this many names and aliases are built column-wise; smaller ones name by name
 #: (pyarrow's import alone, ~0.3 s, costs more than the rules on a few thousand names).

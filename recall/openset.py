@@ -11,10 +11,12 @@ objects). Rules and figures: ``recall/RECALL.md``.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 from kb.kinds import ROOT, Noun, ancestors, kind_of_name, noun_in, words_of
+from recall.subject import feature_words, is_adjective
 
 __all__ = [
     "OPEN_SET_NAMED_THRESHOLD",
@@ -23,6 +25,8 @@ __all__ = [
     "DescribedNoun",
     "KindIndex",
     "described_noun",
+    "foreign_modifier",
+    "material_of_word",
     "is_open_set",
 ]
 
@@ -98,6 +102,17 @@ def described_noun(
     something ("a bar of soap", "a pair of scissors"), used when the subject itself names no noun;
     ``vocabulary``: every word of the catalog's names and aliases."""
     noun: Noun | None = noun_in(list(subject))
+    before = subject[-len(noun.words) - 1] if noun is not None and len(subject) > len(noun.words) else None
+    if noun is not None and noun.words[-1] in generic and before is not None:
+        # "a plush dinosaur toy": a generic noun after a noun the catalog does not know names a thing of
+        # the generic noun's kind that the catalog does not have
+        if before not in vocabulary and before not in generic and noun_like(before):
+            return DescribedNoun(f"{before} {noun.text}", noun.kind, f"{before} {noun.english}", False)
+    if (
+        noun is not None and noun.words[-1] in SHAPE_NOUNS and noun.words[-1] not in heads
+        and before is not None and (before in _material_words() or before in COLOURS)
+    ):  # fmt: skip
+        return None  # "a wood plate", "a white stick": a material or colour and a shape, no object's name
     if (noun is None or noun.words[-1] in generic) and after_of:
         noun = noun_in(list(after_of))
     if noun is None or noun.words[-1] in generic:
@@ -123,3 +138,53 @@ def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) 
     if unknown_noun is not None:
         return closeness > OPEN_SET_UNKNOWN_NOUN_THRESHOLD
     return closeness > OPEN_SET_THRESHOLD
+
+
+#: Nouns that also name a shape ("a wood *plate*", "a white *stick*"): after a material or colour word,
+#: and when no catalog object has them as head noun, they describe a piece of that shape, not an object.
+SHAPE_NOUNS = frozenset(
+    "plate board bar stick tube ring panel tile plank rod strip slab sheet disc disk".split()
+)
+#: Colour words, which never name an object as modifiers ("a white stick").
+COLOURS = frozenset(
+    "white black grey gray silver gold golden red green blue yellow orange pink purple brown beige tan "
+    "clear transparent dark light bright pale navy cream ivory".split()
+)
+
+
+@functools.cache
+def _material_words() -> frozenset[str]:
+    from recall.lexicon import MATERIAL_WORDS
+
+    return frozenset(w for w in MATERIAL_WORDS if " " not in w)
+
+
+def material_of_word(word: str) -> str | None:
+    """The catalog material a single word states ("wooden" -> wood), or None."""
+    from recall.lexicon import MATERIAL_WORDS
+
+    return MATERIAL_WORDS.get(word)
+
+
+def noun_like(word: str) -> bool:
+    """Whether a word of a subject phrase can be a noun modifier ("salad" in "salad plate", "garlic",
+    "dinosaur"): a lexicon noun, or a word of three letters or more that is no feature word (material,
+    texture, unit, number, colour, ...) and does not look like an adjective."""
+    from recall.lexicon import COLOUR_WORDS
+
+    if word in COLOURS or word in COLOUR_WORDS or word in feature_words():
+        return False
+    if noun_in([word]) is not None:
+        return True
+    return len(word) >= 3 and word.isalpha() and not is_adjective(word)
+
+
+def foreign_modifier(subject: Sequence[str], object_words: frozenset[str]) -> str | None:
+    """The noun before the subject's head when the head names the matched object but that noun is in
+    none of its names ("a ceramic *salad* plate" -> dinner plate, "a *garlic* bulb" -> light bulb, "a
+    glass *measuring* cup" -> coffee mug): the name says less than it seems, so the open-set rule does
+    not trust it (RECALL.md). None otherwise."""
+    if len(subject) < 2 or subject[-1] not in object_words:
+        return None
+    word = subject[-2]
+    return word if word not in object_words and noun_like(word) else None

@@ -71,6 +71,9 @@ class RecallResult:
     vague: list[str] = field(default_factory=list)
     #: The ranking's effective number of candidates (a confidence input; 1 = one clear first).
     competitors: float = 1.0
+    #: The noun before the subject's head that the named best match's names lack ("salad" in "a salad
+    #: plate" -> dinner plate): the name is then not trusted by the open-set rule.
+    foreign_modifier: str | None = None
 
     @property
     def best(self) -> Match | None:
@@ -93,6 +96,7 @@ class RecallResult:
             "same_kind_as": self.same_kind_as,
             "vague": list(self.vague),
             "competitors": self.competitors,
+            "foreign_modifier": self.foreign_modifier,
             "query": dict(self.query),
             "parsed": self.parsed,
         }

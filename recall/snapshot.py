@@ -36,7 +36,7 @@ from kb.features import (
 )
 from recall.metrics import CATEGORY_CODES, log_units
 
-__all__ = ["CatalogSnapshot", "load_snapshot", "records_from_csv"]
+__all__ = ["CatalogSnapshot", "load_snapshot", "read_columns", "records_from_csv"]
 
 
 def _stored(x: float) -> float:
@@ -219,23 +219,27 @@ def _db_version(path: Path) -> Any:
 
 
 def _read_db(path: Path, version: Any) -> CatalogSnapshot:
-    """The catalog's columns read by DuckDB into NumPy (objects ordered by name, as ``list_objects``;
-    a category value outside the vocabulary reads as unknown)."""
+    """The catalog's columns (:func:`read_columns`) over one read-only connection."""
     from kb.catalog import KnowledgeBase
 
+    with KnowledgeBase.open(path, read_only=True).connect() as con:
+        return read_columns(con, version)
+
+
+def read_columns(con, version: Any = None) -> CatalogSnapshot:
+    """The catalog's columns read by DuckDB into NumPy over the connection ``con`` (objects ordered by
+    name, as ``list_objects``; a category value outside the vocabulary reads as unknown)."""
     codes = ", ".join(
         f"coalesce(list_position([{', '.join(repr(v) for v in CATEGORIES[f])}], {f}), 0) - 1 AS {f}"
         for f in CATEGORICAL_FEATURES
     )
     numbers = ", ".join(f"coalesce({f}, 'NaN'::DOUBLE) AS {f}" for f in NUMERIC_FEATURES)
-    kb = KnowledgeBase.open(path, read_only=True)
-    with kb.connect() as con:
-        cols = con.execute(f"SELECT name, {numbers}, {codes} FROM objects ORDER BY name").fetchnumpy()
-        named = con.execute(
-            "SELECT r.i, list(a.alias ORDER BY a.alias) FROM object_aliases a JOIN "
-            "(SELECT id, row_number() OVER (ORDER BY name) - 1 AS i FROM objects) r ON r.id = a.object_id "
-            "GROUP BY r.i"
-        ).fetchall()
+    cols = con.execute(f"SELECT name, {numbers}, {codes} FROM objects ORDER BY name").fetchnumpy()
+    named = con.execute(
+        "SELECT r.i, list(a.alias ORDER BY a.alias) FROM object_aliases a JOIN "
+        "(SELECT id, row_number() OVER (ORDER BY name) - 1 AS i FROM objects) r ON r.id = a.object_id "
+        "GROUP BY r.i"
+    ).fetchall()
     names = cols["name"].tolist()
     aliases: list[tuple[str, ...]] = [()] * len(names)
     for i, alias in named:

@@ -14,7 +14,14 @@ import re
 
 from kb.kinds import singular, words_of
 
-__all__ = ["adjective_feature_words", "feature_words", "is_participle", "subject_head", "subject_phrase"]
+__all__ = [
+    "adjective_feature_words",
+    "feature_words",
+    "is_adjective",
+    "is_participle",
+    "subject_head",
+    "subject_phrase",
+]
 
 _WORD = re.compile(r"[a-z0-9]+")
 
@@ -29,6 +36,8 @@ _PHRASE_ENDS = frozenset(
     "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
 )
 _PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: Verbs of measuring that also make compound nouns ("a glass *measuring* cup", "a *weighing* scale").
+_COMPOUND_VERBS = frozenset({"measuring", "weighing"})
 #: Words skipped inside the subject phrase (determiners, vague size words).
 _PHRASE_SKIP = frozenset(
     "a an the some one just very really little small big large tiny huge old new".split()
@@ -52,8 +61,9 @@ def subject_phrase(text: str) -> tuple[str, ...]:
     for chunk in re.split(r"[,()\[\]\d\"/&+*=-]", sentence):
         phrase: list[str] = []
         previous = ""
-        for word in _WORD.findall(chunk):
-            if word in _PHRASE_ENDS:
+        words = _WORD.findall(chunk)
+        for i, word in enumerate(words):
+            if word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
                 if phrase:
                     break
             elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
@@ -64,6 +74,26 @@ def subject_phrase(text: str) -> tuple[str, ...]:
         if phrase:
             return tuple(singular(w) for w in phrase)
     return ()
+
+
+def _compound_verb(word: str, following: list[str]) -> bool:
+    """Whether ``word`` is the first part of a compound noun, not the phrase's verb: "measuring" or
+    "weighing" followed by a word that is no function word, number or hedge ("a
+    measuring cup"; not "a box measuring about ..." or "measuring twelve inches")."""
+    if word not in _COMPOUND_VERBS or not following:
+        return False
+    nxt = following[0]
+    return nxt not in _PHRASE_ENDS and nxt not in _PHRASE_SKIP and nxt not in _amount_words()
+
+
+@functools.cache
+def _amount_words() -> frozenset[str]:
+    """Words that start an amount after a verb of measuring: numbers, fractions, hedges ("twelve",
+    "half", "roughly")."""
+    from recall import lexicon as lx
+
+    tables = (lx.NUMBER_WORDS, lx.MAGNITUDE_WORDS, lx.FRACTION_WORDS, lx.HEDGES)
+    return frozenset(w for table in tables for phrase in table for w in words_of(phrase))
 
 
 @functools.cache
@@ -114,3 +144,10 @@ _PARTICIPLE = re.compile(r"^(full|play|fake|toy)$|..(ed|ful|ous|able|ible)$")
 def is_participle(word: str) -> bool:
     """Whether ``word`` is a participle or adjective that never heads a subject ("full", "filled")."""
     return _PARTICIPLE.search(word) is not None
+
+
+def is_adjective(word: str) -> bool:
+    """Whether ``word`` looks like an adjective or participle by its ending or is a shape adjective
+    ("metallic", "round", "folded"); a heuristic without a tagger (nouns such as "garlic" match too:
+    callers check the noun lexicon first)."""
+    return bool(_ADJECTIVE.search(word)) or word in _SHAPE_ADJECTIVES or is_participle(word)

@@ -41,6 +41,7 @@ from scrapers.normalize import (
 )
 from scrapers.page import MAX_LINES, Page
 from scrapers.records import ProductRecord
+from scrapers.sets import per_item, set_size
 from scrapers.trail import category_trail
 
 __all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "extract_page", "fuse"]
@@ -149,7 +150,7 @@ def _candidate(o: Observation, decision: str) -> dict:
     out = {
         "feature": o.feature,
         "value": list(o.value) if isinstance(o.value, tuple) else o.value,
-        "role": "package" if o.package else o.role,
+        "role": _whose(o),
         "adapter": o.source,
         "rank": o.rank,
         "order": o.order,
@@ -216,18 +217,30 @@ def _collapse_repeats(values: list) -> list:
     return values
 
 
+def _whose(o: Observation) -> str:
+    """Whose value an observation is: the product's, its package's (the product in its box), the
+    shipment's (gross, the parcel sent), or a part's or a capacity's."""
+    if o.role in ("component", "capacity", "shipping"):
+        return o.role
+    return "package" if o.package else "product"
+
+
 def _valid(
-    observations: list[Observation], feature: str, package: bool, warnings: list[str], decisions: list[dict]
+    observations: list[Observation], feature: str, whose: str, warnings: list[str], decisions: list[dict],
+    refused: list[str] | None = None,
 ) -> list[Observation]:
-    """The product's (or the package's) candidates of ``feature`` that pass the catalog limits; a part's
-    or a capacity's value and a refused value get their decision (and a refusal its warning)."""
+    """The candidates of ``feature`` that are ``whose`` value (see :func:`_whose`) and pass the catalog
+    limits; a part's or a capacity's value and a refused value get their decision (and a refusal its
+    warning, and its reason appended to ``refused``)."""
     out = []
     for o in observations:
-        if o.feature != feature or o.package != package:
+        if o.feature != feature:
             continue
-        if o.role != "product":
-            if not package and len(decisions) < MAX_CANDIDATES:
-                decisions.append(_candidate(o, f"not the product's: a {o.role}'s value ({o.raw[:60]!r})"))
+        w = _whose(o)
+        if w != whose:
+            if whose == "product" and w in ("component", "capacity") and len(decisions) < MAX_CANDIDATES:
+                part = f" ({o.part})" if o.part else ""
+                decisions.append(_candidate(o, f"not the product's: a {w}'s value{part} ({o.raw[:60]!r})"))
             continue
         if feature == "dims":
             extents = sorted(o.extents(), key=lambda e: -e[1])
@@ -238,26 +251,30 @@ def _valid(
         if reason and len(decisions) < MAX_CANDIDATES:
             decisions.append(_candidate(o, f"refused: {reason}"))
         if reason and len(warnings) < MAX_CANDIDATES:
-            warnings.append(
-                f"{'package ' if package else ''}{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})"
-            )
+            prefix = "" if whose == "product" else f"{whose} "
+            warnings.append(f"{prefix}{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})")
+        if reason and refused is not None:
+            refused.append(reason)
         elif not reason:
             out.append(o)
     return out
 
 
-def _packages(cands: list[Observation], feature: str, raw: dict[str, str], decisions: list[dict]) -> list:
-    """Package values as listed by the highest-priority adapter that states any, in page order."""
+def _packages(
+    cands: list[Observation], feature: str, raw: dict[str, str], decisions: list[dict], whose: str = "package"
+) -> list:
+    """Package (or shipping) values as listed by the highest-priority adapter that states any, in page
+    order."""
     if not cands:
         return []
     best_source = min(cands, key=_priority).source
     chosen = sorted((o for o in cands if o.source == best_source), key=lambda o: o.order)
     decisions.extend(
-        _candidate(o, "package value, kept apart" if o.source == best_source else
-                   f"package value not listed: {best_source} lists the packages")
+        _candidate(o, f"{whose} value, kept apart" if o.source == best_source else
+                   f"{whose} value not listed: {best_source} lists them")
         for o in cands[:MAX_CANDIDATES]
     )  # fmt: skip
-    raw[f"package_{feature}"] = " | ".join(o.raw for o in chosen)[:500]
+    raw[f"{whose}_{feature}"] = " | ".join(o.raw for o in chosen)[:500]
     return _collapse_repeats([o.value for o in chosen[:MAX_CANDIDATES]])
 
 
@@ -281,13 +298,21 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
     warnings = [str(o.value) for o in observations if o.feature == "warning"][:MAX_CANDIDATES]
     decisions: list[dict] = []
     raw: dict[str, str] = {}
-    dims_obs = _choose(_valid(observations, "dims", False, warnings, decisions), _dims_agree, "dims", warnings, decisions)
-    mass_obs = _choose(_valid(observations, "mass", False, warnings, decisions), _close, "mass", warnings, decisions)
-    package_dims = _packages(_valid(observations, "dims", True, warnings, decisions), "dims", raw, decisions)
-    package_mass = _packages(_valid(observations, "mass", True, warnings, decisions), "mass", raw, decisions)
+    refused: dict[str, list[str]] = {"dims": [], "mass": []}
+    chosen: dict[str, Observation | None] = {}
+    for feature, agree in (("dims", _dims_agree), ("mass", _close)):
+        valid = _valid(observations, feature, "product", warnings, decisions, refused[feature])
+        chosen[feature] = _choose(valid, agree, feature, warnings, decisions)
+    apart = {
+        (whose, feature): _packages(_valid(observations, feature, whose, warnings, decisions), feature, raw,
+                                    decisions, whose)
+        for whose in ("package", "shipping") for feature in ("dims", "mass")
+    }  # fmt: skip
     name = _first(observations, "name")
-    material = _material(observations, raw)
-    if dims_obs is None and mass_obs is None and not package_dims and not package_mass:
+    the_set = set_size(name)
+    set_mass = _set_apart(chosen, the_set, warnings, decisions)
+    dims_obs, mass_obs = chosen["dims"], chosen["mass"]
+    if dims_obs is None and mass_obs is None and set_mass is None and not any(apart.values()):
         what = f" for {name!r}" if name else ""
         reasons = "; ".join(warnings[:3])
         raise ExtractionError(
@@ -313,12 +338,44 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         dims_cm=dims,
         dims=[{"role": r, "cm": round(v, 4)} for r, v in dims_obs.extents()] if dims_obs else [],
         mass_g=round(mass_obs.value, 4) if mass_obs else None,
-        package_dims_cm=[tuple(round(v, 4) for v in p) for p in package_dims],
-        package_mass_g=[round(m, 4) for m in package_mass],
-        material=material,
+        package_dims_cm=[tuple(round(v, 4) for v in p) for p in apart["package", "dims"]],
+        package_mass_g=[round(m, 4) for m in apart["package", "mass"]],
+        shipping_dims_cm=[tuple(round(v, 4) for v in p) for p in apart["shipping", "dims"]],
+        shipping_mass_g=[round(m, 4) for m in apart["shipping", "mass"]],
+        set_count=the_set[0] if the_set else None,
+        set_mass_g=round(set_mass, 4) if set_mass is not None else None,
+        material=_material(observations, raw),
         shape=shape_from_name(name) or shape_from_dims(dims),
         adapter=adapter,
         warnings=list(dict.fromkeys(warnings)),
         raw=raw,
+        refused={f: r[0] for f, r in refused.items() if r and chosen[f] is None},
         candidates=decisions,
     )
+
+
+def _set_apart(
+    chosen: dict[str, Observation | None], the_set: tuple[int, str] | None, warnings: list[str],
+    decisions: list[dict],
+) -> float | None:
+    """On a page selling a set (:func:`scrapers.sets.set_size`), the chosen mass is the set's unless its
+    text says it is one item's: it is taken from ``chosen`` and returned (the set's mass), with a warning
+    and its decision changed. The chosen dimensions stay, with a warning that they may be the set's."""
+    if the_set is None:
+        return None
+    count, words = the_set
+    mass_obs, dims_obs = chosen["mass"], chosen["dims"]
+    set_mass = None
+    if mass_obs is not None and not per_item(mass_obs.raw):
+        set_mass, chosen["mass"] = mass_obs.value, None
+        warnings.append(
+            f"mass: the page sells a set of {count} ({words!r}); {mass_obs.value:g} g is the set's weight, "
+            f"not one item's (about {mass_obs.value / count:.4g} g each if the items are alike); not used"
+        )
+        for d in decisions:
+            if d["feature"] == "mass" and d["decision"].startswith("chosen"):
+                d["decision"] = f"the set's value (a set of {count}, {words!r}), kept apart"
+                d["role"] = "set"
+    if dims_obs is not None and not per_item(dims_obs.raw):
+        warnings.append(f"dims: the page sells a set of {count} ({words!r}); the size may be the set's, not one item's")
+    return set_mass

@@ -156,9 +156,11 @@ def _validate(record: ProductRecord) -> tuple[ObjectRecord, list[dict[str, float
     name = normalize_name(record.name or "")
     if not name:
         raise _Rejected("no_name", "the page names no product")
-    absurd = [w for w in record.warnings if "absurd" in w.lower() and "package" not in w.lower()]
+    absurd = [reason for reason in record.refused.values() if "absurd" in reason]
     if absurd:
-        # The page states an impossible value for the product: none of its numbers can be trusted.
+        # Every value the page states for one of the product's features is impossible (a mug 40 m tall):
+        # none of its numbers can be trusted. An absurd candidate that lost to a valid value (a misread
+        # alternative, another block's number) is only an --explain row and a warning.
         raise _Rejected("absurd_value", absurd[0])
     dims = tuple(record.dims_cm or ())
     if not dims and record.mass_g is None:

@@ -127,22 +127,30 @@ def judge(record: ProductRecord, truth: dict[str, Any]) -> Verdict:
 
 
 def package_matches(record: ProductRecord, truth: dict[str, Any]) -> bool:
-    """Whether the package values match the labelled ones (a single package may be labelled unlisted)."""
-    want_dims, want_mass = truth.get("package_dims_cm"), truth.get("package_mass_g")
+    """Whether the package values match the labelled ones (a single package may be labelled unlisted), and
+    the shipping values too (``shipping_dims_cm``/``shipping_mass_g``: none stated when absent)."""
+    return _listed_match(
+        record.package_dims_cm, record.package_mass_g, truth.get("package_dims_cm"), truth.get("package_mass_g")
+    ) and _listed_match(
+        record.shipping_dims_cm, record.shipping_mass_g, truth.get("shipping_dims_cm"), truth.get("shipping_mass_g")
+    )
+
+
+def _listed_match(got_dims, got_mass, want_dims, want_mass) -> bool:
     if want_dims and not isinstance(want_dims[0], list):
         want_dims = [want_dims]
     if want_mass is not None and not isinstance(want_mass, list):
         want_mass = [want_mass]
     if not want_dims:
-        dims_ok = not record.package_dims_cm
+        dims_ok = not got_dims
     else:
-        dims_ok = len(record.package_dims_cm) == len(want_dims) and all(
-            _dims_match(g, w) for g, w in zip(record.package_dims_cm, want_dims, strict=True)
+        dims_ok = len(got_dims) == len(want_dims) and all(
+            _dims_match(g, w) for g, w in zip(got_dims, want_dims, strict=True)
         )
     if not want_mass:
-        mass_ok = not record.package_mass_g
+        mass_ok = not got_mass
     else:
-        mass_ok = len(record.package_mass_g) == len(want_mass) and all(
-            _close(g, w) for g, w in zip(record.package_mass_g, want_mass, strict=True)
+        mass_ok = len(got_mass) == len(want_mass) and all(
+            _close(g, w) for g, w in zip(got_mass, want_mass, strict=True)
         )
     return dims_ok and mass_ok

@@ -19,10 +19,29 @@ sv/da/no, id, he, ar, zh (traditional and simplified), ja, ko.
 from __future__ import annotations
 
 import re
-import unicodedata
 from dataclasses import dataclass
 from functools import lru_cache
 
+from scrapers.label_vocabulary import (
+    BODY_WORDS,
+    CAPACITY_WORDS,
+    CJK_CAPACITY,
+    CJK_LABELS,
+    CJK_TOKEN_LENGTHS,
+    CJK_TOKENS,
+    COMPOUND_PREFIXES,
+    COMPOUND_SUFFIXES,
+    KIND_WORDS,
+    NEGATIONS,
+    OVERALL,
+    PACKAGE_WORDS,
+    PART_WORDS,
+    QUALIFIERS,
+    SHIPPING_STEMS,
+    SHIPPING_WORDS,
+    SHORT_LABELS,
+    fold,
+)
 from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
 
 __all__ = ["AXES", "KINDS", "LabelInfo", "classify_label", "classify_other"]
@@ -33,183 +52,6 @@ AXES: tuple[str, ...] = ("length", "width", "height", "depth", "diameter", "thic
 KINDS: tuple[str, ...] = (*AXES, "dimensions", "size", "weight")
 
 
-def _fold(text: str) -> str:
-    decomposed = unicodedata.normalize("NFKD", text.lower())
-    return "".join(ch for ch in decomposed if not unicodedata.combining(ch))
-
-
-def _words(kind: str, text: str) -> dict[str, str]:
-    return {_fold(w): kind for w in text.split()}
-
-
-_KIND_WORDS: dict[str, str] = {
-    **_words(
-        "length",
-        "length len long länge laenge longueur longitud largo lunghezza comprimento długość dlugosc dĺžka "
-        "délka длина довжина lengte längd længde lengde uzunluk uzunluğu lungime pituus hossz hosszúság μήκος panjang garums ilgis pikkus dolžina dužina duljina дължина אורך الطول طول",
-    ),
-    **_words(
-        "width",
-        "width wide breite largeur ancho anchura larghezza largura szerokość šírka šířka ширина ширина "
-        "breedte bredd bredde genişlik genişliği lățime latime leveys szélesség πλάτος lebar platums plotis laius širina ширина רוחב العرض عرض",
-    ),
-    **_words(
-        "height",
-        "height high tall höhe hoehe hauteur alto altura altezza wysokość výška высота висота hoogte höjd højde "
-        "høyde yükseklik yüksekliği înălțime inaltime korkeus magasság ύψος tinggi augstums aukštis kõrgus višina visina височина גובה الارتفاع ارتفاع",
-    ),
-    **_words(
-        "depth",
-        "depth deep tiefe profondeur profundidad fondo profondità profundidade głębokość hĺbka hloubka "
-        "глубина глибина diepte djup dybde derinlik derinliği adâncime syvyys mélység βάθος dziļums gylis sügavus globina dubina дълбочина עומק العمق عمق",
-    ),
-    **_words(
-        "diameter",
-        "diameter dia קוטר القطر durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр "
-        "çap çapı",
-    ),
-    **_words(
-        "thickness",
-        "thickness thick dicke stärke épaisseur grosor espesor spessore espessura grubość hrúbka tloušťka "
-        "толщина товщина dikte kalınlık kalınlığı",
-    ),
-    **_words(
-        "dimensions",
-        "dimensions dimension dims measurements measures abmessungen abmessung maße masse maasse außenmaße "
-        "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
-        "afmetingen afmeting mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
-        "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات "
-        "ölçü ölçüler ölçüleri ölçüsü ebat ebatlar ebatları ebadı",
-    ),
-    **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
-    **_words(
-        "weight",
-        "weight weighs wt mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt vægt vekt "
-        "ağırlık ağırlığı greutate paino súly tömeg βάρος berat svars svoris kaal teža težina тегло משקל الوزن وزن",
-    ),
-}
-_PACKAGE_WORDS = {
-    _fold(w)
-    for w in (
-        "package packages packaging packed shipping shipment box carton parcel gross verpackung verpackt "
-        "versand paket karton brutto emballage emballé colis embalaje embalado paquete envío caja imballo "
-        "imballaggio confezione spedizione pacco embalagem pacote caixa opakowanie opakowaniu balenie "
-        "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking bruto lordo brut "
-        "opakowaniem opakowania упаковці упаковки ambalaj ambalaj ambalajlı emballasje förpackning förpackningens "
-        "collo colli kargo kargolu gönderi paketli koli kutu przesyłki wysyłki zásilky balíku balenia "
-        "csomagolás csomagolással doboz упаковкою посылки отправления"
-    ).split()
-}
-_NEGATIONS = {
-    _fold(w) for w in "without ohne sans sin senza sem без bez zonder excl exkl excluding not".split()
-}
-_QUALIFIERS = {
-    _fold(w)
-    for w in (
-        "item product article artikel produkt produit producto produto prodotto articolo artigo overall physical "
-        "total totale gesamt body unit assembled device net netto nett neto нетто устройства товара "
-        "изделия прибора the of a de del della di du des la le el do da dos das der die den w in en em na "
-        "s с v на inkl incl including included with mit con com avec z approx approximately ca circa "
-        "approximate dell dello dei degli van het een des "
-        "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
-        "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
-        "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
-        "ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
-        "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "
-        " l b h w d t x х"
-    ).split()
-}
-_OVERALL = {"overall", "assembled", "gesamt", "total", "outer", "exterior", "aussen", "außen"}
-# Compounds of German, Dutch and the Scandinavian languages: <prefix><kind word>, e.g. Artikelgewicht,
-# Verpackungsgewicht, Produktabmessungen, productafmetingen, förpackningsmått. Only known prefixes count,
-# so Schlauchlänge (hose length) or Sitzhöhe (seat height) are not the product's measurements.
-_PRODUCT_PREFIXES = (
-    "artikel artikels produkt produkts product netto nett gesamt totaal total korpus aussen außen geräte gerät "
-    "eigen leer"
-)
-_PACKAGE_PREFIXES = (
-    "verpackungs verpackung versand paket pakket brutto karton verpakkings verpakking verzend förpacknings "
-    "forpaknings emballage frakt"
-)
-_COMPOUND_PREFIXES: dict[str, bool] = {
-    **{_fold(w): False for w in _PRODUCT_PREFIXES.split()},
-    **{_fold(w): True for w in _PACKAGE_PREFIXES.split()},
-}
-_COMPOUND_SUFFIXES = sorted(
-    (
-        _fold(w)
-        for w in "gewicht abmessungen abmessung maße masse höhe breite länge tiefe durchmesser stärke dicke größe "
-        "afmetingen afmeting hoogte breedte diepte lengte vikt mått höjd bredd djup längd vægt mål højde bredde "
-        "dybde længde vekt".split()
-    ),
-    key=len,
-    reverse=True,
-)
-assert all(suffix in _KIND_WORDS for suffix in _COMPOUND_SUFFIXES)
-# Labels of languages written without spaces, matched whole (after removing spaces and punctuation).
-_CJK_LABELS: dict[str, tuple[str, bool]] = {
-    "尺寸": ("dimensions", False),
-    "商品尺寸": ("dimensions", False),
-    "產品尺寸": ("dimensions", False),
-    "产品尺寸": ("dimensions", False),
-    "商品大小": ("dimensions", False),
-    "規格尺寸": ("dimensions", False),
-    "外觀尺寸": ("dimensions", False),
-    "外观尺寸": ("dimensions", False),
-    "本體尺寸": ("dimensions", False),
-    "包裝尺寸": ("dimensions", True),
-    "包装尺寸": ("dimensions", True),
-    "外箱尺寸": ("dimensions", True),
-    "重量": ("weight", False),
-    "淨重": ("weight", False),
-    "净重": ("weight", False),
-    "商品重量": ("weight", False),
-    "產品重量": ("weight", False),
-    "产品重量": ("weight", False),
-    "本體重量": ("weight", False),
-    "毛重": ("weight", True),
-    "包裝重量": ("weight", True),
-    "包装重量": ("weight", True),
-    "長": ("length", False),
-    "长": ("length", False),
-    "長度": ("length", False),
-    "长度": ("length", False),
-    "寬": ("width", False),
-    "宽": ("width", False),
-    "寬度": ("width", False),
-    "宽度": ("width", False),
-    "高": ("height", False),
-    "高度": ("height", False),
-    "深": ("depth", False),
-    "深度": ("depth", False),
-    "直徑": ("diameter", False),
-    "直径": ("diameter", False),
-    "厚度": ("thickness", False),
-    "サイズ": ("dimensions", False),
-    "寸法": ("dimensions", False),
-    "本体サイズ": ("dimensions", False),
-    "外形寸法": ("dimensions", False),
-    "梱包サイズ": ("dimensions", True),
-    "重さ": ("weight", False),
-    "本体重量": ("weight", False),
-    "크기": ("dimensions", False),
-    "무게": ("weight", False),
-    "중량": ("weight", False),
-    "商品の重量": ("weight", False),
-    "商品サイズ": ("dimensions", False),
-    "製品サイズ": ("dimensions", False),
-    "商品の寸法": ("dimensions", False),
-    "梱包重量": ("weight", True),
-    "発送重量": ("weight", True),
-    "質量": ("weight", False),
-    "商品毛重": ("weight", True),
-    "商品淨重": ("weight", False),
-    "商品净重": ("weight", False),
-    "사이즈": ("dimensions", False),
-    "제품크기": ("dimensions", False),
-}
-# Folded like the labels they are compared with (NFKD splits the dakuten off katakana: サイズ -> サイス).
-_CJK_LABELS = {re.sub(r"[\W_]+", "", _fold(k)): v for k, v in _CJK_LABELS.items()}
 # Wayfair's "Overall Height - Top to Bottom", "Overall Depth - Front to Back": the direction is not a word
 # of the label, but only an overall value is the product's ("Body Height - Top to Bottom" is a lamp shade's).
 _DIRECTION = re.compile(
@@ -238,6 +80,11 @@ class LabelInfo:
     #: ``Cable length``, ``Battery Weight``, ``Schlauchlänge``) or "capacity" (a capacity or rating:
     #: ``Fassungsvermögen 8 kg``, ``Max Height``, ``容量``) from :func:`classify_other`.
     role: str = "product"
+    #: A package value that is the shipment's (``Shipping Weight``, ``Bruttogewicht``, ``発送重量``: the
+    #: parcel sent, gross) rather than the product in its own box; kept apart from package values.
+    shipping: bool = False
+    #: For a component's label, the part it names (``cable`` of ``Cable length``), else None.
+    part: str | None = None
 
 
 #: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
@@ -285,91 +132,87 @@ def _classify(label: object) -> LabelInfo | None:
     unit = unit_hint(text)
     original = text
     text = text.rstrip(" :：-–—=").strip()
+    if any(_names_a_capacity(m.group(0)) for m in _BRACKETS.finditer(text)):
+        return None  # "Weight (maximum)": another configuration's or a rating, see classify_other
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
-    text = _ORDER_HINT.sub(" ", text)
-    folded = _fold(text)
+    text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
+    folded = fold(text)
     squashed = re.sub(r"[\W_]+", "", folded)
-    if squashed in _CJK_LABELS:
-        kind, package = _CJK_LABELS[squashed]
-        return LabelInfo(kind, package, unit)
+    if squashed in CJK_LABELS:
+        kind, package = CJK_LABELS[squashed]
+        return LabelInfo(kind, package, unit, shipping=_ships(package, [squashed]))
     if any(_is_cjk(ch) for ch in squashed):
         return _classify_cjk(squashed, unit)
     words = [w for w in re.split(r"[\W_]+", folded) if w]
     if not words or len(words) > _MAX_WORDS:
         return None
+    if len(words) == 1 and words[0] in SHORT_LABELS:
+        return LabelInfo(SHORT_LABELS[words[0]], False, unit)  # Turkish "En: 30 cm"
     kinds: list[str] = []
     package = False
     negated = False
+    unknown: list[str] = []
     for word in words:
-        if word in _KIND_WORDS:
-            kinds.append(_KIND_WORDS[word])
-        elif word in _PACKAGE_WORDS:
+        if word in KIND_WORDS:
+            kinds.append(KIND_WORDS[word])
+        elif word in PACKAGE_WORDS:
             package = package or not negated
-        elif word in _NEGATIONS:
+        elif word in NEGATIONS:
             negated = True
-        elif word in _QUALIFIERS or length_unit(word) is not None or mass_unit(word) is not None:
+        elif word in QUALIFIERS or length_unit(word) is not None or mass_unit(word) is not None:
             continue
         elif _ORDER_WORD.fullmatch(word):
             continue  # "LxWxH", "ВхШхГ" written as one word
         else:
             compound = _split_compound(word)
             if compound is None:
-                return None
+                unknown.append(word)
+                continue
             kind, is_package = compound
             kinds.append(kind)
             package = package or (is_package and not negated)
+    if unknown and not _names_the_body(words, unknown):
+        return None
     if not kinds:
-        if set(words) <= _OVERALL:
+        if set(words) <= OVERALL:
             return LabelInfo("size", package, unit)  # Wayfair's "Overall: 15.5'' H x 12'' W x 12'' D"
         return None
     # "Item Package Dimensions", "Product size": the most specific kind wins; weight beats dimensions
     # only when no axis or dimension word is present.
     if len({k for k in kinds if k in AXES}) >= 2:
         # "Width x Height x Depth", "Largo x Ancho x Alto"
-        return LabelInfo("dimensions", package, unit, _order_of(original, kinds))
+        return LabelInfo("dimensions", package, unit, _order_of(original, kinds), shipping=_ships(package, words))
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:
-                return LabelInfo("dimensions", package, unit)  # "Weight & Dimensions"
+                return LabelInfo("dimensions", package, unit, shipping=_ships(package, words))  # "Weight & Dimensions"
             order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
-            return LabelInfo(kind, package, unit, order)
+            return LabelInfo(kind, package, unit, order, shipping=_ships(package, words))
     return None
 
 
-# Labels written without spaces (zh, ja, ko) are read token by token, longest first, with the same
-# whitelist rule as the word labels: every part must be a measurement, package or qualifier token
-# (商品の寸法 幅×奥行×高さ, 商品パッケージの寸法, 本体質量, 产品尺寸 长*宽*高).
-_CJK_KIND_TOKENS = {
-    "dimensions": "寸法 サイズ 尺寸 外形寸法 外寸 크기 사이즈 치수",
-    "weight": "重量 重さ 質量 质量 净重 淨重 무게 중량",
-    "length": "長さ 长度 長度 長 长 길이",
-    "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭",
-    "height": "高さ 高度 高 높이",
-    "depth": "奥行き 奥行 深さ 深度 深 깊이",
-    "diameter": "直径 直徑 지름",
-    "thickness": "厚さ 厚度 厚 두께",
-}
-_CJK_PACKAGE_TOKENS = "梱包 包装 包裝 パッケージ 外箱 発送 配送 出荷 毛重 포장 박스"
-_CJK_QUALIFIER_TOKENS = (
-    "商品 本体 本體 製品 产品 產品 の 的 外形 外観 外觀 規格 规格 约 約 总 總 整体 整體 实际 實際 单品 單品 "
-    "제품 상품 약 全体 完成"
-)
+#: Directions that do not change what a label measures: a wall light's "Depth of fitting from wall".
+_FROM_WALL = re.compile(r"\b(?:from|to|off)\s+(?:the\s+)?(?:wall|ceiling)\b", re.IGNORECASE)
 
 
-def _cjk_token_table() -> dict[str, tuple[str, str | None]]:
-    table: dict[str, tuple[str, str | None]] = {}
-    for kind, tokens in _CJK_KIND_TOKENS.items():
-        for t in tokens.split():
-            table[_fold(t)] = ("kind", kind)
-    for t in _CJK_PACKAGE_TOKENS.split():
-        table[_fold(t)] = ("package", "weight" if t == "毛重" else None)
-    for t in _CJK_QUALIFIER_TOKENS.split():
-        table[_fold(t)] = ("qualifier", None)
-    return table
+def _names_the_body(words: list[str], unknown: list[str]) -> bool:
+    """Whether a label's unknown words only name the object whose main body it measures: a body word
+    (``body``, ``fitting``, ``Gehäuse``...) is present, no unknown word is a part word, and at most two
+    are unknown (``Body of lamp width``, ``Lamp body width``)."""
+    return (
+        any(w in BODY_WORDS for w in words)
+        and len(unknown) <= 2
+        and all(w.isalpha() and w not in PART_WORDS for w in unknown)
+    )
 
 
-_CJK_TOKENS = _cjk_token_table()
-_CJK_TOKEN_LENGTHS = sorted({len(t) for t in _CJK_TOKENS}, reverse=True)
+def _ships(package: bool, words: list[str]) -> bool:
+    """Whether a package label names the shipment (gross, the parcel) rather than the product's box."""
+    if not package:
+        return False
+    return any(w in SHIPPING_WORDS or any(stem in w for stem in SHIPPING_STEMS) for w in words)
+
+
 
 
 def _is_cjk(ch: str) -> bool:
@@ -386,8 +229,8 @@ def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
     package = False
     i = 0
     while i < len(squashed):
-        for n in _CJK_TOKEN_LENGTHS:
-            hit = _CJK_TOKENS.get(squashed[i : i + n])
+        for n in CJK_TOKEN_LENGTHS:
+            hit = CJK_TOKENS.get(squashed[i : i + n])
             if hit is not None:
                 break
         else:
@@ -405,22 +248,10 @@ def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
         i += n
     if not kinds:
         return None
+    shipping = _ships(package, [squashed])
     if len({k for k in kinds if k in AXES}) >= 2 or "dimensions" in kinds:
-        return LabelInfo("dimensions", package, unit)
-    return LabelInfo(kinds[0], package, unit)
-
-
-_CAPACITY_WORDS = {
-    _fold(w)
-    for w in (
-        "capacity capacities load max maximum min minimum supported supports rated rating volume "
-        "fassungsvermögen fassungsvermoegen kapazität kapazitaet füllmenge belastbarkeit tragkraft traglast "
-        "nutzinhalt contenance capacité charge capacidad carga capacità portata capacidade suportado "
-        "pojemność udźwig объем объём вместимость нагрузка грузоподъемность hacim kapasite taşıma inhoud "
-        "draagvermogen"
-    ).split()
-}
-_CJK_CAPACITY = ("容量", "耐荷重", "最大", "容积", "承重", "용량")
+        return LabelInfo("dimensions", package, unit, shipping=shipping)
+    return LabelInfo(kinds[0], package, unit, shipping=shipping)
 
 
 @lru_cache(maxsize=16384)
@@ -434,36 +265,58 @@ def classify_other(label: object) -> LabelInfo | None:
         text = clean_text(label).rstrip(" :：-–—=").strip()
         if not text or any(ch.isdigit() for ch in text) or ":" in text:
             return None  # a label holds no number ("Weight: 1.1 kg" is a pair, not a label)
-        folded = _fold(_BRACKETS.sub(" ", text))
-        if any(token in folded for token in _CJK_CAPACITY):
+        folded = fold(_BRACKETS.sub(" ", text))
+        if any(token in folded for token in CJK_CAPACITY):
             return LabelInfo("weight", role="capacity")
+        if any(_is_cjk(ch) for ch in folded):
+            return _cjk_component(re.sub(r"[\W_]+", "", folded))
         words = [w for w in re.split(r"[\W_]+", folded) if w]
         if not words or len(words) > _MAX_WORDS:
             return None
-        kinds = [_KIND_WORDS[w] for w in words if w in _KIND_WORDS]
-        kinds += [k for w in words if w not in _KIND_WORDS for k in [_compound_kind(w)] if k]
-        if any(w in _CAPACITY_WORDS for w in words):
+        kinds = [KIND_WORDS[w] for w in words if w in KIND_WORDS]
+        kinds += [k for w in words if w not in KIND_WORDS for k in [_compound_kind(w)] if k]
+        if any(w in CAPACITY_WORDS for w in words) or _names_a_capacity(text):
             kind = kinds[0] if kinds else "weight"
             return LabelInfo("dimensions" if kind == "size" else kind, role="capacity")
         if kinds:
-            return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component")
+            part = " ".join(w for w in words if w not in KIND_WORDS and w not in QUALIFIERS and not _compound_kind(w))
+            part = part or next((w[: -len(s)] for w in words for s in COMPOUND_SUFFIXES if w.endswith(s)), "")
+            return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component", part=part or None)
     except Exception:  # noqa: BLE001 - a label we cannot read is no measurement
         return None
     return None
 
 
+def _names_a_capacity(text: str) -> bool:
+    return any(w in CAPACITY_WORDS for w in re.split(r"[\W_]+", fold(text)) if w)
+
+
+def _cjk_component(squashed: str) -> LabelInfo | None:
+    """A CJK label ending in a measurement token after a part's name (``電源コードの長さ``: the cord's
+    length, ``取っ手の高さ``): a component's value naming that part."""
+    for n in CJK_TOKEN_LENGTHS:
+        if len(squashed) <= n:
+            continue
+        hit = CJK_TOKENS.get(squashed[-n:])
+        if hit is not None and hit[0] == "kind":
+            part = squashed[:-n].rstrip("の的")
+            if part and part not in CJK_TOKENS:
+                return LabelInfo(hit[1], role="component", part=part)
+    return None
+
+
 def _compound_kind(word: str) -> str | None:
     """The kind a compound's measurement suffix names, whatever its prefix (``schlauchlänge`` -> length)."""
-    for suffix in _COMPOUND_SUFFIXES:
+    for suffix in COMPOUND_SUFFIXES:
         if word.endswith(suffix) and len(word) > len(suffix) + 2:
-            return _KIND_WORDS[suffix]
+            return KIND_WORDS[suffix]
     return None
 
 
 def _split_compound(word: str) -> tuple[str, bool] | None:
-    for suffix in _COMPOUND_SUFFIXES:
+    for suffix in COMPOUND_SUFFIXES:
         if word.endswith(suffix) and len(word) > len(suffix):
             prefix = word[: -len(suffix)].rstrip("-")
-            if prefix in _COMPOUND_PREFIXES:
-                return _KIND_WORDS[suffix], _COMPOUND_PREFIXES[prefix]
+            if prefix in COMPOUND_PREFIXES:
+                return KIND_WORDS[suffix], COMPOUND_PREFIXES[prefix]
     return None

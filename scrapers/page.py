@@ -195,7 +195,22 @@ class Page:
 
     @cached_property
     def decimal_comma(self) -> bool | None:
-        return decimal_comma_for(self.lang, self.url)
+        """Whether the page writes decimal commas, decided from the page itself, never from the host it was
+        served from (the same saved page read from 127.0.0.1 reads the same): its declared language
+        (``<html lang>``, ``og:locale``, ``content-language``), else a JSON-LD ``inLanguage``, else the
+        number forms of its visible text (:func:`decimal_mark_of_lines`); None when nothing says."""
+        lang = self.lang or self._jsonld_language()
+        if lang:
+            return decimal_comma_for(lang, None)
+        return decimal_mark_of_lines(self.lines)
+
+    def _jsonld_language(self) -> str | None:
+        for data, _ in self.jsonld_blocks:
+            for node in data if isinstance(data, list) else [data]:
+                lang = node.get("inLanguage") if isinstance(node, dict) else None
+                if isinstance(lang, str) and lang.strip():
+                    return lang.strip()
+        return None
 
     @cached_property
     def jsonld_blocks(self) -> list[tuple[Any, str | None]]:
@@ -309,6 +324,28 @@ def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]
             foreign = True
             break
     return foreign, bool(PACKAGE_CONTAINER.search(names))
+
+
+#: A measured number with one or two decimals and a unit: ``1,5 kg`` (decimal comma), ``1.5 kg`` (point).
+_COMMA_DECIMAL = re.compile(r"(?<![\d.,])\d{1,4},\d{1,2}\s?(?:mm|cm|m|kg|g|gr|lb|€)(?![\w])", re.IGNORECASE)
+_POINT_DECIMAL = re.compile(r"(?<![\d.,])\d{1,4}\.\d{1,2}\s?(?:mm|cm|m|kg|g|gr|lb|in|€|\$)(?![\w])", re.IGNORECASE)
+#: Lines read for the page's number forms (the specification is near the top; a page is not read twice).
+NUMBER_FORM_LINES = 4000
+
+
+def decimal_mark_of_lines(lines: list[Line]) -> bool | None:
+    """True when the visible text writes measured decimals with commas (``1,5 kg``) more often than with
+    points (``1.5 kg``), False for the reverse, None on a tie (a number with three decimals, ``1,250``,
+    says nothing: it may group thousands)."""
+    comma = point = 0
+    for line in lines[:NUMBER_FORM_LINES]:
+        if "," in line.text:
+            comma += len(_COMMA_DECIMAL.findall(line.text))
+        if "." in line.text:
+            point += len(_POINT_DECIMAL.findall(line.text))
+    if comma == point:
+        return None
+    return comma > point
 
 
 def _html_parser():

@@ -76,6 +76,10 @@ ACTIVE_FINGERS: dict[str, tuple[str, ...]] = {
     "thumb_2_finger": ("index", "middle"),
     "tripod": ("index", "middle"),
     "thumb_3_finger": ("index", "middle", "ring"),
+    # fingertips round a ball or a rim: the little finger, at the end of a row no abduction spreads, misses
+    # balls under 8 cm (sim/programs.py, precision_circular)
+    "precision_disk": ("index", "middle", "ring"),
+    "precision_sphere": ("index", "middle", "ring"),
 }
 ALL_FINGERS: tuple[str, ...] = ("index", "middle", "ring", "little")
 

@@ -44,9 +44,12 @@ class Observation:
     note: str | None = None
     source: str = ""
     roles: tuple[str, ...] = ()
-    #: Whose value it is: "product" (package values have ``package``), or "component" / "capacity" (a
-    #: part's extent, a capacity or rating: proposed so the chooser can list it, never chosen).
+    #: Whose value it is: "product" (package values have ``package``), "shipping" (a shipment's: gross, the
+    #: parcel), or "component" / "capacity" (a part's extent, a capacity or rating: proposed so the chooser
+    #: can list it, never chosen).
     role: str = "product"
+    #: For a component's value, the part it names (``cable``), else None.
+    part: str | None = None
 
     def extents(self) -> tuple[tuple[str, float], ...]:
         """``(role, cm)`` per stated extent of a dims observation."""

@@ -14,9 +14,10 @@ import re
 from typing import Any
 
 from scrapers.adapters import Observation, adapter
-from scrapers.adapters.spec_table import _CODE, _DIGIT, Pair, observations_from_pairs, split_inline
+from scrapers.adapters.spec_table import observations_from_pairs
 from scrapers.labels import classify_label
 from scrapers.page import Page
+from scrapers.spec_pairs import CODE, DIGIT, Pair, split_inline
 
 __all__ = ["NAME_MATCH", "embedded_json"]
 
@@ -43,6 +44,15 @@ def _names_product(name: str, title_words: frozenset[str]) -> bool:
     return bool(words) and sum(w in title_words for w in words) >= NAME_MATCH * len(words)
 
 
+def _text_of(x: Any) -> str | None:
+    """A label or value as text: a string, or the name of an object naming it (``{"name": "Boyut"}``)."""
+    if isinstance(x, str):
+        return x
+    if isinstance(x, dict):
+        return next((x[k] for k in ("name", "value", "text", "label", "displayName") if isinstance(x.get(k), str)), None)
+    return None
+
+
 def _keyed_value(node: dict, key: str, value: Any) -> str | None:
     """The value text of a measurement key: a string as it is, a number with its unit from a sibling key
     (``weightUnit``, ``unit``) or a ``{"value": 1.2, "unit": "kg"}`` object; None without a unit."""
@@ -51,7 +61,7 @@ def _keyed_value(node: dict, key: str, value: Any) -> str | None:
         unit = next((value[k] for k in _UNIT_KEYS if isinstance(value.get(k), str)), None)
         return f"{inner} {unit}" if isinstance(inner, (int, float, str)) and unit else None
     if isinstance(value, str):
-        return value if _DIGIT.search(value) and len(value) < 200 else None
+        return value if DIGIT.search(value) and len(value) < 200 else None
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         for k in (f"{key}Unit", f"{key}_unit", f"{key}Uom", *_UNIT_KEYS):
             if isinstance(node.get(k), str) and node[k].strip():
@@ -91,8 +101,10 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
         seen += 1
         order += 1
         if isinstance(node, dict):
-            label = next((node[k] for k in _LABEL_KEYS if isinstance(node.get(k), str)), None)
+            label = next((text for k in _LABEL_KEYS if (text := _text_of(node.get(k)))), None)
             value = node.get("value")
+            if isinstance(value, dict):
+                value = _text_of(value)  # {"key": {"name": "Boyut/Ebat"}, "value": {"name": "140 x 180 cm"}}
             if label and isinstance(value, (str, int, float)) and not isinstance(value, bool):
                 info = classify_label(label)
                 if info is not None:
@@ -111,8 +123,8 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
             and isinstance(node, str)
             and 3 < len(node) < 200
             and ":" in node
-            and _DIGIT.search(node)
-            and not _CODE.search(node)
+            and DIGIT.search(node)
+            and not CODE.search(node)
         ):
             for label, value, info in split_inline(node):
                 pairs.append(Pair(label, value, info, order=order))

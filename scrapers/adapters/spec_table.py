@@ -1,12 +1,9 @@
-"""Spec tables, definition lists, detail bullets and label/value lines, in many languages.
+"""Spec tables, definition lists, detail bullets and label/value lines, in many languages: their values.
 
-Real stores write a measurement as a label and a value: in a table row (``<th>Gewicht</th><td>4,7 kg</td>``),
-a definition list, a bullet (``Product Dimensions : 9.25 x 3 x 14.85 inches; 10.56 Ounces``), on two
-lines (``Altura:`` / ``61 cm``), several on one line (``Altura: 61 cm Largura: 158 cm``) or with the
-unit in the label (``Výška [mm]: 516``, ``Габариты (ВхШхГ), см: 184х54х60``). This module turns the
-page's visible text lines (:attr:`scrapers.page.Page.lines`) into (label, value) pairs, keeps those whose
-label :func:`scrapers.labels.classify_label` recognises, and reads their values. Separate length, width,
-height... fields become one dimensions observation (see :func:`observations_from_pairs`).
+The pairs themselves (a label and its value text, in table rows, lists, bullets, header rows) are found
+by :mod:`scrapers.spec_pairs`; this module reads their values into observations (units, ranges, a
+metric figure beside an imperial one, axis words inside a value, whose value it is). Separate length,
+width, height... fields become one dimensions observation (see :func:`observations_from_pairs`).
 
 The ``embedded_json`` adapter (:mod:`scrapers.adapters.embedded_json`) reads the page's embedded state into
 the same pairs.
@@ -16,16 +13,15 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
+from dataclasses import replace
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
 from scrapers.adapters import Observation, adapter
-from scrapers.labels import AXES, LabelInfo, classify_label, classify_other
+from scrapers.labels import AXES, classify_label
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page
 from scrapers.quantities import (
     clean_text,
-    length_unit,
     mass_unit,
     parse_dims,
     parse_length,
@@ -33,168 +29,19 @@ from scrapers.quantities import (
     parse_mass,
     third_axis,
 )
+from scrapers.spec_pairs import DIGIT, MAX_PAIRS, Pair, pairs_from_lines, split_inline
 
 __all__ = ["MAX_PAIRS", "Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
 
 #: Separate axis fields further apart than this many lines are not one product's dimensions.
 AXIS_GROUP_GAP = 8
-#: Reading stops after this many recognised measurement pairs. Real product pages state at most a few
-#: dozen (23 on the richest page measured); a page with thousands is a parts list or a spec dump, and the
-#: product's own values come first.
-MAX_PAIRS = 400
 #: A weight range no wider than this ratio (``1,2 – 1,5 kg``: a handmade piece) gives its midpoint; a wider
 #: one (``1.01 - 7.2 lbs``: variants of different sizes) is not used.
 NARROW_RANGE = 1.5
-_AXIS_LETTER_END = re.compile(r"(?<=\s)[HWDLBT]\.?\s*$")
-_PUNCT_ONLY = re.compile(r"[\W_]+")
-_BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
-_SEPARATOR = re.compile(r"\s*(?::|\s[—–]\s|=)\s*")
-_DIGIT = re.compile(r"\d")
-_MAX_LABEL_WORDS = 6
-_CODE = re.compile(r"[{}<>;]|\":|:\s*\"")  # JSON, CSS or markup inside a string is not a spec line
 
 
-@dataclass(frozen=True)
-class Pair:
-    """A label and its value text as the page shows them, with the line context."""
-
-    label: str
-    value: str
-    info: LabelInfo
-    package: bool = False
-    order: int = 0
-    group: int | None = None
-
-
-def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
-    """Recognised ``label: value`` pairs within one line (several per line allowed), or a label followed
-    directly by a number (``Gewicht 4,7 kg``).
-
-    Before each separator (``:``, a spaced dash, ``=``) the longest run of up to six words that
-    :func:`classify_label` recognises is the label; its value runs to where the next label starts (the
-    last word before the next separator when that one is not recognised)."""
-    text = clean_text(text)
-    seps = list(_SEPARATOR.finditer(text))
-    labelled: list[tuple[str, LabelInfo, int]] = []  # label, what it names, where its value starts
-    starts: list[int] = []  # where each separator's label starts
-    prev_end = 0
-    for k, sep in enumerate(seps):
-        words = list(re.finditer(r"\S+", text[prev_end : sep.start()]))
-        label_start = prev_end + words[-1].start() if words else sep.start()
-        # Before a line's first separator every word is the label's: "Cable length: 75 cm" names a part,
-        # not a length ("length" alone is only the label when nothing precedes it).
-        shortest = max(1, len(words)) if k == 0 and len(words) <= _MAX_LABEL_WORDS else 1
-        for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
-            first = words[-n].group(0)
-            if k > 0 and (_DIGIT.search(first) or _is_unit(first)):
-                continue  # "Weight: 2 kg Height: 30 cm": "kg" ends the previous value, it starts no label
-            cand_start = prev_end + words[-n].start()
-            info = classify_label(text[cand_start : sep.start()])
-            if info is not None:
-                labelled.append((text[cand_start : sep.start()], info, sep.end()))
-                label_start = cand_start
-                break
-        else:
-            if k == 0 and words and (other := classify_other(text[prev_end + words[0].start() : sep.start()])):
-                labelled.append((text[prev_end + words[0].start() : sep.start()], other, sep.end()))
-                label_start = prev_end + words[0].start()
-        starts.append(label_start)
-        prev_end = sep.end()
-    out: list[tuple[str, str, LabelInfo]] = []
-    for label, info, value_start in labelled:
-        end = next((s for s in starts if s >= value_start), len(text))
-        value = text[value_start:end].strip(" ;,|")
-        if _DIGIT.search(value):
-            out.append((label, value, info))
-    if not seps:
-        # "Gewicht 4,7 kg"; "Length 70 cm, chest width 52 cm, in size L": each clause a label and a number
-        clauses = _CLAUSE.split(text)
-        for clause in clauses:
-            found = _label_then_number(clause)
-            if found is None:
-                if clause is clauses[0]:
-                    break
-                continue
-            out.append(found if len(clauses) == 1 else (found[0], found[1].strip(" ,;"), found[2]))
-    return out
-
-
-# A clause boundary: a comma or semicolon, a space and a word ("4,7 kg", "H21.6, W9.1" have none).
-_CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
-
-
-def _label_then_number(text: str) -> tuple[str, str, LabelInfo] | None:
-    m = _DIGIT.search(text)
-    if not m or m.start() == 0:
-        return None
-    cut = m.start()
-    letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
-    if letter:
-        cut = letter.start()
-    label = text[:cut]
-    info = classify_label(label) or classify_other(label)
-    return (label.strip(), text[cut:], info) if info is not None else None
-
-
-def pairs_from_lines(lines: list[Line]) -> list[Pair]:
-    """Label/value pairs from visible text lines: a label line followed by a value line (a lone ``:``
-    between them is skipped; a unit alone on the line after a bare number joins it), or pairs within
-    one line."""
-    pairs: list[Pair] = []
-    n = len(lines)
-    column_values: set[int] = set()  # value lines already paired by a header row
-    for i, line in enumerate(lines):
-        if len(pairs) >= MAX_PAIRS:
-            break
-        if i in column_values:
-            continue
-        text = line.text
-        info = (classify_label(text) or classify_other(text)) if len(text) <= 80 else None
-        if info is not None and info.role == "product" and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
-            header = _header_row(lines, i)
-            if header:
-                pairs.extend(header)
-                column_values.update(p.order for p in header)
-                continue
-        if info is not None:
-            j = i + 1
-            while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
-                j += 1
-            if j < n:
-                nxt = lines[j]
-                value = nxt.text
-                if _DIGIT.search(value) and classify_label(value) is None:
-                    if j + 1 < n and _BARE_NUMBER.fullmatch(value) and _is_unit(lines[j + 1].text):
-                        value = f"{value} {lines[j + 1].text}"
-                    pairs.append(Pair(text, value, info, line.package or nxt.package, line.index, nxt.group))
-                    continue  # the value line is still read for pairs of its own ("Width: 30 cm")
-        if _DIGIT.search(text) and len(text) <= 600:
-            for label, value, label_info in split_inline(text):
-                pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
-    return pairs
-
-
-def _label_line(line: Line) -> bool:
-    return len(line.text) <= 80 and not _DIGIT.search(line.text) and classify_label(line.text) is not None
-
-
-def _header_row(lines: list[Line], i: int) -> list[Pair]:
-    """A header row of labels and the row under it (``Width | Height | Depth`` over ``30 cm | 20 cm |
-    10 cm``, or ``dt dt dt dd dd dd``): label k pairs with value k of the **first** row only (later rows are
-    variants or other products). Pairs carry the value line's index as their order. [] when the lines after
-    the labels are not as many values."""
-    labels = []
-    j = i
-    while j < len(lines) and _label_line(lines[j]) and len(labels) < 12:
-        labels.append(lines[j])
-        j += 1
-    values = lines[j : j + len(labels)]
-    if len(values) < len(labels) or not all(_DIGIT.search(v.text) and classify_label(v.text) is None for v in values):
-        return []
-    return [
-        Pair(lab.text, val.text, classify_label(lab.text), lab.package or val.package, val.index, val.group)
-        for lab, val in zip(labels, values, strict=False)
-    ]
+#: A value of numbers only (``923 x 253 x 659.4``, ``19.4``): its unit must come from the label or a heading.
+_UNITLESS = re.compile(r"[\d\s.,x×*/()-]+")
 
 
 def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
@@ -203,9 +50,6 @@ def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
     unit = m.group(1) if m else label_unit
     return mass_unit(unit) is not None if unit else False
 
-
-def _is_unit(text: str) -> bool:
-    return len(text) <= 12 and (length_unit(text) is not None or mass_unit(text) is not None)
 
 
 def _plausible_mass(value: str, unit: str | None, dc: bool | None) -> tuple[float | None, str | None]:
@@ -230,68 +74,164 @@ def observations_from_pairs(
     obs: list[Observation] = []
     axes: list[tuple[str, float, Pair, int, str | None]] = []
     for pair in pairs:
-        info = pair.info
-        raw = f"{pair.label}: {pair.value}"[:200]
-        package = pair.package or info.package
-        if info.role != "product":
-            obs.extend(_other_observations(pair, raw, decimal_comma, rank))
-            continue
-        if info.kind in ("dimensions", "size"):
-            dims = parse_dims(pair.value, info.unit, decimal_comma)
-            rest = pair.value
-            if dims:
-                d = dims[0]
-                note = None
-                if max(d.values_cm) > MAX_DIM_CM:
-                    again = parse_dims(pair.value, info.unit, not decimal_comma)
-                    if again and max(again[0].values_cm) <= MAX_DIM_CM:
-                        d, note = again[0], "read with a decimal comma (the other reading is absurd)"
-                rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
-                values, roles = d.values_cm, d.roles
-                if len(info.order) == len(values) and set(roles) <= {"extent"}:
-                    roles = info.order  # "Dimensions (H x W x D): 17.9 x 359.3 x 235.6 mm"
-                if len(values) == 2:
-                    extra = third_axis(rest, decimal_comma)  # "8\" x 10\" and is 3/4\" thick"
-                    if extra is not None:
-                        values, roles = (*values, extra), (*roles, "extent")
-                obs.append(
-                    Observation("dims", values, package, rank, pair.order, pair.group, raw, note, roles=roles)
-                )
-            if info.kind == "dimensions":
-                mass, note = _plausible_mass(rest, None, decimal_comma)
-                if mass is not None:
-                    obs.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
-        elif info.kind == "weight":
-            mass, note = _plausible_mass(pair.value, info.unit, decimal_comma)
-            if mass is not None:
-                obs.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
-            elif (rng := parse_length_range(pair.value, info.unit or "kg", decimal_comma)) is not None:
-                low, high = rng
-                if mass_unit_of_range(pair.value, info.unit) and high <= NARROW_RANGE * low:
-                    # "ca. 1,2 – 1,5 kg" (a handmade piece): the midpoint, one rank weaker, with a note
-                    obs.append(
-                        Observation(
-                            "mass", round((low + high) / 2, 6), package, rank + 1, pair.order, pair.group,
-                            raw, f"weight given as a range ({raw}); took the midpoint",
-                        )
-                    )  # fmt: skip
-                else:
-                    obs.append(
-                        Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
-                    )
-        elif info.kind in AXES and (joint := _axes_in_one_value(pair, decimal_comma)) is not None:
-            obs.append(joint)  # "Diameter 30cm x Height 15cm": one value naming its axes
-        elif info.kind in AXES:
-            length = parse_length(pair.value, info.unit, decimal_comma)
-            note = None
-            if length is None:
-                rng = parse_length_range(pair.value, info.unit, decimal_comma)
-                if rng is None:
-                    continue
-                length, note = range_extent(info.kind, rng, raw)
-            axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
+        n_axes = len(axes)
+        found = _pair_observations(pair, decimal_comma, rank, axes)
+        if pair.unit_context:
+            said = f"no unit beside the value ({pair.label}: {pair.value}): {pair.unit_context}"
+            for o in found:
+                o.note = "; ".join(filter(None, [o.note, said]))
+            if len(axes) > n_axes:
+                kind, length, p, r, note = axes[-1]
+                axes[-1] = (kind, length, p, r, "; ".join(filter(None, [note, said])))
+        unread = not found and len(axes) == n_axes
+        if unread and pair.info.role == "product" and _UNITLESS.fullmatch(clean_text(pair.value)):
+            found = [Observation("warning", f"{pair.label}: {pair.value}: no unit stated (not in the value, "
+                                 "its label or a heading above it); not used", order=pair.order)]
+        if pair.info.shipping:
+            for o in found:
+                if o.feature in ("dims", "mass"):
+                    o.role = "shipping"  # a shipment's value: kept apart from the product's box
+        obs.extend(found)
     obs.extend(_group_axes(axes))
     return obs
+
+
+def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: list) -> list[Observation]:
+    """The observations one recognised pair gives; single-axis fields are appended to ``axes`` instead."""
+    out: list[Observation] = []
+    info = pair.info
+    raw = f"{pair.label}: {pair.value}"[:200]
+    package = pair.package or info.package
+    metric = metric_figure(pair.value)
+    if metric is not None:
+        pair = replace(pair, value=metric)  # "Height: 0.61 inch (1.56 cm)": the metric figure
+    if info.role != "product":
+        out.extend(_other_observations(pair, raw, decimal_comma, rank))
+        return out
+    if info.kind in ("dimensions", "size"):
+        out.extend(_dims_pair_observations(pair, package, raw, decimal_comma, rank))
+    elif info.kind == "weight":
+        mass, note = _plausible_mass(pair.value, info.unit, decimal_comma)
+        if mass is not None:
+            out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
+        elif (rng := parse_length_range(pair.value, info.unit or "kg", decimal_comma)) is not None:
+            low, high = rng
+            if mass_unit_of_range(pair.value, info.unit) and high <= NARROW_RANGE * low:
+                # "ca. 1,2 – 1,5 kg" (a handmade piece): the midpoint, one rank weaker, with a note
+                out.append(
+                    Observation(
+                        "mass", round((low + high) / 2, 6), package, rank + 1, pair.order, pair.group,
+                        raw, f"weight given as a range ({raw}); took the midpoint",
+                    )
+                )  # fmt: skip
+            else:
+                out.append(
+                    Observation("warning", f"weight given as a range ({raw}); not used", order=pair.order)
+                )
+    elif info.kind in AXES and (joint := _axes_in_one_value(pair, decimal_comma)) is not None:
+        out.append(joint)  # "Diameter 30cm x Height 15cm": one value naming its axes
+    elif info.kind in AXES:
+        length = parse_length(pair.value, info.unit, decimal_comma)
+        note = None
+        if length is None:
+            rng = parse_length_range(pair.value, info.unit, decimal_comma)
+            if rng is None:
+                return out
+            length, note = range_extent(info.kind, rng, raw)
+        axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
+    return out
+
+def _dims_pair_observations(
+    pair: Pair, package: bool, raw: str, decimal_comma: bool | None, rank: int
+) -> list[Observation]:
+    """A dimensions or size pair: its ``A x B x C`` value with roles (the label's axis order when the value
+    names none), a third axis written after a two-value size, the extents of axis words in the value
+    (``幅30cm 奥行20cm 高さ10cm``) when they say more, and a mass after ``;`` for a dimensions label."""
+    out: list[Observation] = []
+    info = pair.info
+    dims = parse_dims(pair.value, info.unit, decimal_comma)
+    rest = pair.value
+    segments = axis_segments(pair.value, info.unit, decimal_comma)
+    if dims:
+        d = dims[0]
+        note = None
+        if max(d.values_cm) > MAX_DIM_CM:
+            again = parse_dims(pair.value, info.unit, not decimal_comma)
+            if again and max(again[0].values_cm) <= MAX_DIM_CM:
+                d, note = again[0], "read with a decimal comma (the other reading is absurd)"
+        rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
+        values, roles = d.values_cm, d.roles
+        if len(info.order) == len(values) and set(roles) <= {"extent"}:
+            roles = info.order  # "Dimensions (H x W x D): 17.9 x 359.3 x 235.6 mm"
+        if len(values) == 2:
+            extra = third_axis(rest, decimal_comma)  # "8\" x 10\" and is 3/4\" thick"
+            if extra is not None:
+                values, roles = (*values, extra), (*roles, "extent")
+        if len(segments) > len(values):
+            values, roles = tuple(v for _, v in segments), tuple(k for k, _ in segments)
+        out.append(Observation("dims", values, package, rank, pair.order, pair.group, raw, note, roles=roles))
+    elif len(segments) >= 2:
+        values, roles = tuple(v for _, v in segments), tuple(k for k, _ in segments)
+        out.append(Observation("dims", values, package, rank, pair.order, pair.group, raw, roles=roles))
+    elif (length := _one_length(pair.value, info.unit, decimal_comma)) is not None:
+        # "サイズ：19cm／240p" (a book's height), "Size: 45 cm": one unnamed extent, one rank weaker
+        out.append(Observation("dims", (length,), package, rank + 1, pair.order, pair.group, raw, roles=("extent",)))
+    if info.kind == "dimensions":
+        mass, note = _plausible_mass(rest, None, decimal_comma)
+        if mass is not None:
+            out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
+    return out
+
+
+_SEGMENT_SPLIT = re.compile(r"\s+|[、，,;/／|]+")
+
+
+def axis_segments(value: str, unit: str | None, decimal_comma: bool | None) -> list[tuple[str, float]]:
+    """The extents of a value written as axis words each followed by a number (``幅30cm 奥行20cm 高さ10cm``,
+    ``W 30 cm, D 20 cm``): (axis, cm) per segment, [] unless every axis is named once."""
+    found: list[tuple[str, float]] = []
+    text = clean_text(value)
+    if len(text) > 200:
+        return []
+    for segment in _SEGMENT_SPLIT.split(text):
+        m = re.match(r"([^\W\d_]+)\s*(?:約|约)?\s*(\d.*)$", segment)
+        if not m:
+            continue
+        info = classify_label(m.group(1))
+        if info is None or info.kind not in AXES:
+            continue
+        length = parse_length(m.group(2), unit, decimal_comma)
+        if length is not None:
+            found.append((info.kind, length))
+    kinds = [k for k, _ in found]
+    return found if len(set(kinds)) == len(kinds) <= 3 else []
+
+
+def _one_length(value: str, unit: str | None, decimal_comma: bool | None) -> float | None:
+    """The one length a size value states before any other word (``19cm／240p``), else None."""
+    head = re.split(r"[／/|;,、]", clean_text(value), maxsplit=1)[0]
+    return parse_length(head, unit, decimal_comma) if len(head) <= 30 else None
+
+
+_IMPERIAL = re.compile(r"\d\s*(?:\"|in\b|in\.|inch|inches|ft\b|feet|foot|lbs?\b|pounds?|oz\b|ounces?)", re.IGNORECASE)
+_METRIC = re.compile(r"\d\s*(?:mm|cm|m|kg|g|grams?|kilograms?|millimet\w*|centimet\w*)\b", re.IGNORECASE)
+_BRACKETED = re.compile(r"[(（]([^()（）]{1,80})[)）]")
+
+
+def metric_figure(value: str) -> str | None:
+    """The metric figure of a value that states both (``0.61 inch (1.56 cm)``, ``2.8 lb (1.27 kg)``,
+    ``12.32 x 8.72 in (312.8 x 221.6 mm)``): the bracketed metric part when the rest is imperial, else
+    None (the value is read as written). Computer makers round each figure separately; the metric one
+    is the product's own."""
+    if "(" not in value and "（" not in value:
+        return None
+    m = _BRACKETED.search(value)
+    if not m or not _METRIC.search(m.group(1)) or _IMPERIAL.search(m.group(1)):
+        return None
+    outside = value[: m.start()]
+    if not _IMPERIAL.search(outside) or _METRIC.search(outside):
+        return None
+    return m.group(1)
 
 
 def _axes_in_one_value(pair: Pair, decimal_comma: bool | None) -> Observation | None:
@@ -321,7 +261,7 @@ def _other_observations(pair: Pair, raw: str, decimal_comma: bool | None, rank: 
         length = parse_length(pair.value, info.unit, decimal_comma)
         found = [("dims", (length,), (info.kind,))] if length is not None else []
     return [
-        Observation(f, v, pair.package, rank, pair.order, pair.group, raw, roles=r, role=info.role)
+        Observation(f, v, pair.package, rank, pair.order, pair.group, raw, roles=r, role=info.role, part=info.part)
         for f, v, r in found
     ]
 
@@ -369,6 +309,7 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
         yield Observation(
             "dims", tuple(v for _, v in extents), package, rank, first.order, first.group, raw, notes,
             roles=tuple(k for k, _ in extents),
+            role="shipping" if any(p.info.shipping for _, _, p, _, _ in row) else "product",
         )  # fmt: skip
 
 
@@ -416,7 +357,7 @@ def selected_variant(page: Page) -> list[Observation]:
     obs = []
     for option in tree.xpath("//select//option[@selected]")[:20]:
         text = " ".join(option.itertext()).strip()[:300]
-        found = parse_dims(text, None, page.decimal_comma) if _DIGIT.search(text) else []
+        found = parse_dims(text, None, page.decimal_comma) if DIGIT.search(text) else []
         if found:
             best = max(found, key=lambda d: len(d.values_cm))
             obs.append(
@@ -428,9 +369,37 @@ def selected_variant(page: Page) -> list[Observation]:
     return obs[:1]
 
 
+#: Regions whose stores write lengths in inches when they write no unit (Barnes & Noble's
+#: ``5.20(w) x 8.00(h) x 0.40(d)``). Only a declared region counts (``en-US``, ``og:locale en_US``).
+INCH_REGIONS = frozenset({"us"})
+_LENGTH_KINDS = frozenset({*AXES, "dimensions", "size"})
+
+
+def _inch_locale(lang: str | None) -> bool:
+    parts = re.split(r"[-_]", (lang or "").strip().lower())
+    return len(parts) > 1 and parts[0] == "en" and parts[1] in INCH_REGIONS
+
+
+def _with_locale_inches(pair: Pair, lang: str | None) -> Pair:
+    """A length pair written with no unit anywhere, read in inches on a page of an inch locale (said so)."""
+    if pair.info.unit is not None or pair.info.kind not in _LENGTH_KINDS or pair.info.role != "product":
+        return pair
+    if not _UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
+        return pair
+    return replace(pair, info=replace(pair.info, unit="in"),
+                   unit_context=f"inches, the unit of the page's locale ({lang})")  # fmt: skip
+
+
+#: Numbers only, maybe with axis letters in brackets: ``5.20(w) x 8.00(h) x 0.40(d)``, ``923 x 253``.
+_UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
+
+
 @adapter("spec_table", priority=50)
 def spec_table(page: Page) -> list[Observation]:
     """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
     size of the selected variant."""
-    obs = observations_from_pairs(pairs_from_lines(page.lines), page.decimal_comma)
+    pairs = pairs_from_lines(page.lines)
+    if _inch_locale(page.lang):
+        pairs = [_with_locale_inches(p, page.lang) for p in pairs]
+    obs = observations_from_pairs(pairs, page.decimal_comma)
     return obs + selected_variant(page) + material_observations(page.lines)

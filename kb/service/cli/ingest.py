@@ -12,8 +12,9 @@ from kb.service.cli.common import DbOption, JsonOption, emit, resolve_db
 
 #: Fields ``objrecall extract`` prints, in this order.
 EXTRACT_FIELDS = (
-    "name", "dims_cm", "dims", "mass_g", "package_dims_cm", "package_mass_g", "material", "shape", "adapter",
-    "url", "canonical_url", "gtin", "warnings",
+    "name", "dims_cm", "dims", "mass_g", "package_dims_cm", "package_mass_g", "shipping_dims_cm",
+    "shipping_mass_g", "set_count", "set_mass_g", "material", "shape", "adapter", "url", "canonical_url", "gtin",
+    "warnings",
 )  # fmt: skip
 
 
@@ -57,13 +58,15 @@ def _fmt(key: str, value: Any) -> str:
         return "-"
     if isinstance(value, float):
         return f"{value:g} g"
+    if isinstance(value, int) and not isinstance(value, bool):
+        return str(value)
     if key == "dims_cm":
         return " x ".join(f"{v:g}" for v in value) + " cm"
     if key == "dims":
         return ", ".join(f"{e['role']} {e['cm']:g} cm" for e in value)
-    if key == "package_dims_cm":
+    if key in ("package_dims_cm", "shipping_dims_cm"):
         return "; ".join(" x ".join(f"{v:g}" for v in p) + " cm" for p in value)
-    if key == "package_mass_g":
+    if key in ("package_mass_g", "shipping_mass_g"):
         return "; ".join(f"{v:g} g" for v in value)
     return str(value)
 

@@ -78,20 +78,30 @@ def register(app: typer.Typer) -> None:
 
     @app.command("evaluate")
     def evaluate_command(
-        catalog: Annotated[Path, typer.Option("--catalog", help="Catalog CSV (canonical header).")],
+        catalog: Annotated[Path | None, typer.Option("--catalog", help="Catalog CSV (canonical header).")] = None,
         descriptions: Annotated[
-            Path, typer.Option("--descriptions", help="CSV with columns object,description.")
-        ],
+            Path | None, typer.Option("--descriptions", help="CSV with columns object,description.")
+        ] = None,
         open_set: Annotated[
             Path | None,
             typer.Option("--open-set", help="CSV with a 'description' column of objects NOT in the catalog."),
         ] = None,
+        every_set: Annotated[
+            bool, typer.Option("--all", help="One row per development set (recall.scoreboard) instead.")
+        ] = False,
+        blind: Annotated[bool, typer.Option("--blind", help="With --all: the blind sets too.")] = False,
         json_out: JsonOption = False,
     ) -> None:
-        """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss."""
+        """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss;
+        with --all, top-1/top-3, open-set detection, false flags, Brier and ECE of every development set."""
         from kb.service.cli.common import emit
         from recall.evaluation import evaluate
 
+        if every_set:
+            _scoreboard_command(blind, json_out)
+            return
+        if catalog is None or descriptions is None:
+            raise typer.BadParameter("give --catalog and --descriptions, or --all")
         for path in (catalog, descriptions, open_set):
             if path is not None and not path.is_file():
                 raise FileNotFoundError(2, "No such file", str(path))
@@ -263,6 +273,34 @@ def _verdict(result) -> str:
     if result.competitors >= 1.5:
         why.append(f"{result.competitors:.1f} candidates about as good")
     return f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else "")
+
+
+def _scoreboard_command(blind: bool, json_out: bool) -> None:
+    """``evaluate --all``: one row per set and mode (recall.scoreboard)."""
+    from rich.console import Console
+    from rich.table import Table
+
+    from kb.service.cli.common import emit
+    from recall.scoreboard import BLIND_SETS, DEVELOPMENT_SETS, scoreboard
+
+    rows = scoreboard(DEVELOPMENT_SETS + (BLIND_SETS if blind else ()))
+    if json_out:
+        emit({"sets": [r.to_dict() for r in rows]})
+        return
+    table = Table(title="Recall on every description set (top-1/top-3 %; jp vs euclidean: features only)")
+    cols = ("set", "mode", "n", "top-1", "top-3", "detected", "false flags", "Brier", "ECE", "jp / euclidean")
+    for col in cols:
+        table.add_column(col, justify="left" if col in ("set", "mode") else "right", no_wrap=True)
+    for row in rows:
+        fo = row.features_only_top1
+        versus = f"{100 * fo.get('jp', 0):.1f} / {100 * fo.get('euclidean', 0):.1f}"
+        for m in row.modes:
+            detected = f"{m.detected}/{row.open_set_n}" if m.detected is not None else "-"
+            table.add_row(
+                row.name, m.mode, str(row.n), f"{100 * m.top1:.1f}", f"{100 * m.top3:.1f}", detected,
+                f"{m.false_flags} ({_pct(m.false_flags, row.n)})", f"{m.brier:.3f}", f"{m.ece:.3f}", versus,
+            )  # fmt: skip
+    Console(width=140).print(table)
 
 
 def _pct(k: int, n: int) -> str:

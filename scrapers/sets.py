@@ -1,0 +1,69 @@
+"""A set versus one item: how many items a page sells as one (a pack of 12 bowls, a pair of curtains, a
+set of four mugs), and whether a value is stated per item.
+
+The catalog object is one item. A page selling a set often states only the set's weight (and sometimes
+the set's size), so the chooser (:func:`scrapers.extract.fuse`) keeps a set's mass apart as the set's,
+unless its label or text says it is one item's (``Weight per piece``, ``je Stück``, ``1個あたり``), and
+warns about its dimensions. :func:`set_size` reads the count from the product's name; ``(Pack of 1)`` is
+one item.
+"""
+
+from __future__ import annotations
+
+import re
+
+__all__ = ["MAX_SET", "per_item", "set_size"]
+
+#: Counts above this are not a set of household objects (a "500 pcs" box of screws is sold by the box).
+MAX_SET = 1000
+_NUMBER_WORDS = {
+    "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "eight": 8, "ten": 10, "twelve": 12,
+    "zwei": 2, "drei": 3, "vier": 4, "sechs": 6, "deux": 2, "trois": 3, "quatre": 4, "six_": 6,
+    "dos": 2, "tres": 3, "cuatro": 4, "seis": 6, "due": 2, "quattro": 4, "sei": 6,
+}  # fmt: skip
+_N = r"(\d{1,4}|" + "|".join(w for w in _NUMBER_WORDS if not w.endswith("_")) + ")"
+#: Ways stores write a set in a product name (en, de, fr, es, it, pt, nl, tr, ja, zh).
+_SET_PATTERNS = [
+    re.compile(p, re.IGNORECASE)
+    for p in (
+        rf"\b(?:set|pack|box|lot|bundle|case)\s+of\s+{_N}\b",
+        rf"\b{_N}[\s-]*(?:pack|pk|pcs?|pieces?|piece|count|ct|teilig|tlg|stück|stk|pièces|piezas|pezzi|peças|"
+        rf"stuks|adet|er[\s-]*(?:set|pack|packung)|-?teiliges?)\b",
+        rf"\b(?:lot|juego|set|kit|confezione|conjunto)\s+(?:de|di|da)\s+{_N}\b",
+        rf"\b{_N}\s*['’](?:li|lı|lu|lü)\b",  # Turkish "4'lü set"
+        rf"\b{_N}[\s-]*(?:er|x)\s+set\b",
+        r"(\d{1,4})\s*(?:個|枚|本|点|個入|枚入|本入|点入|件|只|个|套)\s*(?:セット|組|入り|入|套装|装)?",
+    )
+]
+_PAIR = re.compile(r"\b(?:a\s+)?pair\s+of\b|\(pair\)|\b\d?\s*paar\b|\bpaire\s+de\b|\bpar\s+de\b|\bçift\b|ペア|一对|一對", re.I)
+_ONE = re.compile(r"\((?:pack|set)\s+of\s+1\)|\b1[\s-]*(?:pack|pcs?|piece|count|ct|stück|er[\s-]*pack)\b", re.I)
+#: Words saying a value is one item's (in a label or beside the value).
+_PER_ITEM = re.compile(
+    r"\b(?:each|per\s+(?:item|piece|unit|pc|bowl|mug|plate|glass|panel|curtain)|single|individual|"
+    r"je\s+stück|pro\s+stück|einzeln|pièce|l'unité|par\s+pièce|cada\s+uno|por\s+unidad|ciascuno|"
+    r"cadauno|adet\s+başı|tanesi)\b|[(（]\s*1\s*(?:個|枚|本|点|pc|pcs|piece|stück|adet)\s*[)）]|1個あたり|1枚あたり|1本あたり|"
+    r"単品|单个|每个|每件",
+    re.IGNORECASE,
+)
+
+
+def set_size(name: str | None) -> tuple[int, str] | None:
+    """(count, the words saying so) when ``name`` sells a set of two or more items, else None."""
+    if not name:
+        return None
+    text = name[:300]
+    if _ONE.search(text):
+        return None
+    for pattern in _SET_PATTERNS:
+        for m in pattern.finditer(text):
+            raw = m.group(1).lower()
+            count = int(raw) if raw.isdigit() else _NUMBER_WORDS.get(raw)
+            if count and 2 <= count <= MAX_SET:
+                return count, m.group(0).strip()
+    m = _PAIR.search(text)
+    return (2, m.group(0).strip()) if m else None
+
+
+def per_item(text: str | None) -> bool:
+    """Whether ``text`` (a label and its value) says the value is one item's."""
+    return bool(text and _PER_ITEM.search(text))

@@ -1,0 +1,236 @@
+"""Label/value pairs of a page's visible text lines, in many languages.
+
+Real stores write a measurement as a label and a value: in a table row (``<th>Gewicht</th><td>4,7 kg</td>``),
+a definition list, a bullet (``Product Dimensions : 9.25 x 3 x 14.85 inches; 10.56 Ounces``), on two
+lines (``Altura:`` / ``61 cm``), several on one line (``Altura: 61 cm Largura: 158 cm``), a header row of
+labels over a row of values, or with the unit in the label (``Výška [mm]: 516``). :func:`pairs_from_lines`
+turns the visible lines (:attr:`scrapers.page.Page.lines`) into :class:`Pair` s whose label
+:func:`scrapers.labels.classify_label` (or :func:`~scrapers.labels.classify_other`) recognises; the
+``spec_table`` adapter reads their values (:func:`scrapers.adapters.spec_table.observations_from_pairs`).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, replace
+
+from scrapers.labels import LabelInfo, classify_label, classify_other
+from scrapers.page import Line
+from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
+
+__all__ = ["DIGIT", "MAX_PAIRS", "Pair", "is_unit", "pairs_from_lines", "split_inline"]
+
+#: Reading stops after this many recognised measurement pairs. Real product pages state at most a few
+#: dozen (23 on the richest page measured); a page with thousands is a parts list or a spec dump, and the
+#: product's own values come first.
+MAX_PAIRS = 400
+_AXIS_LETTER_END = re.compile(r"(?<=\s)[HWDLBT]\.?\s*$")
+_PUNCT_ONLY = re.compile(r"[\W_]+")
+_BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
+_SEPARATOR = re.compile(r"\s*(?::|\s[—–]\s|=)\s*")
+DIGIT = re.compile(r"\d")
+_MAX_LABEL_WORDS = 6
+CODE = re.compile(r"[{}<>;]|\":|:\s*\"")  # JSON, CSS or markup inside a string is not a spec line
+
+
+@dataclass(frozen=True)
+class Pair:
+    """A label and its value text as the page shows them, with the line context."""
+
+    label: str
+    value: str
+    info: LabelInfo
+    package: bool = False
+    order: int = 0
+    group: int | None = None
+    #: Where the unit of a value written without one comes from (a heading line ``Dimensions (mm)`` above
+    #: the pairs), for ``--explain``; None when the label or the value states it.
+    unit_context: str | None = None
+
+
+def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
+    """Recognised ``label: value`` pairs within one line (several per line allowed), or a label followed
+    directly by a number (``Gewicht 4,7 kg``).
+
+    Before each separator (``:``, a spaced dash, ``=``) the longest run of up to six words that
+    :func:`classify_label` recognises is the label; its value runs to where the next label starts (the
+    last word before the next separator when that one is not recognised)."""
+    text = clean_text(text)
+    seps = list(_SEPARATOR.finditer(text))
+    labelled: list[tuple[str, LabelInfo, int]] = []  # label, what it names, where its value starts
+    starts: list[int] = []  # where each separator's label starts
+    prev_end = 0
+    for k, sep in enumerate(seps):
+        words = list(re.finditer(r"\S+", text[prev_end : sep.start()]))
+        label_start = prev_end + words[-1].start() if words else sep.start()
+        # Before a line's first separator every word is the label's: "Cable length: 75 cm" names a part,
+        # not a length ("length" alone is only the label when nothing precedes it).
+        shortest = max(1, len(words)) if k == 0 and len(words) <= _MAX_LABEL_WORDS else 1
+        for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
+            first = words[-n].group(0)
+            if k > 0 and (DIGIT.search(first) or is_unit(first)):
+                continue  # "Weight: 2 kg Height: 30 cm": "kg" ends the previous value, it starts no label
+            cand_start = prev_end + words[-n].start()
+            info = classify_label(text[cand_start : sep.start()])
+            if info is not None:
+                labelled.append((text[cand_start : sep.start()], info, sep.end()))
+                label_start = cand_start
+                break
+        else:
+            if k == 0 and words and (other := classify_other(text[prev_end + words[0].start() : sep.start()])):
+                labelled.append((text[prev_end + words[0].start() : sep.start()], other, sep.end()))
+                label_start = prev_end + words[0].start()
+        starts.append(label_start)
+        prev_end = sep.end()
+    out: list[tuple[str, str, LabelInfo]] = []
+    for label, info, value_start in labelled:
+        end = next((s for s in starts if s >= value_start), len(text))
+        value = text[value_start:end].strip(" ;,|")
+        if DIGIT.search(value):
+            out.append((label, value, info))
+    if not seps:
+        # "Gewicht 4,7 kg"; "Length 70 cm, chest width 52 cm, in size L": each clause a label and a number
+        # "サイズ 文庫判/ページ数 170p/高さ 16cm": fields separated by slashes, each its own clause
+        fields = _FIELD_SLASH.search(text) is not None
+        clauses = _FIELD_SLASH.split(text) if fields else _CLAUSE.split(text)
+        for clause in clauses:
+            found = _label_then_number(clause)
+            if found is None:
+                if clause is clauses[0] and not fields:
+                    break
+                continue
+            out.append(found if len(clauses) == 1 else (found[0], found[1].strip(" ,;"), found[2]))
+    return out
+
+
+# A clause boundary: a comma or semicolon, a space and a word ("4,7 kg", "H21.6, W9.1" have none).
+#: A slash between fields (``文庫判/ページ数 170p/高さ 16cm``): followed by two letters, so ``30/20/10 cm`` and
+#: ``cm/inch`` are not split.
+_FIELD_SLASH = re.compile(r"\s*/\s*(?=[^\W\d_]{2})(?![^\W\d_]{1,6}\b\s*$)")
+_CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
+
+
+def _label_then_number(text: str) -> tuple[str, str, LabelInfo] | None:
+    m = DIGIT.search(text)
+    if not m or m.start() == 0:
+        return None
+    cut = m.start()
+    letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
+    if letter:
+        cut = letter.start()
+    label = text[:cut]
+    info = classify_label(label) or classify_other(label)
+    return (label.strip(), text[cut:], info) if info is not None else None
+
+
+def pairs_from_lines(lines: list[Line]) -> list[Pair]:
+    """Label/value pairs from visible text lines: a label line followed by a value line (a lone ``:``
+    between them is skipped; a unit alone on the line after a bare number joins it), or pairs within
+    one line."""
+    pairs: list[Pair] = []
+    column_values: set[int] = set()  # value lines already paired by a header row
+    headings: dict[str, tuple[str, str, int]] = {}  # unit family -> (unit, heading text, line)
+    for i, line in enumerate(lines):
+        if len(pairs) >= MAX_PAIRS:
+            break
+        if i in column_values:
+            continue
+        text = line.text
+        if (heading := _heading_unit(text)) is not None:
+            headings[heading[0]] = (heading[1], text, i)
+        before = len(pairs)
+        _pairs_at(lines, i, pairs, column_values)
+        if headings and len(pairs) > before:
+            pairs[before:] = [_with_heading_unit(p, headings, i) for p in pairs[before:]]
+    return pairs
+
+
+def _pairs_at(lines: list[Line], i: int, pairs: list[Pair], column_values: set[int]) -> None:
+    """The pairs line ``i`` starts, appended to ``pairs``."""
+    n = len(lines)
+    line = lines[i]
+    text = line.text
+    info = (classify_label(text) or classify_other(text)) if len(text) <= 80 else None
+    if info is not None and info.role == "product" and i + 1 < n and _label_line(lines[i + 1]) and not (i and _label_line(lines[i - 1])):
+        header = _header_row(lines, i)
+        if header:
+            pairs.extend(header)
+            column_values.update(p.order for p in header)
+            return
+    if info is not None:
+        j = i + 1
+        while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
+            j += 1
+        if j < n:
+            nxt = lines[j]
+            value = nxt.text
+            if DIGIT.search(value) and classify_label(value) is None:
+                if j + 1 < n and _BARE_NUMBER.fullmatch(value) and is_unit(lines[j + 1].text):
+                    value = f"{value} {lines[j + 1].text}"
+                pairs.append(Pair(text, value, info, line.package or nxt.package, line.index, nxt.group))
+                return  # the value line is still read for pairs of its own ("Width: 30 cm")
+    if DIGIT.search(text) and len(text) <= 600:
+        for label, value, label_info in split_inline(text):
+            pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
+
+
+#: A heading's unit applies to the pairs of the next this many lines (one spec block).
+HEADING_SCOPE = 40
+_LENGTH_KINDS = frozenset({"length", "width", "height", "depth", "diameter", "thickness", "dimensions", "size"})
+
+
+#: What a label stating its unit has (``(mm)``, ``, см``, ``in cm``): a cheap test before :func:`unit_hint`.
+_UNIT_HINT_MARK = re.compile(r"[(\[（,]|\s(?:in|en|em)\s", re.IGNORECASE)
+
+
+def _heading_unit(text: str) -> tuple[str, str] | None:
+    """("length" or "mass", unit) for a heading line that states a unit for what follows and holds no
+    value (``Dimensions (mm)``, ``Maße in cm``, ``Weight (kg)``, ``寸法(mm)``), else None."""
+    if len(text) > 60 or DIGIT.search(text) or not _UNIT_HINT_MARK.search(text):
+        return None
+    unit = unit_hint(text)
+    if unit is None or classify_label(text) is None:
+        return None
+    if length_unit(unit) is not None:
+        return "length", unit
+    return ("mass", unit) if mass_unit(unit) is not None else None
+
+
+def _with_heading_unit(pair: Pair, headings: dict[str, tuple[str, str, int]], i: int) -> Pair:
+    """``pair`` with the unit of the heading above it when its label states none (a Play.com style
+    ``Dimensions (mm)`` block of ``Width: 923`` rows)."""
+    if pair.info.unit is not None or pair.info.role != "product":
+        return pair
+    family = "length" if pair.info.kind in _LENGTH_KINDS else "mass"
+    found = headings.get(family)
+    if found is None or i - found[2] > HEADING_SCOPE or found[2] == pair.order:
+        return pair
+    unit, heading, _ = found
+    return replace(pair, info=replace(pair.info, unit=unit), unit_context=f"the unit of the heading {heading!r}")
+
+
+def _label_line(line: Line) -> bool:
+    return len(line.text) <= 80 and not DIGIT.search(line.text) and classify_label(line.text) is not None
+
+
+def _header_row(lines: list[Line], i: int) -> list[Pair]:
+    """A header row of labels and the row under it (``Width | Height | Depth`` over ``30 cm | 20 cm |
+    10 cm``, or ``dt dt dt dd dd dd``): label k pairs with value k of the **first** row only (later rows are
+    variants or other products). Pairs carry the value line's index as their order. [] when the lines after
+    the labels are not as many values."""
+    labels = []
+    j = i
+    while j < len(lines) and _label_line(lines[j]) and len(labels) < 12:
+        labels.append(lines[j])
+        j += 1
+    values = lines[j : j + len(labels)]
+    if len(values) < len(labels) or not all(DIGIT.search(v.text) and classify_label(v.text) is None for v in values):
+        return []
+    return [
+        Pair(lab.text, val.text, classify_label(lab.text), lab.package or val.package, val.index, val.group)
+        for lab, val in zip(labels, values, strict=False)
+    ]
+
+
+def is_unit(text: str) -> bool:
+    return len(text) <= 12 and (length_unit(text) is not None or mass_unit(text) is not None)
