@@ -30,6 +30,7 @@ clear line (CLI, exit code 1) or a JSON body (HTTP 4xx). Anything else is a bug.
         ├── WritesDisabled        a write, but no API token is configured (403)
         ├── IngestionBusy         an ingestion job started by the service is still running (409)
         ├── JobNotFound           no ingestion job with that id (404)
+        ├── RenderBusy            as many grasp renders as allowed are running (503, Retry-After)
         └── RequestTimeout        the request or its SQL statement ran past its time limit (504)
 """
 
@@ -56,6 +57,7 @@ __all__ = [
     "QueryTimeout",
     "QueryRefused",
     "RecallError",
+    "RenderBusy",
     "RequestTimeout",
     "RobotsDisallowed",
     "ServiceError",
@@ -183,6 +185,14 @@ class WritesDisabled(ServiceError):
 
 class IngestionBusy(ServiceError):
     """An ingestion job started by the service is still running (HTTP 409)."""
+
+
+class RenderBusy(ServiceError):
+    """As many grasp renders as the service allows at once are running (HTTP 503 with Retry-After)."""
+
+    def __init__(self, message: str, retry_after_s: int = 2):
+        super().__init__(message)
+        self.retry_after_s = retry_after_s
 
 
 class JobNotFound(ServiceError):

@@ -16,44 +16,42 @@ import math
 
 import numpy as np
 
-from recall.metrics import CATEGORY_CODES, MISMATCH_TERM, UNKNOWN_CATEGORY_TERM, FeatureQuery
-from recall.ranking import CAT_INDEX, NUM_INDEX, jp_scores, merge_top_k, survivors
+from recall.metrics import CATEGORY_CODES, FeatureQuery
+from recall.ranking import CAT_INDEX, FILTER_SLACK, NUM_INDEX, jp_scores, merge_top_k, survivors
 
-__all__ = ["CellIndex", "cell_levels"]
+__all__ = ["CellIndex"]
 
 #: Objects per cell the split aims at.
 CELL_ROWS = 64
-#: Split order and the most bits of the cell number each level may take (2^16 cells at most).
+#: Split order; a parent is split into about (rows / rows per cell)^(1 / levels left) parts, at most
+#: MAX_SPLIT; rows per cell are CELL_ROWS, or more above 2^MAX_BITS cells.
 CELL_ORDER = ("a_cm", "mass_g", "b_cm", "c_cm")
 MAX_BITS = 16
+MAX_SPLIT = 256
 #: Rows scored per step of the best-first search (the bound tightens between steps).
 CELL_BATCH = 4096
-
-
-def cell_levels(n: int) -> tuple[tuple[str, int], ...]:
-    """(feature, parts) of each split for a catalog of ``n`` objects: bits dealt round-robin."""
-    bits = max(2, min(MAX_BITS, int(math.log2(max(n, 1) / CELL_ROWS) + 0.5)))
-    per = [0] * len(CELL_ORDER)
-    for i in range(bits):
-        per[i % len(CELL_ORDER)] += 1
-    return tuple((f, 1 << b) for f, b in zip(CELL_ORDER, per, strict=True) if b)
+MAX_BATCH = 32768
 
 
 class CellIndex:
     """The cells of one snapshot's columns (see the module docstring)."""
 
-    def __init__(self, num_cols: list[np.ndarray], cat_cols: list[np.ndarray]):
+    def __init__(self, num_cols: list[np.ndarray], cat_cols: list[np.ndarray], groups: np.ndarray | None = None):
         n = len(num_cols[0])
-        cell = np.zeros(n, dtype=np.int64)
-        for feat, split in cell_levels(n):
+        per_cell = max(CELL_ROWS, n >> MAX_BITS)
+        cell = np.zeros(n, dtype=np.int64) if groups is None else groups.astype(np.int64)
+        for depth, feat in enumerate(CELL_ORDER):
             col = num_cols[NUM_INDEX[feat]]
             order = np.lexsort((col, cell))  # NaN sorts last within the cell
             sorted_cell = cell[order]
             starts = np.searchsorted(sorted_cell, sorted_cell, "left")
-            ends = np.searchsorted(sorted_cell, sorted_cell, "right")
-            part = ((np.arange(n) - starts) * split) // np.maximum(ends - starts, 1)
+            size = np.searchsorted(sorted_cell, sorted_cell, "right") - starts
+            left = len(CELL_ORDER) - depth
+            split = np.ceil(size / per_cell) if left == 1 else np.rint((size / per_cell) ** (1.0 / left))
+            split = np.clip(split, 1, MAX_SPLIT)
+            part = ((np.arange(n) - starts) * split.astype(np.int64)) // size
             new = np.empty(n, dtype=np.int64)
-            new[order] = sorted_cell * split + part
+            new[order] = sorted_cell * MAX_SPLIT + part
             cell = new
         perm = np.argsort(cell, kind="stable")
         ids, first = np.unique(cell[perm], return_index=True)
@@ -62,8 +60,9 @@ class CellIndex:
         m = len(ids)
         self.num_cols = [np.ascontiguousarray(c[perm]) for c in num_cols]
         self.cat_cols = [np.ascontiguousarray(c[perm]) for c in cat_cols]
-        self.cmin = np.empty((len(self.num_cols), m))
-        self.cmax = np.empty((len(self.num_cols), m))
+        self.sizes = np.diff(self.starts)
+        self.cmin = np.empty((len(self.num_cols), m), dtype=np.float32)
+        self.cmax = np.empty((len(self.num_cols), m), dtype=np.float32)
         self.cnan = np.empty((len(self.num_cols), m), dtype=bool)
         with np.errstate(invalid="ignore"):
             for j, col in enumerate(self.num_cols):
@@ -78,31 +77,54 @@ class CellIndex:
 
     @property
     def nbytes(self) -> int:
-        arrays = [self.perm, self.starts, self.cmin, self.cmax, self.cnan, self.present]
+        arrays = [self.perm, self.starts, self.sizes, self.cmin, self.cmax, self.cnan, self.present]
         return int(sum(a.nbytes for a in (*arrays, *self.num_cols, *self.cat_cols)))
 
     def bounds(self, query: FeatureQuery) -> np.ndarray:
-        """A lower bound of the JP distance of the rows of each cell."""
-        lb = np.zeros(self.cmin.shape[1])
-        with np.errstate(invalid="ignore"):
-            for cond in query.numeric:
-                j = NUM_INDEX[cond.feature]
-                gap = np.maximum(np.maximum(cond.low - self.cmax[j], self.cmin[j] - cond.high), 0.0)
-                term = np.log1p(gap)  # a cell with no known value: gap = inf
-                term = np.where(self.cnan[j], np.minimum(term, math.log1p(cond.unknown_difference)), term)
-                lb += term
+        """A lower bound of Π (1 + d_j) over the rows of each cell (float32, the product form of the JP
+        distance: a cell can hold a row at distance <= s only if its bound is <= e^s · (1 + FILTER_SLACK)).
+
+        float32 rounding is monotone and the query's ends are widened to float32 outwards, so a cell's
+        bound never exceeds the float32 product that :func:`recall.ranking.survivors` computes for its
+        rows; no logarithm is taken (it cost ~20 ns per cell)."""
+        m = self.cmin.shape[1]
+        prod = None
+        for cond in query.numeric:
+            j = NUM_INDEX[cond.feature]
+            low, high = _outward(cond.low, -np.inf), _outward(cond.high, np.inf)
+            gap = np.subtract(low, self.cmax[j]) if math.isfinite(low) else np.full(m, -np.inf, np.float32)
+            if math.isfinite(high):
+                np.maximum(gap, self.cmin[j] - high, out=gap)
+            np.maximum(gap, np.float32(0.0), out=gap)  # a cell with no known value: gap = inf
+            gap += np.float32(1.0)
+            np.minimum(gap, np.float32(1.0 + cond.unknown_difference), out=gap, where=self.cnan[j])
+            prod = gap if prod is None else np.multiply(prod, gap, out=prod)
         for feat, value in query.categorical:
             j = CAT_INDEX[feat]
             bit = np.uint16(1 << (CATEGORY_CODES[feat][value] + 1))
-            has = (self.present[j] & bit) != 0
-            unknown = (self.present[j] & np.uint16(1)) != 0
-            lb += np.where(has, 0.0, np.where(unknown, UNKNOWN_CATEGORY_TERM, MISMATCH_TERM))
-        return lb
+            f = _CAT_FACTORS[((self.present[j] & bit) != 0) * 2 + ((self.present[j] & np.uint16(1)) != 0)]
+            prod = f if prod is None else np.multiply(prod, f, out=prod)
+        return np.ones(m, dtype=np.float32) if prod is None else prod
 
     def rows_within(self, lb: np.ndarray, s: float) -> int:
-        """Rows of the cells whose bound is <= s: at most what a search with bound s scores."""
-        inside = lb <= s + 1e-12
-        return int(((self.starts[1:] - self.starts[:-1]) * inside).sum())
+        """Rows of the cells whose bound allows a distance <= s: at most what a search with bound s scores."""
+        return int(self.sizes[lb <= _limit(s)].sum())
+
+    def probe(self, query: FeatureQuery, k: int, best_rows, best_scores, lb: np.ndarray, rows: int):
+        """Merge into a top-k the rows of the cells with the smallest bounds, about ``rows`` of them (all
+        scored: a first bound, not the answer)."""
+        cells = max(1, min(len(lb), -(-rows // CELL_ROWS)))
+        pick = np.argpartition(lb, cells - 1)[:cells] if cells < len(lb) else np.arange(len(lb))
+        pos = self._positions(pick)
+        scores = jp_scores(self.num_cols, self.cat_cols, query, pos)
+        return merge_top_k(best_rows, best_scores, self.perm[pos].astype(np.int64), scores, k)
+
+    def _positions(self, cells: np.ndarray) -> np.ndarray:
+        """Positions (in the cell-sorted columns) of the rows of ``cells``."""
+        starts, sizes = self.starts[cells], self.sizes[cells]
+        if len(cells) == 1:
+            return np.arange(starts[0], starts[0] + sizes[0])
+        return np.repeat(starts - np.concatenate(([0], np.cumsum(sizes)[:-1])), sizes) + np.arange(sizes.sum())
 
     def top_k(
         self,
@@ -111,33 +133,28 @@ class CellIndex:
         best_rows: np.ndarray,
         best_scores: np.ndarray,
         lb: np.ndarray | None = None,
-        stop_at_zero: bool = False,
-        max_rows: int | None = None,
+        items: list | None = None,
     ):
-        """Improve a top-k (rows, scores) whose k-th score bounds the answer, visiting cells best first.
-        ``stop_at_zero``: return as soon as the k-th best is 0 (the caller settles ties at 0);
-        ``max_rows``: return after about this many rows (a probe for a better bound, not the answer)."""
+        """Improve a top-k (rows, scores) whose k-th score bounds the answer (none: every cell), visiting
+        the cells within the bound best first, in batches of CELL_BATCH / 4 rows growing to MAX_BATCH
+        (the bound tightens between batches). ``items``: the stated features in the order to filter
+        by (the most selective first; default the query's order)."""
         lb = self.bounds(query) if lb is None else lb
-        items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
+        if items is None:
+            items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
         s = float(best_scores[-1]) if len(best_scores) >= k else math.inf
-        order = np.flatnonzero(lb <= s + 1e-12) if math.isfinite(s) else np.arange(len(lb))
+        order = np.flatnonzero(lb <= _limit(s)) if math.isfinite(s) else np.arange(len(lb))
         order = order[np.argsort(lb[order], kind="stable")]
-        ends = np.cumsum(self.starts[order + 1] - self.starts[order])
-        i, budget = 0, min(CELL_BATCH // 4, max_rows or CELL_BATCH)
-        while i < len(order) and not (stop_at_zero and s == 0.0):
-            if max_rows is not None and i and ends[i - 1] >= max_rows:
-                break
+        ends = np.cumsum(self.sizes[order])
+        i, budget = 0, CELL_BATCH // 4
+        while i < len(order):
             j = max(i + 1, int(np.searchsorted(ends, (ends[i - 1] if i else 0) + budget, "right")))
             batch = order[i:j]
-            i, budget = j, CELL_BATCH
-            if lb[batch[0]] > s + 1e-12:
+            i, budget = j, min(max(budget * 2, CELL_BATCH), MAX_BATCH)
+            limit = _limit(s)
+            if lb[batch[0]] > limit:
                 break
-            batch = batch[lb[batch] <= s + 1e-12]
-            starts, stops = self.starts[batch], self.starts[batch + 1]
-            sizes = stops - starts
-            pos = np.repeat(starts - np.concatenate(([0], np.cumsum(sizes)[:-1])), sizes) + np.arange(
-                sizes.sum()
-            )
+            pos = self._positions(batch[lb[batch] <= limit])
             if math.isfinite(s):
                 pos = survivors(items, self.num_cols, self.cat_cols, pos, s)
             scores = jp_scores(self.num_cols, self.cat_cols, query, pos)
@@ -148,3 +165,20 @@ class CellIndex:
                 if len(best_scores) >= k:
                     s = float(best_scores[-1])
         return best_rows, best_scores
+
+
+#: Bound factor of a category by (cell holds the value) * 2 + (cell holds unknown): e^term, exact.
+_CAT_FACTORS = np.array([4.0, 2.0, 1.0, 1.0], dtype=np.float32)
+
+
+def _outward(x: float, toward: float) -> np.float32:
+    """``x`` in float32, rounded away from the interval's inside (toward ``toward``) when not exact."""
+    y = np.float32(x) if math.isfinite(x) else np.float32(toward)
+    if math.isfinite(x) and float(y) != x and (float(y) > x) == (toward < 0):
+        y = np.nextafter(y, np.float32(toward))
+    return y
+
+
+def _limit(s: float) -> np.float32:
+    """The largest cell bound that can hold a row at distance <= s (as in ``survivors``)."""
+    return np.float32(math.exp(s) * (1.0 + FILTER_SLACK)) if math.isfinite(s) else np.float32(np.inf)

@@ -91,6 +91,8 @@ def as_stored(x: float) -> float:
 
 def log_units(x: np.ndarray | float) -> np.ndarray | float:
     """Positive values in log units of :data:`LOG_STEP` (ln x / ln 1.1); 0 -> -inf, inf -> inf, NaN stays."""
+    if isinstance(x, float) and 0.0 < x < math.inf:  # a query's value: no error state to set (~10x faster)
+        return float(np.log(x) / LOG_STEP)
     with np.errstate(divide="ignore", invalid="ignore"):
         out = np.log(np.maximum(x, 0.0)) / LOG_STEP
     return float(out) if np.ndim(out) == 0 else out
@@ -134,7 +136,10 @@ class NumericCondition:
 
     def differences(self, x: np.ndarray) -> np.ndarray:
         """Distance of catalog values ``x`` (NaN = unknown) to the interval; unknown gets the fixed penalty."""
-        d = np.maximum(np.maximum(self.low - x, x - self.high), 0.0)
+        if self.low == self.high:  # a point: |x - v| is max(v - x, x - v, 0) exactly, in fewer passes
+            d = np.abs(x - self.low)
+        else:
+            d = np.maximum(np.maximum(self.low - x, x - self.high), 0.0)
         return np.where(np.isnan(x), self.unknown_difference, d)
 
 

@@ -37,7 +37,7 @@ def category_terms(feature: str, value: str) -> np.ndarray:
 
 
 @functools.cache
-def _by_byte(feature: str, value: str, factor: bool) -> np.ndarray:
+def byte_table(feature: str, value: str, factor: bool) -> np.ndarray:
     """The term (float64) or factor e^term (float32: 1, 2, 4, exact) of a category indexed by the code's
     byte (0..127 codes, 255 = unknown -1), so that int8 codes index it without a conversion."""
     terms = category_terms(feature, value)
@@ -50,7 +50,7 @@ def _by_byte(feature: str, value: str, factor: bool) -> np.ndarray:
 
 
 def _category_lookup(feature: str, value: str, codes: np.ndarray, factor: bool) -> np.ndarray:
-    return _by_byte(feature, value, factor)[codes.view(np.uint8)]
+    return byte_table(feature, value, factor)[codes.view(np.uint8)]
 
 
 def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None) -> np.ndarray:
@@ -118,12 +118,12 @@ def select_top_k(rows: np.ndarray | None, scores: np.ndarray, k: int) -> tuple[n
     are 0..n-1, the scores of every row)."""
     if len(scores) > k:
         kth = np.partition(scores, k - 1)[k - 1]
-        below = np.flatnonzero(scores < kth)  # fewer than k
-        tied = np.flatnonzero(scores == kth)
-        need = k - len(below)
-        if len(tied) > need:  # many rows at the k-th distance: the lowest row numbers win
+        keep = np.flatnonzero(scores <= kth)
+        if len(keep) > k:  # more rows at the k-th distance than needed: the lowest row numbers win
+            below, tied = keep[scores[keep] < kth], keep[scores[keep] == kth]
+            need = k - len(below)
             tied = tied[:need] if rows is None else tied[np.argpartition(rows[tied], need - 1)[:need]]
-        keep = np.concatenate((below, tied))
+            keep = np.concatenate((below, tied))
         rows, scores = (keep if rows is None else rows[keep]), scores[keep]
     elif rows is None:
         rows = np.arange(len(scores))

@@ -5,7 +5,17 @@ from __future__ import annotations
 
 from sim.grasps import edge_grip_in_cm
 
-__all__ = ["EDGE_PAD_LEVER_CM", "GRAVITY", "MIN_GRIP_FORCE_N", "SAFETY_FACTOR", "edge_grip_force", "required_grip_force"]
+__all__ = [
+    "EDGE_PAD_LEVER_CM",
+    "GRAVITY",
+    "MIN_GRIP_FORCE_N",
+    "SAFETY_FACTOR",
+    "WRAP_FRICTION_LEVER_CM",
+    "WRAP_REACH_CM",
+    "edge_grip_force",
+    "required_grip_force",
+    "wrap_moment_force",
+]
 
 GRAVITY = 9.81  # m/s^2
 # The squeeze each grasp type can give is the hand's (sim/grasps.py side_force_capacity, from the
@@ -16,6 +26,15 @@ GRAVITY = 9.81  # m/s^2
 #: grip (see edge_grip_force): a fingertip pad's contact is about 1 cm across at a few newtons (Serina et
 #: al. 1997), so at most 5 mm; 3 mm, calibrated on the trial (books, phones, frames held at the edge).
 EDGE_PAD_LEVER_CM = 0.3
+#: A wrap from the side holds the object from the palm out to about this far (cm): the fingers' reach round
+#: it. An object deeper than that along the approach (a tissue box, a bowl, a cracker box held by its
+#: thickness) has its centre of mass beyond the grip, and its weight turns it about the opposition axis.
+WRAP_REACH_CM = 6.0
+#: The lever (cm) of the friction couple with which a side wrap resists that turn: the fingers press the far
+#: face at heights spread along their row (6.3 cm), the thumb the near face at one, and friction along the
+#: approach at those heights makes the couple ``2 mu F r``. Calibrated on the trial (the seed catalog's deep
+#: boxes and bowls: at the friction bound alone five of them turned out of both wraps; they held at 2-4 x).
+WRAP_FRICTION_LEVER_CM = 1.6
 #: Never plan less than this: the fingers must at least hold contact.
 MIN_GRIP_FORCE_N = 1.5
 #: Safety factor on the weight: 2 covers the weight plus the trial's perturbation (a force equal to the
@@ -51,4 +70,21 @@ def edge_grip_force(mass_g: float, depth_cm: float, fragility: str = "medium") -
     d = max(0.0, depth_cm / 2.0 - edge_grip_in_cm(depth_cm))
     sf = SAFETY_FACTOR.get(fragility, SAFETY_FACTOR["medium"])
     force = sf * (mass_g / 1000.0) * GRAVITY * d / (2.0 * EDGE_PAD_LEVER_CM)
+    return round(max(MIN_GRIP_FORCE_N, force), 2)
+
+
+def wrap_moment_force(mass_g: float, depth_cm: float, friction: float, fragility: str = "medium") -> float:
+    """Squeeze (N) a side wrap needs to hold an object ``depth_cm`` deep along the approach against the
+    moment of its weight about the grip: ``F = SF m g d / (2 mu r)``, or 0 when it fits in the wrap.
+
+    The wrap holds the object from the palm out to :data:`WRAP_REACH_CM`; its centre of mass lies
+    ``depth / 2`` from the palm, so the weight acts ``d = depth / 2 - WRAP_REACH_CM / 2`` beyond the grip's
+    centre; the trial's downward push doubles that moment and ``SF`` covers both, as in the friction bound.
+    The grip resists by a friction couple of lever ``r`` (:data:`WRAP_FRICTION_LEVER_CM`) on both faces.
+    """
+    d = depth_cm / 2.0 - WRAP_REACH_CM / 2.0
+    if d <= 0.0:
+        return 0.0
+    sf = SAFETY_FACTOR.get(fragility, SAFETY_FACTOR["medium"])
+    force = sf * (mass_g / 1000.0) * GRAVITY * d / (2.0 * friction * WRAP_FRICTION_LEVER_CM)
     return round(max(MIN_GRIP_FORCE_N, force), 2)

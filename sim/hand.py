@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from sim.bodies import GEOMETRY_VERSION
 from sim.grasps import FINGER_MAX_FORCE_N, GRASP_TYPES, THUMB_MAX_FORCE_N, GraspPlan
 from sim.hand_model import (
     ACTUATOR_NAMES,
@@ -84,7 +85,8 @@ __all__ = [
     "thumb_tip",
 ]
 
-HAND_VERSION = f"ar10like-6.{PROGRAMS_VERSION}"  # 6: one hand program per grasp type (sim/programs.py)
+# 6: one hand program per grasp type (sim/programs.py); g: object geometry (sim/bodies.py), same re-run rule
+HAND_VERSION = f"ar10like-6.{PROGRAMS_VERSION}-g{GEOMETRY_VERSION}"
 
 
 #: Precision finger posture: PIP follows MCP at this ratio, so the pad turns to face the thumb.

@@ -1,16 +1,12 @@
 """MuJoCo objects built from catalog features (kb.features): shape, size, mass, friction and softness.
 
-Shape from the features (see sim/PHYSICS.md, "Objects"):
+Shape from the features and the object's kind (sim/bodies.py; sim/PHYSICS.md, "Objects"): one primitive
+(box, cylinder, sphere, ellipsoid) or a composite (a vessel with a handle, a pan), laid out in the
+object's frame (axes a, b, c) and posed on the table by a rotation that maps them onto world axes.
 
-* ``radial`` with all three sides within 20 % -> sphere (diameter the mean side); with the two larger
-  sides within 20 % and a thinner third -> a disk (cylinder along ``c``); otherwise an ellipsoid.
-* ``prism`` or ``long`` with ``b`` and ``c`` within 20 % -> cylinder along ``a`` (bottles, cans, pens: the
-  vocabulary maps "cylindrical" to prism); otherwise a box.
-* ``thin``, ``compact`` and unknown shapes -> box.
-
-Mass is the catalog mass (or the planner's estimate when unknown); MuJoCo computes the inertia from the
-geom with that mass (uniform density). Friction comes from sim/friction.py (the planner's table, so the
-planner's grip-force estimate and the physics agree). The object's geom has contact ``priority`` 1, above
+Mass is the catalog mass (or the planner's estimate when unknown), spread over the parts by volume; MuJoCo
+computes the inertia from the parts with their masses (uniform density). Friction comes from sim/friction.py (the planner's table, so the
+planner's grip-force estimate and the physics agree). The object's geoms have contact ``priority`` 1, above
 the hand's 0, so its friction, ``condim`` and solver parameters decide every hand contact. Squeezable and
 floppy objects get softer contacts (``solref``/``solimp``).
 """
@@ -25,6 +21,7 @@ import numpy as np
 
 from kb.errors import InvalidFeature, SimulationError
 from kb.features import ObjectRecord, validate_features
+from sim.bodies import Body, Part, body_for
 from sim.friction import friction_coefficient
 from sim.hand import HAND_BIT, OBJECT_BIT, TABLE_BIT
 
@@ -34,12 +31,12 @@ __all__ = [
     "TORSIONAL_PATCH_M",
     "add_object",
     "add_table",
+    "free_dim",
+    "pose_rotation",
     "object_model",
 ]
 
 CM = 0.01
-#: Sides within this ratio count as equal (sphere, disk, round cross-section).
-ROUND_RATIO = 0.8
 #: Torsional friction (condim 4) is mu times the contact patch radius: a fingertip pad presses a patch
 #: about 5 mm across (Serina et al. 1997, fingertip contact area at 1-5 N), so mu * 5 mm of twist resistance.
 TORSIONAL_PATCH_M = 0.005
@@ -72,8 +69,9 @@ TABLE_FRICTION = 0.5  # laminate table top; the object's priority makes its own 
 class ObjectModel:
     """What the simulator builds for one object (sizes in cm as in the catalog, mass in kg).
 
-    ``kind``: box, cylinder, sphere or ellipsoid; ``axis_dim``: for a cylinder, the dimension along its
-    axis. ``friction`` is the sliding coefficient; ``assumptions`` names every default used.
+    ``kind``: box, cylinder, sphere, ellipsoid, vessel (upright, with a handle) or pan; ``axis_dim``: for
+    a cylinder, the dimension along its axis; ``body``: its parts (sim/bodies.py). ``friction`` is the
+    sliding coefficient; ``assumptions`` names every default used.
     """
 
     name: str
@@ -85,6 +83,7 @@ class ObjectModel:
     material: str | None
     axis_dim: str | None = None
     assumptions: tuple[str, ...] = field(default=())
+    body: Body | None = None  # None: built from kind and dims (a record made by hand, in tests)
 
     def extent_cm(self, dim: str) -> float:
         """Extent of the built shape along catalog dimension ``dim`` ('a', 'b' or 'c')."""
@@ -112,28 +111,22 @@ def object_model(obj: ObjectRecord) -> ObjectModel:
         o = resolve_features(obj)
     except InvalidFeature as exc:
         raise SimulationError(f"cannot build {obj.name!r} for simulation: {exc}") from exc
-    a, b, c = o.a_cm, o.b_cm, o.c_cm
-    kind, axis = "box", None
-    if o.shape == "radial":
-        if c >= ROUND_RATIO * a:
-            kind = "sphere"
-        elif b >= ROUND_RATIO * a:
-            kind, axis = "cylinder", "c"
-        else:
-            kind = "ellipsoid"
-    elif o.shape in ("prism", "long") and c >= ROUND_RATIO * b:
-        kind, axis = "cylinder", "a"
+    body = body_for((o.a_cm, o.b_cm, o.c_cm), o.shape, o.mass_g / 1000.0, name=obj.name, aliases=obj.aliases)
+    axis = None
+    if body.form == "cylinder":
+        axis = next(d for d in "abc" if d not in body.round_dims)
     rigidity = o.rigidity if o.rigidity in CONTACT_SOFTNESS else "rigid"
     return ObjectModel(
         name=obj.name,
-        kind=kind,
-        dims_cm=(a, b, c),
+        kind=body.form,
+        dims_cm=(o.a_cm, o.b_cm, o.c_cm),
         mass_kg=o.mass_g / 1000.0,
         friction=friction_coefficient(o.material, o.texture),
         rigidity=rigidity,
         material=o.material,
         axis_dim=axis,
-        assumptions=tuple(o.assumptions),
+        assumptions=(*o.assumptions, *body.assumptions),
+        body=body,
     )
 
 
@@ -153,47 +146,106 @@ def add_table(spec: mujoco.MjSpec, edge_x_m: float | None = None) -> None:
     )
 
 
-_AXIS_QUAT = {  # rotate a cylinder's local z axis onto world x, y or z
-    0: (math.cos(math.pi / 4), 0.0, math.sin(math.pi / 4), 0.0),
-    1: (math.cos(math.pi / 4), -math.sin(math.pi / 4), 0.0, 0.0),
-    2: (1.0, 0.0, 0.0, 0.0),
+def _default_body(model: ObjectModel) -> Body:
+    """A body for an ObjectModel made without one: its kind's primitive over its dims."""
+    a, b, c = model.dims_cm
+    if model.kind == "cylinder":
+        axis = model.axis_dim or "a"
+        across = [model.extent_cm(d) for d in "abc" if d != axis]
+        unit = tuple(1.0 if d == axis else 0.0 for d in "abc")
+        return Body("cylinder", (Part("body", "cylinder", (max(across) / 2, model.extent_cm(axis) / 2, 0.0), axis=unit),))
+    if model.kind == "sphere":
+        return Body("sphere", (Part("body", "sphere", (model.extent_cm("a") / 2, 0.0, 0.0)),))
+    geom = "ellipsoid" if model.kind == "ellipsoid" else "box"
+    return Body(geom, (Part("body", geom, (a / 2, b / 2, c / 2)),))
+
+
+def free_dim(model: ObjectModel) -> str:
+    """A dimension the body is symmetric across (not its up or handle dimension): the one
+    :func:`pose_rotation` may flip to keep a rotation proper."""
+    body = model.body
+    if body is None:
+        return "c"
+    taken = {body.up, body.handle.dim if body.handle else None}
+    return next(d for d in "cba" if d not in taken)
+
+
+def pose_rotation(axes: dict[str, int], signs: dict[str, int] | None = None, free: str = "c") -> np.ndarray:
+    """The rotation (3 x 3, det +1) that takes the object's frame (a, b, c) onto the world: dimension ``d``
+    along world axis ``axes[d]``, pointing ``signs[d]`` (+1 or -1; default +1). If that is a reflection,
+    dimension ``free`` (one the body is symmetric across) is flipped."""
+    if sorted(axes.values()) != [0, 1, 2] or sorted(axes) != ["a", "b", "c"]:
+        raise ValueError(f"axes must map a, b, c onto 0, 1, 2, not {axes}")
+    signs = signs or {}
+    rot = np.zeros((3, 3))
+    for i, dim in enumerate("abc"):
+        rot[axes[dim], i] = float(signs.get(dim, 1))
+    if np.linalg.det(rot) < 0:
+        rot[:, "abc".index(free)] *= -1.0
+    return rot
+
+
+def _part_quat(part: Part, rot: np.ndarray) -> np.ndarray:
+    """World orientation of ``part``: its local z onto its axis (cylinders, capsules), turned by its
+    ``turn_deg`` about that axis, then posed by ``rot``."""
+    axis = np.asarray(part.axis, dtype=float)
+    local = np.array([1.0, 0.0, 0.0, 0.0])
+    if part.geom in ("cylinder", "capsule"):
+        mujoco.mju_quatZ2Vec(local, axis)
+    if part.turn_deg:
+        turn = np.zeros(4)
+        mujoco.mju_axisAngle2Quat(turn, axis, math.radians(part.turn_deg))
+        mujoco.mju_mulQuat(local, turn, local.copy())
+    pose = np.zeros(4)
+    mujoco.mju_mat2Quat(pose, rot.flatten())
+    out = np.zeros(4)
+    mujoco.mju_mulQuat(out, pose, local)
+    return out
+
+
+_GEOM_TYPES = {
+    "box": mujoco.mjtGeom.mjGEOM_BOX,
+    "cylinder": mujoco.mjtGeom.mjGEOM_CYLINDER,
+    "capsule": mujoco.mjtGeom.mjGEOM_CAPSULE,
+    "sphere": mujoco.mjtGeom.mjGEOM_SPHERE,
+    "ellipsoid": mujoco.mjtGeom.mjGEOM_ELLIPSOID,
 }
 
 
-def add_object(spec: mujoco.MjSpec, model: ObjectModel, axes: dict[str, int], pos_m) -> None:
-    """Add ``model`` as a free body named "object" at ``pos_m``; ``axes`` maps dims 'a','b','c' to world
-    axes 0, 1, 2 (the object's pose on the table)."""
-    if sorted(axes.values()) != [0, 1, 2] or sorted(axes) != ["a", "b", "c"]:
-        raise ValueError(f"axes must map a, b, c onto 0, 1, 2, not {axes}")
-    half = np.zeros(3)
-    for dim, ax in axes.items():
-        half[ax] = model.extent_cm(dim) * CM / 2.0
+def add_object(
+    spec: mujoco.MjSpec, model: ObjectModel, axes: dict[str, int], pos_m, signs: dict[str, int] | None = None
+) -> np.ndarray:
+    """Add ``model`` as a free body named "object" whose frame's origin (the centre of its stated box) is at
+    ``pos_m``; ``axes`` maps dims 'a','b','c' to world axes 0, 1, 2 and ``signs`` the direction of each
+    (the object's pose on the table: a vessel's handle away from the hand). Its first part is the geom
+    "object_geom", the others "object_<part>". Returns the pose rotation (:func:`pose_rotation`)."""
+    body_def = model.body or _default_body(model)
+    rot = pose_rotation(axes, signs, free_dim(model))
     body = spec.worldbody.add_body(name="object", pos=list(pos_m))
     body.add_freejoint(name="object_free")
-    quat = (1.0, 0.0, 0.0, 0.0)
-    if model.kind == "box":
-        gtype, size = mujoco.mjtGeom.mjGEOM_BOX, list(half)
-    elif model.kind == "ellipsoid":
-        gtype, size = mujoco.mjtGeom.mjGEOM_ELLIPSOID, list(half)
-    elif model.kind == "sphere":
-        gtype, size = mujoco.mjtGeom.mjGEOM_SPHERE, [half[0], 0, 0]
-    else:
-        ax = axes[model.axis_dim or "a"]
-        radius = max(h for i, h in enumerate(half) if i != ax)
-        gtype, size, quat = mujoco.mjtGeom.mjGEOM_CYLINDER, [radius, half[ax], 0], _AXIS_QUAT[ax]
     solref, solimp = CONTACT_SOFTNESS[model.rigidity]
-    body.add_geom(
-        name="object_geom",
-        type=gtype,
-        size=size,
-        quat=list(quat),
-        mass=model.mass_kg,  # MuJoCo derives the inertia from this shape at this mass
-        friction=[model.friction, model.friction * TORSIONAL_PATCH_M, 0.0001],
-        condim=4,  # sliding plus torsional friction: a pinch must resist the object twisting out
-        priority=1,  # above the hand's 0: this geom's friction, condim and softness govern its contacts
-        solref=list(solref),
-        solimp=list(solimp),
-        contype=OBJECT_BIT,
-        conaffinity=HAND_BIT | TABLE_BIT,
-        rgba=list(MATERIAL_RGBA.get(model.material, MATERIAL_RGBA[None])),
-    )
+    colour = list(MATERIAL_RGBA.get(model.material, MATERIAL_RGBA[None]))
+    for k, part in enumerate(body_def.parts):
+        common = dict(
+            name="object_geom" if k == 0 else f"object_{part.name}",
+            type=_GEOM_TYPES[part.geom],
+            size=[x * CM for x in part.size_cm],
+            pos=list(rot @ np.asarray(part.pos_cm) * CM),
+            quat=list(_part_quat(part, rot)),
+            rgba=list(part.rgba) if part.rgba else colour,
+        )
+        if not part.collides:  # a visual part: no mass, no contacts
+            body.add_geom(**common, mass=0.0, contype=0, conaffinity=0, group=1)
+            continue
+        body.add_geom(
+            **common,
+            mass=part.mass_kg,  # MuJoCo derives the inertia from this shape at this mass
+            friction=[model.friction, model.friction * TORSIONAL_PATCH_M, 0.0001],
+            condim=4,  # sliding plus torsional friction: a pinch must resist the object twisting out
+            priority=1,  # above the hand's 0: this geom's friction, condim and softness govern its contacts
+            solref=list(solref),
+            solimp=list(solimp),
+            contype=OBJECT_BIT,
+            conaffinity=HAND_BIT | TABLE_BIT,
+        )
+    return rot

@@ -41,8 +41,10 @@ from sim.grip_force import (
     GRAVITY,
     MIN_GRIP_FORCE_N,
     SAFETY_FACTOR,
+    WRAP_REACH_CM,
     edge_grip_force,
     required_grip_force,
+    wrap_moment_force,
 )
 from sim.planned_object import DEFAULTS, PlannedObject, resolve_features
 from sim.programs import HandProgram, program_for
@@ -66,7 +68,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "6"  # 6: candidates listed once per hand program (sim/programs.py)
+PLANNER_VERSION = "7"  # 7: side wraps of deep objects squeeze for the moment of their weight
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -96,6 +98,7 @@ class _Context:
     notes: tuple[str, ...]
     base_force: float
     edge_force: float
+    wrap_force: float
 
 
 def _context(o: PlannedObject) -> _Context:
@@ -114,11 +117,16 @@ def _context(o: PlannedObject) -> _Context:
         )
     base_force = required_grip_force(o.mass_g, o.friction, o.fragility)
     edge_force = edge_grip_force(o.mass_g, o.b_cm, o.fragility) if is_flat_grasp(o.c_cm, o.b_cm) else 0.0
-    return _Context(o, feasible, tuple(notes), base_force, edge_force)
+    # A side wrap of a deep object (not a flat one: that is taken at a table edge) holds the weight's moment.
+    wrap_force = 0.0 if edge_force else wrap_moment_force(o.mass_g, o.b_cm, o.friction, o.fragility)
+    return _Context(o, feasible, tuple(notes), base_force, edge_force, wrap_force)
 
 
-def _planned_force(ctx: _Context, rationale: list[str]) -> float:
-    """The squeeze to plan (before the capacity check), with the rationale lines that explain it."""
+def _planned_force(ctx: _Context, program: HandProgram, rationale: list[str]) -> tuple[float, float]:
+    """The squeeze to plan (before the capacity check), with the rationale lines that explain it, and the
+    squeeze the ranking judges: without the side wrap's moment term, which only wraps are given (a pinch
+    from above hangs the weight under the grip), so that a heavy deep object's wraps are not ranked below
+    grasps whose moment was never counted."""
     o = ctx.o
     force = ctx.base_force
     if o.rigidity == "squeezable":
@@ -130,11 +138,18 @@ def _planned_force(ctx: _Context, rationale: list[str]) -> float:
             f"flat: picked up at its edge, the pads {edge_grip_in_cm(o.b_cm):.3g} cm in and its centre of mass "
             f"{o.b_cm / 2:.3g} cm in; the squeeze must hold the moment of its weight: {ctx.edge_force:g} N"
         )
+    ranked = force
+    if program.control == "wrap" and program.approach == "side" and ctx.wrap_force > force:
+        force = ctx.wrap_force
+        rationale.append(
+            f"deep: {o.b_cm:g} cm along the approach, its centre of mass beyond the wrap's {WRAP_REACH_CM:g} cm; "
+            f"the squeeze must hold the moment of its weight: {ctx.wrap_force:g} N"
+        )
     rationale.append(
         f"grip {force:g} N = m g SF / (2 mu) with m = {o.mass_g:.0f} g, mu = {o.friction:g} ({o.material or 'unknown'}, "
         f"{o.texture or 'unknown'} texture), SF = {SAFETY_FACTOR.get(o.fragility, 2.4):g} ({o.fragility})"
     )
-    return force
+    return force, ranked
 
 
 def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandProgram) -> GraspPlan:
@@ -151,11 +166,12 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
         rationale.append(f"grasped across its smallest side c = {width:g} cm (Feix 2014: 94 % of grasps)")
     score = 1.0 - 0.2 * rank
     capacity = side_force_capacity(grasp_type)
-    force = _planned_force(ctx, rationale)
+    force, ranked = _planned_force(ctx, program, rationale)
     needed = force
     force_ok = force <= capacity
-    if not force_ok:
+    if ranked > capacity:
         score *= 0.4
+    if not force_ok:
         rationale.append(f"needs {force:g} N, more than a {grasp_type} grasp's {capacity:g} N: risky")
         force = capacity
     if not ctx.feasible:

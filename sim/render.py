@@ -27,7 +27,15 @@ from sim.world import TrialWorld, build_world  # noqa: E402
 __all__ = ["encode_png", "render_trial", "render_world"]
 
 #: Camera azimuth (degrees) per approach.
-VIEW_AZIMUTH_DEG = {"top": 155.0, "side": -60.0, "edge": 110.0}
+VIEW_AZIMUTH_DEG = {"top": 155.0, "side": 240.0, "edge": 110.0}
+#: Camera distance: this many times the object's largest side, within these limits (m).
+VIEW_DISTANCE_FACTOR = 2.0
+VIEW_DISTANCE_M = (0.35, 0.6)
+#: Table-edge grasps are seen from 25 degrees above: the thumb on top, the fingers under the overhang and a
+#: pan's inside and handle all show (nearly level, -8, hid the pan's inside and handle).
+EDGE_ELEVATION = -25.0
+#: The camera aims this fraction of the way from the hand's contacts towards the object's centre.
+VIEW_OBJECT_WEIGHT = 0.3
 
 GL_HINT = (
     "offscreen rendering needs an OpenGL backend: set MUJOCO_GL=egl (apt install libegl1 libegl-mesa0 "
@@ -71,8 +79,7 @@ def _contact_centre(world: TrialWorld) -> np.ndarray:
     n = data.ncon
     if n:
         g1, g2 = data.contact.geom1[:n], data.contact.geom2[:n]
-        og = world.object_geom
-        mask = ((g1 == og) & world.is_hand[g2]) | ((g2 == og) & world.is_hand[g1])
+        mask = (world.is_object[g1] & world.is_hand[g2]) | (world.is_object[g2] & world.is_hand[g1])
         if mask.any():
             return data.contact.pos[:n][mask].mean(axis=0)
     return 0.5 * data.xpos[world.object_body] + 0.5 * data.xpos[world.palm_body]
@@ -86,14 +93,15 @@ def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> n
     model.vis.global_.offheight = max(model.vis.global_.offheight, height)
     cam = mujoco.MjvCamera()
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
-    cam.lookat[:] = _contact_centre(world)
-    # Framed on the grasp, not on the whole object: a 45 cm pan seen whole leaves the hand a few pixels.
-    size = min(max(world.obj.dims_cm), 30.0) * 0.01
-    cam.distance = max(0.35, 1.6 * size)
+    # Aimed at the grasp, with some of the object: a 45 cm pan seen whole leaves the hand a few pixels.
+    centre = data.xipos[world.object_body]
+    cam.lookat[:] = (1.0 - VIEW_OBJECT_WEIGHT) * _contact_centre(world) + VIEW_OBJECT_WEIGHT * centre
+    lo, hi = VIEW_DISTANCE_M
+    cam.distance = min(hi, max(lo, VIEW_DISTANCE_FACTOR * max(world.obj.dims_cm) * 0.01))
     # Look across the opposition axis so both the thumb and the fingers show: for a top grasp from the
     # index side, for a side grasp from the fingers' side of the object.
     cam.azimuth = VIEW_AZIMUTH_DEG.get(world.approach, 155.0)
-    cam.elevation = -8.0 if world.approach == "edge" else -15.0
+    cam.elevation = EDGE_ELEVATION if world.approach == "edge" else -22.0
     _headless_backend()
     try:
         renderer = mujoco.Renderer(model, height=height, width=width)

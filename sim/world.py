@@ -17,7 +17,7 @@ from kb.errors import SimulationError
 from kb.features import ObjectRecord
 from sim import hand as H
 from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
-from sim.objects import ObjectModel, add_object, add_table, object_model
+from sim.objects import ObjectModel, add_object, add_table, free_dim, object_model, pose_rotation
 from sim.programs import program_for
 
 __all__ = ["APPROACH_M", "PENETRATION_TOL_M", "TrialWorld", "build_world"]
@@ -44,13 +44,26 @@ class TrialWorld:
     object_body: int
     palm_body: int
     is_hand: np.ndarray  # per geom: does it belong to the hand
-    object_geom: int
+    object_geom: int  # the object's main part (a vessel's cylinder); is_object marks all its geoms
     wrist_act: np.ndarray
     digit_act: np.ndarray
     wrist_qpos: np.ndarray
     approach: str = "top"  # as built: the plan's, or "edge" for a flat object grasped at a table edge
     geom_digit: dict[int, str] = field(default_factory=dict)  # hand geom id -> digit it belongs to
     digit_qpos: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))  # qpos index per digit joint
+    is_object: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))  # per geom: the object's
+
+    def object_contacts(self) -> tuple[np.ndarray, np.ndarray]:
+        """Indices of the active hand-object contacts, and for each the hand geom it involves."""
+        d = self.data
+        n = d.ncon
+        if n == 0:
+            return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
+        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
+        obj1, obj2 = self.is_object[g1], self.is_object[g2]
+        mask = ((obj1 & self.is_hand[g2]) | (obj2 & self.is_hand[g1])) & (d.contact.efc_address[:n] >= 0)
+        idx = np.flatnonzero(mask)
+        return idx, np.where(obj1[idx], g2[idx], g1[idx])
 
     def palm_pose(self) -> tuple[np.ndarray, np.ndarray]:
         return self.data.xpos[self.palm_body].copy(), self.data.xmat[self.palm_body].reshape(3, 3).copy()
@@ -65,15 +78,10 @@ class TrialWorld:
     def digit_forces(self) -> dict[str, float]:
         """Total normal force (N) each digit presses on the object with (its fingertip sensors)."""
         d = self.data
-        n = d.ncon
         out = dict.fromkeys(H.DIGITS, 0.0)
-        if n == 0:
-            return out
-        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        other = np.where(g1 == self.object_geom, g2, np.where(g2 == self.object_geom, g1, -1))
-        ok = (other >= 0) & (d.contact.efc_address[:n] >= 0)
-        for k in np.flatnonzero(ok):
-            digit = self.geom_digit.get(int(other[k]))
+        idx, hand_geoms = self.object_contacts()
+        for k, g in zip(idx, hand_geoms, strict=True):
+            digit = self.geom_digit.get(int(g))
             if digit is not None:
                 out[digit] += float(d.efc_force[d.contact.efc_address[k]])
         return out
@@ -85,15 +93,10 @@ class TrialWorld:
         ``mj_contactForce`` returns as force[0]); reading ``efc_force`` directly avoids a Python loop.
         """
         d = self.data
-        n = d.ncon
-        if n == 0:
+        idx, _ = self.object_contacts()
+        if not idx.size:
             return _EMPTY, _EMPTY
-        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        mask = ((g1 == self.object_geom) & self.is_hand[g2]) | ((g2 == self.object_geom) & self.is_hand[g1])
-        mask &= d.contact.efc_address[:n] >= 0
-        if not mask.any():
-            return _EMPTY, _EMPTY
-        return d.efc_force[d.contact.efc_address[:n][mask]], d.contact.dist[:n][mask]
+        return d.efc_force[d.contact.efc_address[idx]], d.contact.dist[idx]
 
 
 _EMPTY = np.zeros(0)
@@ -107,6 +110,35 @@ def _placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     if plan.approach == "top":
         return {plan.grasped_dim: 1, rest[0]: 0, rest[1]: 2}
     return {plan.grasped_dim: 1, rest[0]: 2, rest[1]: 0}
+
+
+def _upright_placement(obj: ObjectModel, plan: GraspPlan) -> tuple[dict[str, int], dict[str, int]] | None:
+    """A vessel or a pan stands as it is used (its ``up`` dimension up) unless the plan grasps across that
+    dimension; the grasped one lies along y, the third along x with the handle pointing to -x, away from
+    a side approach's palm. None for other bodies. Returns (axes, signs)."""
+    body = obj.body
+    if body is None or body.up is None or plan.grasped_dim == body.up:
+        return None
+    other = next(d for d in "abc" if d not in (plan.grasped_dim, body.up))
+    signs = {body.handle.dim: -1} if body.handle is not None and body.handle.dim == other else {}
+    return {plan.grasped_dim: 1, body.up: 2, other: 0}, signs
+
+
+def _grasped_body(obj: ObjectModel, axes: dict[str, int], pose: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Where the hand grasps: the centre (cm, world, relative to the stated box's centre; never up or
+    down) and the world extents (cm) of the object's main part (a vessel's cylinder, a pan's disk, or the
+    whole object), so that a handle or a spout beside it is not taken for the grasped surface."""
+    ext = np.zeros(3)
+    if obj.body is None or obj.body.form not in ("vessel", "pan"):
+        for dim, ax in axes.items():
+            ext[ax] = obj.extent_cm(dim)
+        return np.zeros(3), ext
+    main = obj.body.main
+    for dim, ax in axes.items():  # a pan's base disk stands for its body, as deep as its wall
+        ext[ax] = obj.extent_cm(dim) if dim == obj.body.up else main.extent_cm(dim)
+    centre = pose @ np.asarray(main.pos_cm)
+    centre[2] = 0.0
+    return centre, ext
 
 
 def _is_flat(obj: ObjectModel, plan: GraspPlan) -> bool:
@@ -125,6 +157,78 @@ def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
 
 
+#: ``GraspPlan.params["hold"]`` for a grasp of the object's handle (sim/bodies.py ``Handle``) rather than its
+#: body: a loop handle's grip bar from the side, a pan's handle from above near its end.
+HOLD_HANDLE = "handle"
+#: A pan's handle is held this far (cm) from its end to the middle of the palm (half the palm and a margin).
+HANDLE_END_MARGIN_CM = H.PALM_HALF_CM[0] + 0.5
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """Where the object lies and where the hand grasps it (cm, world axes; relative to the stated box's
+    centre): the approach as built, the dims' world axes and signs, whether it is a flat object at a table
+    edge, the box's extents, the grasped part's centre and extents, and the grasped width."""
+
+    approach: str
+    axes: dict[str, int]
+    signs: dict[str, int]
+    flat: bool
+    ext: np.ndarray
+    grip_centre: np.ndarray
+    grip_ext: np.ndarray
+    width: float
+
+
+def _extents(obj: ObjectModel, axes: dict[str, int]) -> np.ndarray:
+    ext = np.zeros(3)
+    for dim, ax in axes.items():
+        ext[ax] = obj.extent_cm(dim)
+    return ext
+
+
+def _layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    if plan.params.get("hold") == HOLD_HANDLE:
+        return _handle_layout(obj, plan)
+    flat = _is_flat(obj, plan)
+    approach = "edge" if flat else plan.approach
+    upright = None if flat else _upright_placement(obj, plan)
+    signs: dict[str, int] = {}
+    if upright is not None:
+        axes, signs = upright
+    else:
+        axes = _edge_placement(obj, plan) if flat else _placement(obj, plan)
+    ext = _extents(obj, axes)
+    grip_centre, grip_ext = _grasped_body(obj, axes, pose_rotation(axes, signs, free_dim(obj)))
+    return _Layout(approach, axes, signs, flat, ext, grip_centre, grip_ext, ext[2] if flat else ext[1])
+
+
+def _handle_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    """The object standing as it is used, its handle pointing to +x, towards the hand: a loop handle's grip
+    bar (vertical) wrapped from the side, a pan's handle (along x) wrapped from above near its end. The
+    grasped width is the handle's, across world y."""
+    body = obj.body
+    handle = body.handle if body is not None else None
+    if handle is None:
+        raise SimulationError(f"{obj.name!r} has no handle to hold (sim/bodies.py builds none for it)")
+    wanted = "side" if handle.style == "loop" else "top"
+    if plan.approach != wanted:
+        raise SimulationError(f"a {handle.style} handle is held from the {wanted}, not the {plan.approach}")
+    across = next(d for d in "abc" if d not in (body.up, handle.dim))
+    axes, signs = {handle.dim: 0, across: 1, body.up: 2}, {handle.dim: 1}
+    pose = pose_rotation(axes, signs, free_dim(obj))
+    grip = next(p for p in body.parts if p.name == "handle_grip")
+    centre = pose @ np.asarray(grip.pos_cm)
+    grip_ext = np.zeros(3)
+    for dim, ax in axes.items():
+        grip_ext[ax] = grip.extent_cm(dim)
+    if handle.style == "long":  # near the end: the part from the rim out is longer than the palm
+        end = centre[0] + grip_ext[0] / 2.0
+        centre[0] = max(centre[0], end - HANDLE_END_MARGIN_CM)
+    ext = _extents(obj, axes)
+    return _Layout(plan.approach, axes, signs, False, ext, centre, grip_ext, float(grip_ext[1]))
+
+
 def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
     """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
     if plan.grasp_type not in GRASP_TYPES:
@@ -133,18 +237,14 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         raise SimulationError(f"unknown approach {plan.approach!r}: expected top or side")
     model_obj = obj if isinstance(obj, ObjectModel) else object_model(obj)
     rng = np.random.default_rng(seed)
-    flat = _is_flat(model_obj, plan)
-    approach = "edge" if flat else plan.approach
-    axes = _edge_placement(model_obj, plan) if flat else _placement(model_obj, plan)
-    ext = np.zeros(3)
-    for dim, ax in axes.items():
-        ext[ax] = model_obj.extent_cm(dim)
-    width = ext[2] if flat else ext[1]
+    lay = _layout(model_obj, plan)
+    approach, axes, signs, flat = lay.approach, lay.axes, lay.signs, lay.flat
+    ext, grip_centre, grip_ext, width = lay.ext, lay.grip_centre, lay.grip_ext, lay.width
     targets = H.grasp_targets(plan, width)
     program = program_for(plan.grasp_type)
     wrap = program.control == "wrap"
 
-    depth = ext[2] if approach == "top" else ext[0]  # extent along the approach axis
+    depth = grip_ext[2] if approach == "top" else grip_ext[0]  # the grasped body's extent along the approach
     # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the object's
     # centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
     overhang = edge_overhang_cm(depth) if flat else 0.0
@@ -155,7 +255,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     rot = np.zeros(9)
     mujoco.mju_quat2Mat(rot, np.array(H.APPROACH_QUAT[approach]))
     rot = rot.reshape(3, 3)
-    palm_pos = obj_pos - rot @ center_h
+    palm_pos = obj_pos + grip_centre * H.CM - rot @ center_h
     if approach == "side":
         # Keep the palm's lower edge above the table: the fingers spread vertically from its centre.
         palm_pos[2] = max(palm_pos[2], (H.PALM_HALF_CM[0] + 0.3) * H.CM)
@@ -164,9 +264,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     spec = mujoco.MjSpec()
     spec.modelname = "grasp_trial"
     H.configure_options(spec)
-    spec.worldbody.add_light(pos=[0.3, -0.3, 0.8], dir=[-0.3, 0.3, -0.8], diffuse=[0.7, 0.7, 0.7])
-    add_table(spec, (depth / 2.0 - overhang) * H.CM if flat else None)
-    add_object(spec, model_obj, axes, obj_pos)
+    _add_scenery(spec)
+    add_table(spec, (grip_centre[0] + depth / 2.0 - overhang) * H.CM if flat else None)
+    add_object(spec, model_obj, axes, obj_pos, signs)
     H.add_hand(spec, approach=approach, mount_m=palm_pos, torque_limits=targets.closing_limits)
     try:
         model = spec.compile()
@@ -181,6 +281,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     object_body = model.body("object").id
     # Hand geoms: every geom on a body other than the world (the table) and the object.
     is_hand = (model.geom_bodyid != 0) & (model.geom_bodyid != object_body)
+    is_object = model.geom_bodyid == object_body
 
     noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
     open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
@@ -189,7 +290,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         # Round objects bulge above their equator into the fingers that reach down to it: pinch higher,
         # in 5 mm steps up to 1 cm below the top, until the pre-shaped hand clears the object.
         backoff = _precision_backoff_m(
-            model, data, is_hand, model.geom("object_geom").id, wrist_qpos, approach_dir, grip_depth - 1.0
+            model, data, is_hand, is_object, wrist_qpos, approach_dir, grip_depth - 1.0
         )
         noise = noise + backoff * approach_dir
     data.qpos[wrist_qpos] = noise
@@ -206,6 +307,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         palm_body=model.body("palm").id,
         is_hand=is_hand,
         object_geom=model.geom("object_geom").id,
+        is_object=is_object,
         wrist_act=wrist_act,
         digit_act=digit_act,
         wrist_qpos=wrist_qpos,
@@ -218,6 +320,23 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         },
     )
     return world
+
+
+def _add_scenery(spec: mujoco.MjSpec) -> None:
+    """Lights and a sky for the pictures (sim/render.py); nothing here touches the physics."""
+    spec.worldbody.add_light(pos=[0.3, -0.3, 0.8], dir=[-0.3, 0.3, -0.8], diffuse=[0.6, 0.6, 0.6])
+    spec.worldbody.add_light(pos=[-0.4, 0.4, 0.6], dir=[0.4, -0.4, -0.6], diffuse=[0.35, 0.35, 0.35])
+    spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
+    spec.visual.headlight.diffuse = [0.45, 0.45, 0.45]
+    spec.add_texture(
+        name="sky",
+        type=mujoco.mjtTexture.mjTEXTURE_SKYBOX,
+        builtin=mujoco.mjtBuiltin.mjBUILTIN_GRADIENT,
+        rgb1=[0.92, 0.94, 0.97],
+        rgb2=[0.55, 0.6, 0.68],
+        width=64,
+        height=64,
+    )
 
 
 def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: bool) -> tuple[np.ndarray, float]:
@@ -238,7 +357,7 @@ def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: boo
     return np.array([x_c, targets.center_y_cm, z_c]), grip_depth
 
 
-def _precision_backoff_m(model, data, is_hand, object_geom, wrist_qpos, approach_dir, max_cm: float) -> float:
+def _precision_backoff_m(model, data, is_hand, is_object, wrist_qpos, approach_dir, max_cm: float) -> float:
     """Smallest back-off (m, along the approach, 5 mm steps up to ``max_cm``) at which the pre-shaped hand
     does not overlap the object; 0 if none does (the trial then fails as starting inside)."""
     steps = int(max(0.0, max_cm) // 0.5)
@@ -248,7 +367,7 @@ def _precision_backoff_m(model, data, is_hand, object_geom, wrist_qpos, approach
         mujoco.mj_forward(model, data)
         n = data.ncon
         g1, g2 = data.contact.geom1[:n], data.contact.geom2[:n]
-        mine = ((g1 == object_geom) & is_hand[g2]) | ((g2 == object_geom) & is_hand[g1])
+        mine = (is_object[g1] & is_hand[g2]) | (is_object[g2] & is_hand[g1])
         if not (data.contact.dist[:n][mine] < -PENETRATION_TOL_M).any():
             return offset
     return 0.0

@@ -269,6 +269,29 @@ def test_flat_objects_are_squeezed_for_the_moment_of_their_weight_about_the_edge
     assert not any("moment" in r for r in block.rationale)
 
 
+def test_side_wraps_of_deep_objects_are_squeezed_for_the_moment_of_their_weight():
+    from sim.grip_force import WRAP_FRICTION_LEVER_CM, WRAP_REACH_CM, wrap_moment_force
+
+    box = dict(a_cm=21, b_cm=15.8, c_cm=6, mass_g=411, shape="prism", material="paper")  # a cracker box
+    mu = friction_coefficient("paper", None)
+    plans = {p.grasp_type: p for p in plan_grasps(box)}
+    d = 15.8 / 2 - WRAP_REACH_CM / 2  # its centre of mass lies this far beyond the wrap's centre
+    expected = SAFETY_FACTOR["medium"] * 0.411 * GRAVITY * d / (2 * mu * WRAP_FRICTION_LEVER_CM)
+    for wrap in ("heavy_wrap_large_diameter", "medium_wrap"):
+        p = plans[wrap]
+        assert p.approach == "side"
+        assert p.grip_force_n == pytest.approx(expected, rel=1e-2) and p.grip_force_n > required_grip_force(411, mu)
+        assert any(r.startswith("deep: 15.8 cm") for r in p.rationale)
+    # a top approach (the weight hangs under the palm) and a pinch get no moment term
+    assert not any(r.startswith("deep") for t, p in plans.items() if p.approach != "side" for r in p.rationale)
+    # the boundary: an object no deeper than the wrap's reach needs none; just deeper, some
+    assert wrap_moment_force(411, WRAP_REACH_CM, mu) == 0.0
+    assert wrap_moment_force(411, WRAP_REACH_CM + 0.2, mu) > 0.0
+    assert wrap_moment_force(411, 20.0, mu) > wrap_moment_force(411, 15.8, mu)
+    bottle = best_grasp(dict(a_cm=20, b_cm=6.5, c_cm=6.5, mass_g=600, shape="prism", material="glass"))
+    assert bottle.approach == "side" and not any(r.startswith("deep") for r in bottle.rationale)
+
+
 def test_planner_agrees_with_how_people_grasp_household_objects():
     """sim/data/human_grasps.csv: the grasp people commonly use for 79 objects (labels and their basis in
     its source column). Planner version 5 reached 89.9 % (type), 94.9 % (family), 97.5 % (type in top 3);

@@ -73,6 +73,30 @@ def test_every_plan_on_its_own_equals_brute_force(query, k, plan):
     np.testing.assert_array_equal(dist, bdist)
 
 
+@settings(max_examples=120, deadline=None)
+@given(
+    feature=st.sampled_from(NUMERIC_FEATURES),
+    value=st.one_of(st.sampled_from([1.0, 2.0, 2.5, 12.0, 100.0, 150.0]), st.floats(0.05, 400.0)),
+    qualifier=st.sampled_from(["about", "at_least", "at_most"]),
+    k=st.sampled_from([1, 2, 5, 40, 300]),
+    unknown=st.booleans(),
+)
+def test_one_number_from_its_sorted_column_equals_brute_force(feature, value, qualifier, k, unknown):
+    """One number: the column plan, with ties beyond the rows it reads (thousands of objects share a
+    rounded value) and unknown values at the k-th distance, equals the brute force."""
+    query = FeatureQuery.from_values({feature: value}, {feature: qualifier})
+    if unknown:  # the unknown rows' penalty equal to the distance of common values
+        (cond,) = query.numeric
+        query = FeatureQuery((type(cond)(cond.feature, cond.value, cond.low, cond.high, cond.qualifier, 1.0),))
+    brows, bdist = brute_force_top_k(catalog(), query, k)
+    for most in (4096, 8):  # 8: the rows of one value at 0 are more than it reads
+        found = index().one_column(catalog().num_cols, catalog().cat_cols, query, k, most=most)
+        if found is not None:
+            np.testing.assert_array_equal(found[0], brows)
+            np.testing.assert_array_equal(found[1], bdist)
+    _assert_same(query, k)
+
+
 @st.composite
 def category_queries(draw):
     feats = draw(st.lists(st.sampled_from(sorted(CATEGORIES)), min_size=1, max_size=5, unique=True))
@@ -82,20 +106,60 @@ def category_queries(draw):
 @settings(max_examples=80, deadline=None)
 @given(query=category_queries(), k=st.sampled_from([1, 2, 5, 13, 60, 4000]))
 def test_category_only_descriptions_are_answered_from_the_combinations(query, k):
-    """Categories only: the combinations plan (or the scan, on little work), equal to brute force (ties
-    by row), for JP and jplog."""
-    from recall.search import CATEGORY_SCAN_WORK
-
+    """Categories only: the chosen plan (zero, scan or combinations) and each of scan and combinations
+    forced equal the brute force (ties by row), for JP and jplog."""
     brows, bdist = brute_force_top_k(catalog(), query, k)
-    for force in (None, "categories"):
+    for force in (None, "categories", "scan"):
         plan, rows, dist = index().plan_and_search(query, k, force=force)
-        small = len(catalog()) * len(query) <= CATEGORY_SCAN_WORK
-        assert plan == ("scan" if small and force is None else "categories")
+        assert plan == (force or plan) and plan in ("zero", "scan", "categories")
         np.testing.assert_array_equal(rows, brows)
         np.testing.assert_array_equal(dist, bdist)
     lrows, ldist = top_k(catalog(), query, k, metric="jplog")
     np.testing.assert_array_equal(lrows, brows)
     np.testing.assert_array_equal(ldist, bdist)
+
+
+def test_category_plans_switch_at_their_boundaries():
+    """k rows at 0 among the first FIRST_ROWS: the zero plan; else a row pass up to SCAN_ROWS rows, the
+    combinations above (each boundary at its exact value)."""
+    from recall.combinations import FIRST_ROWS, SCAN_ROWS
+
+    snap = synthetic_snapshot(SCAN_ROWS + 1, np.random.default_rng(3))
+    query = FeatureQuery.from_values({"shape": "thin", "material": "glass"})
+    rows, dist = brute_force_top_k(snap, query, len(snap))
+    zeros = np.sort(rows[dist == 0.0])
+    assert 0 < np.searchsorted(zeros, FIRST_ROWS) < len(zeros)
+    at = int(np.searchsorted(zeros, FIRST_ROWS))  # rows at 0 among the first FIRST_ROWS
+    for n, k, plan in (
+        (SCAN_ROWS, at, "zero"),
+        (SCAN_ROWS, at + 1, "scan"),
+        (SCAN_ROWS + 1, at + 1, "categories"),
+    ):
+        small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
+        got, rows, dist = index_for(small).plan_and_search(query, k)
+        brows, bdist = brute_force_top_k(small, query, k)
+        assert got == plan
+        np.testing.assert_array_equal(rows, brows)
+        np.testing.assert_array_equal(dist, bdist)
+
+
+def test_category_levels_of_two_distances_are_scored():
+    """Three stated categories: mismatch, mismatch, unknown in different orders are one level (5) but
+    two float64 distances; the row pass orders them as the brute force does."""
+    rng = np.random.default_rng(5)
+    n = 300
+    cat = np.zeros((n, 5), dtype=np.int8)
+    cat[:, :3] = rng.choice([-1, 1, 2], size=(n, 3), p=[0.3, 0.35, 0.35])
+    snap = CatalogSnapshot([f"o{i}" for i in range(n)], [()] * n, np.full((n, 4), 10.0), cat)
+    query = FeatureQuery.from_values(
+        {"shape": CATEGORIES["shape"][0], "texture": CATEGORIES["texture"][0], "fragility": CATEGORIES["fragility"][0]}
+    )
+    for k in (1, 7, 40, 150, n):
+        for force in ("scan", "categories", None):
+            _, rows, dist = index_for(snap).plan_and_search(query, k, force=force)
+            brows, bdist = brute_force_top_k(snap, query, k)
+            np.testing.assert_array_equal(rows, brows)
+            np.testing.assert_array_equal(dist, bdist)
 
 
 def test_ties_at_zero_are_the_lowest_rows_at_zero():

@@ -5,6 +5,7 @@ what a freshly built recaller recalls."""
 from __future__ import annotations
 
 import csv
+import json
 import os
 import shutil
 from pathlib import Path
@@ -87,9 +88,9 @@ def test_a_stored_index_recalls_what_a_fresh_build_recalls(db: Path) -> None:
 
 
 def test_a_small_catalog_is_stored_by_the_rules_tables_too(seeded_db: Path) -> None:
-    assert load_index(seeded_db).origin == "built, not stored"  # below STORED_FROM: no file
+    assert load_index(seeded_db, store=False).origin == "built, not stored"
     assert not index_path(seeded_db).exists()
-    assert load_index(seeded_db, store=True).origin == "built"
+    assert load_index(seeded_db).origin == "built"
     assert load_index(seeded_db).origin == "stored"
     _same_recall(Recaller(load_snapshot(seeded_db)), Recaller.from_db(seeded_db))
 
@@ -177,7 +178,7 @@ def test_a_failed_write_leaves_the_old_file_and_no_temporary(db: Path, monkeypat
     monkeypatch.setattr(stored_index.os, "replace", fail)
     assert load_index(db).origin == "built, not stored"
     assert index_path(db).read_bytes() == old
-    assert sorted(p.name for p in db.parent.iterdir() if "recall-index" in p.name) == [index_path(db).name]
+    assert [p.name for p in db.parent.iterdir() if p.name.endswith(".tmp")] == []
     monkeypatch.undo()
     assert load_index(db).origin == "built"  # the old file no longer fits the catalog
     assert not any(p.suffix == ".tmp" for p in db.parent.iterdir())
@@ -194,3 +195,76 @@ def test_the_index_file_holds_arrays_only(db: Path) -> None:
     with np.load(index_path(db), allow_pickle=False) as data:
         assert all(data[k].dtype != object for k in data.files)
     assert os.path.getsize(index_path(db)) > 0
+
+
+# ----------------------------------------------------------------- the catalog file's state shortcut
+def _no_catalog_access(monkeypatch) -> None:
+    def refuse(*args, **kwargs):
+        raise AssertionError("the catalog was opened")
+
+    monkeypatch.setattr(KnowledgeBase, "connect", refuse)
+
+
+def test_settled_unchanged_catalog_files_are_not_opened_again(db: Path, monkeypatch) -> None:
+    monkeypatch.setattr(stored_index, "SETTLED_S", 0.0)
+    assert load_index(db).origin == "built"
+    with monkeypatch.context() as m:
+        _no_catalog_access(m)
+        index = load_index(db)
+        assert index.origin == "stored" and len(index.snapshot) > stored_index.STORED_FROM
+        _same_recall(Recaller(index.snapshot, index.tables), Recaller.from_db(db))
+    _write(db, "INSERT INTO object_aliases (alias, object_id) SELECT 'zorbulator', min(id) FROM objects")
+    assert load_index(db).origin == "built"  # the files changed: the fingerprint decides
+    assert "zorbulator" in {a for row in load_index(db).snapshot.aliases for a in row}
+
+
+def test_a_change_that_keeps_the_content_is_fingerprinted_and_the_index_kept(db: Path, monkeypatch) -> None:
+    monkeypatch.setattr(stored_index, "SETTLED_S", 0.0)
+    load_index(db)
+    _write(db, "UPDATE objects SET source = 'elsewhere'")
+    assert load_index(db).origin == "stored"  # opened (the state changed), same content
+    with monkeypatch.context() as m:
+        _no_catalog_access(m)
+        assert load_index(db).origin == "stored"  # and the new state noted
+
+
+def test_files_changed_just_before_their_fingerprint_are_always_checked(db: Path, monkeypatch) -> None:
+    monkeypatch.setattr(stored_index, "SETTLED_S", 3600.0)  # every file is "just changed"
+    load_index(db)
+    assert not stored_index._state_path(index_path(db)).exists()
+    _no_catalog_access(monkeypatch)
+    with pytest.raises(AssertionError, match="the catalog was opened"):
+        load_index(db)
+
+
+@pytest.mark.parametrize("field", [2, 3, 4])  # size, modification time, change time
+def test_a_noted_state_differing_in_any_field_is_not_trusted(db: Path, monkeypatch, field: int) -> None:
+    monkeypatch.setattr(stored_index, "SETTLED_S", 0.0)
+    load_index(db)
+    note = stored_index._state_path(index_path(db))
+    noted = json.loads(note.read_text())
+    noted["state"][0][field] += 1
+    note.write_text(json.dumps(noted))
+    _no_catalog_access(monkeypatch)
+    with pytest.raises(AssertionError, match="the catalog was opened"):
+        load_index(db)
+
+
+def test_a_note_for_another_index_is_not_trusted(db: Path, monkeypatch) -> None:
+    monkeypatch.setattr(stored_index, "SETTLED_S", 0.0)
+    load_index(db)
+    note = stored_index._state_path(index_path(db))
+    noted = json.loads(note.read_text())
+    noted["catalog"][1] ^= 1
+    note.write_text(json.dumps(noted))
+    _no_catalog_access(monkeypatch)
+    with pytest.raises(AssertionError, match="the catalog was opened"):
+        load_index(db)
+
+
+def test_settled_is_strictly_older_than_the_margin() -> None:
+    state = [[1, 2, 3, 10_000_000_000, 10_000_000_000], None]
+    margin = int(stored_index.SETTLED_S * 1e9)
+    assert stored_index._settled(state, 10_000_000_000 + margin + 1)
+    assert not stored_index._settled(state, 10_000_000_000 + margin)
+    assert not stored_index._settled([None, None], 10**20)

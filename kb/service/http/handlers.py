@@ -10,7 +10,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from kb.errors import DatabaseBusy, ObjrecallError
+from kb.errors import DatabaseBusy, ObjrecallError, RenderBusy
 from kb.service.http.settings import status_for
 
 __all__ = ["install_error_handlers"]
@@ -20,7 +20,11 @@ HTTP_ERROR_NAMES = {401: "Unauthorized", 403: "Forbidden", 404: "NotFound", 405:
 
 
 async def objrecall_error(request: Request, err: ObjrecallError) -> JSONResponse:
-    headers = {"Retry-After": "5"} if isinstance(err, DatabaseBusy) else None
+    headers = None
+    if isinstance(err, DatabaseBusy):
+        headers = {"Retry-After": "5"}
+    elif isinstance(err, RenderBusy):
+        headers = {"Retry-After": str(err.retry_after_s)}
     return JSONResponse(
         {"error": type(err).__name__, "detail": " ".join(str(err).split())},
         status_code=status_for(err),

@@ -20,6 +20,7 @@ from kb.errors import (
     QueryFailed,
     QueryRefused,
     RecallError,
+    RenderBusy,
     RequestTimeout,
     WritesDisabled,
 )
@@ -80,6 +81,7 @@ ERROR_STATUS: dict[type[ObjrecallError], int] = {
     DatabaseError: 503,
     WritesDisabled: 403,
     IngestionBusy: 409,
+    RenderBusy: 503,
     JobNotFound: 404,
     RequestTimeout: 504,
     ObjrecallError: 400,
@@ -109,6 +111,9 @@ class ServiceSettings:
     ingest_command: list[str] = field(default_factory=list)
     #: Host header names (without port) answered; ``"*"`` answers any. Others get 400.
     allowed_hosts: tuple[str, ...] = DEFAULT_ALLOWED_HOSTS
+    #: ``GET /grasp/render``: renders made at once (more get 503 and Retry-After) and renders kept.
+    render_concurrency: int = 2
+    render_cache_entries: int = 64
 
 
 def allowed_hosts_from(values: list[str] | tuple[str, ...] | None, environ: dict[str, str] | None = None) -> tuple[str, ...]:

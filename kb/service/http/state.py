@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from kb.errors import DatabaseError, ObjrecallError
 from kb.service.http.jobs import IngestionJobs
+from kb.service.http.renders import RenderCache
 from kb.service.http.settings import ENV_SOURCES, ServiceSettings
 
 if TYPE_CHECKING:
@@ -32,6 +33,7 @@ class ServiceState:
         self._snapshot: Any = None
         self._recaller: Any = None
         self._checked = 0.0
+        self.renders = RenderCache(settings.render_concurrency, settings.render_cache_entries)
 
     def knowledge_base(self) -> KnowledgeBase:
         """A read-only view of the catalog for one request."""

@@ -82,16 +82,21 @@ def grasp_render(
     grasp_type: Annotated[str, Query(max_length=40, description="One of the object's planned types.")],
 ) -> Response:
     """A PNG of the simulated grasp (MuJoCo, to the end of the hold, seed 0) of one of the object's planned
-    grasp types: what the hand does, to look at rather than read."""
-    from sim.planner import plan_grasps
+    grasp types: what the hand does, to look at rather than read. A render costs about a CPU-second: at
+    most ``render_concurrency`` run at once (more get 503 with Retry-After) and renders are cached by
+    object, features, grasp type, planner and hand (``X-Render-Cache: hit`` or ``miss``)."""
+    from sim.hand import HAND_VERSION
+    from sim.planner import PLANNER_VERSION, plan_grasps
     from sim.render import render_trial
 
     obj = state.knowledge_base().get_object(object)
     plan = next((p for p in plan_grasps(obj) if p.grasp_type == grasp_type), None)
     if plan is None:
         raise ObjrecallError(f"{grasp_type!r} is not a planned grasp of {obj.name!r}")
-    png = render_trial(obj, plan, seed=0, width=480, height=360)
-    return Response(content=png, media_type="image/png", headers={"Cache-Control": "max-age=300"})
+    key = (obj.name, tuple(sorted(obj.features().items())), grasp_type, PLANNER_VERSION, HAND_VERSION)
+    png, hit = state.renders.get_or_render(key, lambda: render_trial(obj, plan, seed=0, width=480, height=360))
+    headers = {"Cache-Control": "max-age=300", "X-Render-Cache": "hit" if hit else "miss"}
+    return Response(content=png, media_type="image/png", headers=headers)
 
 
 @router.get("/grasp/validations", response_model=Page)
