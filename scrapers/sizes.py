@@ -26,7 +26,7 @@ _DIMS_RE = re.compile(
 )
 # An axis letter or word written before a number inside a dimensions value.
 _AXIS_PREFIX = re.compile(
-    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ|着丈|丈|(?i:length|width|height|depth|thickness|"
+    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ|着丈|丈|全長|全幅|全高|縦|横|厚み|(?i:length|width|height|depth|thickness|"
     r"länge|breite|höhe|tiefe|longueur|largeur|hauteur|profondeur|largo|ancho|alto|altura|profundidad))"
     r"\.?\s*[:=]?\s*(?:約|约)?\s*(?=\d)"
 )
@@ -70,6 +70,7 @@ _CJK_AXIS_ROLES = {
     "長": "length", "长": "length", "長さ": "length", "寬": "width", "宽": "width", "幅": "width",
     "高": "height", "高さ": "height", "深": "depth", "奥行": "depth", "奥行き": "depth", "厚": "thickness",
     "丈": "length", "着丈": "length",  # a curtain's or a garment's length
+    "全長": "length", "全幅": "width", "全高": "height", "縦": "length", "横": "width", "厚み": "thickness",
 }  # fmt: skip
 
 

@@ -157,6 +157,78 @@ def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
 
 
+#: ``GraspPlan.params["hold"]`` for a grasp of the object's handle (sim/bodies.py ``Handle``) rather than its
+#: body: a loop handle's grip bar from the side, a pan's handle from above near its end.
+HOLD_HANDLE = "handle"
+#: A pan's handle is held this far (cm) from its end to the middle of the palm (half the palm and a margin).
+HANDLE_END_MARGIN_CM = H.PALM_HALF_CM[0] + 0.5
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """Where the object lies and where the hand grasps it (cm, world axes; relative to the stated box's
+    centre): the approach as built, the dims' world axes and signs, whether it is a flat object at a table
+    edge, the box's extents, the grasped part's centre and extents, and the grasped width."""
+
+    approach: str
+    axes: dict[str, int]
+    signs: dict[str, int]
+    flat: bool
+    ext: np.ndarray
+    grip_centre: np.ndarray
+    grip_ext: np.ndarray
+    width: float
+
+
+def _extents(obj: ObjectModel, axes: dict[str, int]) -> np.ndarray:
+    ext = np.zeros(3)
+    for dim, ax in axes.items():
+        ext[ax] = obj.extent_cm(dim)
+    return ext
+
+
+def _layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    if plan.params.get("hold") == HOLD_HANDLE:
+        return _handle_layout(obj, plan)
+    flat = _is_flat(obj, plan)
+    approach = "edge" if flat else plan.approach
+    upright = None if flat else _upright_placement(obj, plan)
+    signs: dict[str, int] = {}
+    if upright is not None:
+        axes, signs = upright
+    else:
+        axes = _edge_placement(obj, plan) if flat else _placement(obj, plan)
+    ext = _extents(obj, axes)
+    grip_centre, grip_ext = _grasped_body(obj, axes, pose_rotation(axes, signs, free_dim(obj)))
+    return _Layout(approach, axes, signs, flat, ext, grip_centre, grip_ext, ext[2] if flat else ext[1])
+
+
+def _handle_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    """The object standing as it is used, its handle pointing to +x, towards the hand: a loop handle's grip
+    bar (vertical) wrapped from the side, a pan's handle (along x) wrapped from above near its end. The
+    grasped width is the handle's, across world y."""
+    body = obj.body
+    handle = body.handle if body is not None else None
+    if handle is None:
+        raise SimulationError(f"{obj.name!r} has no handle to hold (sim/bodies.py builds none for it)")
+    wanted = "side" if handle.style == "loop" else "top"
+    if plan.approach != wanted:
+        raise SimulationError(f"a {handle.style} handle is held from the {wanted}, not the {plan.approach}")
+    across = next(d for d in "abc" if d not in (body.up, handle.dim))
+    axes, signs = {handle.dim: 0, across: 1, body.up: 2}, {handle.dim: 1}
+    pose = pose_rotation(axes, signs, free_dim(obj))
+    grip = next(p for p in body.parts if p.name == "handle_grip")
+    centre = pose @ np.asarray(grip.pos_cm)
+    grip_ext = np.zeros(3)
+    for dim, ax in axes.items():
+        grip_ext[ax] = grip.extent_cm(dim)
+    if handle.style == "long":  # near the end: the part from the rim out is longer than the palm
+        end = centre[0] + grip_ext[0] / 2.0
+        centre[0] = max(centre[0], end - HANDLE_END_MARGIN_CM)
+    ext = _extents(obj, axes)
+    return _Layout(plan.approach, axes, signs, False, ext, centre, grip_ext, float(grip_ext[1]))
+
+
 def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
     """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
     if plan.grasp_type not in GRASP_TYPES:
@@ -165,20 +237,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         raise SimulationError(f"unknown approach {plan.approach!r}: expected top or side")
     model_obj = obj if isinstance(obj, ObjectModel) else object_model(obj)
     rng = np.random.default_rng(seed)
-    flat = _is_flat(model_obj, plan)
-    approach = "edge" if flat else plan.approach
-    upright = None if flat else _upright_placement(model_obj, plan)
-    signs: dict[str, int] = {}
-    if upright is not None:
-        axes, signs = upright
-    else:
-        axes = _edge_placement(model_obj, plan) if flat else _placement(model_obj, plan)
-    ext = np.zeros(3)
-    for dim, ax in axes.items():
-        ext[ax] = model_obj.extent_cm(dim)
-    pose = pose_rotation(axes, signs, free_dim(model_obj))
-    grip_centre, grip_ext = _grasped_body(model_obj, axes, pose)
-    width = ext[2] if flat else ext[1]
+    lay = _layout(model_obj, plan)
+    approach, axes, signs, flat = lay.approach, lay.axes, lay.signs, lay.flat
+    ext, grip_centre, grip_ext, width = lay.ext, lay.grip_centre, lay.grip_ext, lay.width
     targets = H.grasp_targets(plan, width)
     program = program_for(plan.grasp_type)
     wrap = program.control == "wrap"
