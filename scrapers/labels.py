@@ -135,6 +135,7 @@ def _classify(label: object) -> LabelInfo | None:
     if any(_names_a_capacity(m.group(0)) for m in _BRACKETS.finditer(text)):
         return None  # "Weight (maximum)": another configuration's or a rating, see classify_other
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
+    text = _EN_BOY.sub("width x length", text)  # Turkish "En x Boy" before "en" is read as a preposition
     text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
     folded = fold(text)
     squashed = re.sub(r"[\W_]+", "", folded)
@@ -191,6 +192,7 @@ def _classify(label: object) -> LabelInfo | None:
     return None
 
 
+_EN_BOY = re.compile(r"\ben\s*[x×*/]\s*boy\b", re.IGNORECASE)
 #: Directions that do not change what a label measures: a wall light's "Depth of fitting from wall".
 _FROM_WALL = re.compile(r"\b(?:from|to|off)\s+(?:the\s+)?(?:wall|ceiling)\b", re.IGNORECASE)
 
