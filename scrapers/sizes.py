@@ -9,14 +9,16 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from kb.measures.aliases import KINDS
 from kb.measures.numbers import NUMBER_PATTERN as _NUMBER
 from kb.measures.numbers import parse_number
 from kb.measures.text import MAX_TEXT, clean_text
 from kb.measures.units import UNIT_PATTERN as _UNIT
-from kb.measures.units import length_unit
+from kb.measures.units import length_unit, words_pattern
 
 __all__ = ["AXIS_LETTER_ROLES", "Dims", "parse_dims"]
 
+_LENGTHS = [name for name, kind in KINDS.items() if kind == "length"]
 _TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
 
 _DIMS_RE = re.compile(
@@ -107,7 +109,7 @@ def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool |
 
 _LETTERED = re.compile(
     rf"(?<![^\W_])(?P<axis>[HWDLBTØ⌀])\.?\s*[:=]?\s*(?P<n>{_NUMBER})"
-    r"(?:\s*(?:(?P<u>mm|cm|m|inches|inch|in|ft)(?![^\W\d_])|(?P<q>''|\")))?"
+    rf"(?:\s*(?:(?P<u>(?i:{words_pattern(*_LENGTHS)}))(?![^\W\d_])|(?P<q>''|\")))?"
 )
 _STANDALONE_X = re.compile(r"\bx\b")
 _LETTERED_GAP = re.compile(r"\s*(?:[,;/]|and|x)?\s*")
@@ -145,15 +147,19 @@ def _lettered_dims(s: str, default_unit: str | None, decimal_comma: bool | None)
 # "(L) 30 cm x (W) 20 cm", "30(W) x 20(D) x 10(H) mm": bracketed axis letters carry no value.
 _BRACKETED_AXIS = re.compile(r"\s*\(\s*[LWHDBTlwhdbt]\s*\)")
 # "30 x 20 x 10 (cm)": a unit in brackets after the last number.
-_BRACKETED_UNIT = re.compile(r"(?<=\d)\s*\(\s*(mm|cm|m|in|inch|inches|ft|см|мм)\.?\s*\)")
+_BRACKETED_UNIT = re.compile(rf"(?<=\d)\s*\(\s*({_UNIT})\s*\)")
 # "Abmessungen (B/H/T): 30/20/10 cm": three numbers separated by slashes (fractions are already decimals).
 _SLASHED = re.compile(rf"(?<![\d/])({_NUMBER})\s*/\s*({_NUMBER})\s*/\s*({_NUMBER})(?![\d/])")
+
+
+def _bracketed_unit(m: re.Match) -> str:
+    return f" {m.group(1)}" if length_unit(m.group(1)) is not None else m.group(0)
 
 
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
     s = clean_text(text[:MAX_TEXT])
     if "(" in s:
-        s = _BRACKETED_UNIT.sub(r" \1", _BRACKETED_AXIS.sub("", s))
+        s = _BRACKETED_UNIT.sub(_bracketed_unit, _BRACKETED_AXIS.sub("", s))
     if "/" in s:
         s = _SLASHED.sub(r"\1 x \2 x \3", s)
     if not _STANDALONE_X.search(s):

@@ -67,6 +67,16 @@ CASES = [
  ("yodobashi W x H x D mm", page("<table><tr><th>本体寸法（W×H×D）</th><td>約220×200×155mm</td></tr><tr><th>本体質量</th><td>約1.0kg</td></tr></table>","ja"), (22,20,15.5), 1000),
  ("hp package first", page("<ul><li>Package dimensions: 53 x 29 x 7 cm</li><li>Package weight: 2.7 kg</li><li>Dimensions: 35.8 x 23.4 x 1.9 cm</li><li>Weight: 1.7 kg</li></ul>"), (35.8,23.4,1.9), 1700),
  ("book item weight shipping", page("<ul><li>Item Weight : 1.1 pounds</li><li>Shipping Weight: 1.4 pounds</li><li>Product Dimensions: 6 x 1 x 9 inches</li></ul>"), (22.86,15.24,2.54), 499),
+ ("bic hwd", page("<table><tr><th>本体サイズ（H×W×D） mm</th><td>H200×W220×D155</td></tr><tr><th>本体重量</th><td>1.0kg</td></tr></table>","ja"), (22,20,15.5), 1000),
+ ("joshin", page("<dl><dt>外形寸法（幅×奥行×高さ）</dt><dd>約220×155×200mm</dd><dt>質量（本体のみ）</dt><dd>約1.0kg</dd></dl>","ja"), (22,20,15.5), 1000),
+ ("ja multi mass", page("<p>質量：本体 約1.2kg、充電台 約0.3kg</p><p>外形寸法：幅60×奥行40×高さ35mm</p>","ja"), (6,4,3.5), 1200),
+ ("tr ürün boyutları", page("<ul><li>Ürün Boyutları: 30 cm x 20 cm x 10 cm</li><li>Ağırlık (kg): 1,5</li></ul>","tr"), (30,20,10), 1500),
+ ("tr book", page("<table><tr><td>Sayfa Sayısı</td><td>320</td></tr><tr><td>Boyut</td><td>13.5 x 21 cm</td></tr><tr><td>Kağıt Cinsi</td><td>2. Hamur</td></tr></table>","tr"), (21,13.5), None),
+ ("iphone", page("<ul><li>Width: 2.78 inches (70.6 mm)</li><li>Height: 5.81 inches (147.6 mm)</li><li>Depth: 0.31 inch (7.80 mm)</li><li>Weight: 6.02 ounces (171 grams)</li></ul>"), (14.76,7.06,0.78), 171),
+ ("dell heading weight", page("<div><h4>Weight</h4><p>Starting at: 2.59 lb (1.17 kg)</p><h4>Dimensions</h4><p>Height (front): 0.55 in. (13.99 mm)</p><p>Width: 11.63 in. (295.3 mm)</p><p>Depth: 7.86 in. (199.4 mm)</p></div>"), (29.53,19.94,1.399), 1170),
+ ("lenovo slash", page("<ul><li>Weight: Starting at 2.48lbs / 1.12kg</li><li>Dimensions: 12.43 x 8.76 x 0.60 inches / 315.6 x 222.5 x 15.36 mm</li></ul>"), (31.56,22.25,1.536), 1120),
+ ("kindle ja", page("<table><tr><th>サイズ</th><td>127 x 176.7 x 7.8 mm</td></tr><tr><th>重量</th><td>205 g</td></tr></table>","ja"), (17.67,12.7,0.78), 205),
+ ("amazon jp item", page("<div id='prodDetails'><table><tr><th>梱包サイズ</th><td>30 x 20 x 10 cm; 500 g</td></tr><tr><th>商品の重量</th><td>450 g</td></tr><tr><th>製品サイズ</th><td>25 x 15 x 8 cm</td></tr></table></div>","ja"), (25,15,8), 450),
 ]
 
 
@@ -86,3 +96,11 @@ def test_unitless_lengths_are_inches_only_on_a_declared_us_page(lang):
     body = "<table><tr><th>Product dimensions:</th><td>5.40(w) x 8.30(h) x 0.90(d)</td></tr></table>"
     with pytest.raises(ExtractionError, match="no unit stated"):
         extract_page(page(body, lang), "https://shop.example.test/p")
+
+
+@pytest.mark.parametrize(("label", "unit"), [("Höhe cm", "cm"), ("Gewicht kg", "kg"), ("本体サイズ（H×W×D） mm", "mm"),
+                                            ("Size M", None), ("Weight", None)])
+def test_a_unit_word_in_a_label_is_its_unit_but_not_a_garment_size(label, unit):
+    from scrapers.labels import classify_label
+
+    assert classify_label(label).unit == unit
