@@ -272,46 +272,45 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         model = spec.compile()
     except Exception as exc:
         raise SimulationError(f"could not compile the trial model: {exc}") from exc
-    data = mujoco.MjData(model)
-
-    wrist_act = np.array([model.actuator(n).id for n in H.WRIST_ACTUATOR_NAMES])
-    digit_act = np.array([model.actuator(n).id for n in H.ACTUATOR_NAMES])
-    wrist_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.WRIST_JOINT_NAMES])
-    digit_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.JOINT_NAMES])
-    object_body = model.body("object").id
-    # Hand geoms: every geom on a body other than the world (the table) and the object.
-    is_hand = (model.geom_bodyid != 0) & (model.geom_bodyid != object_body)
-    is_object = model.geom_bodyid == object_body
+    world = _trial_world(model, model_obj, plan, targets, approach, approach_dir)
+    data = world.data
 
     noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
     open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
-    data.qpos[digit_qpos] = open_q
+    data.qpos[world.digit_qpos] = open_q
     if not wrap:
         # Round objects bulge above their equator into the fingers that reach down to it: pinch higher,
         # in 5 mm steps up to 1 cm below the top, until the pre-shaped hand clears the object.
         backoff = _precision_backoff_m(
-            model, data, is_hand, is_object, wrist_qpos, approach_dir, grip_depth - 1.0
+            model, data, world.is_hand, world.is_object, world.wrist_qpos, approach_dir, grip_depth - 1.0
         )
         noise = noise + backoff * approach_dir
-    data.qpos[wrist_qpos] = noise
-    data.ctrl[digit_act] = open_q
-    data.ctrl[wrist_act] = noise
-    world = TrialWorld(
+    data.qpos[world.wrist_qpos] = noise
+    data.ctrl[world.digit_act] = open_q
+    data.ctrl[world.wrist_act] = noise
+    return world
+
+
+def _trial_world(model, obj: ObjectModel, plan: GraspPlan, targets, approach: str, approach_dir) -> TrialWorld:
+    """The compiled model with fresh data and the indices a trial reads."""
+    object_body = model.body("object").id
+    return TrialWorld(
         model=model,
-        data=data,
-        obj=model_obj,
+        data=mujoco.MjData(model),
+        obj=obj,
         plan=plan,
         targets=targets,
         approach_dir=approach_dir,
         object_body=object_body,
         palm_body=model.body("palm").id,
-        is_hand=is_hand,
+        # Hand geoms: every geom on a body other than the world (the table) and the object.
+        is_hand=(model.geom_bodyid != 0) & (model.geom_bodyid != object_body),
         object_geom=model.geom("object_geom").id,
-        is_object=is_object,
-        wrist_act=wrist_act,
-        digit_act=digit_act,
-        wrist_qpos=wrist_qpos,
-        digit_qpos=digit_qpos,
+        is_object=model.geom_bodyid == object_body,
+        wrist_act=np.array([model.actuator(n).id for n in H.WRIST_ACTUATOR_NAMES]),
+        digit_act=np.array([model.actuator(n).id for n in H.ACTUATOR_NAMES]),
+        wrist_qpos=np.array([model.jnt_qposadr[model.joint(n).id] for n in H.WRIST_JOINT_NAMES]),
+        digit_qpos=np.array([model.jnt_qposadr[model.joint(n).id] for n in H.JOINT_NAMES]),
         approach=approach,
         geom_digit={
             g: model.geom(g).name.split("_")[0]
@@ -319,7 +318,6 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
             if model.geom(g).name.split("_")[0] in H.DIGITS
         },
     )
-    return world
 
 
 def _add_scenery(spec: mujoco.MjSpec) -> None:

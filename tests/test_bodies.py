@@ -96,6 +96,7 @@ def _types(m) -> Counter:
         (_rec("milk carton", 23, 7, 7, 1000, "prism", "paper"), "box", {"box": 1}),  # a carton is square
         (_rec("wood block", 20, 8.5, 8.5, 600, "prism", "wood"), "box", {"box": 1}),
         (_rec("gelatin box", 8.5, 7.3, 2.8, 97, "prism", "paper"), "box", {"box": 1}),  # a ~ b, yet a box
+        (_rec("potted meat can", 9.7, 8.2, 5, 370, "prism", "metal"), "box", {"box": 1}),  # a square tin
         (_rec("hardcover book", 24, 16, 3, 700, "thin", "paper"), "box", {"box": 1}),
         (_rec("calculator", 15.4, 7.9, 1.5, 116, "thin"), "box", {"box": 1}),
     ],

@@ -151,12 +151,12 @@ def _form(value: float, form: str) -> str:
     return _spelled(int(value)) + (" and a half" if value % 1 else "")
 
 
+_VALUE = st.integers(1, 99).flatmap(lambda n: st.sampled_from([float(n), n + 0.5, n + 0.25]))
+_FORMS = st.sampled_from(["point", "comma", "wide", "words"])
+
+
 @settings(max_examples=300, deadline=None)
-@given(
-    st.integers(1, 99).flatmap(lambda n: st.sampled_from([float(n), n + 0.5, n + 0.25])),
-    _LENGTH_WORDS,
-    st.sampled_from(["point", "comma", "wide", "words"]),
-)
+@given(_VALUE, _LENGTH_WORDS, _FORMS)
 def test_a_length_reads_the_same_in_the_parser_and_the_extractor(value: float, word: str, form: str) -> None:
     if form == "words" and value % 1 not in (0, 0.5):
         value = float(int(value))
@@ -169,14 +169,10 @@ def test_a_length_reads_the_same_in_the_parser_and_the_extractor(value: float, w
 
 
 @settings(max_examples=300, deadline=None)
-@given(
-    st.integers(1, 99).flatmap(lambda n: st.sampled_from([float(n), n + 0.5, n + 0.25])),
-    _MASS_WORDS,
-    st.sampled_from(["point", "comma", "wide", "words"]),
-)
+@given(_VALUE, _MASS_WORDS, _FORMS)
 def test_a_mass_reads_the_same_in_the_parser_and_the_extractor(value: float, word: str, form: str) -> None:
     if form == "words" and (value % 1 not in (0, 0.5) or len(word) < 2):
-        value, form = float(int(value)), "point"
+        value, form = float(int(value)), "point"  # spelled numbers are read before unit words, not symbols
     grams = value * unit_table()[word].factor
     text = f"{_form(value, form)} {word}"
     assert parse_mass(text) == pytest.approx(grams, rel=1e-4), text

@@ -51,6 +51,7 @@ __all__ = [
     "unit_key",
     "unit_table",
     "unit_words",
+    "units_pattern",
     "volume_unit",
 ]
 
@@ -103,6 +104,12 @@ def words_pattern(*pint_names: str) -> str:
     words = {w for w, _k, n, _l in _alias_rows() if n in pint_names and w not in _MARKS and w not in "”’"}
     words |= {strip_accents(w) for w in words}
     return "|".join(re.escape(w) for w in sorted(words, key=lambda w: (-len(w), w)))
+
+
+def units_pattern(*kinds: str, imperial: bool | None = None) -> str:
+    """:func:`words_pattern` for every unit of these kinds, of one system when ``imperial`` is given."""
+    names = [n for n, k in KINDS.items() if k in kinds and (imperial is None or (n in IMPERIAL) == imperial)]
+    return words_pattern(*names)
 
 
 def aliases_of(kind: str, languages: frozenset[str] | None = None) -> dict[str, str]:

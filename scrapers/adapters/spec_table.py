@@ -16,6 +16,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
+from kb.measures.units import units_pattern
 from scrapers.adapters import Observation, adapter
 from scrapers.labels import AXES, classify_label
 from scrapers.normalize import material_from_text
@@ -213,8 +214,9 @@ def _one_length(value: str, unit: str | None, decimal_comma: bool | None) -> flo
     return parse_length(head, unit, decimal_comma) if len(head) <= 30 else None
 
 
-_IMPERIAL = re.compile(r"\d\s*(?:\"|in\b|in\.|inch|inches|ft\b|feet|foot|lbs?\b|pounds?|oz\b|ounces?)", re.IGNORECASE)
-_METRIC = re.compile(r"\d\s*(?:mm|cm|m|kg|g|grams?|kilograms?|millimet\w*|centimet\w*)\b", re.IGNORECASE)
+# A figure with an imperial or a metric length or mass unit (the words of the one unit table).
+_IMPERIAL = re.compile(rf"\d\s*(?:\"|(?:{units_pattern('length', 'mass', imperial=True)})\b)", re.IGNORECASE)
+_METRIC = re.compile(rf"\d\s*(?:{units_pattern('length', 'mass', imperial=False)})\b", re.IGNORECASE)
 _BRACKETED = re.compile(r"[(（]([^()（）]{1,80})[)）]")
 
 
