@@ -64,7 +64,7 @@ FIRST_POOL = 64
 #: other plans.
 SMALL_WINDOW = 8192
 #: Relative cost per row (per stated feature) of each plan's work, measured (see the module docstring).
-COST = {"scan": 1.0, "window": 3.0, "cells": 4.0}
+COST = {"scan": 1.0, "window": 6.0, "cells": 4.0}
 #: Rows of the nearest cells scored to tighten the first bound before choosing a plan.
 PROBE_ROWS = 2048
 #: Fixed cost of the cell search, in row-equivalents of the scan (bounds of every cell, batches).
