@@ -56,8 +56,9 @@ __all__ = ["JPIndex", "brute_force_top_k", "index_for", "score_rows", "select_to
 #: (below that, the fixed costs of the other plans exceed the scan; measured, see RECALL.md).
 SCAN_BELOW = 32768
 SCAN_WORK = 40_000
-#: Categories only: scanned up to this many row-features, else the combinations (~0.14 ms at any size).
-CATEGORY_SCAN_WORK = 40_000
+#: One number and nothing else is read off its sorted column above this many objects (below, a scan is
+#: cheaper: ~12 NumPy calls of fixed cost against a pass over a few thousand rows; measured).
+COLUMN_FROM = 4096
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
 #: A window of at most this many row-features (rows x stated features) is filtered without weighing the
@@ -201,14 +202,14 @@ class JPIndex(SortedColumns):
             if force is None:
                 return self.combinations.search(query, k)
         small = self.n <= SCAN_BELOW or self.n * len(items) <= SCAN_WORK
-        if force == "scan" or (force is None and small):
-            return "scan", *self._scan(query, items, k)
-        if force in (None, "column") and len(items) == 1:
+        if force == "column" or (force is None and len(items) == 1 and self.n > COLUMN_FROM):
             found = self.one_column(self.num_cols, self.cat_cols, query, k)
             if found is not None:
                 return "column", *found
             if force == "column":
                 raise ValueError("the column plan found more rows near the value, or ties, than it reads")
+        if force == "scan" or (force is None and small):
+            return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
         best_rows, best_scores = select_top_k(pool, self.score(query, pool), k)
         s = float(best_scores[-1])
