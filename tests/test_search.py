@@ -184,7 +184,11 @@ def test_small_catalogs_and_little_work_are_scanned():
     from recall.search import SCAN_BELOW, SCAN_WORK
 
     snap = catalog()
-    one = FeatureQuery.from_values({"a_cm": 30}, {"a_cm": "at_most"})  # too many rows for the column plan
+    from recall.metrics import NumericCondition
+
+    # ends not float32 (so not known to be at 0), too many rows in the interval for the column plan
+    one = FeatureQuery((NumericCondition("a_cm", 30.1, 0.1, 30.1, "range"),))
+    assert index().plan_and_search(FeatureQuery.from_values({"a_cm": 30}, {"a_cm": "at_most"}), 5)[0] == "zero"
     two = FeatureQuery.from_values({"a_cm": 12, "material": "wood"})
     assert 1 * len(snap) <= SCAN_WORK < 2 * len(snap)
     assert index().plan_and_search(one, 5)[0] == "scan"
