@@ -11,12 +11,21 @@ reports them per development set (``recall.evaluation``); definitions:
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
-__all__ = ["Calibration", "ReliabilityBin", "brier_score", "calibration", "expected_calibration_error"]
+__all__ = [
+    "Calibration",
+    "ReliabilityBin",
+    "brier_score",
+    "calibration",
+    "confidence_inputs",
+    "expected_calibration_error",
+    "fit_confidence",
+]
 
 
 @dataclass(frozen=True)
@@ -94,3 +103,38 @@ def calibration(confidence: Sequence[float], right: Sequence[bool], bins: int = 
         ece += k / n * abs(acc - mean_c) if n else 0.0
         out.append(ReliabilityBin(b / bins, (b + 1) / bins, k, mean_c, acc))
     return Calibration(n, brier_score(c, y), float(ece), tuple(out))
+
+
+# ---------------------------------------------------------------------- fitting the confidence model
+def confidence_inputs(result) -> list[float]:
+    """The confidence model's inputs of a result: margin (capped), closeness, unknown noun (0/1)."""
+    from recall.confidence import MAX_MARGIN
+
+    margin = result.matches[1].score - result.matches[0].score if len(result.matches) > 1 else MAX_MARGIN
+    return [
+        min(max(margin, 0.0), MAX_MARGIN),
+        result.closeness or 0.0,
+        float(result.unknown_noun is not None),
+        math.log(max(result.competitors, 1.0)),
+    ]
+
+
+def fit_confidence(cases, open_set=()) -> tuple[tuple[float, ...], int]:
+    """Logistic fit of P(first match right) on :func:`confidence_inputs`, over the features-only and the
+    hybrid results of the development set (``cases``: :class:`recall.evaluation.Case` s) and the results of the open set (never right). Returns the
+    coefficients (a, b, c, d, e) of ``recall.confidence.CONFIDENCE_COEF`` and the number of points.
+    Results reported not in the catalog are left out: their confidence is capped by rule."""
+    from sklearn.linear_model import LogisticRegression
+
+    x, y = [], []
+    for case in cases:
+        for res in (case.features_only, case.hybrid):
+            if res.matches and not res.not_in_catalog:  # those are capped by rule, not by the model
+                x.append(confidence_inputs(res))
+                y.append(int(res.matches[0].name == case.object))
+    for res in open_set:
+        if res.matches and not res.not_in_catalog:
+            x.append(confidence_inputs(res))
+            y.append(0)
+    model = LogisticRegression(C=10.0).fit(np.array(x), np.array(y))
+    return (float(model.intercept_[0]), *(float(c) for c in model.coef_[0])), len(x)

@@ -20,6 +20,7 @@ __all__ = [
     "MAX_MARGIN",
     "NOT_IN_CATALOG_CONFIDENCE",
     "OPEN_SET_CONFIDENCE_CAP",
+    "capped_confidence",
     "competitors_of",
     "confidence_from_margin",
     "confidence_of",
@@ -82,3 +83,22 @@ def competitors_of(score: np.ndarray) -> float:
         return 1.0
     rel = np.asarray(score, dtype=np.float64) - float(np.min(score))
     return float(np.sum(np.exp(-np.minimum(rel, 50.0))))
+
+
+def capped_confidence(
+    margin: float,
+    closeness: float | None,
+    unknown_noun: bool,
+    metric: str,
+    competitors: float,
+    open_set: bool,
+    not_in_catalog: bool,
+) -> float:
+    """:func:`confidence_of`, capped at :data:`OPEN_SET_CONFIDENCE_CAP` for an open-set result and at
+    :data:`NOT_IN_CATALOG_CONFIDENCE` for a noun the catalog does not have."""
+    confidence = confidence_of(margin, closeness, unknown_noun, metric, competitors)
+    if open_set:
+        confidence = min(confidence, OPEN_SET_CONFIDENCE_CAP)
+    if not_in_catalog:
+        confidence = min(confidence, NOT_IN_CATALOG_CONFIDENCE)
+    return confidence

@@ -29,7 +29,7 @@ from recall.confidence import (
     JP_METRICS,
     MAX_MARGIN,
     NOT_IN_CATALOG_CONFIDENCE,
-    OPEN_SET_CONFIDENCE_CAP,
+    capped_confidence,
     competitors_of,
     confidence_from_margin,
     confidence_of,
@@ -47,13 +47,13 @@ from recall.openset import (
     described_noun,
     foreign_modifier,
     is_open_set,
-    material_of_word,
+    material_agrees,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
 from recall.subject import subject_head, subject_phrase
-from recall.submaterials import SubmaterialIndex
+from recall.submaterials import SubmaterialIndex, with_submaterial
 from recall.vague import SoftEvidence, soft_evidence
 
 __all__ = [
@@ -159,7 +159,7 @@ class Recaller:
         soft = noun = None
         subject: tuple[str, ...] = ()
         if not features_only:  # the paper's method uses the stated features only
-            soft = _with_submaterial(
+            soft = with_submaterial(
                 soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols),
                 self._submaterial(parsed),
             )
@@ -273,9 +273,12 @@ class Recaller:
         closeness = float(np.mean(list(errors.values()))) if errors else None
         not_in_catalog = not_in_catalog and not matches[0].matched_by_name
         modifier = self._foreign_modifier(subject, int(rows[0]), names)
-        trusted = matches[0].matched_by_name and modifier is None and _same_material(subject, matches[0])
+        trusted = matches[0].matched_by_name and modifier is None and material_agrees(subject, matches[0].features.get("material"))
         open_set = not_in_catalog or is_open_set(closeness, trusted, names.unknown_noun or modifier)
-        confidence = _confidence(matches, closeness, names, metric, competitors, open_set, not_in_catalog)
+        margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
+        confidence = capped_confidence(
+            margin, closeness, names.unknown_noun is not None, metric, competitors, open_set, not_in_catalog
+        )
         same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
         return RecallResult(
             matches=matches[:top],
@@ -369,25 +372,6 @@ class Recaller:
         return kind, self._matches(arr, dist, parts, query, metric, set())
 
 
-def _with_submaterial(soft: SoftEvidence | None, sub: tuple[str, np.ndarray] | None) -> SoftEvidence | None:
-    """The vague words' soft evidence plus the finer-material evidence (:mod:`recall.submaterials`)."""
-    if sub is None:
-        return soft
-    word, penalty = sub
-    if soft is None:
-        return SoftEvidence((word,), penalty)
-    return dataclasses.replace(soft, words=(*soft.words, word), penalty=soft.penalty + penalty)
-
-
-def _same_material(subject: tuple[str, ...], match: Match) -> bool:
-    """Whether no material word before the subject's head contradicts the match's material (either
-    unknown counts as agreeing): a name is trusted as evidence only then ("a wooden spoon" named "spoon"
-    is no steel spoon)."""
-    own = match.features.get("material")
-    stated = {material_of_word(w) for w in subject[:-1]} - {None}
-    return own is None or not stated or own in stated
-
-
 def _checked(metric: str | None, features_only: bool, top: int) -> str:
     """The metric to use (:func:`resolve_metric`), refusing an unknown one and a ``top`` below 1."""
     metric = resolve_metric(metric, features_only)
@@ -412,23 +396,3 @@ def _ranking_scores(
         score = dist - (dist.max() + 1.0) * bonus + vague
     parts = {int(r): (float(d), float(b), float(v)) for r, d, b, v in zip(rows, dist, bonus, vague, strict=True)}
     return score, parts
-
-
-def _confidence(
-    matches: list[Match],
-    closeness: float | None,
-    names: NameEvidence,
-    metric: str,
-    competitors: float,
-    open_set: bool,
-    not_in_catalog: bool,
-) -> float:
-    """The result's confidence (:func:`recall.confidence.confidence_of`), capped for an open-set result
-    and further for a noun the catalog does not have."""
-    margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
-    confidence = confidence_of(margin, closeness, names.unknown_noun is not None, metric, competitors)
-    if open_set:
-        confidence = min(confidence, OPEN_SET_CONFIDENCE_CAP)
-    if not_in_catalog:
-        confidence = min(confidence, NOT_IN_CATALOG_CONFIDENCE)
-    return confidence

@@ -19,10 +19,11 @@ from typing import Any
 import numpy as np
 
 from kb.errors import RecallError
-from kb.features import CATEGORICAL_FEATURES, normalize_name
+from kb.features import normalize_name
 from recall.calibration import Calibration, calibration
 from recall.engine import DEFAULT_METRIC, HEAD_WEIGHT, NAME_WEIGHT, Recaller, RecallResult
-from recall.metrics import METRICS, FeatureQuery, feature_terms
+from recall.metrics import METRICS, FeatureQuery
+from recall.misses import explained_miss
 
 __all__ = ["PAPER_TOP1", "Case", "EvaluationReport", "MetricScore", "Miss", "evaluate", "read_descriptions"]
 
@@ -190,71 +191,6 @@ def _recaller_from_catalog(catalog_csv: Path, workdir: Path) -> Recaller:
     return Recaller.from_db(workdir / "evaluation.duckdb")
 
 
-def miss_reason(
-    recaller: Recaller,
-    query: FeatureQuery,
-    true_name: str,
-    got_name: str,
-    *,
-    metric: str = "jp",
-    result: RecallResult | None = None,
-) -> str:
-    """Why ``got_name`` beat ``true_name`` under ``metric`` (``jp`` or ``jplog``): both ranking scores,
-    the stated features that pulled the wrong object ahead (largest first, with the stated value, both
-    catalog values and both terms), the ones that favoured the right object, the name evidence of the
-    hybrid, and the unstated categories that would have told them apart."""
-    snap = recaller.snapshot
-    index = {n: i for i, n in enumerate(snap.names)}
-    t, g = index[true_name], index[got_name]
-    rows = np.array([t, g])
-    if metric == "jplog":
-        terms = feature_terms(snap.log_scaled.num_rows(rows), snap.cat_rows(rows), query.log_scaled())
-    else:
-        terms = feature_terms(snap.num_rows(rows), snap.cat_rows(rows), query)
-    true_rec, got_rec = snap.record(t), snap.record(g)
-    values = query.values()
-    names = result.evidence if result is not None else None
-    bonus = (names.bonus(t), names.bonus(g)) if names is not None else (0.0, 0.0)
-    total_t = sum(float(v[0]) for v in terms.values()) - bonus[0]
-    total_g = sum(float(v[1]) for v in terms.values()) - bonus[1]
-    label = "jp" if metric == "jp" else metric
-    parts = [f"{label} {got_name} {total_g:.2f} < {true_name} {total_t:.2f}"]
-
-    def side(feat: str) -> str:
-        return (
-            f"{feat}: stated {_fmt(values.get(feat))}, {true_name} {_fmt(getattr(true_rec, feat))} "
-            f"(+{terms[feat][0]:.2f}) vs {got_name} {_fmt(getattr(got_rec, feat))} (+{terms[feat][1]:.2f})"
-        )
-
-    diffs = sorted(((float(terms[f][0] - terms[f][1]), f) for f in terms), reverse=True)
-    pulls = [side(f) for d, f in diffs if d > 1e-9][:3]
-    if pulls:
-        parts.append("pulled ahead by " + "; ".join(pulls))
-    against = [f"{f} ({-d:.2f})" for d, f in sorted(diffs) if d < -1e-9][:3]
-    if against:
-        parts.append("the right object was closer on " + ", ".join(against))
-    if bonus != (0.0, 0.0):
-        parts.append(f"name evidence: {true_name} -{bonus[0]:.2f}, {got_name} -{bonus[1]:.2f}")
-    if not query.stated:
-        parts.append("no feature stated")
-    unstated = [
-        f"{f} ({getattr(true_rec, f)} vs {getattr(got_rec, f)})"
-        for f in CATEGORICAL_FEATURES
-        if f not in values and getattr(true_rec, f) != getattr(got_rec, f)
-    ]
-    if unstated:
-        parts.append("not stated: " + ", ".join(unstated))
-    if len(parts) == 1:
-        parts.append("tie on every stated feature")
-    return "; ".join(parts)
-
-
-def _fmt(v: Any) -> str:
-    if isinstance(v, float):
-        return f"{v:g}"
-    return "?" if v is None else str(v)
-
-
 #: The two modes whose misses and open-set flags are reported: the paper's method and the default hybrid.
 FLAG_MODES = {("jp", True): "jp", (DEFAULT_METRIC[False], False): f"{DEFAULT_METRIC[False]}+names"}
 CONFIDENT = 0.9
@@ -278,109 +214,91 @@ def evaluate(
     with tempfile.TemporaryDirectory(prefix="objrecall-eval-") as tmp:
         recaller = _recaller_from_catalog(Path(catalog_csv), Path(tmp))
     snap = recaller.snapshot
-    index = {n: i for i, n in enumerate(snap.names)}
-    alias_of = {a: n for n, aliases in zip(snap.names, snap.aliases, strict=True) for a in aliases}
-    loose = _loose_labels(snap.names, snap.aliases)
-    hits = {(m, True): [0, 0] for m in METRICS}
-    hits.update({(m, False): [0, 0] for m in HYBRID_METRICS})
-    false_flags = dict.fromkeys(FLAG_MODES.values(), 0)
-    explained = {("jp", True), (DEFAULT_METRIC[False], False)}
-    misses: list[Miss] = []
+    label, index = _labeller(snap)
+    tally = _Tally()
     unknown: list[str] = []
     parse_pairs: list[tuple[Any, ObjectRecord]] = []
-    cases: list[Case] = []
-    points: dict[str, list[tuple[float, bool]]] = {}
-    n = 0
     for obj, text in pairs:
-        obj = obj if obj in index else alias_of.get(obj, loose.get(_loose_key(obj), obj))
+        obj = label(obj)
         if obj not in index:
             unknown.append(obj)
             continue
-        n += 1
         parsed = parse(text)
         parse_pairs.append((parsed, snap.record(index[obj])))
-        query = FeatureQuery.from_parsed(parsed)
-        results: dict[tuple[str, bool], RecallResult] = {}
-        for metric in METRICS:
-            results[(metric, True)] = recaller.recall_parsed(parsed, top=3, metric=metric, features_only=True)
-        for metric in HYBRID_METRICS:
-            results[(metric, False)] = recaller.recall_parsed(
-                parsed, top=3, metric=metric, features_only=False
-            )
-        for key, res in results.items():
-            names = [m.name for m in res.matches]
-            if key in FLAG_MODES:
-                false_flags[FLAG_MODES[key]] += res.open_set
-                points.setdefault(FLAG_MODES[key], []).append((res.confidence, names[:1] == [obj]))
-            hits[key][0] += bool(names[:1] == [obj])
-            hits[key][1] += obj in names[:3]
-            if key in explained and names[:1] != [obj]:
-                got = names[0] if names else "(nothing)"
-                reason = (
-                    miss_reason(recaller, query, obj, got, metric=key[0], result=res)
-                    if names
-                    else "nothing stated or named"
-                )
-                if not key[1]:
-                    reason = (
-                        "named: " + ", ".join(res.named) + "; "
-                        if res.named
-                        else "head noun: " + ", ".join(res.evidence.heads) + "; "
-                        if res.evidence.heads
-                        else "no name found; "
-                    ) + reason
-                misses.append(Miss(key[0] if key[1] else f"{key[0]}+names", obj, got, text, reason))
+        results = _recall_every_mode(recaller, parsed)
+        tally.add(recaller, obj, text, FeatureQuery.from_parsed(parsed), results)
         if keep_cases:
-            cases.append(Case(obj, text, results[("jp", True)], results[(DEFAULT_METRIC[False], False)]))
-    scores = [MetricScore(m, True, n, *hits[(m, True)]) for m in METRICS]
-    scores += [MetricScore(m, False, n, *hits[(m, False)]) for m in HYBRID_METRICS]
+            tally.cases.append(Case(obj, text, results[("jp", True)], results[(DEFAULT_METRIC[False], False)]))
+    n = tally.n
+    scores = [MetricScore(m, True, n, *tally.hits[(m, True)]) for m in METRICS]
+    scores += [MetricScore(m, False, n, *tally.hits[(m, False)]) for m in HYBRID_METRICS]
     parse_scores = score_parses(parse_pairs) if parse_pairs else None
     parse_dict = asdict(parse_scores) if parse_scores is not None else {}
     parse_dict.pop("confusion", None)
-    report = EvaluationReport(n, scores, parse_dict, misses, unknown, cases, false_flags, points=points)
+    report = EvaluationReport(
+        n, scores, parse_dict, tally.misses, unknown, tally.cases, tally.false_flags, points=tally.points
+    )
     if open_set_csv is not None:
-        for (metric, features_only), mode in FLAG_MODES.items():
-            results = open_set_results(recaller, open_set_csv, features_only, metric)
-            report.open_set_n = len(results)
-            report.open_set[mode] = sum(r.open_set for r in results)
-            report.open_set_confident[mode] = sum(r.confidence >= CONFIDENT for r in results)
-            points.setdefault(mode, []).extend((r.confidence, False) for r in results if r.matches)
+        _add_open_set(report, recaller, open_set_csv)
     return report
 
 
-# ------------------------------------------------------------------------------------------ calibration
-def confidence_inputs(result: RecallResult) -> list[float]:
-    """The confidence model's inputs of a result: margin (capped), closeness, unknown noun (0/1)."""
-    from recall.confidence import MAX_MARGIN
+def _labeller(snap):
+    """(label -> catalog name: the name itself, an alias or a loose match, else the label unchanged;
+    catalog name -> row)."""
+    index = {n: i for i, n in enumerate(snap.names)}
+    alias_of = {a: n for n, aliases in zip(snap.names, snap.aliases, strict=True) for a in aliases}
+    loose = _loose_labels(snap.names, snap.aliases)
 
-    margin = result.matches[1].score - result.matches[0].score if len(result.matches) > 1 else MAX_MARGIN
-    return [
-        min(max(margin, 0.0), MAX_MARGIN),
-        result.closeness or 0.0,
-        float(result.unknown_noun is not None),
-        math.log(max(result.competitors, 1.0)),
-    ]
+    def label(obj: str) -> str:
+        return obj if obj in index else alias_of.get(obj, loose.get(_loose_key(obj), obj))
+
+    return label, index
 
 
-def fit_confidence(cases: list[Case], open_set: list[RecallResult] = ()) -> tuple[tuple[float, ...], int]:
-    """Logistic fit of P(first match right) on :func:`confidence_inputs`, over the features-only and the
-    hybrid results of the development set and the results of the open set (never right). Returns the
-    coefficients (a, b, c, d, e) of ``recall.confidence.CONFIDENCE_COEF`` and the number of points.
-    Results reported not in the catalog are left out: their confidence is capped by rule."""
-    from sklearn.linear_model import LogisticRegression
+def _recall_every_mode(recaller: Recaller, parsed: Any) -> dict[tuple[str, bool], RecallResult]:
+    """(metric, features only) -> the top 3 of every metric features only and of the hybrid metrics."""
+    results = {(m, True): recaller.recall_parsed(parsed, top=3, metric=m, features_only=True) for m in METRICS}
+    for metric in HYBRID_METRICS:
+        results[(metric, False)] = recaller.recall_parsed(parsed, top=3, metric=metric, features_only=False)
+    return results
 
-    x, y = [], []
-    for case in cases:
-        for res in (case.features_only, case.hybrid):
-            if res.matches and not res.not_in_catalog:  # those are capped by rule, not by the model
-                x.append(confidence_inputs(res))
-                y.append(int(res.matches[0].name == case.object))
-    for res in open_set:
-        if res.matches and not res.not_in_catalog:
-            x.append(confidence_inputs(res))
-            y.append(0)
-    model = LogisticRegression(C=10.0).fit(np.array(x), np.array(y))
-    return (float(model.intercept_[0]), *(float(c) for c in model.coef_[0])), len(x)
+
+@dataclass
+class _Tally:
+    """Counts over the in-catalog descriptions: hits (top-1, top-3) per mode, false flags and confidence
+    points of the flag modes, the explained misses and the kept cases."""
+
+    n: int = 0
+    hits: dict[tuple[str, bool], list[int]] = field(
+        default_factory=lambda: {**{(m, True): [0, 0] for m in METRICS}, **{(m, False): [0, 0] for m in HYBRID_METRICS}}
+    )
+    false_flags: dict[str, int] = field(default_factory=lambda: dict.fromkeys(FLAG_MODES.values(), 0))
+    points: dict[str, list[tuple[float, bool]]] = field(default_factory=dict)
+    misses: list[Miss] = field(default_factory=list)
+    cases: list[Case] = field(default_factory=list)
+
+    def add(self, recaller: Recaller, obj: str, text: str, query: FeatureQuery, results) -> None:
+        self.n += 1
+        for key, res in results.items():
+            names = [m.name for m in res.matches]
+            if key in FLAG_MODES:
+                self.false_flags[FLAG_MODES[key]] += res.open_set
+                self.points.setdefault(FLAG_MODES[key], []).append((res.confidence, names[:1] == [obj]))
+            self.hits[key][0] += bool(names[:1] == [obj])
+            self.hits[key][1] += obj in names[:3]
+            if key in FLAG_MODES and names[:1] != [obj]:
+                self.misses.append(Miss(*explained_miss(recaller, key, obj, text, query, res)))
+
+
+def _add_open_set(report: EvaluationReport, recaller: Recaller, open_set_csv: str | Path) -> None:
+    """Detection (flagged), confident anyway, and the confidence points of the open-set descriptions."""
+    for (metric, features_only), mode in FLAG_MODES.items():
+        results = open_set_results(recaller, open_set_csv, features_only, metric)
+        report.open_set_n = len(results)
+        report.open_set[mode] = sum(r.open_set for r in results)
+        report.open_set_confident[mode] = sum(r.confidence >= CONFIDENT for r in results)
+        report.points.setdefault(mode, []).extend((r.confidence, False) for r in results if r.matches)
 
 
 def open_set_results(
@@ -423,6 +341,8 @@ def _main() -> None:  # pragma: no cover - a calibration script
         name_index.NAME_WEIGHT, name_index.HEAD_WEIGHT = NAME_WEIGHT, HEAD_WEIGHT
         recaller = Recaller.from_csv(args.catalog)
         opens = [r for fo in (False, True) for r in open_set_results(recaller, OPEN_SET, fo)]
+        from recall.calibration import fit_confidence
+
         coef, k = fit_confidence(report.cases, opens)
         print("confidence (a, b, c, d):", ", ".join(f"{c:.2f}" for c in coef), f"over {k} results")
         right = sorted(

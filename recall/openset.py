@@ -26,6 +26,7 @@ __all__ = [
     "KindIndex",
     "described_noun",
     "foreign_modifier",
+    "material_agrees",
     "material_of_word",
     "is_open_set",
 ]
@@ -188,3 +189,11 @@ def foreign_modifier(subject: Sequence[str], object_words: frozenset[str]) -> st
         return None
     word = subject[-2]
     return word if word not in object_words and noun_like(word) else None
+
+
+def material_agrees(subject: Sequence[str], material: str | None) -> bool:
+    """Whether no material word before the subject's head contradicts the named match's ``material``
+    (an unknown one agrees): a name is trusted as evidence only then ("a wooden spoon" named "spoon" is
+    no steel spoon)."""
+    stated = {material_of_word(w) for w in subject[:-1]} - {None}
+    return material is None or not stated or material in stated

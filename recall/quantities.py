@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from kb.measures.aliases import PARSER_LANGUAGES
-from kb.measures.units import Unit, unit_table
+from kb.measures.units import Unit, combine, unit_table
 from kb.measures.words import number_value
 from recall import lexicon as lx
 from recall.chunks import size
@@ -291,10 +291,9 @@ class QuantityReader:
                 elif label == "SUB":  # "1 lb 2 oz", "5 ft 3 in": one quantity in two units
                     sub_unit = self._units.get(part[0].low)
                     if unit is not None and sub_unit is not None and len(numbers) == 2:
-                        # "5 ft 12 in": refused (a whole foot in the inches); 1e-9 absorbs pint's float rounding
-                        if numbers[1] * sub_unit.factor >= unit.factor * (1 - 1e-9):
-                            problem = f"{numbers[1]:g} {sub_unit.pint_name} is not less than 1 {unit.pint_name}"
-                        numbers = [numbers[0] + numbers[1] * sub_unit.factor / unit.factor]
+                        one = combine(numbers[0], unit, numbers[1], sub_unit)  # "5 ft 12 in" is refused
+                        problem = one if isinstance(one, str) else problem
+                        numbers = [numbers[0] if isinstance(one, str) else one]
                 j += n
             else:
                 if toks[j].tag == "HS":

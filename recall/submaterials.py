@@ -11,14 +11,16 @@ already pay the mismatch of their category. Measured in ``recall/RECALL.md``.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 
 import numpy as np
 
 from kb.kinds import words_of
 from recall.metrics import MISMATCH_TERM
+from recall.vague import SoftEvidence
 
-__all__ = ["SUBMATERIALS", "SubmaterialIndex", "submaterial_of"]
+__all__ = ["SUBMATERIALS", "SubmaterialIndex", "submaterial_of", "with_submaterial"]
 
 #: Finer material -> the words that state it (all filed under the catalog's ``other``).
 SUBMATERIALS: dict[str, frozenset[str]] = {
@@ -70,3 +72,13 @@ class SubmaterialIndex:
         own = list(SUBMATERIALS).index(sub)
         penalty = np.where((codes >= 0) & (codes != own), MISMATCH_TERM, 0.0)
         return f"{sub} (finer material, from names)", penalty
+
+
+def with_submaterial(soft: SoftEvidence | None, sub: tuple[str, np.ndarray] | None) -> SoftEvidence | None:
+    """The vague words' soft evidence plus the finer-material evidence of :meth:`SubmaterialIndex.penalty`."""
+    if sub is None:
+        return soft
+    word, penalty = sub
+    if soft is None:
+        return SoftEvidence((word,), penalty)
+    return dataclasses.replace(soft, words=(*soft.words, word), penalty=soft.penalty + penalty)

@@ -13,7 +13,7 @@ import re
 
 from kb.measures.aliases import PARSER_LANGUAGES
 from kb.measures.numbers import DIGITS_PATTERN
-from kb.measures.units import unit_table
+from kb.measures.units import is_smaller_unit, unit_table
 from recall import lexicon as lx
 from recall.tokens import FRACTION_CHARS, Token
 from recall.toolkit import RegexpTagger, UnigramTagger
@@ -335,8 +335,8 @@ def _tuple_labels(tokens: list[Token]) -> None:
 
 
 def _smaller_unit_after(out: list[Token], tok: Token) -> bool:
-    """True for the second unit of "1 lb 2 oz" / "5 ft 3 in": same kind, smaller, right after the first
-    unit and its number."""
+    """True for the second unit of "1 lb 2 oz" / "5 ft 3 in": same kind and system, smaller
+    (:func:`kb.measures.units.is_smaller_unit`), right after the first unit and its number."""
     k = len(out) - 1
     while k >= 0 and out[k].tag in NUMBER_TAGS:
         k -= 1
@@ -344,12 +344,7 @@ def _smaller_unit_after(out: list[Token], tok: Token) -> bool:
         return False
     table = unit_table(PARSER_LANGUAGES)
     first, second = table.get(out[k].low), table.get(tok.low)
-    return (
-        first is not None
-        and second is not None
-        and first.kind == second.kind
-        and second.factor < first.factor
-    )
+    return first is not None and second is not None and is_smaller_unit(first, second)
 
 
 def _number_before_of(out: list[Token]) -> bool:

@@ -13,7 +13,7 @@ import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from kb.measures.numbers import DIGITS_PATTERN
+from kb.measures.numbers import DIGITS_PATTERN, fold_width
 from recall import lexicon as lx
 from recall.toolkit import RegexpTokenizer
 
@@ -75,7 +75,7 @@ class Tokenizer:
         known = self._known
         for start, end in self._regexp.span_tokenize(text):
             word = text[start:end]
-            low = word.lower()
+            low = fold_width(word).lower()  # "１５ｃｍ": the unit table's "cm"
             if "’" in low:
                 low = low.replace("’", "'")
             if (

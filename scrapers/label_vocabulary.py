@@ -196,12 +196,12 @@ CJK_LABELS = {re.sub(r"[\W_]+", "", fold(k)): v for k, v in CJK_LABELS.items()}
 _CJK_KIND_TOKENS = {
     "dimensions": "寸法 サイズ 尺寸 外形寸法 外寸 크기 사이즈 치수",
     "weight": "重量 重さ 質量 质量 净重 淨重 무게 중량",
-    "length": "長さ 长度 長度 長 长 길이 着丈 丈",
-    "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭",
-    "height": "高さ 高度 高 높이",
+    "length": "長さ 长度 長度 長 长 길이 着丈 丈 全長 縦 たて",
+    "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭 全幅 横 よこ",
+    "height": "高さ 高度 高 높이 全高",
     "depth": "奥行き 奥行 深さ 深度 深 깊이",
     "diameter": "直径 直徑 지름",
-    "thickness": "厚さ 厚度 厚 두께",
+    "thickness": "厚さ 厚度 厚 두께 厚み",
 }
 _CJK_PACKAGE_TOKENS = "梱包 包装 包裝 パッケージ 外箱 発送 配送 出荷 毛重 포장 박스"
 _CJK_QUALIFIER_TOKENS = (

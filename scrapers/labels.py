@@ -135,6 +135,7 @@ def _classify(label: object) -> LabelInfo | None:
     if any(_names_a_capacity(m.group(0)) for m in _BRACKETS.finditer(text)):
         return None  # "Weight (maximum)": another configuration's or a rating, see classify_other
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
+    text = _EN_BOY.sub("width x length", text)  # Turkish "En x Boy" before "en" is read as a preposition
     text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
     folded = fold(text)
     squashed = re.sub(r"[\W_]+", "", folded)
@@ -142,6 +143,8 @@ def _classify(label: object) -> LabelInfo | None:
         kind, package = CJK_LABELS[squashed]
         return LabelInfo(kind, package, unit, shipping=_ships(package, [squashed]))
     if any(_is_cjk(ch) for ch in squashed):
+        if unit is None and (m := _TRAILING_UNIT.search(text)) and (length_unit(m.group(1)) or mass_unit(m.group(1))):
+            unit = m.group(1)  # "本体サイズ（H×W×D） mm"
         return _classify_cjk(squashed, unit)
     words = [w for w in re.split(r"[\W_]+", folded) if w]
     if not words or len(words) > _MAX_WORDS:
@@ -159,7 +162,11 @@ def _classify(label: object) -> LabelInfo | None:
             package = package or not negated
         elif word in NEGATIONS:
             negated = True
-        elif word in QUALIFIERS or length_unit(word) is not None or mass_unit(word) is not None:
+        elif word in QUALIFIERS:
+            continue
+        elif length_unit(word) is not None or mass_unit(word) is not None:
+            if len(word) >= 2:
+                unit = unit or word  # "Höhe cm", "Gewicht kg" (never "Size M": a garment size)
             continue
         elif _ORDER_WORD.fullmatch(word):
             continue  # "LxWxH", "ВхШхГ" written as one word
@@ -191,6 +198,8 @@ def _classify(label: object) -> LabelInfo | None:
     return None
 
 
+_TRAILING_UNIT = re.compile(r"(?<![A-Za-z])([A-Za-z]{2,3})\s*$")
+_EN_BOY = re.compile(r"\ben\s*[x×*/]\s*boy\b", re.IGNORECASE)
 #: Directions that do not change what a label measures: a wall light's "Depth of fitting from wall".
 _FROM_WALL = re.compile(r"\b(?:from|to|off)\s+(?:the\s+)?(?:wall|ceiling)\b", re.IGNORECASE)
 

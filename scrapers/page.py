@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import Any
 
+from kb.measures.units import units_pattern
 from scrapers.quantities import decimal_comma_for
 
 __all__ = [
@@ -327,8 +328,9 @@ def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]
 
 
 #: A measured number with one or two decimals and a unit: ``1,5 kg`` (decimal comma), ``1.5 kg`` (point).
-_COMMA_DECIMAL = re.compile(r"(?<![\d.,])\d{1,4},\d{1,2}\s?(?:mm|cm|m|kg|g|gr|lb|€)(?![\w])", re.IGNORECASE)
-_POINT_DECIMAL = re.compile(r"(?<![\d.,])\d{1,4}\.\d{1,2}\s?(?:mm|cm|m|kg|g|gr|lb|in|€|\$)(?![\w])", re.IGNORECASE)
+_MEASURED_UNIT = units_pattern("length", "mass")  # the words of the one unit table
+_COMMA_DECIMAL = re.compile(rf"(?<![\d.,])\d{{1,4}},\d{{1,2}}\s?(?:{_MEASURED_UNIT}|€)(?![\w])", re.IGNORECASE)
+_POINT_DECIMAL = re.compile(rf"(?<![\d.,])\d{{1,4}}\.\d{{1,2}}\s?(?:{_MEASURED_UNIT}|€|\$)(?![\w])", re.IGNORECASE)
 #: Lines read for the page's number forms (the specification is near the top; a page is not read twice).
 NUMBER_FORM_LINES = 4000
 

@@ -15,7 +15,7 @@ from kb.measures.numbers import DECIMAL_COMMA_LANGUAGES, DOT_GROUPED, decimal_co
 from kb.measures.numbers import NUMBER_PATTERN as _NUMBER
 from kb.measures.text import MAX_TEXT, clean_text
 from kb.measures.units import UNIT_PATTERN as _UNIT
-from kb.measures.units import length_unit, mass_unit, volume_unit
+from kb.measures.units import combine, is_smaller_unit, length_unit, lookup, mass_unit, volume_unit
 from scrapers.sizes import AXIS_LETTER_ROLES, Dims, parse_dims
 
 __all__ = [
@@ -35,15 +35,8 @@ __all__ = [
     "unit_hint",
 ]
 
-_POUNDS_OUNCES = re.compile(
-    r"(?<![\d.])((?>\d+(?:\.\d+)?))\s*(?:lbs?|pounds?)\.?,?\s*(?:and\s+)?((?>\d+(?:\.\d+)?))\s*(?:oz|ounces?)\b",
-    re.IGNORECASE,
-)
-# Amazon India's "1 kg 450 g" (and "1 kg 450 grams", "2 кг 300 г").
-_KILOS_GRAMS = re.compile(
-    r"(?<![\d.,])((?>\d+))\s*(?:kg|kgs|kilograms?|кг)\.?,?\s*(?:and\s+)?((?>\d{1,3}))\s*(?:g|gr|grams?|г)(?![^\W\d_])",
-    re.IGNORECASE,
-)
+# One mass in two units: "1 lb 2 oz", Amazon India's "1 kg 450 g" (and "1 kg 450 grams", "2 кг 300 г").
+_TWO_UNITS = re.compile(rf"(?P<a>{_NUMBER})\s*(?P<ua>{_UNIT}),?\s*(?:and\s+)?(?P<b>{_NUMBER})\s*(?P<ub>{_UNIT})")
 _QUANTITY_RE = re.compile(rf"(?P<n>{_NUMBER})\s*(?P<u>{_UNIT})?")
 _RANGE_RE = re.compile(rf"{_NUMBER}\s*(?:{_UNIT})?\s*(?:-|–|—|~|to|bis|a|à)\s*{_NUMBER}")
 
@@ -64,15 +57,31 @@ def unit_hint(label: str) -> str | None:
     return None
 
 
+def _mass_in_two_units(s: str, decimal_comma: bool | None) -> float | None:
+    """Grams of the first mass written in two units (:func:`kb.measures.units.combine`), -1.0 when it is
+    refused ("2 lb 20 oz": not one mass, and the first unit alone would not be what the page says), or
+    None when there is none ("1 kg 2 lb", "1.5 kg, 200 g" are two masses)."""
+    for m in _TWO_UNITS.finditer(s):
+        unit, sub_unit = lookup(m["ua"]), lookup(m["ub"])
+        if unit is None or sub_unit is None or unit.kind != "mass":
+            continue
+        value, sub_value = parse_number(m["a"], decimal_comma), parse_number(m["b"], decimal_comma)
+        if value is None or sub_value is None:
+            continue
+        one = combine(value, unit, sub_value, sub_unit)
+        if not isinstance(one, str):
+            return round(one * unit.factor, 6)
+        if is_smaller_unit(unit, sub_unit) and value == int(value):
+            return -1.0  # the units make one quantity, but the second value is a whole first unit or more
+    return None
+
+
 def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: bool | None) -> float | None:
     s = clean_text(text[:MAX_TEXT])
     if convert is mass_unit:
-        m = _POUNDS_OUNCES.search(s)
-        if m:
-            return round(float(m.group(1)) * 453.59237 + float(m.group(2)) * 28.349523125, 6)
-        m = _KILOS_GRAMS.search(s)
-        if m:
-            return round(float(m.group(1)) * 1000 + float(m.group(2)), 6)
+        grams = _mass_in_two_units(s, decimal_comma)
+        if grams is not None:
+            return grams if grams > 0 else None
     if _RANGE_RE.search(s):
         return None
     for m in _QUANTITY_RE.finditer(s):

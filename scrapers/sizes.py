@@ -9,14 +9,16 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
+from kb.measures.aliases import KINDS
 from kb.measures.numbers import NUMBER_PATTERN as _NUMBER
 from kb.measures.numbers import parse_number
 from kb.measures.text import MAX_TEXT, clean_text
 from kb.measures.units import UNIT_PATTERN as _UNIT
-from kb.measures.units import length_unit
+from kb.measures.units import length_unit, words_pattern
 
 __all__ = ["AXIS_LETTER_ROLES", "Dims", "parse_dims"]
 
+_LENGTHS = [name for name, kind in KINDS.items() if kind == "length"]
 _TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
 
 _DIMS_RE = re.compile(
@@ -26,7 +28,7 @@ _DIMS_RE = re.compile(
 )
 # An axis letter or word written before a number inside a dimensions value.
 _AXIS_PREFIX = re.compile(
-    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ|着丈|丈|(?i:length|width|height|depth|thickness|"
+    r"(?:(?<=^)|(?<=[\s(:;,*×✕xх]))(?:[LWHDBTPlwhdbtp]|長|长|寬|宽|高|深|厚|幅|奥行き?|高さ|長さ|着丈|丈|全長|全幅|全高|縦|横|厚み|(?i:length|width|height|depth|thickness|"
     r"länge|breite|höhe|tiefe|longueur|largeur|hauteur|profondeur|largo|ancho|alto|altura|profundidad))"
     r"\.?\s*[:=]?\s*(?:約|约)?\s*(?=\d)"
 )
@@ -70,6 +72,7 @@ _CJK_AXIS_ROLES = {
     "長": "length", "长": "length", "長さ": "length", "寬": "width", "宽": "width", "幅": "width",
     "高": "height", "高さ": "height", "深": "depth", "奥行": "depth", "奥行き": "depth", "厚": "thickness",
     "丈": "length", "着丈": "length",  # a curtain's or a garment's length
+    "全長": "length", "全幅": "width", "全高": "height", "縦": "length", "横": "width", "厚み": "thickness",
 }  # fmt: skip
 
 
@@ -106,7 +109,7 @@ def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool |
 
 _LETTERED = re.compile(
     rf"(?<![^\W_])(?P<axis>[HWDLBTØ⌀])\.?\s*[:=]?\s*(?P<n>{_NUMBER})"
-    r"(?:\s*(?:(?P<u>mm|cm|m|inches|inch|in|ft)(?![^\W\d_])|(?P<q>''|\")))?"
+    rf"(?:\s*(?:(?P<u>(?i:{words_pattern(*_LENGTHS)}))(?![^\W\d_])|(?P<q>''|\")))?"
 )
 _STANDALONE_X = re.compile(r"\bx\b")
 _LETTERED_GAP = re.compile(r"\s*(?:[,;/]|and|x)?\s*")
@@ -144,15 +147,19 @@ def _lettered_dims(s: str, default_unit: str | None, decimal_comma: bool | None)
 # "(L) 30 cm x (W) 20 cm", "30(W) x 20(D) x 10(H) mm": bracketed axis letters carry no value.
 _BRACKETED_AXIS = re.compile(r"\s*\(\s*[LWHDBTlwhdbt]\s*\)")
 # "30 x 20 x 10 (cm)": a unit in brackets after the last number.
-_BRACKETED_UNIT = re.compile(r"(?<=\d)\s*\(\s*(mm|cm|m|in|inch|inches|ft|см|мм)\.?\s*\)")
+_BRACKETED_UNIT = re.compile(rf"(?<=\d)\s*\(\s*({_UNIT})\s*\)")
 # "Abmessungen (B/H/T): 30/20/10 cm": three numbers separated by slashes (fractions are already decimals).
 _SLASHED = re.compile(rf"(?<![\d/])({_NUMBER})\s*/\s*({_NUMBER})\s*/\s*({_NUMBER})(?![\d/])")
+
+
+def _bracketed_unit(m: re.Match) -> str:
+    return f" {m.group(1)}" if length_unit(m.group(1)) is not None else m.group(0)
 
 
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
     s = clean_text(text[:MAX_TEXT])
     if "(" in s:
-        s = _BRACKETED_UNIT.sub(r" \1", _BRACKETED_AXIS.sub("", s))
+        s = _BRACKETED_UNIT.sub(_bracketed_unit, _BRACKETED_AXIS.sub("", s))
     if "/" in s:
         s = _SLASHED.sub(r"\1 x \2 x \3", s)
     if not _STANDALONE_X.search(s):

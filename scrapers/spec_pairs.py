@@ -83,8 +83,10 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
         starts.append(label_start)
         prev_end = sep.end()
     out: list[tuple[str, str, LabelInfo]] = []
+    value_starts = {start for _, _, start in labelled}
+    recognised = [sep.end() in value_starts for sep in seps]
     for label, info, value_start in labelled:
-        end = next((s for s in starts if s >= value_start), len(text))
+        end = _value_end(text, value_start, starts, recognised)
         value = text[value_start:end].strip(" ;,|")
         if DIGIT.search(value):
             out.append((label, value, info))
@@ -108,6 +110,24 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
 #: ``cm/inch`` are not split.
 _FIELD_SLASH = re.compile(r"\s*/\s*(?=[^\W\d_]{2})(?![^\W\d_]{1,6}\b\s*$)")
 _CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
+
+
+_MEASURED = re.compile(r"\d\s*([^\W\d_]{1,12}\.?|[\"'″])(?![^\W_])")
+
+
+def _measured(text: str) -> bool:
+    """Whether ``text`` holds a number followed by a unit (``2 kg``, ``30"``)."""
+    return any(is_unit(m.group(1).rstrip(".")) or m.group(1) in "\"'″" for m in _MEASURED.finditer(text))
+
+
+def _value_end(text: str, value_start: int, starts: list[int], recognised: list[bool]) -> int:
+    """Where a value that starts at ``value_start`` ends: where the next label starts. An unrecognised
+    "label" before a separator ends it only once the value holds a measured number (``Weight: Surface
+    Pro 9 i5, i7: 879 g`` keeps ``i7: 879 g``; ``Weight: 2 kg Colour: red`` stops before ``Colour``)."""
+    for start, known in zip(starts, recognised, strict=True):
+        if start >= value_start and (known or _measured(text[value_start:start])):
+            return start
+    return len(text)
 
 
 def _label_then_number(text: str) -> tuple[str, str, LabelInfo] | None:

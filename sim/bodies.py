@@ -13,7 +13,8 @@ sim/world.py poses the body on the table. The mapping (sim/PHYSICS.md, "Object g
   along ``a`` at the rim's height.
 * **Round objects** (cans, bottles, jars, cups, glasses, plates, bowls, coins, rolls, candles, ...; and any
   prism or long object whose two smaller sides are within 20 %): a cylinder along the odd dimension
-  (along ``a`` when ``b`` ~ ``c``: a bottle, a pen; along ``c`` when ``a`` ~ ``b``: a tuna can, a plate).
+  (along ``a`` when ``b`` ~ ``c``: a bottle, a pen; along ``c`` when ``a`` ~ ``b`` and the shape is not
+  prism: a tuna can, a plate, a coin; a prism can with ``a`` ~ ``b`` is a square tin).
 * **Radial** objects: a sphere (all sides within 20 %), a disk (two larger sides within 20 %) or an
   ellipsoid. **Boxes, cartons, blocks, bricks, books, boards** stay boxes whatever their ratios; so do
   thin, compact and other objects.
@@ -218,7 +219,7 @@ def _single(sizes: dict[str, float], shape: str, words: set[str]) -> Body:
     if not square_word:
         if (shape in ("prism", "long") or round_word) and c >= ROUND_RATIO * b:
             return _cylinder("a", sizes)
-        if round_word and b >= ROUND_RATIO * a:
+        if round_word and shape != "prism" and b >= ROUND_RATIO * a:  # a prism is square: a spam can
             return _cylinder("c", sizes)
     return Body("box", (Part("body", "box", half),))
 

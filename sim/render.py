@@ -24,7 +24,7 @@ from sim.grasps import GraspPlan  # noqa: E402
 from sim.trial import run_trial  # noqa: E402
 from sim.world import TrialWorld, build_world  # noqa: E402
 
-__all__ = ["encode_png", "render_trial", "render_world"]
+__all__ = ["encode_png", "grasp_camera", "render_trial", "render_world", "visible_fractions"]
 
 #: Camera azimuth (degrees) per approach.
 VIEW_AZIMUTH_DEG = {"top": 155.0, "side": 240.0, "edge": 110.0}
@@ -85,12 +85,9 @@ def _contact_centre(world: TrialWorld) -> np.ndarray:
     return 0.5 * data.xpos[world.object_body] + 0.5 * data.xpos[world.palm_body]
 
 
-def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> np.ndarray:
-    """An RGB image (height x width x 3, uint8) of the world's current state, looking at the object
-    from slightly above, framed to show the hand around it."""
-    model, data = world.model, world.data
-    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
-    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+def grasp_camera(world: TrialWorld) -> mujoco.MjvCamera:
+    """The free camera of the pictures: aimed at the grasp, framed on the object (sim/PHYSICS.md)."""
+    data = world.data
     cam = mujoco.MjvCamera()
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
     # Aimed at the grasp, with some of the object: a 45 cm pan seen whole leaves the hand a few pixels.
@@ -102,18 +99,46 @@ def render_world(world: TrialWorld, *, width: int = 480, height: int = 360) -> n
     # index side, for a side grasp from the fingers' side of the object.
     cam.azimuth = VIEW_AZIMUTH_DEG.get(world.approach, 155.0)
     cam.elevation = EDGE_ELEVATION if world.approach == "edge" else -22.0
+    return cam
+
+
+def render_world(
+    world: TrialWorld, *, width: int = 480, height: int = 360, segmentation: bool = False
+) -> np.ndarray:
+    """An RGB image (height x width x 3, uint8) of the world's current state from :func:`grasp_camera`.
+    With ``segmentation``, instead the MuJoCo object id and type of every pixel (height x width x 2)."""
+    model, data = world.model, world.data
+    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
+    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+    cam = grasp_camera(world)
     _headless_backend()
     try:
         renderer = mujoco.Renderer(model, height=height, width=width)
     except Exception as exc:
         raise SimulationError(f"could not start MuJoCo's renderer ({exc}); {GL_HINT}") from exc
     try:
+        if segmentation:
+            renderer.enable_segmentation_rendering()
         renderer.update_scene(data, camera=cam)
         return renderer.render().copy()
     except Exception as exc:
         raise SimulationError(f"MuJoCo rendering failed ({exc}); {GL_HINT}") from exc
     finally:
         renderer.close()
+
+
+def visible_fractions(world: TrialWorld, *, width: int = 240, height: int = 180) -> dict[str, float]:
+    """Fractions of the picture's pixels showing the hand and the object (a segmentation render with the
+    pictures' camera): what a test asks of a picture in which the grasp is visible."""
+    seg = render_world(world, width=width, height=height, segmentation=True)
+    ids, types = seg[..., 0], seg[..., 1]
+    geoms = np.where(types == int(mujoco.mjtObj.mjOBJ_GEOM), ids, -1)
+    valid = geoms >= 0
+    hand = np.zeros(geoms.shape, dtype=bool)
+    obj = np.zeros(geoms.shape, dtype=bool)
+    hand[valid] = world.is_hand[geoms[valid]]
+    obj[valid] = world.is_object[geoms[valid]]
+    return {"hand": float(hand.mean()), "object": float(obj.mean())}
 
 
 def encode_png(image: np.ndarray) -> bytes:

@@ -157,6 +157,78 @@ def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
 
 
+#: ``GraspPlan.params["hold"]`` for a grasp of the object's handle (sim/bodies.py ``Handle``) rather than its
+#: body: a loop handle's grip bar from the side, a pan's handle from above near its end.
+HOLD_HANDLE = "handle"
+#: A pan's handle is held this far (cm) from its end to the middle of the palm (half the palm and a margin).
+HANDLE_END_MARGIN_CM = H.PALM_HALF_CM[0] + 0.5
+
+
+@dataclass(frozen=True)
+class _Layout:
+    """Where the object lies and where the hand grasps it (cm, world axes; relative to the stated box's
+    centre): the approach as built, the dims' world axes and signs, whether it is a flat object at a table
+    edge, the box's extents, the grasped part's centre and extents, and the grasped width."""
+
+    approach: str
+    axes: dict[str, int]
+    signs: dict[str, int]
+    flat: bool
+    ext: np.ndarray
+    grip_centre: np.ndarray
+    grip_ext: np.ndarray
+    width: float
+
+
+def _extents(obj: ObjectModel, axes: dict[str, int]) -> np.ndarray:
+    ext = np.zeros(3)
+    for dim, ax in axes.items():
+        ext[ax] = obj.extent_cm(dim)
+    return ext
+
+
+def _layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    if plan.params.get("hold") == HOLD_HANDLE:
+        return _handle_layout(obj, plan)
+    flat = _is_flat(obj, plan)
+    approach = "edge" if flat else plan.approach
+    upright = None if flat else _upright_placement(obj, plan)
+    signs: dict[str, int] = {}
+    if upright is not None:
+        axes, signs = upright
+    else:
+        axes = _edge_placement(obj, plan) if flat else _placement(obj, plan)
+    ext = _extents(obj, axes)
+    grip_centre, grip_ext = _grasped_body(obj, axes, pose_rotation(axes, signs, free_dim(obj)))
+    return _Layout(approach, axes, signs, flat, ext, grip_centre, grip_ext, ext[2] if flat else ext[1])
+
+
+def _handle_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    """The object standing as it is used, its handle pointing to +x, towards the hand: a loop handle's grip
+    bar (vertical) wrapped from the side, a pan's handle (along x) wrapped from above near its end. The
+    grasped width is the handle's, across world y."""
+    body = obj.body
+    handle = body.handle if body is not None else None
+    if handle is None:
+        raise SimulationError(f"{obj.name!r} has no handle to hold (sim/bodies.py builds none for it)")
+    wanted = "side" if handle.style == "loop" else "top"
+    if plan.approach != wanted:
+        raise SimulationError(f"a {handle.style} handle is held from the {wanted}, not the {plan.approach}")
+    across = next(d for d in "abc" if d not in (body.up, handle.dim))
+    axes, signs = {handle.dim: 0, across: 1, body.up: 2}, {handle.dim: 1}
+    pose = pose_rotation(axes, signs, free_dim(obj))
+    grip = next(p for p in body.parts if p.name == "handle_grip")
+    centre = pose @ np.asarray(grip.pos_cm)
+    grip_ext = np.zeros(3)
+    for dim, ax in axes.items():
+        grip_ext[ax] = grip.extent_cm(dim)
+    if handle.style == "long":  # near the end: the part from the rim out is longer than the palm
+        end = centre[0] + grip_ext[0] / 2.0
+        centre[0] = max(centre[0], end - HANDLE_END_MARGIN_CM)
+    ext = _extents(obj, axes)
+    return _Layout(plan.approach, axes, signs, False, ext, centre, grip_ext, float(grip_ext[1]))
+
+
 def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
     """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
     if plan.grasp_type not in GRASP_TYPES:
@@ -165,20 +237,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         raise SimulationError(f"unknown approach {plan.approach!r}: expected top or side")
     model_obj = obj if isinstance(obj, ObjectModel) else object_model(obj)
     rng = np.random.default_rng(seed)
-    flat = _is_flat(model_obj, plan)
-    approach = "edge" if flat else plan.approach
-    upright = None if flat else _upright_placement(model_obj, plan)
-    signs: dict[str, int] = {}
-    if upright is not None:
-        axes, signs = upright
-    else:
-        axes = _edge_placement(model_obj, plan) if flat else _placement(model_obj, plan)
-    ext = np.zeros(3)
-    for dim, ax in axes.items():
-        ext[ax] = model_obj.extent_cm(dim)
-    pose = pose_rotation(axes, signs, free_dim(model_obj))
-    grip_centre, grip_ext = _grasped_body(model_obj, axes, pose)
-    width = ext[2] if flat else ext[1]
+    lay = _layout(model_obj, plan)
+    approach, axes, signs, flat = lay.approach, lay.axes, lay.signs, lay.flat
+    ext, grip_centre, grip_ext, width = lay.ext, lay.grip_centre, lay.grip_ext, lay.width
     targets = H.grasp_targets(plan, width)
     program = program_for(plan.grasp_type)
     wrap = program.control == "wrap"
@@ -211,46 +272,45 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         model = spec.compile()
     except Exception as exc:
         raise SimulationError(f"could not compile the trial model: {exc}") from exc
-    data = mujoco.MjData(model)
-
-    wrist_act = np.array([model.actuator(n).id for n in H.WRIST_ACTUATOR_NAMES])
-    digit_act = np.array([model.actuator(n).id for n in H.ACTUATOR_NAMES])
-    wrist_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.WRIST_JOINT_NAMES])
-    digit_qpos = np.array([model.jnt_qposadr[model.joint(n).id] for n in H.JOINT_NAMES])
-    object_body = model.body("object").id
-    # Hand geoms: every geom on a body other than the world (the table) and the object.
-    is_hand = (model.geom_bodyid != 0) & (model.geom_bodyid != object_body)
-    is_object = model.geom_bodyid == object_body
+    world = _trial_world(model, model_obj, plan, targets, approach, approach_dir)
+    data = world.data
 
     noise = np.array([rng.normal(0, 0.001), rng.normal(0, 0.001), 0.0])
     open_q = targets.open + rng.normal(0, 0.01, size=targets.open.shape)
-    data.qpos[digit_qpos] = open_q
+    data.qpos[world.digit_qpos] = open_q
     if not wrap:
         # Round objects bulge above their equator into the fingers that reach down to it: pinch higher,
         # in 5 mm steps up to 1 cm below the top, until the pre-shaped hand clears the object.
         backoff = _precision_backoff_m(
-            model, data, is_hand, is_object, wrist_qpos, approach_dir, grip_depth - 1.0
+            model, data, world.is_hand, world.is_object, world.wrist_qpos, approach_dir, grip_depth - 1.0
         )
         noise = noise + backoff * approach_dir
-    data.qpos[wrist_qpos] = noise
-    data.ctrl[digit_act] = open_q
-    data.ctrl[wrist_act] = noise
-    world = TrialWorld(
+    data.qpos[world.wrist_qpos] = noise
+    data.ctrl[world.digit_act] = open_q
+    data.ctrl[world.wrist_act] = noise
+    return world
+
+
+def _trial_world(model, obj: ObjectModel, plan: GraspPlan, targets, approach: str, approach_dir) -> TrialWorld:
+    """The compiled model with fresh data and the indices a trial reads."""
+    object_body = model.body("object").id
+    return TrialWorld(
         model=model,
-        data=data,
-        obj=model_obj,
+        data=mujoco.MjData(model),
+        obj=obj,
         plan=plan,
         targets=targets,
         approach_dir=approach_dir,
         object_body=object_body,
         palm_body=model.body("palm").id,
-        is_hand=is_hand,
+        # Hand geoms: every geom on a body other than the world (the table) and the object.
+        is_hand=(model.geom_bodyid != 0) & (model.geom_bodyid != object_body),
         object_geom=model.geom("object_geom").id,
-        is_object=is_object,
-        wrist_act=wrist_act,
-        digit_act=digit_act,
-        wrist_qpos=wrist_qpos,
-        digit_qpos=digit_qpos,
+        is_object=model.geom_bodyid == object_body,
+        wrist_act=np.array([model.actuator(n).id for n in H.WRIST_ACTUATOR_NAMES]),
+        digit_act=np.array([model.actuator(n).id for n in H.ACTUATOR_NAMES]),
+        wrist_qpos=np.array([model.jnt_qposadr[model.joint(n).id] for n in H.WRIST_JOINT_NAMES]),
+        digit_qpos=np.array([model.jnt_qposadr[model.joint(n).id] for n in H.JOINT_NAMES]),
         approach=approach,
         geom_digit={
             g: model.geom(g).name.split("_")[0]
@@ -258,7 +318,6 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
             if model.geom(g).name.split("_")[0] in H.DIGITS
         },
     )
-    return world
 
 
 def _add_scenery(spec: mujoco.MjSpec) -> None:

@@ -96,6 +96,7 @@ def _types(m) -> Counter:
         (_rec("milk carton", 23, 7, 7, 1000, "prism", "paper"), "box", {"box": 1}),  # a carton is square
         (_rec("wood block", 20, 8.5, 8.5, 600, "prism", "wood"), "box", {"box": 1}),
         (_rec("gelatin box", 8.5, 7.3, 2.8, 97, "prism", "paper"), "box", {"box": 1}),  # a ~ b, yet a box
+        (_rec("potted meat can", 9.7, 8.2, 5, 370, "prism", "metal"), "box", {"box": 1}),  # a square tin
         (_rec("hardcover book", 24, 16, 3, 700, "thin", "paper"), "box", {"box": 1}),
         (_rec("calculator", 15.4, 7.9, 1.5, 116, "thin"), "box", {"box": 1}),
     ],
@@ -223,3 +224,35 @@ def test_the_hand_feels_every_part_of_a_composite_object():
     parts = {int(world.data.contact.geom1[k]) for k in idx} | {int(world.data.contact.geom2[k]) for k in idx}
     assert parts - {world.object_geom} - set(hand_geoms.tolist())  # parts other than the base disk
     assert sum(world.digit_forces().values()) > 0
+
+
+def _by_handle(grasp_type="heavy_wrap_small_diameter", approach="top") -> GraspPlan:
+    from sim.world import HOLD_HANDLE
+
+    return GraspPlan(grasp_type, "power", "b", 4.0, approach, 60.0, 1.0, params={"hold": HOLD_HANDLE})
+
+
+def test_a_pan_held_by_its_handle_is_lifted_by_the_handle_alone():
+    from sim.trial import run_trial
+
+    world = build_world(PAN, _by_handle())
+    result = run_trial(PAN, _by_handle(), world=world, stop_after="hold")
+    assert result.lifted, result.reason
+    idx, hand_geoms = world.object_contacts()
+    touched = {int(world.data.contact.geom1[k]) for k in idx} | {int(world.data.contact.geom2[k]) for k in idx}
+    assert touched - set(hand_geoms.tolist()) == {world.model.geom("object_handle_grip").id}
+    handle_x = world.data.geom_xpos[world.model.geom("object_handle_grip").id][0]
+    disk_x = world.data.geom_xpos[world.object_geom][0]
+    assert handle_x > disk_x  # the handle points at the hand (+x), the pan hangs beyond it
+
+
+def test_holding_a_handle_needs_one_and_its_approach():
+    from kb.errors import SimulationError
+
+    bottle = _rec("water bottle", 21.5, 7.2, 7.2, 660, "prism", "metal")
+    with pytest.raises(SimulationError, match="has no handle"):
+        build_world(bottle, _by_handle())
+    with pytest.raises(SimulationError, match="held from the top, not the side"):
+        build_world(PAN, _by_handle(approach="side"))
+    with pytest.raises(SimulationError, match="held from the side, not the top"):
+        build_world(MUG, _by_handle(approach="top"))

@@ -128,3 +128,27 @@ def test_decimals_parse_back(d) -> None:
 def test_any_text_is_a_number_or_none(text: str) -> None:
     value = parse_number(text)
     assert value is None or value >= 0
+
+
+# --- forms gained from the shared reader (kb/measures): what the extractor knew, the parser now reads ---
+@pytest.mark.parametrize(
+    ("text", "feature", "value"),
+    [("it weighs 0,500 kg", "mass_g", 500.0),  # was 500 kg: "0,500" is never five hundred
+     ("it weighs 1.250,5 g", "mass_g", 1250.5),  # was 5 g
+     ("it weighs 1.000.000 mg", "mass_g", 1000.0),
+     ("a box １５ｃｍ long", "a_cm", 15.0),  # full-width digits and unit
+     ("a box 15 cmt long", "a_cm", 15.0)],  # the UN/CEFACT code of the one table
+)  # fmt: skip
+def test_the_parser_reads_the_page_forms(text: str, feature: str, value: float) -> None:
+    from recall.parser import parse
+
+    assert parse(text).values()[feature] == pytest.approx(value)
+
+
+def test_the_parser_does_not_join_metric_and_imperial_units() -> None:
+    from recall.parser import parse
+
+    assert parse("it weighs 1 kg 2 lb").values()["mass_g"] == pytest.approx(1000.0)  # was 1907 g
+    refused = parse("it weighs 1.5 lb 2 oz").refused
+    assert refused and "not a whole number before ounce" in refused[0].reason
+    assert parse("it weighs 1 lb 2 oz").values()["mass_g"] == pytest.approx(510.291, rel=1e-4)

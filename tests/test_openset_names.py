@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from recall.engine import Match, Recaller, _same_material
+from recall.engine import Recaller
 from recall.names import GENERIC_NOUNS
 from recall.openset import (
     OPEN_SET_NAMED_THRESHOLD,
@@ -18,6 +18,7 @@ from recall.openset import (
     described_noun,
     foreign_modifier,
     is_open_set,
+    material_agrees,
 )
 from recall.subject import subject_phrase
 
@@ -84,16 +85,12 @@ def test_a_garlic_bulb_and_a_measuring_cup_are_open_set():
         assert res.foreign_modifier in {"garlic", "measuring"}
 
 
-def _match(material):
-    return Match("spoon", 0.0, 0.0, {}, True, {"material": material})
-
-
-def test_same_material_each_condition():
-    assert not _same_material(("wooden", "spoon"), _match("metal"))
-    assert _same_material(("steel", "spoon"), _match("metal"))
-    assert _same_material(("spoon",), _match("metal"))  # no material before the head
-    assert _same_material(("wooden", "spoon"), _match(None))  # the object's material is unknown
-    assert _same_material(("spoon", "wooden"), _match("metal"))  # only words before the head count
+def test_material_agrees_each_condition():
+    assert not material_agrees(("wooden", "spoon"), "metal")
+    assert material_agrees(("steel", "spoon"), "metal")
+    assert material_agrees(("spoon",), "metal")  # no material before the head
+    assert material_agrees(("wooden", "spoon"), None)  # the object's material is unknown
+    assert material_agrees(("spoon", "wooden"), "metal")  # only words before the head count
 
 
 def test_a_wooden_spoon_is_not_the_metal_spoon_of_a_catalog_without_wooden_spoons():

@@ -381,3 +381,40 @@ def test_slashes_without_a_length_unit_are_not_dimensions():
 )
 def test_kilograms_and_grams(text, grams):
     assert parse_mass(text) == grams
+
+
+# --- forms gained from the shared reader (kb/measures): what the parser knew, the extractor now reads ---
+@pytest.mark.parametrize(
+    ("text", "cm"),
+    [("twelve inches", 30.48), ("one-inch thick", 2.54), ("a half inch", 1.27), ("twenty one centimeters", 21.0),
+     ("five feet three inches", 160.02), ("5 FT 3 IN", 160.02), ("5 pies 3 pulgadas", 160.02), ("6 cms", 6.0),
+     ("one in ten", None), ("one size fits all", None), ("zero cm", None)],
+)  # fmt: skip
+def test_lengths_in_words_and_more_unit_words(text, cm):
+    assert parse_length(text) == (pytest.approx(cm) if cm is not None else None)
+
+
+@pytest.mark.parametrize(
+    ("text", "grams"),
+    [("Two and a half pounds", 1133.980925), ("ten kilos", 10000.0), ("fifteen hundred grams", 1500.0),
+     ("1 lb 2 oz", 510.291416), ("1 kg 450 grams", 1450.0), ("2 кг 300 г", 2300.0), ("1 kg, 450 g", 1450.0),
+     ("1 kg 2 lb", 1000.0),  # metric and imperial: two masses, the first is read
+     ("1.5 kg, 200 g", 1500.0),  # not whole before the second unit: two masses
+     ("2 lb 20 oz", None), ("1 kg 1000 g", None), ("500 gms", 500.0)],
+)  # fmt: skip
+def test_masses_in_words_and_in_two_units(text, grams):
+    assert parse_mass(text) == (pytest.approx(grams) if grams is not None else None)
+
+
+def test_volume_words_of_the_one_table_are_never_sizes():
+    assert parse_length("2 cups", "cm") is None  # was 2 cm: "cups" was an unknown word
+    assert parse_mass("500 cc", "g") is None
+
+
+def test_units_in_brackets_and_after_axis_letters_come_from_the_table():
+    assert parse_dims("30 x 20 x 10 (mm)")[0].values_cm == (3.0, 2.0, 1.0)
+    assert parse_dims("30 x 20 x 10 (см)")[0].values_cm == (30.0, 20.0, 10.0)
+    assert parse_dims("30 x 20 x 10 (kg)") == []  # not a length unit
+    lettered = parse_dims("H 30 CM, W 20 CM")[0]
+    assert (lettered.values_cm, lettered.roles) == ((30.0, 20.0), ("height", "width"))
+    assert clean_text('20 ס"מ') == "20 cm" and clean_text("3 ק״ג") == "3 kg"

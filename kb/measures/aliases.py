@@ -18,6 +18,10 @@ KINDS: dict[str, str] = {
     "fluid_ounce": "volume", "gallon": "volume", "cup": "volume",
 }  # fmt: skip
 
+#: The pint units of the imperial system; the others are metric. One quantity is never written in both
+#: ("1 kg 2 lb" is two quantities).
+IMPERIAL: frozenset[str] = frozenset({"inch", "foot", "pound", "ounce", "fluid_ounce", "gallon", "cup"})
+
 #: pint unit name -> language -> the words (space-separated; ``_`` stands for a space inside a word).
 ALIASES: dict[str, dict[str, str]] = {
     "millimeter": {
@@ -25,7 +29,7 @@ ALIASES: dict[str, dict[str, str]] = {
         "en": "millimeter millimeters millimetre millimetres",
         "fr": "millimètre millimètres", "es": "milímetro milímetros",
         "it": "millimetri millimetro", "pl": "milimetr milimetrów", "cs": "milimetrů", "tr": "milimetre",
-        "ru": "мм", "zh": "毫米 公釐", "ja": "ミリ ミリメートル", "ar": "مم ملم",
+        "ru": "мм", "zh": "毫米 公釐", "ja": "ミリ ミリメートル", "ar": "مم ملم", "he": 'מ"מ',
     },
     "centimeter": {
         "": "cm cmt cms",
@@ -33,7 +37,7 @@ ALIASES: dict[str, dict[str, str]] = {
         "de": "zentimeter", "fr": "centimètre centimètres", "es": "centímetro centímetros",
         "it": "centimetri centimetro", "pl": "centymetr centymetrów", "cs": "centimetrů",
         "tr": "santim santimetre", "ru": "см сантиметр сантиметров", "zh": "公分 厘米 釐米",
-        "ja": "センチ センチメートル", "ar": "سم سنتيمتر",
+        "ja": "センチ センチメートル", "ar": "سم سنتيمتر", "he": 'ס"מ',
     },
     "meter": {
         "": "m mtr",
@@ -69,7 +73,7 @@ ALIASES: dict[str, dict[str, str]] = {
         "de": "kilogramm", "fr": "kilogramme kilogrammes", "es": "kilogramo kilogramos",
         "it": "chilogrammo chilogrammi", "pt": "quilograma quilogramas quilo quilos",
         "pl": "kilogramów kilogramy", "cs": "kilogramů", "ru": "килограмм килограмма килограммов кило кг кгр",
-        "zh": "公斤 千克", "ja": "キログラム キロ", "ar": "كجم كغ كيلو كيلوغرام", "he": "קילו",
+        "zh": "公斤 千克", "ja": "キログラム キロ", "ar": "كجم كغ كيلو كيلوغرام", "he": 'קילו ק"ג',
     },
     "pound": {
         "": "lb lbs lbr",

@@ -25,6 +25,7 @@ __all__ = [
     "VULGAR_FRACTIONS",
     "decimal_comma_for",
     "digits_value",
+    "fold_width",
     "format_decimal",
     "parse_number",
 ]
@@ -37,7 +38,9 @@ NUMBER_PATTERN = r"(?:(?<![\d.,])(?>\d+(?:[.,]\d+)*)|(?<![^\s(:])(?>\.\d+))"
 #: after it, so a failed match backs off one group and succeeds.
 DIGITS_PATTERN = (
     r"\d+(?:\.\d+)?(?:[eE]|\*\*|\^)[+-]?\d+"  # scientific notation and powers: 1.5e2, 10**3, 10^3
-    r"|\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)|\d+[.,]\d+|\d+|\.\d+"
+    r"|\d+/\d+|\d{1,3}(?:,\d{3})+(?:\.\d+)?(?!\d)"
+    r"|\d{1,3}(?:\.\d{3})+,\d+(?!\d)|\d{1,3}(?:\.\d{3}){2,}(?!\d)"  # 1.250,5 and 1.000.000
+    r"|\d+[.,]\d+|\d+|\.\d+"
 )
 #: Unicode vulgar fractions, alone ("½") or after digits ("7½").
 VULGAR_FRACTIONS: dict[str, float] = {
@@ -91,6 +94,14 @@ def format_decimal(value: float) -> str:
     if "." in text and len(text.split(".")[1]) == 3:
         text += "0"
     return text
+
+
+_FULL_WIDTH = {c: c - 0xFEE0 for c in range(0xFF01, 0xFF5F)}
+
+
+def fold_width(text: str) -> str:
+    """Full-width forms (``１５ｃｍ``) as ASCII (``15cm``), one character for one: positions are kept."""
+    return text if text.isascii() else text.translate(_FULL_WIDTH)
 
 
 def parse_number(text: str, decimal_comma: bool | None = None) -> float | None:

@@ -13,9 +13,20 @@ from __future__ import annotations
 import re
 import unicodedata
 
+from kb.measures.aliases import PARSER_LANGUAGES
 from kb.measures.numbers import VULGAR_FRACTIONS as _VULGAR_VALUES
 from kb.measures.numbers import format_decimal
-from kb.measures.units import length_unit
+from kb.measures.units import (
+    aliases_of,
+    combine,
+    length_unit,
+    lookup,
+    symbol,
+    unit_table,
+    unit_words,
+    words_pattern,
+)
+from kb.measures.words import FRACTION_WORDS, MAGNITUDE_WORDS, NUMBER_WORDS, number_value
 
 __all__ = ["MAX_TEXT", "clean_text"]
 
@@ -31,8 +42,11 @@ _INVISIBLE = dict.fromkeys(
     None,
 )
 # Hebrew unit abbreviations are written with a gershayim (or a plain double quote) inside: ס"מ = cm.
-_HEBREW_UNIT_NAMES = {"סמ": "cm", "ממ": "mm", "קג": "kg"}
-_HEBREW_UNITS = re.compile(r"(?<![\u0590-\u05ff])([סמק][\"\u05f4][מג])(?![\u0590-\u05ff])")
+_HEBREW_UNITS = re.compile(
+    r"(?<![\u0590-\u05ff])("
+    + "|".join(w.replace('"', '[\"\u05f4]') for w in unit_words() if '"' in w and w != '"')
+    + r")(?![\u0590-\u05ff])"
+)
 _TIMES_SIGN = re.compile(r"(\d\s*)([^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)")
 _SPACES = re.compile(r"[\s\u00a0\u2000-\u200a\u202f\u205f\u3000]+")
 
@@ -48,6 +62,8 @@ def clean_text(text: object) -> str:
     if _HAS_VULGAR.search(text):
         text = _VULGAR_RE.sub(_vulgar, text)  # before NFKC, which would write "23½" as "231⁄2"
     text = unicodedata.normalize("NFKC", text).replace("\u2032\u2032", '"')  # NFKC writes ″ as ′′
+    if _HAS_NUMBER_WORD.search(text):
+        text = _SPELLED.sub(_spelled, text)  # "twelve inches", "two and a half pounds"
     if "\\" in text or "\u201d" in text or "\u201c" in text:
         # an inch mark escaped inside embedded JSON (12\" x 8\") or written as a curly quote (40” x 28”)
         text = _QUOTED_INCH.sub('"', text.replace('\\"', '"'))
@@ -56,12 +72,10 @@ def clean_text(text: object) -> str:
         text = _FRACTION.sub(_fraction, text)
     if "'" in text or "\u2019" in text:
         text = _APOSTROPHE_THOUSANDS.sub(lambda m: re.sub(r"['\u2019]", "", m.group(0)), text)
-    if "'" in text or "\u2032" in text or "f" in text:
+    if _FOOT_HINT.search(text):
         text = _FEET_INCHES.sub(_feet_inches, text)
     if "\u05f4" in text or '"' in text:
-        text = _HEBREW_UNITS.sub(
-            lambda m: _HEBREW_UNIT_NAMES.get(m.group(1)[0] + m.group(1)[2], m.group(1)), text
-        )
+        text = _HEBREW_UNITS.sub(_hebrew_unit, text)
     text = _SPACES.sub(" ", text).strip()
     # Cyrillic х/Х and other times signs after a number (and maybe a unit or letter) and before a number.
     text = _TIMES_SIGN.sub(_times, text)
@@ -83,9 +97,10 @@ _FRACTION = re.compile(
 )
 # Swiss and Liechtenstein thousands: "1'200 g", "CHF 1'249.00".
 _APOSTROPHE_THOUSANDS = re.compile(r"(?<![\d'\u2019.,])\d{1,3}(?:['\u2019]\d{3})+(?![\d'\u2019])")
+_FOOT_HINT = re.compile(rf"['\u2032]|(?i:{words_pattern('foot')})")
 _FEET_INCHES = re.compile(
-    r"(?<![\d.,])(\d{1,3}) ?(?:'(?!')|\u2032(?!\u2032)|ft\b\.?|feet\b|foot\b)[ -]?"
-    r"(\d{1,2}(?:\.\d+)?) ?(?:''|\"|in\b\.?|inch(?:es)?\b)"
+    rf"(?<![\d.,])(\d{{1,3}}) ?(?:'(?!')|\u2032(?!\u2032)|(?i:{words_pattern('foot')})\b\.?)[ -]?"
+    rf"(\d{{1,2}}(?:\.\d+)?) ?(?:''|\"|(?i:{words_pattern('inch')})\b\.?)"
 )
 
 
@@ -93,6 +108,26 @@ _FEET_INCHES = re.compile(
 _QUOTED_INCH = re.compile(r"(?<=\d)\s?[\u201c\u201d]")
 
 _BY = re.compile(r"(\d(?:\s?(?:''|[\"″]|[a-zA-Z]{1,6}\.?))?) by (?=\d)")
+
+
+# English number words right before an English length or mass unit of two letters or more ("in" and
+# one-letter symbols are too often words: "one in ten", "two m...").
+_NUMBER_WORD = "|".join(sorted({*NUMBER_WORDS, *MAGNITUDE_WORDS, *FRACTION_WORDS}, key=lambda w: (-len(w), w)))
+_SPELLED_UNIT = "|".join(
+    re.escape(w)
+    for w in sorted({*aliases_of("length", PARSER_LANGUAGES), *aliases_of("mass", PARSER_LANGUAGES)}, key=lambda w: (-len(w), w))
+    if len(w) > 1 and w != "in" and w.isalpha()
+)
+_HAS_NUMBER_WORD = re.compile(rf"(?i)(?<![^\W\d_])(?:{_NUMBER_WORD})(?![^\W\d_])")
+_SPELLED = re.compile(
+    rf"(?i)(?<![\w-])((?:an?\s+)?(?:{_NUMBER_WORD})(?:(?:\s+|-)(?:(?:and|an?)\s+)*(?:{_NUMBER_WORD}))*)"
+    rf"\s*-?\s*({_SPELLED_UNIT})(?![^\W\d_])"
+)
+
+
+def _spelled(m: re.Match) -> str:
+    value = number_value(re.split(r"[\s-]+", m.group(1).lower()))
+    return m.group(0) if value is None or value <= 0 else f"{format_decimal(value)} {m.group(2)}"
 
 
 def _vulgar(m: re.Match) -> str:
@@ -115,10 +150,16 @@ def _fraction(m: re.Match) -> str:
 
 
 def _feet_inches(m: re.Match) -> str:
-    inches = float(m.group(2))
-    if inches >= 12:
-        return m.group(0)
-    return format_decimal(int(m.group(1)) * 12 + inches) + '"'
+    table = unit_table()
+    feet = combine(int(m.group(1)), table["ft"], float(m.group(2)), table["in"])
+    if isinstance(feet, str):
+        return m.group(0)  # "5' 12\"" is not one length
+    return format_decimal(feet * 12) + '"'
+
+
+def _hebrew_unit(m: re.Match) -> str:
+    unit = lookup(m.group(1).replace("\u05f4", '"'))
+    return symbol(unit) if unit is not None else m.group(0)
 
 
 def _times(m: re.Match) -> str:

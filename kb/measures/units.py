@@ -22,6 +22,7 @@ import argparse
 import functools
 import json
 import math
+import re
 import unicodedata
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -29,7 +30,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Literal
 
-from kb.measures.aliases import ALIASES, KINDS
+from kb.measures.aliases import ALIASES, IMPERIAL, KINDS
 
 __all__ = [
     "CATALOG_UNITS",
@@ -39,13 +40,18 @@ __all__ = [
     "aliases_of",
     "build_unit_table",
     "combine",
+    "is_smaller_unit",
+    "words_pattern",
     "convert",
     "length_unit",
     "lookup",
     "mass_unit",
     "strip_accents",
+    "symbol",
     "unit_key",
     "unit_table",
+    "unit_words",
+    "units_pattern",
     "volume_unit",
 ]
 
@@ -85,6 +91,25 @@ def _alias_rows() -> list[tuple[str, str, str, str]]:
         for lang, words in by_lang.items()
         for word in words.split()
     ]
+
+
+def unit_words() -> list[str]:
+    """Every unit word of every language, in the aliases' order (without pint or the stored table)."""
+    return [w for w, _k, _n, _l in _alias_rows()]
+
+
+def words_pattern(*pint_names: str) -> str:
+    """A regular expression alternation of every word (not the marks) of these pint units, in every
+    language and also without accents, longest first: for rules that need one unit's words."""
+    words = {w for w, _k, n, _l in _alias_rows() if n in pint_names and w not in _MARKS and w not in "”’"}
+    words |= {strip_accents(w) for w in words}
+    return "|".join(re.escape(w) for w in sorted(words, key=lambda w: (-len(w), w)))
+
+
+def units_pattern(*kinds: str, imperial: bool | None = None) -> str:
+    """:func:`words_pattern` for every unit of these kinds, of one system when ``imperial`` is given."""
+    names = [n for n, k in KINDS.items() if k in kinds and (imperial is None or (n in IMPERIAL) == imperial)]
+    return words_pattern(*names)
 
 
 def aliases_of(kind: str, languages: frozenset[str] | None = None) -> dict[str, str]:
@@ -226,12 +251,29 @@ def volume_unit(unit: str | None) -> float | None:
     return _factor(unit, "volume")
 
 
+def symbol(unit: Unit) -> str:
+    """The unit's symbol: its first language-neutral word ("cm", "kg", "in")."""
+    return ALIASES[unit.pint_name][""].split()[0]
+
+
+def is_smaller_unit(unit: Unit, sub_unit: Unit) -> bool:
+    """True when ``sub_unit`` can follow ``unit`` in one quantity: same kind, same system, smaller."""
+    return (
+        unit.kind == sub_unit.kind
+        and (unit.pint_name in IMPERIAL) == (sub_unit.pint_name in IMPERIAL)
+        and sub_unit.factor < unit.factor
+    )
+
+
 def combine(value: float, unit: Unit, sub_value: float, sub_unit: Unit) -> float | str:
-    """One quantity written in two units of a kind, the second smaller ("1 lb 2 oz", "5 ft 3 in"): the
-    value in ``unit``, or the reason it is not one quantity (another kind, a second unit not smaller, or
-    a second value worth a whole first unit or more, as "5 ft 12 in"; 1e-9 absorbs pint's rounding)."""
-    if unit.kind != sub_unit.kind or sub_unit.factor >= unit.factor:
-        return f"{sub_unit.pint_name} is not a smaller unit of {unit.pint_name}'s kind"
+    """One quantity written in two units of a kind and system, the second smaller ("1 lb 2 oz", "5 ft 3 in",
+    "1 kg 450 g"): the value in ``unit``, or the reason it is not one quantity (another kind, a second unit
+    not smaller, metric and imperial units, as "1 kg 2 lb", a first value not whole, as "1.5 kg, 200 g",
+    or a second value worth a whole first unit or more, as "5 ft 12 in"; 1e-9 absorbs pint's rounding)."""
+    if not is_smaller_unit(unit, sub_unit):
+        return f"{sub_unit.pint_name} is not a smaller unit of {unit.pint_name}'s kind and system"
+    if value != int(value):
+        return f"{value:g} {unit.pint_name} is not a whole number before {sub_unit.pint_name}"
     if sub_value * sub_unit.factor >= unit.factor * (1 - 1e-9):
         return f"{sub_value:g} {sub_unit.pint_name} is not less than 1 {unit.pint_name}"
     return value + sub_value * sub_unit.factor / unit.factor

@@ -16,12 +16,14 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
+from kb.measures.units import units_pattern
 from scrapers.adapters import Observation, adapter
 from scrapers.labels import AXES, classify_label
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page
 from scrapers.quantities import (
     clean_text,
+    length_unit,
     mass_unit,
     parse_dims,
     parse_length,
@@ -38,10 +40,6 @@ AXIS_GROUP_GAP = 8
 #: A weight range no wider than this ratio (``1,2 – 1,5 kg``: a handmade piece) gives its midpoint; a wider
 #: one (``1.01 - 7.2 lbs``: variants of different sizes) is not used.
 NARROW_RANGE = 1.5
-
-
-#: A value of numbers only (``923 x 253 x 659.4``, ``19.4``): its unit must come from the label or a heading.
-_UNITLESS = re.compile(r"[\d\s.,x×*/()-]+")
 
 
 def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
@@ -76,6 +74,9 @@ def observations_from_pairs(
     for pair in pairs:
         n_axes = len(axes)
         found = _pair_observations(pair, decimal_comma, rank, axes)
+        if (note := written_value(pair.value)[1]) is not None:
+            for o in found:
+                o.note = "; ".join(filter(None, [o.note, note]))
         if pair.unit_context:
             said = f"no unit beside the value ({pair.label}: {pair.value}): {pair.unit_context}"
             for o in found:
@@ -84,7 +85,7 @@ def observations_from_pairs(
                 kind, length, p, r, note = axes[-1]
                 axes[-1] = (kind, length, p, r, "; ".join(filter(None, [note, said])))
         unread = not found and len(axes) == n_axes
-        if unread and pair.info.role == "product" and _UNITLESS.fullmatch(clean_text(pair.value)):
+        if unread and pair.info.role == "product" and _UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
             found = [Observation("warning", f"{pair.label}: {pair.value}: no unit stated (not in the value, "
                                  "its label or a heading above it); not used", order=pair.order)]
         if pair.info.shipping:
@@ -102,9 +103,9 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
     info = pair.info
     raw = f"{pair.label}: {pair.value}"[:200]
     package = pair.package or info.package
-    metric = metric_figure(pair.value)
-    if metric is not None:
-        pair = replace(pair, value=metric)  # "Height: 0.61 inch (1.56 cm)": the metric figure
+    value, written = written_value(pair.value)
+    if value != pair.value:
+        pair = replace(pair, value=value)
     if info.role != "product":
         out.extend(_other_observations(pair, raw, decimal_comma, rank))
         return out
@@ -213,9 +214,40 @@ def _one_length(value: str, unit: str | None, decimal_comma: bool | None) -> flo
     return parse_length(head, unit, decimal_comma) if len(head) <= 30 else None
 
 
-_IMPERIAL = re.compile(r"\d\s*(?:\"|in\b|in\.|inch|inches|ft\b|feet|foot|lbs?\b|pounds?|oz\b|ounces?)", re.IGNORECASE)
-_METRIC = re.compile(r"\d\s*(?:mm|cm|m|kg|g|grams?|kilograms?|millimet\w*|centimet\w*)\b", re.IGNORECASE)
+# A figure with an imperial or a metric length or mass unit (the words of the one unit table).
+_IMPERIAL = re.compile(rf"\d\s*(?:\"|(?:{units_pattern('length', 'mass', imperial=True)})\b)", re.IGNORECASE)
+_METRIC = re.compile(rf"\d\s*(?:{units_pattern('length', 'mass', imperial=False)})\b", re.IGNORECASE)
 _BRACKETED = re.compile(r"[(（]([^()（）]{1,80})[)）]")
+
+
+_TILDE_RANGE = re.compile(r"(?<![\d.,])(\d+(?:[.,]\d+)?)\s*[~～〜]\s*(\d+(?:[.,]\d+)?)(?![\d.,])")
+_BRACKETED_UNIT = re.compile(r"[(（]\s*([^\W\d_]{1,12}\.?)\s*[)）]")
+
+
+def written_value(value: str) -> tuple[str, str | None]:
+    """A value as the readers take it, with a note when it was rewritten: the metric figure when both are
+    stated (:func:`metric_figure`), a unit in brackets after the number (``0.35 (pounds)``), and a
+    narrow range inside a size (ASUS' ``31.18 x 22.25 x 1.49 ~ 1.69 cm``: the upper bound, the most room
+    the object needs, as :func:`range_extent` takes one)."""
+    note = None
+    metric = metric_figure(value)
+    if metric is not None:
+        value = metric  # "Height: 0.61 inch (1.56 cm)": the metric figure
+    if "(" in value or "（" in value:
+        value = _BRACKETED_UNIT.sub(lambda m: f" {m.group(1)}" if _is_unit_word(m.group(1)) else m.group(0), value)
+    if " x " in clean_text(value) and _TILDE_RANGE.search(value):
+        def upper(m: re.Match) -> str:
+            low, high = (float(g.replace(",", ".")) for g in m.groups())
+            return m.group(2) if 0 < low <= high <= NARROW_RANGE * low else m.group(0)
+
+        rewritten = _TILDE_RANGE.sub(upper, value)
+        if rewritten != value:
+            note, value = f"a range inside the size ({value[:80]}); took the upper bound", rewritten
+    return value, note
+
+
+def _is_unit_word(word: str) -> bool:
+    return length_unit(word) is not None or mass_unit(word) is not None
 
 
 def metric_figure(value: str) -> str | None:
@@ -390,7 +422,8 @@ def _with_locale_inches(pair: Pair, lang: str | None) -> Pair:
                    unit_context=f"inches, the unit of the page's locale ({lang})")  # fmt: skip
 
 
-#: Numbers only, maybe with axis letters in brackets: ``5.20(w) x 8.00(h) x 0.40(d)``, ``923 x 253``.
+#: Numbers only, maybe with axis letters in brackets (``5.20(w) x 8.00(h) x 0.40(d)``, ``923 x 253 x 659.4``,
+#: ``19.4``): the unit must come from the label, a heading above it or the page's locale.
 _UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
 
 

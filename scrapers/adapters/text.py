@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 
+from kb.measures.units import units_pattern
 from scrapers.adapters import Observation, adapter
 from scrapers.normalize import material_from_text
 from scrapers.page import Page
@@ -61,7 +62,7 @@ def text(page: Page) -> list[Observation]:
     return obs
 
 
-_QTY = r"\d+(?:[.,]\d+)*\s*(?:mm|cm|m|in|inch|inches|ft|feet|\"|''|millimeters?|centimeters?|centimetres?)"
+_QTY = rf"\d+(?:[.,]\d+)*\s*(?:{units_pattern('length')}|\"|'')"  # a length, its unit from the one table
 _AXIS_WORDS = {
     "long": "length", "in length": "length", "de long": "length", "de largo": "length", "lang": "length",
     "wide": "width", "in width": "width", "de large": "width", "de ancho": "width", "breit": "width",

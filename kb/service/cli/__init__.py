@@ -6,7 +6,8 @@ One Typer app; each command group lives in its own module here (``catalog``: ini
 the command bodies, so ``objrecall --help`` imports no numpy, NLTK, MuJoCo or FastAPI. :func:`main`
 registers only the module of the command it runs (``objrecall recall ...`` needs neither the grasp
 nor the ingestion commands: about 0.1 s less start-up); ``--help``, a bare ``objrecall`` or a word that
-is no command gets every module. ``app`` (for importers and tests) holds every command.
+is no command gets every module. ``app`` (for importers and tests) holds every command. Plainly valid
+option values are coerced without Typer's pydantic adapters (:mod:`kb.service.cli.coercion`).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from collections.abc import Sequence
 
 import typer
 
+from kb.service.cli import coercion
 from kb.service.cli.common import ObjrecallGroup
 
 __all__ = ["COMMANDS", "COMMAND_MODULES", "app", "build_app", "main"]
@@ -33,6 +35,7 @@ COMMANDS: dict[str, tuple[str, ...]] = {
     "kb.service.cli.serve": ("serve",),
 }
 COMMAND_MODULES = tuple(COMMANDS)
+coercion.install()  # plainly valid values coerced without pydantic (kb/service/cli/coercion.py)
 
 
 def build_app(modules: Sequence[str] = COMMAND_MODULES) -> typer.Typer:
