@@ -40,32 +40,35 @@ t, w = time.process_time(), time.perf_counter()
 from recall.engine import Recaller
 r = Recaller.from_db(sys.argv[1])
 cpu, wall = time.process_time() - t, time.perf_counter() - w
-print(json.dumps({"cpu": cpu, "wall": wall}))
+print("RESULT", json.dumps({"cpu": cpu, "wall": wall}))
 """
 MEMORY = """
 import json, sys, tracemalloc
-import numpy, duckdb, recall.engine, recall.stored_index, recall.names, pyarrow, pyarrow.compute
+import numpy, duckdb, recall.engine, recall.parser, pyarrow, pyarrow.compute
 tracemalloc.start()
 r = recall.engine.Recaller.from_db(sys.argv[1])
-print(json.dumps({"bytes": tracemalloc.get_traced_memory()[0]}))
+print("RESULT", json.dumps({"bytes": tracemalloc.get_traced_memory()[0]}))
 """
 PLAIN_READ = """
 import json, sys, time
 t, w = time.process_time(), time.perf_counter()
 import duckdb, numpy
 con = duckdb.connect(sys.argv[1], read_only=True)
+con.execute("SET enable_progress_bar = false")
 cols = con.execute("SELECT name, a_cm, b_cm, c_cm, mass_g, shape, texture, fragility, material, rigidity "
                    "FROM objects ORDER BY name").fetchnumpy()
 aliases = con.execute("SELECT alias, object_id FROM object_aliases").fetchall()
 names = cols["name"].tolist()
-print(json.dumps({"cpu": time.process_time() - t, "wall": time.perf_counter() - w}))
+print("RESULT", json.dumps({"cpu": time.process_time() - t, "wall": time.perf_counter() - w}))
 """
 
 
 def _env(cache: Path, root: Path) -> dict[str, str]:
     env = dict(os.environ)
     env.pop("PYTHONDONTWRITEBYTECODE", None)
-    env.update(PYTHONPATH=str(root), PYTHONPYCACHEPREFIX=str(cache), NLTK_DATA=str(cache / "no-nltk-data"))
+    # run in the cache's folder: `python -c` and `-m` put the working directory first on sys.path
+    env.update(PYTHONPATH=str(root), PYTHONPYCACHEPREFIX=str(cache), NLTK_DATA=str(cache / "no-nltk-data"),
+               BENCH_CWD=str(cache))  # fmt: skip
     return env
 
 
@@ -75,7 +78,7 @@ def timed(cmd: list[str], env: dict[str, str], runs: int) -> tuple[float, float]
     for _ in range(runs):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t = time.perf_counter()
-        subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL)
+        subprocess.run(cmd, env=env, check=True, stdout=subprocess.DEVNULL, cwd=env["BENCH_CWD"])
         wall = time.perf_counter() - t
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
@@ -90,8 +93,9 @@ def reported(code: str, db: Path, env: dict[str, str], runs: int, before=None) -
         if before is not None:
             before()
         done = subprocess.run([sys.executable, "-c", code, str(db)], env=env, check=True, capture_output=True,
-                              text=True)  # fmt: skip
-        for key, value in json.loads(done.stdout.strip().splitlines()[-1]).items():
+                              text=True, cwd=db.parent)  # fmt: skip
+        line = [x for x in done.stdout.splitlines() if "RESULT " in x][-1]  # after any progress bar
+        for key, value in json.loads(line.rpartition("RESULT ")[2]).items():
             best[key] = min(best.get(key, float("inf")), value)
     return best
 
@@ -122,7 +126,8 @@ def commands(env: dict[str, str], work: Path, runs: int) -> dict[str, tuple[floa
     exe = Path(sys.executable)
     objrecall = [str(exe), "-m", "kb.service.cli"]
     db = work / "seed.duckdb"
-    subprocess.run([*objrecall, "init", "--seed", "--db", str(db)], env=env, check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([*objrecall, "init", "--seed", "--db", str(db)], env=env, check=True, stdout=subprocess.DEVNULL,
+                   cwd=work)  # fmt: skip
     cases = {
         "python -c pass": [str(exe), "-c", "pass"],
         "import numpy, duckdb": [str(exe), "-c", "import numpy, duckdb"],

@@ -24,6 +24,7 @@ from pathlib import Path
 
 from kb.errors import CatalogImportError, InvalidFeature
 from kb.features import CSV_COLUMNS, FEATURES, ObjectRecord, normalize_name
+from kb.files import read_input_file
 
 __all__ = ["CsvReadResult", "SkippedRow", "read_catalog_csv", "write_catalog_csv", "parse_catalog_csv"]
 
@@ -31,6 +32,8 @@ ALIAS_SEPARATOR = ";"
 OPTIONAL_COLUMNS = ("aliases", "source")
 #: The longest cell read (the ``csv`` module's field limit); a longer one refuses the whole file.
 MAX_CELL_CHARS = 131_072
+#: The largest catalog CSV read (a million objects take about 150 MB).
+MAX_CSV_BYTES = 1024 * 1024 * 1024
 #: The longest object name accepted from a CSV (a longer one is a broken row, not an object).
 MAX_NAME_CHARS = 200
 _CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
@@ -61,7 +64,7 @@ def read_catalog_csv(path: str | Path, *, skip_invalid: bool = False) -> CsvRead
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8-sig")
+        text = read_input_file(path, MAX_CSV_BYTES).decode("utf-8-sig")
     except UnicodeDecodeError as err:
         raise CatalogImportError(str(path), [(0, "-", f"not UTF-8 text ({err.reason})")]) from None
     except OSError as err:

@@ -119,7 +119,8 @@ class SortedColumns:
         """Exact top-k (rows, distances) of a description that states one number and nothing else, read
         off its sorted column; None when more than ``most`` rows of several values are in the stated
         interval or a tie at the k-th distance spans two values beyond the rows read (the caller then
-        takes another plan). More than ``most`` rows of one value at distance 0: the first k of them.
+        takes another plan). At least k rows in the interval (its ends exact in float32, as a
+        FeatureQuery's are) are at distance 0: the k lowest of them (the first k of one value).
 
         The distance is V-shaped along the sorted column (falling to the interval, 0 in it, rising
         after), so the k positions on each side of the interval, the rows in it and the first k unknown
@@ -132,11 +133,15 @@ class SortedColumns:
         lo = np.float32(cond.low) if math.isfinite(cond.low) else np.float32(-np.inf)
         hi = np.float32(cond.high) if math.isfinite(cond.high) else np.float32(np.inf)
         start, end = int(np.searchsorted(keys, lo, "left")), int(np.searchsorted(keys, hi, "right"))
-        if end - start > max(most, k - 1):  # many rows of one value at 0: the first k (ascending rows)
-            rows = order[start : start + k]
-            if keys[start] != keys[end - 1] or jp_scores(num_cols, cat_cols, query, rows[:1])[0] != 0.0:
+        if end - start >= k and float(lo) == cond.low and float(hi) == cond.high:  # k rows in it, all at 0
+            inside, one_value = order[start:end], keys[start] == keys[end - 1]
+            if one_value:  # rows of one value are in ascending order
+                return inside[:k].astype(np.int64), np.zeros(k)
+            if end - start > most:
                 return None
-            return rows.astype(np.int64), np.zeros(k)
+            return np.sort(np.partition(inside, k - 1)[:k]).astype(np.int64), np.zeros(k)
+        if end - start > most:
+            return None
         c0, c1 = max(0, start - k), min(known, end + k)
         rows = np.concatenate((order[c0:c1], order[known : known + k]))
         scores = jp_scores(num_cols, cat_cols, query, rows)

@@ -4,29 +4,36 @@
 from __future__ import annotations
 
 import csv
+import io
 from pathlib import Path
 
 from kb.errors import DescriptionError
+from kb.files import read_input_file
 
-__all__ = ["read_description_column"]
+__all__ = ["MAX_DESCRIPTIONS_BYTES", "read_description_column"]
+
+#: The largest file of descriptions read (about 300,000 descriptions of 200 characters).
+MAX_DESCRIPTIONS_BYTES = 64 * 1024 * 1024
 
 
 def read_description_column(path: Path) -> list[str]:
     """The ``description`` column of a CSV, in order (blank cells kept: they give empty results).
 
-    Raises :class:`~kb.errors.DescriptionError` naming the file when it has no such column, is not UTF-8
-    or is not CSV."""
+    Raises :class:`~kb.errors.DescriptionError` naming the file when it cannot be read (see
+    :func:`kb.files.read_input_file`), has no such column, is not UTF-8 or is not CSV."""
     path = Path(path)
     try:
-        with path.open(newline="", encoding="utf-8-sig") as fh:
-            reader = csv.DictReader(fh)
-            fields = [f.strip() for f in (reader.fieldnames or [])]
-            if "description" not in fields:
-                columns = ", ".join(fields) or "none"
-                raise DescriptionError(f"{path}: no 'description' column (columns: {columns})")
-            key = (reader.fieldnames or [])[fields.index("description")]
-            return [row.get(key) or "" for row in reader]
+        text = read_input_file(path, MAX_DESCRIPTIONS_BYTES).decode("utf-8-sig")
+        reader = csv.DictReader(io.StringIO(text, newline=""))
+        fields = [f.strip() for f in (reader.fieldnames or [])]
+        if "description" not in fields:
+            columns = ", ".join(fields) or "none"
+            raise DescriptionError(f"{path}: no 'description' column (columns: {columns})")
+        key = (reader.fieldnames or [])[fields.index("description")]
+        return [row.get(key) or "" for row in reader]
     except UnicodeDecodeError as err:
         raise DescriptionError(f"{path}: not UTF-8 text ({err.reason})") from None
     except csv.Error as err:
         raise DescriptionError(f"{path}: not a CSV file ({err})") from None
+    except OSError as err:
+        raise DescriptionError(f"{path}: cannot read the file ({err.strerror or err})") from None

@@ -86,7 +86,7 @@ def factors(item, num_cols, cat_cols, rows=None, optimistic: bool = False) -> np
     col = num_cols[NUM_INDEX[obj.feature]]
     x = col if rows is None else col[rows]
     low, high = np.float32(obj.low), np.float32(obj.high)
-    if low != obj.low or high != obj.high:  # bounds not held in float32 (not from FeatureQuery): float64
+    if float(low) != obj.low or float(high) != obj.high:  # bounds not held in float32 (not from FeatureQuery): float64
         x, low, high = x.astype(np.float64), obj.low, obj.high
     d = np.maximum(low - x, x - high)
     np.fmax(d, 0.0, out=d)  # NaN (unknown) -> 0

@@ -4,13 +4,17 @@
 (rows and distances bit for bit, ties by row number) for the Joint Probability distance, choosing for
 each query the cheapest of these plans from counts it can take before scoring anything:
 
-* **categories only**: :class:`recall.combinations.CombinationIndex` scores the category combinations,
-  not the rows (about 0.1 ms at any size);
+* **categories only** (:meth:`recall.combinations.CombinationIndex.search`): "zero" when k of the first
+  rows are at distance 0, else a pass of uint8 levels over the rows (small catalogs) or the category
+  combinations scored instead of the rows (~0.3 ms at any size);
+* **column**: one number and nothing else, read off its sorted column
+  (:meth:`recall.columns.SortedColumns.one_column`, O(k) but for ties);
 * **window**: argmin Σ log(1 + d_j) = argmin Π (1 + d_j) and every term is >= 0, so a row can only
   score <= S if each stated feature has ``d_j <= e^S − 1``: for a numeric feature the rows of one window
   of the column sorted by value (NaN last), for a category its row list. S starts as the k-th best of a
-  small pool (rows nearest the description in each stated column); the smallest window's rows are
-  filtered by the product bound in float32 (``recall.ranking.survivors``) and the survivors scored;
+  small pool (rows nearest the description in each stated column), then of the rows of the cells of
+  smallest bound; the smallest window's rows, read from a packed row copy (:attr:`JPIndex.records`),
+  are filtered by the product bound in float32 (``recall.ranking.survivors``) and the survivors scored;
 * **cells**: a best-first search over cells of neighbouring objects (``recall.cells``), when the
   rows of the cells within the bound are fewer than those of any window;
 * **ties at 0**: when the k-th best is already 0, the answer is the k lowest row numbers at distance 0:
@@ -19,7 +23,9 @@ each query the cheapest of these plans from counts it can take before scoring an
   (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects and whenever the
   estimated cost of the others exceeds it (:data:`COST`).
 
-The costs per row of :data:`COST` were measured on this machine (``benchmarks/recall_bench.py``).
+The costs per row of :data:`COST` and the thresholds were measured on this machine (plans forced on the
+same queries in one process; ``benchmarks/recall_bench.py``); ``tests/test_search.py`` pins each
+threshold at its boundary.
 """
 
 from __future__ import annotations
@@ -56,15 +62,16 @@ __all__ = ["JPIndex", "brute_force_top_k", "index_for", "score_rows", "select_to
 #: (below that, the fixed costs of the other plans exceed the scan; measured, see RECALL.md).
 SCAN_BELOW = 32768
 SCAN_WORK = 40_000
-#: Categories only: scanned up to this many row-features, else the combinations (~0.14 ms at any size).
-CATEGORY_SCAN_WORK = 40_000
+#: One number and nothing else is read off its sorted column above this many objects (below, a scan is
+#: cheaper: ~12 NumPy calls of fixed cost against a pass over a few thousand rows; measured).
+COLUMN_FROM = 4096
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
 #: A window of at most this many row-features (rows x stated features) is filtered without weighing the
 #: other plans.
 SMALL_WINDOW = 8192
 #: Relative cost per row (per stated feature) of each plan's work, measured (see the module docstring).
-COST = {"scan": 1.0, "window": 3.0, "cells": 4.0}
+COST = {"scan": 1.0, "window": 6.0, "cells": 4.0}
 #: Rows of the nearest cells scored to tighten the first bound before choosing a plan.
 PROBE_ROWS = 2048
 #: Fixed cost of the cell search, in row-equivalents of the scan (bounds of every cell, batches).
@@ -201,14 +208,18 @@ class JPIndex(SortedColumns):
             if force is None:
                 return self.combinations.search(query, k)
         small = self.n <= SCAN_BELOW or self.n * len(items) <= SCAN_WORK
-        if force == "scan" or (force is None and small):
-            return "scan", *self._scan(query, items, k)
-        if force in (None, "column") and len(items) == 1:
+        if force == "column" or (force is None and len(items) == 1 and self.n > COLUMN_FROM):
             found = self.one_column(self.num_cols, self.cat_cols, query, k)
             if found is not None:
                 return "column", *found
+            (cond,) = query.numeric
+            exact = float(np.float32(cond.low)) == cond.low and float(np.float32(cond.high)) == cond.high
+            if force is None and exact and self._window_size(items[0], 0.0) >= k:
+                return "zero", *self._zero_ties(query, items, k)  # at least k rows in the interval: at 0
             if force == "column":
                 raise ValueError("the column plan found more rows near the value, or ties, than it reads")
+        if force == "scan" or (force is None and small):
+            return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
         best_rows, best_scores = select_top_k(pool, self.score(query, pool), k)
         s = float(best_scores[-1])
@@ -285,25 +296,26 @@ class JPIndex(SortedColumns):
         sizes = [self._window_size(it, 0.0) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
         zeros = self.n * math.prod(size / self.n for size in sizes)
-        in_order = max(CHUNK, k * self.n / max(zeros, 1.0))
+        in_order = k * self.n / max(zeros, 1.0)
         if in_order < sizes[lead] or (items[lead][0] == "num" and sizes[lead] > ZERO_SORT):
             return in_order, lead, True
         return sizes[lead], lead, False
 
     def _zero_ties(self, query: FeatureQuery, items: list, k: int):
         """The k lowest rows at distance 0, given that at least k rows are at 0."""
-        _, lead, in_order = self._zero_reads(items, k)
+        reads, lead, in_order = self._zero_reads(items, k)
         if in_order:
-            return self._first_zeros(query, items, None, k)
+            return self._first_zeros(query, items, None, k, first=int(2 * reads))
         source = self._window_rows(items[lead], 0.0)
         if items[lead][0] == "num":
             source = np.sort(source)
         return self._first_zeros(query, items, source, k)
 
-    def _first_zeros(self, query: FeatureQuery, items: list, source, k: int):
-        """The first k rows of ``source`` (ascending; None: every row) at distance 0."""
+    def _first_zeros(self, query: FeatureQuery, items: list, source, k: int, first: int = CHUNK):
+        """The first k rows of ``source`` (ascending; None: every row) at distance 0, read in chunks
+        from ``first`` rows, doubling."""
         total = self.n if source is None else len(source)
-        found, start, step = [], 0, CHUNK
+        found, start, step = [], 0, max(64, min(first, CHUNK))
         while start < total and sum(len(f) for f in found) < k:
             stop = min(start + step, total)
             if source is None:

@@ -308,8 +308,10 @@ def _from_arrays(data: dict[str, np.ndarray], meta: dict) -> RecallIndex:
     n = int(meta["n"])
     names = _strings(data["names"], n)
     flat = _strings(data["alias_text"], int(meta["aliases"]))
-    starts = data["alias_starts"].tolist()
-    aliases = [tuple(flat[starts[i] : starts[i + 1]]) for i in range(n)]
+    starts = data["alias_starts"]
+    aliases: list[tuple[str, ...]] = [()] * n
+    for i in np.flatnonzero(np.diff(starts)).tolist():  # the rows with aliases only
+        aliases[i] = tuple(flat[int(starts[i]) : int(starts[i + 1])])
     num, cat = data["num"], data["cat"]
     snap = CatalogSnapshot.from_columns(names, aliases, list(num), list(cat),
                                         version=("fingerprint", *meta["catalog"]))  # fmt: skip
@@ -319,11 +321,12 @@ def _from_arrays(data: dict[str, np.ndarray], meta: dict) -> RecallIndex:
     gkeys = _strings(data["generic_keys"], int(meta["generic"]))
     generic = dict(zip((tuple(k.split(" ")) for k in gkeys), _strings(data["generic_materials"], len(gkeys)),
                        strict=True))  # fmt: skip
-    codes = cat[CATEGORICAL_FEATURES.index("material")].tolist() if n else []
+    codes = cat[CATEGORICAL_FEATURES.index("material")] if n else np.zeros(0, np.int8)
+    by_code = np.array([*MATERIALS, None], dtype=object)  # code -1 (unknown): the last, None
     tables = SimpleNamespace(
         phrases=phrases,
         generic=generic,
-        by_material=_RowsByMaterial([MATERIALS[c] if c >= 0 else None for c in codes]),
+        by_material=_RowsByMaterial(by_code[codes.astype(np.int64)].tolist()),
         heads=heads,
         head_materials=_HeadMaterials(heads, data["head_masks"], list(MATERIALS)),
         vocabulary=frozenset(_strings(data["vocabulary"], int(meta["vocabulary"]))),

@@ -19,6 +19,7 @@ from pathlib import Path
 
 from kb.errors import ExtractionError
 from kb.features import MATERIALS, axes_from_extents
+from kb.files import read_input_file
 
 # Importing an adapter module registers its adapters (in priority order, whatever the import order).
 from scrapers.adapters import (  # noqa: F401
@@ -112,7 +113,7 @@ def extract_file(path: str | Path) -> ProductRecord:
     try:
         if path.stat().st_size > MAX_PAGE_BYTES:
             raise ExtractionError(f"{path}: page too large ({path.stat().st_size} bytes)")
-        body = path.read_bytes()
+        body = read_input_file(path, MAX_PAGE_BYTES)
     except OSError as err:
         raise ExtractionError(f"{path}: cannot read the file ({err.strerror or err})") from None
     content_type = "application/json" if path.suffix.lower() == ".json" else "text/html"

@@ -155,6 +155,7 @@ def _classify(label: object) -> LabelInfo | None:
     package = False
     negated = False
     unknown: list[str] = []
+    has_body = any(w in BODY_WORDS for w in words)
     for word in words:
         if word in KIND_WORDS:
             kinds.append(KIND_WORDS[word])
@@ -164,7 +165,7 @@ def _classify(label: object) -> LabelInfo | None:
             negated = True
         elif word in QUALIFIERS:
             continue
-        elif length_unit(word) is not None or mass_unit(word) is not None:
+        elif _unit_word(word):
             if len(word) >= 2:
                 unit = unit or word  # "Höhe cm", "Gewicht kg" (never "Size M": a garment size)
             continue
@@ -174,6 +175,8 @@ def _classify(label: object) -> LabelInfo | None:
             compound = _split_compound(word)
             if compound is None:
                 unknown.append(word)
+                if not has_body or len(unknown) > 2:
+                    return None  # an unknown word names something else (the rule is _names_the_body)
                 continue
             kind, is_package = compound
             kinds.append(kind)
@@ -202,6 +205,12 @@ _TRAILING_UNIT = re.compile(r"(?<![A-Za-z])([A-Za-z]{2,3})\s*$")
 _EN_BOY = re.compile(r"\ben\s*[x×*/]\s*boy\b", re.IGNORECASE)
 #: Directions that do not change what a label measures: a wall light's "Depth of fitting from wall".
 _FROM_WALL = re.compile(r"\b(?:from|to|off)\s+(?:the\s+)?(?:wall|ceiling)\b", re.IGNORECASE)
+
+
+@lru_cache(maxsize=8192)
+def _unit_word(word: str) -> bool:
+    """Whether a label word is a length or mass unit (cached: labels repeat the same few words)."""
+    return length_unit(word) is not None or mass_unit(word) is not None
 
 
 def _names_the_body(words: list[str], unknown: list[str]) -> bool:

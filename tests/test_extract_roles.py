@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import pytest
 
-from scrapers.adapters.spec_table import axis_segments, metric_figure
 from scrapers.extract import extract_page
 from scrapers.labels import classify_label, classify_other
 from scrapers.page import Page, decimal_mark_of_lines
 from scrapers.sets import MAX_SET, per_item, set_size
+from scrapers.value_forms import axis_segments, metric_figure
 
 
 def _page(body: str, title: str = "Thing", lang: str | None = "en") -> str:
@@ -265,3 +265,68 @@ def test_a_headings_unit_reaches_only_its_own_block():
 def test_a_mass_headings_unit_is_not_a_lengths():
     record = _tv("<h3>Weight (kg)</h3><ul><li>Width: 92 cm</li><li>Weight: 19.4</li></ul>")
     assert record.dims_cm == (92.0,) and record.mass_g == 19400.0
+
+
+# ------------------------------------------------------------------------- what ingestion stores
+def test_ingestion_stores_packages_but_not_the_shipment_nor_a_sets_mass():
+    from scrapers.ingest import _validate
+
+    body = ("<ul><li>Weight: 2.4 kg</li><li>Dimensions: 15 x 15 x 6 cm</li><li>Package Weight: 2.9 kg</li>"
+            "<li>Shipping Weight: 3.5 kg</li></ul>")  # fmt: skip
+    record = extract_page(_page(body, "Stoneware Bowls, Pack of 12"), "https://s.example/p")
+    catalog, packages, _ = _validate(record)
+    assert catalog.mass_g is None and record.set_mass_g == 2400.0
+    assert [p.get("mass_g") for p in packages] == [2900.0]
+    assert record.shipping_mass_g == [3500.0]
+
+
+# ------------------------------------------------------------------------------ properties
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+_WORDS = st.sampled_from(["set", "of", "pack", "4", "12", "1", "pair", "er", "Pack", "(Pack of 1)", "個", "セット",
+                          "lot", "de", "6'lı", "bowls", "mug", "x", "-", "pcs", "1001", "teilig", " "])  # fmt: skip
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.one_of(st.text(max_size=80), st.lists(_WORDS, max_size=8).map(" ".join)))
+def test_a_set_count_is_two_to_max_or_none_and_named_in_the_text(name):
+    found = set_size(name)
+    if found is not None:
+        count, words = found
+        assert 2 <= count <= MAX_SET and words and words.lower() in name.lower()
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(max_size=60), st.sampled_from(["in", "inch", "lb", "oz", '"', "cm", "mm", "kg", "g", ""]))
+def test_the_metric_figure_is_a_bracketed_part_of_the_value(text, unit):
+    value = f"{text} 2.5 {unit} (6.35 cm)"
+    metric = metric_figure(value)
+    assert metric is None or (metric in value and any(u in metric for u in ("cm", "mm", "kg", "g", "m")))
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["幅", "奥行", "高さ", "W", "D", "H", "x"]), st.integers(1, 400)), max_size=5))
+def test_axis_segments_name_each_axis_once_or_nothing(parts):
+    found = axis_segments(" ".join(f"{a}{n}cm" for a, n in parts), None, None)
+    roles = [r for r, _ in found]
+    assert len(roles) == len(set(roles)) <= 3 and all(v > 0 for _, v in found)
+
+
+@pytest.mark.parametrize(("label", "kind"), [("Body of big lamp width", "width"), ("Body of big red lamp width", None)])
+def test_at_most_two_unknown_words_beside_a_body_word(label, kind):
+    info = classify_label(label)
+    assert (info.kind if info else None) == kind
+
+
+@pytest.mark.parametrize(
+    ("value", "read", "said"),
+    [("30 x 20 x 10 ~ 15 cm", "30 x 20 x 15 cm", True),  # exactly 1.5 x: narrow, the upper bound
+     ("30 x 20 x 10 ~ 15.1 cm", "30 x 20 x 10 ~ 15.1 cm", False),  # wider: left as written
+     ("10 ~ 12 cm", "10 ~ 12 cm", False)],  # not inside a size
+)  # fmt: skip
+def test_a_narrow_range_inside_a_size_gives_its_upper_bound(value, read, said):
+    from scrapers.value_forms import written_value
+
+    got, note = written_value(value)
+    assert got == read and (note is not None) is said

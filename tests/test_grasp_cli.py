@@ -120,6 +120,9 @@ def test_plan_simulate_runs_one_real_trial_per_plan_and_shows_both_choices(db):
     assert trial["simulator"].startswith("mujoco")
     assert [t["grasp_type"] for t in data["trials"]] == [p["grasp_type"] for p in data["plans"]]
     assert data["trials"][0] == trial  # "trial" stays the first choice's
+    for t in data["trials"]:  # a failed trial says why, in the hand's terms (sim/diagnosis.py)
+        assert ("why" in t) == (not t["success"])
+        assert not t.get("why") or t["why"].split(":")[0] in ("aperture", "mass", "size", "friction", "moment", "error")
     choice = data["choice"]
     assert choice["first"] == data["plans"][0]["grasp_type"]
     assert choice["first_holds"] == (trial["outcome"] == "success")

@@ -106,7 +106,7 @@ def test_fractions_shops_do_not_write_stay_text() -> None:
     assert clean_text("4/5 stars") == "4/5 stars"  # a rating
     assert clean_text("3/3 inch") == "3/3 inch"  # no proper fraction
     assert clean_text("1/128 inch") == "1/128 inch"  # a denominator shops do not write
-    assert clean_text("1/64 inch") == "0.0156 inch" and digits_value("1/0") is None
+    assert clean_text("1/64 inch") == "0.015625 inch" and digits_value("1/0") is None
 
 
 @settings(max_examples=100, deadline=None)

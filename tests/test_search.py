@@ -184,16 +184,35 @@ def test_small_catalogs_and_little_work_are_scanned():
     from recall.search import SCAN_BELOW, SCAN_WORK
 
     snap = catalog()
-    one = FeatureQuery.from_values({"a_cm": 12})
+    from recall.metrics import NumericCondition
+
+    # ends not float32 (so not known to be at 0), too many rows in the interval for the column plan
+    one = FeatureQuery((NumericCondition("a_cm", 30.1, 0.1, 30.1, "range"),))
+    assert index().plan_and_search(FeatureQuery.from_values({"a_cm": 30}, {"a_cm": "at_most"}), 5)[0] == "zero"
     two = FeatureQuery.from_values({"a_cm": 12, "material": "wood"})
     assert 1 * len(snap) <= SCAN_WORK < 2 * len(snap)
     assert index().plan_and_search(one, 5)[0] == "scan"
+    assert index().plan_and_search(FeatureQuery.from_values({"a_cm": 12}), 5)[0] == "column"
     assert index().plan_and_search(two, 5)[0] != "scan"
     q = FeatureQuery.from_values({"a_cm": 12, "b_cm": 5, "mass_g": 90, "material": "wood"})
     for n in (SCAN_BELOW, SCAN_BELOW + 1):
         small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
         plan, rows, dist = index_for(small).plan_and_search(q, 5)
         assert (plan == "scan") == (n == SCAN_BELOW)
+        brows, bdist = brute_force_top_k(small, q, 5)
+        np.testing.assert_array_equal(rows, brows)
+        np.testing.assert_array_equal(dist, bdist)
+
+
+def test_one_number_is_read_off_its_column_above_column_from():
+    from recall.search import COLUMN_FROM
+
+    snap = catalog()
+    q = FeatureQuery.from_values({"mass_g": 120})
+    for n in (COLUMN_FROM, COLUMN_FROM + 1):
+        small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
+        plan, rows, dist = index_for(small).plan_and_search(q, 5)
+        assert plan == ("scan" if n == COLUMN_FROM else "column")
         brows, bdist = brute_force_top_k(small, q, 5)
         np.testing.assert_array_equal(rows, brows)
         np.testing.assert_array_equal(dist, bdist)

@@ -89,8 +89,9 @@ def decimal_comma_for(lang: str | None = None, url: str | None = None) -> bool |
 
 
 def format_decimal(value: float) -> str:
-    """A number written so that no decimal-mark rule misreads it (never exactly three decimals)."""
-    text = f"{value:.4f}".rstrip("0").rstrip(".")
+    """A number written so that no decimal-mark rule misreads it (never exactly three decimals), to 6
+    decimals (a sixty-fourth of an inch is 0.015625)."""
+    text = f"{value:.6f}".rstrip("0").rstrip(".")
     if "." in text and len(text.split(".")[1]) == 3:
         text += "0"
     return text

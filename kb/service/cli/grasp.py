@@ -208,10 +208,14 @@ def plan(
     }
     if simulate:
         from sim.choice import simulate_plans
+        from sim.diagnosis import failure_cause
 
         trials, choice = simulate_plans(obj, plans, seed=seed)
-        out["trial"] = trials[0].to_dict()  # the first choice's trial
         out["trials"] = [t.to_dict() for t in trials]
+        for p, t in zip(plans, out["trials"], strict=True):  # why each failed one failed (sim/diagnosis.py)
+            if not t["success"]:
+                t["why"] = failure_cause({**t, "details": {"plan": p.to_dict()}})
+        out["trial"] = out["trials"][0]  # the first choice's trial
         out["choice"] = choice.to_dict()
     if json_out:
         emit(out)
@@ -258,6 +262,8 @@ def _print_plans(console, obj, how: dict[str, Any], plans, trials, choice) -> No
                 f"{escape(t.get('reason') or '')}; slip {t.get('slip_cm')} cm, turn {t.get('rotation_deg')} deg",
                 highlight=False,
             )
+            if t.get("why"):
+                console.print(f"     why: {escape(t['why'])}", highlight=False)
     if choice is not None:
         console.print(_choice_line(choice), highlight=False)
 
