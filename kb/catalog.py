@@ -32,7 +32,7 @@ from kb.csvio import read_catalog_csv, write_catalog_csv
 from kb.errors import DatabaseError, ObjectNotFound, QueryFailed
 from kb.features import CATEGORICAL_FEATURES, FEATURES, ObjectRecord, normalize_name
 from kb.locks import lock_for
-from kb.sandbox import ALLOWED_STATEMENTS, SANDBOX_CONFIG, retry_while_locked, run_user_sql
+from kb.sandbox import ALLOWED_STATEMENTS, SANDBOX_CONFIG, open_connection, retry_while_locked, run_user_sql
 from kb.upserts import ARROW_TYPES, OBJECT_COLUMNS, ImportReport, bulk_execute, features_hash, upsert_records
 
 __all__ = [
@@ -133,9 +133,9 @@ class KnowledgeBase:
         lock = self._lock.write() if write else self._lock.read()
         with lock:
             if write:
-                con = self._retry(lambda: duckdb.connect(str(self.path)))
+                con = self._retry(lambda: open_connection(self.path, read_only=False))
             else:
-                con = self._retry(lambda: duckdb.connect(str(self.path), read_only=True, config=SANDBOX_CONFIG))
+                con = self._retry(lambda: open_connection(self.path, read_only=True, config=SANDBOX_CONFIG))
             try:
                 yield con
             finally:

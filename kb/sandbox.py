@@ -46,6 +46,7 @@ __all__ = [
     "WORKER_MEMORY_BYTES",
     "SqlAnswer",
     "is_lock_conflict",
+    "open_connection",
     "retry_while_locked",
     "run_user_sql",
     "unique_columns",
@@ -63,6 +64,28 @@ SANDBOX_CONFIG: dict[str, Any] = {
     "max_memory": "2GB",
     "lock_configuration": True,
 }
+
+def open_connection(path: Path | str, *, read_only: bool, config: dict[str, Any] | None = None):
+    """A DuckDB connection to ``path`` that never draws DuckDB's progress bar, then ``config``.
+
+    DuckDB draws a progress bar on stdout for any statement over 2 s, terminal or not, which corrupts the
+    output of ``--json`` and CSV commands. The bar can only be turned off per connection (not as a connect
+    setting), so the configuration lock of ``config`` is applied after turning it off.
+    """
+    import duckdb
+
+    settings = dict(config or {})
+    lock = settings.pop("lock_configuration", False)
+    con = duckdb.connect(str(path), read_only=read_only, config=settings)
+    try:
+        con.execute("SET enable_progress_bar = false")
+        if lock:
+            con.execute("SET lock_configuration = true")
+    except BaseException:
+        con.close()
+        raise
+    return con
+
 
 #: Address-space cap of a user-SQL worker process (python + DuckDB need about 0.1 GB of it).
 WORKER_MEMORY_BYTES = 1536 * 1024 * 1024
@@ -206,7 +229,7 @@ def _answer(request: dict[str, Any]) -> tuple:
         if not path.exists():
             raise DatabaseError(f"{path}: no catalog there (create it with `objrecall init --db {path}`)")
         con = retry_while_locked(
-            lambda: duckdb.connect(str(path), read_only=True, config=USER_SQL_CONFIG),
+            lambda: open_connection(path, read_only=True, config=USER_SQL_CONFIG),
             path=path, busy_timeout=request["busy_timeout"],
         )
         try:
