@@ -263,6 +263,10 @@ def goals(by_size: dict[int, list[dict]]) -> list[tuple[str, bool, str]]:
     return out
 
 
+def _short(n: int) -> str:
+    return f"{n // 1_000_000}M" if n >= 1_000_000 else f"{n // 1000}k"
+
+
 def _save(by_size, summaries, bad):
     """Merge this run's sizes into ``results/recall_bench.json`` (sizes run separately, e.g. 10M, are kept)
     and write the README row; returns every size saved."""
@@ -284,10 +288,12 @@ def _save(by_size, summaries, bad):
         parts.append(f"{n:,}: JP p50 {min(v[0] for v in jp):.2f}-{max(v[0] for v in jp):.2f} ms, "
                      f"p99 {min(v[1] for v in jp):.2f}-{max(v[1] for v in jp):.2f} ms by mask, "
                      f"{min(ratio):.1f}-{max(ratio):.0f}x a plain float32 scan at p50")  # fmt: skip
-    verdict = "; ".join(f"{g.split(' (')[0]}: {'holds' if h else 'not met'}" for g, h, _ in goals(sizes))
+    verdict = "; ".join(f"{g.split(' (')[0]}: " + ("holds" if h else d if d == "not measured" else f"not met ({d})")
+                        for g, h, d in goals(sizes))  # fmt: skip
     text = "; ".join(parts) + f"; goals: {verdict}; every answer checked equal to brute force" + ("" if not bad else " (NOT: see output)")
     loads = sorted({r["load"] for rows in sizes.values() for r in rows})
-    save_result("recall_bench", benchmark="recall, exact top-5, one thread, CPU time, 10k-10M synthetic objects (data written here)",
+    span = f"{_short(min(sizes))}-{_short(max(sizes))}"
+    save_result("recall_bench", benchmark=f"recall, exact top-5, one thread, CPU time, {span} synthetic objects (data written here)",
                 result=text + "; table in recall/RECALL.md", order=10,
                 source=f"benchmarks/recall_bench.py, load average {loads[0]}-{loads[-1]} on 2 shared cores",
                 data={"sizes": {str(n): rows for n, rows in sorted(sizes.items())}, "bytes_per_object": memory})  # fmt: skip

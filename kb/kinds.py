@@ -17,6 +17,7 @@ another language a kind and an English alias, with where it came from.
 from __future__ import annotations
 
 import csv
+import dataclasses
 import functools
 import re
 import unicodedata
@@ -38,6 +39,7 @@ __all__ = [
     "noun_in",
     "nouns",
     "singular",
+    "title_words",
     "words_of",
 ]
 
@@ -206,22 +208,50 @@ class KindAssignment:
 def assign_kind(
     title: str, *, breadcrumbs: Sequence[str] = (), categories: Sequence[str] = ()
 ) -> KindAssignment | None:
-    """Kind and English alias of a store's object, from its title (any language of the lexicon), else
-    the page's JSON-LD ``category`` values, else its breadcrumbs (most specific, i.e. last, first).
-    The English alias is given only when the noun found is not English or has another English name
-    ("caffettiera moka in alluminio 3 tazze" -> jug, "moka pot"). None when nothing is recognised."""
-    sources = [("title", title)]
-    sources += [(f"category: {c}", c) for c in categories]
-    sources += [(f"breadcrumb: {b}", b) for b in reversed(list(breadcrumbs))]
-    for where, text in sources:
-        if not text or not text.strip():
-            continue
-        words = words_of(text)
-        noun = noun_in(words) if where == "title" else None
-        if noun is None or noun.lang != "en":
-            noun = noun_in(words, head_last=False) or noun
-        if noun is None:
-            continue
-        english = noun.english if (noun.lang != "en" or noun.english != noun.text) else None
-        return KindAssignment(noun.kind, english, noun.text, noun.lang, f"{where} ({noun.text!r}, {noun.lang})")
-    return None
+    """Kind and English alias of a store's object, from its title (any language of the lexicon) and
+    its category trail: the page's JSON-LD ``category`` values, then its breadcrumbs (most specific, i.e.
+    last, first). The title's model names and brands never make a kind (:func:`title_words`: "APPLE
+    iMac", "»K 3 Full Control«"). When the title's kind and the trail's disagree (neither is the other's
+    ancestor), the trail wins: it is the store's own filing. The English alias is given only when the noun
+    found is not English or has another English name ("caffettiera moka in alluminio 3 tazze" -> jug,
+    "moka pot"). None when nothing is recognised."""
+    own = _assigned("title", title_words(title), head_last=True)
+    trail = [(f"category: {c}", c) for c in categories]
+    trail += [(f"breadcrumb: {b}", b) for b in reversed(list(breadcrumbs))]
+    filed = next(
+        (got for where, text in trail if text and text.strip() for got in [_assigned(where, words_of(text))] if got),
+        None,
+    )
+    if own is None or filed is None:
+        return own or filed
+    if own.kind in ancestors(filed.kind) or filed.kind in ancestors(own.kind):
+        return own
+    return dataclasses.replace(filed, provenance=f"{filed.provenance}, over the title's {own.noun!r}")
+
+
+def _assigned(where: str, words: list[str], head_last: bool = False) -> KindAssignment | None:
+    """The kind a text's words name (an English head noun when ``head_last`` finds one, else the longest
+    lexicon noun anywhere), with ``where`` as provenance; None when none."""
+    noun = noun_in(words) if head_last else None
+    if noun is None or noun.lang != "en":
+        noun = noun_in(words, head_last=False) or noun
+    if noun is None:
+        return None
+    english = noun.english if (noun.lang != "en" or noun.english != noun.text) else None
+    return KindAssignment(noun.kind, english, noun.text, noun.lang, f"{where} ({noun.text!r}, {noun.lang})")
+
+
+#: Text in quotation marks in a store title: a model or series name ("Hochdruckreiniger »K 3 Full
+#: Control«", "Lampe \u201eHalo\u201c").
+_QUOTED = re.compile(r"[«»\u201c\u201d\u201e\"][^«»\u201c\u201d\u201e\"]*[«»\u201c\u201d\u201e\"]")
+
+
+def title_words(title: str) -> list[str]:
+    """A store title's words (:func:`words_of`) without its model names and brands: text in quotation
+    marks, and, when the title has other words too, words of two or more capital letters
+    ("APPLE iMac Pro", "KÄRCHER", "WELEDA Citrus"). A brand that is also a noun thus makes no kind."""
+    text = _QUOTED.sub(" ", title or "")
+    tokens = _WORD.findall(text)
+    if any(t.isalpha() and not t.isupper() for t in tokens):
+        text = _WORD.sub(lambda m: " " if len(m.group()) > 1 and m.group().isalpha() and m.group().isupper() else m.group(), text)
+    return words_of(text)

@@ -22,7 +22,7 @@ import numpy as np
 
 from kb.errors import RecallError
 from kb.features import FEATURES, NUMERIC_FEATURES
-from kb.kinds import words_of
+from kb.kinds import ROOT, words_of
 from recall.confidence import (
     COMPETITOR_POOL,
     CONFIDENCE_COEF,
@@ -48,6 +48,7 @@ from recall.openset import (
     foreign_modifier,
     is_open_set,
     material_agrees,
+    unseen_noun,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
@@ -229,7 +230,8 @@ class Recaller:
         if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
             m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
             after_of = subject_phrase(m.group(1)) if m else ()
-        return described_noun(subject, idx.phrases, idx.heads, idx.vocabulary, GENERIC_NOUNS, after_of)
+        noun = described_noun(subject, idx.phrases, idx.heads, idx.vocabulary, GENERIC_NOUNS, after_of)
+        return noun or unseen_noun(idx.unknown_noun(text), subject)
 
     # -- the ranking
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:
@@ -258,6 +260,8 @@ class Recaller:
         }
         base = dict(metric=metric, features_only=features_only, query=qdict)
         named = names.rows()
+        if noun is not None and noun.kind == ROOT and len(query) == 0 and soft is None:
+            noun = None  # an unseen noun and no feature ("qwerty uiop"): nothing to recall, not a foreign object
         not_in_catalog = noun is not None and not noun.in_catalog
         if len(query) == 0 and not named and soft is None:
             return RecallResult(

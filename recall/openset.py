@@ -29,6 +29,7 @@ __all__ = [
     "material_agrees",
     "material_of_word",
     "is_open_set",
+    "unseen_noun",
 ]
 
 #: Open set: the best match's closeness (mean relative error over the stated features, see
@@ -128,6 +129,41 @@ def described_noun(
     return DescribedNoun(noun.text, noun.kind, noun.english, known)
 
 
+#: Words that hold the place of an object without naming one ("something", "a whatsit"): never an
+#: unseen noun (the generic nouns of :data:`recall.names.GENERIC_NOUNS` never are either).
+PLACEHOLDERS = frozenset(
+    "something anything everything nothing thing stuff whatsit whatchamacallit thingy thingamajig thingamabob "
+    "doohickey gizmo widget".split()
+)
+#: Nouns that name a part of a thing ("a steel *blade* with a handle", "a padded *headband* with two ear
+#: cups"): a description can name an object by its part, so they are never an unseen noun ...
+PART_NOUNS = frozenset(
+    "blade handle head headband band strap lid tip base body shell casing housing grip cover top bottom "
+    "edge face side end rim neck cap spout knob button wheel leg arm frame panel surface".split()
+)
+#: ... nor are the abbreviations of a listing's notes ("*dims* 8.5 x 3 in, wt 1.5 lbs").
+NOTE_WORDS = frozenset("dim dims dimension measurement approx wt weight size spec specs pic photo".split())
+
+
+def unseen_noun(unknown: str | None, subject: Sequence[str]) -> DescribedNoun | None:
+    """The unseen-noun rule (RECALL.md, "Not in the catalog"): the subject's head ``unknown`` is a noun
+    the catalog's names and aliases do not know (:meth:`recall.name_index.NameIndex.unknown_noun`: no
+    catalog word, generic noun or feature word), the kinds lexicon does not list it either, and it is no
+    placeholder ("something"), part of a thing ("blade", :data:`PART_NOUNS`), listing abbreviation
+    ("dims"), shape noun ("wire *loops*", :data:`SHAPE_NOUNS`), colour or adjective-like word
+    (:func:`noun_like`): the description names an object the catalog does not have, of unknown kind (the
+    root). The noun reported is the head with the noun before it when there is one ("lint roller"; its
+    ``english``, the search word of a store lookup, is the head alone). The recall uses it only when the
+    description states a feature ("qwerty uiop" is nothing to recall). None otherwise (a lexicon noun is :func:`described_noun`'s to judge)."""
+    if unknown is None or any(unknown in words for words in (PLACEHOLDERS, PART_NOUNS, NOTE_WORDS, SHAPE_NOUNS)):
+        return None
+    if noun_in([unknown]) is not None or not noun_like(unknown):
+        return None
+    before = subject[-2] if len(subject) > 1 and subject[-1] == unknown else None
+    text = f"{before} {unknown}" if before and before not in PLACEHOLDERS and noun_like(before) else unknown
+    return DescribedNoun(text, ROOT, unknown, False)
+
+
 def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) -> bool:
     """The open-set rule (RECALL.md): the best match is not a close match when its closeness (mean
     relative error) exceeds :data:`OPEN_SET_THRESHOLD`, :data:`OPEN_SET_NAMED_THRESHOLD` when the text
@@ -144,7 +180,8 @@ def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) 
 #: Nouns that also name a shape ("a wood *plate*", "a white *stick*"): after a material or colour word,
 #: and when no catalog object has them as head noun, they describe a piece of that shape, not an object.
 SHAPE_NOUNS = frozenset(
-    "plate board bar stick tube ring panel tile plank rod strip slab sheet disc disk".split()
+    "plate board bar stick tube ring panel tile plank rod strip slab sheet disc disk loop coil spiral hoop "
+    "cone pyramid triangle oval".split()
 )
 #: Colour words, which never name an object as modifiers ("a white stick").
 COLOURS = frozenset(

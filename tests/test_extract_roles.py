@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import pytest
 
-from scrapers.adapters.spec_table import axis_segments, metric_figure
 from scrapers.extract import extract_page
 from scrapers.labels import classify_label, classify_other
 from scrapers.page import Page, decimal_mark_of_lines
 from scrapers.sets import MAX_SET, per_item, set_size
+from scrapers.value_forms import axis_segments, metric_figure
 
 
 def _page(body: str, title: str = "Thing", lang: str | None = "en") -> str:
@@ -326,7 +326,7 @@ def test_at_most_two_unknown_words_beside_a_body_word(label, kind):
      ("10 ~ 12 cm", "10 ~ 12 cm", False)],  # not inside a size
 )  # fmt: skip
 def test_a_narrow_range_inside_a_size_gives_its_upper_bound(value, read, said):
-    from scrapers.adapters.spec_table import written_value
+    from scrapers.value_forms import written_value
 
     got, note = written_value(value)
     assert got == read and (note is not None) is said

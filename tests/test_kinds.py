@@ -9,7 +9,7 @@ from pathlib import Path
 from hypothesis import given
 from hypothesis import strategies as st
 
-from kb.kinds import ROOT, ancestors, assign_kind, kind_of_name, kinds, noun_in, nouns, words_of
+from kb.kinds import ROOT, ancestors, assign_kind, kind_of_name, kinds, noun_in, nouns, title_words, words_of
 
 REPO = Path(__file__).resolve().parents[1]
 CATALOGS = (REPO / "kb" / "data" / "seed_catalog.csv", REPO / "tests" / "data" / "catalog2" / "catalog.csv")
@@ -88,3 +88,49 @@ def test_words_and_nouns_never_fail_on_any_text(text):
     assert noun is None or noun.kind in kinds()
     got = assign_kind(text)
     assert got is None or got.kind in kinds()
+
+
+# ------------------------------------------------------------------ titles against the store's filing
+def test_brands_and_quoted_model_names_make_no_kind():
+    assert title_words("APPLE iMac Pro 27 Retina") == ["imac", "pro", "27", "retina"]
+    assert assign_kind("APPLE iMac Pro 27 Retina") is None  # "apple" only as a brand
+    assert assign_kind("Apple iMac Pro 27 Retina").kind == "fruit"  # written as a word, it is one
+    assert assign_kind("KÄRCHER Hochdruckreiniger »K 3 Full Control«") is None
+    assert assign_kind("Hochdruckreiniger »K 3 Remote Control«") is None
+    assert assign_kind("Hochdruckreiniger K 3 Remote Control").kind == "electronics"  # unquoted
+    assert title_words("Lampe \u201eFull Control\u201c") == ["lampe"]
+    # a title all in capitals keeps its words: there is nothing to tell a brand from
+    assert assign_kind("STAINLESS STEEL WATER BOTTLE").kind == "bottle"
+    assert title_words("AA battery") == ["battery"]
+
+
+def test_the_category_trail_wins_when_it_disagrees_with_the_title():
+    got = assign_kind("Apple crate, pine, 50 x 30 cm", breadcrumbs=["Home", "Garden", "Wasserkocher"])
+    assert got.kind == "jug" and got.provenance.startswith("breadcrumb: Wasserkocher")
+    assert got.provenance.endswith("over the title's 'apple'")  # the title alone says fruit
+    assert assign_kind("Apple crate, pine, 50 x 30 cm").kind == "fruit"
+    got = assign_kind("Apple crate, pine, 50 x 30 cm", categories=["Teekanne"], breadcrumbs=["Home", "Wasserkocher"])
+    assert got.provenance.startswith("category: Teekanne")
+
+
+def test_the_title_stays_when_the_trail_agrees_or_is_an_ancestor_or_says_nothing():
+    # same kind: the title's (more specific) noun and alias stay
+    got = assign_kind("caffettiera moka in alluminio 3 tazze", breadcrumbs=["Casa", "Teiera"])
+    assert got.provenance.startswith("title") and got.english == "moka pot"
+    # the trail's kind an ancestor of the title's
+    title_kind = assign_kind("caffettiera moka").kind
+    parent = kinds()[title_kind].parent
+    parent_noun = next(n for n in nouns().values() if n.kind == parent)
+    got = assign_kind("caffettiera moka", breadcrumbs=[parent_noun.text])
+    assert got.provenance.startswith("title")
+    # the trail names no noun
+    assert assign_kind("caffettiera moka", breadcrumbs=["Home", "Angebote"]).provenance.startswith("title")
+
+
+def test_a_light_is_no_tealight_and_a_control_no_tv_remote():
+    got = assign_kind("Mercedes-Benz Left Side Tailgate Tail Light")
+    assert got.kind == "lighting" and got.english is None  # no "tealight" alias for a car's lamp
+    got = assign_kind("Tea light candles, unscented")
+    assert got.kind == "lighting" and got.english == "tealight"
+    assert assign_kind("Robot Limpiacristales, Control por App") is None
+    assert assign_kind("Universal remote control").english == "tv remote"

@@ -106,7 +106,7 @@ def test_fractions_shops_do_not_write_stay_text() -> None:
     assert clean_text("4/5 stars") == "4/5 stars"  # a rating
     assert clean_text("3/3 inch") == "3/3 inch"  # no proper fraction
     assert clean_text("1/128 inch") == "1/128 inch"  # a denominator shops do not write
-    assert clean_text("1/64 inch") == "0.0156 inch" and digits_value("1/0") is None
+    assert clean_text("1/64 inch") == "0.015625 inch" and digits_value("1/0") is None
 
 
 @settings(max_examples=100, deadline=None)
@@ -217,3 +217,14 @@ def test_a_negative_value_is_refused_by_the_parser_and_never_read_as_negative(va
 def test_zero_is_refused_on_both_sides() -> None:
     assert parse_length("0 cm") is None and parse_mass("0 g") is None and parse_dims("0 x 10 x 5 cm") == []
     assert parse("a box 0 cm long").refused[0].reason.startswith("zero")
+
+
+@pytest.mark.parametrize("text", ["1e308 cm", "2.5e1 cm", "1e3 cm", "2.5E+1 cm", "3e-1 m", "1e-2 kg", "1E3 g"])
+def test_a_page_value_in_scientific_notation_is_not_read_as_one_of_its_parts(text: str) -> None:
+    # "1e308 cm" was read as 308 cm and "2.5e1 cm" as 1 cm (found by a blind test): no digits of it are read
+    assert parse_length(text) is None and parse_mass(text) is None
+
+
+@pytest.mark.parametrize("text,value", [("12.5cm", 12.5), ("E 12 cm", 12.0), ("12 cm e", 12.0)])
+def test_an_e_that_is_no_exponent_leaves_the_number_alone(text: str, value: float) -> None:
+    assert parse_length(text) == pytest.approx(value)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 from typer.testing import CliRunner
@@ -95,7 +96,7 @@ def test_recall_table_says_not_in_the_catalog_with_the_closest_of_the_kind(seede
     res = run("recall", "An orange of 7 cm diameter.", "--db", seeded)
     assert res.exit_code == 0, res.output
     text = " ".join(res.stdout.split())
-    assert "NOT IN THE CATALOG (open set): no 'orange' (a fruit)" in text
+    assert "NOT IN THE CATALOG (open set): no 'orange' (kind: fruit)" in text
     assert "closest of the same kind (fruit)" in text and "closest fruit: apple" in text
     assert "confidence 0.0" in text
 
@@ -146,3 +147,12 @@ def test_grasp_plan_simulate_a_teapot_simulates_the_described_object(seeded):
     out = json.loads(res.stdout)
     assert out["object"] == "described teapot" and out["recalled"]["open_set"]
     assert out["trial"]["outcome"] in ("success", "failure", "error") and out["features"]["mass_g"] == 900
+
+
+def test_the_table_prints_a_zero_name_part_unsigned_and_counts_candidates_in_whole_numbers(seeded):
+    res = run("recall", "a red plastic mug 10 cm tall", "--db", seeded)
+    assert res.exit_code == 0, res.output
+    assert "-0.00" not in res.stdout and "0.00" in res.stdout  # the unnamed rows' name part
+    guess = run("recall", "something small and round", "--db", seeded)
+    text = " ".join(guess.stdout.split())
+    assert re.search(r"about \d+ candidates as good", text), text  # a soft count, said as a whole number

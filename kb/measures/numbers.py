@@ -30,9 +30,17 @@ __all__ = [
     "parse_number",
 ]
 
+#: Not a number of its own: digits that are part of scientific notation ("1e308", "2.5E+1": the mantissa or
+#: the exponent). A page never writes a size in exponents, so such digits are not read at all (reading "308"
+#: out of "1e308" and "1" out of "2.5e1" was the old fault). A minus sign is not a sign on a page (a size is
+#: never negative: it is a dash or a bullet, see ``test_a_negative_value_is_refused_by_the_parser...``).
+_NOT_ALONE = r"(?<!\d[eE])(?<!\d[eE][+-])"
+_NO_EXPONENT = r"(?![.,]?\d*[eE][+-]?\d)"
 #: One number in digits (atomic: no backtracking), or a leading-dot decimal like ".5" after a space, an
-#: opening bracket or a colon.
-NUMBER_PATTERN = r"(?:(?<![\d.,])(?>\d+(?:[.,]\d+)*)|(?<![^\s(:])(?>\.\d+))"
+#: opening bracket or a colon; never digits of a number in scientific notation (:data:`_NOT_ALONE`).
+NUMBER_PATTERN = (
+    rf"(?:(?<![\d.,]){_NOT_ALONE}(?>\d+(?:[.,]\d+)*){_NO_EXPONENT}|(?<![^\s(:])(?>\.\d+){_NO_EXPONENT})"
+)
 #: Regular expression for one number written with digits; the parser's tokenizer uses it as is. It
 #: stays linear on long digit-comma chains ("1,234,567,..."): a thousands group only needs no digit
 #: after it, so a failed match backs off one group and succeeds.
@@ -89,8 +97,9 @@ def decimal_comma_for(lang: str | None = None, url: str | None = None) -> bool |
 
 
 def format_decimal(value: float) -> str:
-    """A number written so that no decimal-mark rule misreads it (never exactly three decimals)."""
-    text = f"{value:.4f}".rstrip("0").rstrip(".")
+    """A number written so that no decimal-mark rule misreads it (never exactly three decimals), to 6
+    decimals (a sixty-fourth of an inch is 0.015625)."""
+    text = f"{value:.6f}".rstrip("0").rstrip(".")
     if "." in text and len(text.split(".")[1]) == 3:
         text += "0"
     return text

@@ -62,7 +62,8 @@ def clean_text(text: object) -> str:
     if _HAS_VULGAR.search(text):
         text = _VULGAR_RE.sub(_vulgar, text)  # before NFKC, which would write "23½" as "231⁄2"
     text = unicodedata.normalize("NFKC", text).replace("\u2032\u2032", '"')  # NFKC writes ″ as ′′
-    if _HAS_NUMBER_WORD.search(text):
+    words = set(_LETTERS.findall(text.lower()))  # one pass: the word rules below run only when they can match
+    if not _NUMBER_WORD_SET.isdisjoint(words):
         text = _SPELLED.sub(_spelled, text)  # "twelve inches", "two and a half pounds"
     if "\\" in text or "\u201d" in text or "\u201c" in text:
         # an inch mark escaped inside embedded JSON (12\" x 8\") or written as a curly quote (40” x 28”)
@@ -72,7 +73,7 @@ def clean_text(text: object) -> str:
         text = _FRACTION.sub(_fraction, text)
     if "'" in text or "\u2019" in text:
         text = _APOSTROPHE_THOUSANDS.sub(lambda m: re.sub(r"['\u2019]", "", m.group(0)), text)
-    if _FOOT_HINT.search(text):
+    if "'" in text or "\u2032" in text or not _FOOT_WORDS.isdisjoint(words):
         text = _FEET_INCHES.sub(_feet_inches, text)
     if "\u05f4" in text or '"' in text:
         text = _HEBREW_UNITS.sub(_hebrew_unit, text)
@@ -97,7 +98,7 @@ _FRACTION = re.compile(
 )
 # Swiss and Liechtenstein thousands: "1'200 g", "CHF 1'249.00".
 _APOSTROPHE_THOUSANDS = re.compile(r"(?<![\d'\u2019.,])\d{1,3}(?:['\u2019]\d{3})+(?![\d'\u2019])")
-_FOOT_HINT = re.compile(rf"['\u2032]|(?i:{words_pattern('foot')})")
+_FOOT_WORDS = frozenset(words_pattern("foot").replace("\\", "").split("|"))
 _FEET_INCHES = re.compile(
     rf"(?<![\d.,])(\d{{1,3}}) ?(?:'(?!')|\u2032(?!\u2032)|(?i:{words_pattern('foot')})\b\.?)[ -]?"
     rf"(\d{{1,2}}(?:\.\d+)?) ?(?:''|\"|(?i:{words_pattern('inch')})\b\.?)"
@@ -118,7 +119,8 @@ _SPELLED_UNIT = "|".join(
     for w in sorted({*aliases_of("length", PARSER_LANGUAGES), *aliases_of("mass", PARSER_LANGUAGES)}, key=lambda w: (-len(w), w))
     if len(w) > 1 and w != "in" and w.isalpha()
 )
-_HAS_NUMBER_WORD = re.compile(rf"(?i)(?<![^\W\d_])(?:{_NUMBER_WORD})(?![^\W\d_])")
+_NUMBER_WORD_SET = frozenset(_NUMBER_WORD.split("|"))
+_LETTERS = re.compile(r"[^\W\d_]+")
 _SPELLED = re.compile(
     rf"(?i)(?<![\w-])((?:an?\s+)?(?:{_NUMBER_WORD})(?:(?:\s+|-)(?:(?:and|an?)\s+)*(?:{_NUMBER_WORD}))*)"
     rf"\s*-?\s*({_SPELLED_UNIT})(?![^\W\d_])"

@@ -83,14 +83,15 @@ class Unit:
         return _SYMBOL[self.kind]
 
 
-def _alias_rows() -> list[tuple[str, str, str, str]]:
-    """(word, kind, pint name, language) for every alias, in the aliases' order."""
-    return [
+@functools.cache
+def _alias_rows() -> tuple[tuple[str, str, str, str], ...]:
+    """(word, kind, pint name, language) for every alias, in the aliases' order (once per process)."""
+    return tuple(
         (word.replace("_", " "), KINDS[name], name, lang)
         for name, by_lang in ALIASES.items()
         for lang, words in by_lang.items()
         for word in words.split()
-    ]
+    )
 
 
 def unit_words() -> list[str]:
@@ -129,7 +130,8 @@ def unit_table(languages: frozenset[str] | None = None) -> MappingProxyType[str,
 
 
 def build_unit_table() -> dict[str, Unit]:
-    """The table computed with one pint registry, factors to 12 significant digits. Raises ValueError when a word names two units."""
+    """The table computed with one pint registry, factors to 12 significant digits. Raises ValueError
+    when a word names two units."""
     import pint
 
     ureg = pint.UnitRegistry()

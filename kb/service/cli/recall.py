@@ -242,7 +242,7 @@ def _match_table(matches, result, title: str):
     for i, m in enumerate(matches, 1):
         name = m.name + (" (named)" if m.matched_by_name else "")
         cells = [f"{_fmt(m.features.get(f))} [dim]+{m.contributions.get(f, 0.0):.2f}[/dim]" for f in stated]
-        extra = [f"-{m.name_part:.2f}"] if show_name else []
+        extra = [f"-{m.name_part:.2f}" if m.name_part >= 0.005 else "0.00"] if show_name else []  # no "-0.00"
         extra += [f"+{m.vague_part:.2f}"] if show_vague else []
         table.add_row(str(i), name, f"{m.score:.3f}", *cells, *extra)
     return table
@@ -255,7 +255,7 @@ def _verdict(result) -> str:
         near = ", ".join(m.name for m in result.matches[:3]) or "nothing (no feature stated)"
         kind = ", ".join(m.name for m in result.same_kind) or "none"
         return (
-            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (a {noun.kind}) in the catalog; physically closest: {near}; "
+            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (kind: {noun.kind}) in the catalog; physically closest: {near}; "
             f"closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}"
         )
     verdict = (
@@ -271,7 +271,7 @@ def _verdict(result) -> str:
     if result.unknown_noun:
         why.append(f"'{result.unknown_noun}' is no catalog noun")
     if result.competitors >= 1.5:
-        why.append(f"{result.competitors:.1f} candidates about as good")
+        why.append(f"about {round(result.competitors)} candidates as good")  # a soft count
     return f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else "")
 
 

@@ -184,7 +184,7 @@ async function runRecall(text) {
     const notIn = answer.not_in_catalog && answer.described;
     if (!answer.matches.length) {
       summary.textContent = notIn
-        ? `Not in the catalog: no ${answer.described.noun} (a ${answer.described.kind}), and no feature to compare.`
+        ? `Not in the catalog: no ${answer.described.noun} (kind: ${answer.described.kind}), and no feature to compare.`
         : "The description states no feature the catalog knows and names no object.";
       document.getElementById("grasp").replaceChildren();
     } else {
@@ -196,7 +196,7 @@ async function runRecall(text) {
         const verdict = el("strong", "Not in the catalog");
         verdict.id = "not-in-catalog";
         const kind = answer.same_kind.map((m) => m.name).join(", ") || "none";
-        summary.append(verdict, `: no ${answer.described.noun} (a ${answer.described.kind}). Physically closest: `,
+        summary.append(verdict, `: no ${answer.described.noun} (kind: ${answer.described.kind}). Physically closest: `,
           best, `; closest ${answer.same_kind_as || answer.described.kind}: ${kind} (${conf})`);
       } else {
         summary.append("Best match: ", best,

@@ -1,0 +1,99 @@
+"""How stores write a value, and how the spec-table reader takes it (:func:`written_value`): the metric
+figure when both are stated, a unit in brackets after the number, a narrow range inside a size, axis words
+each with a number inside one value (:func:`axis_segments`), a size of one length.
+"""
+
+from __future__ import annotations
+
+import re
+
+from kb.measures.units import units_pattern
+from scrapers.labels import AXES, classify_label
+from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
+
+__all__ = ["NARROW_RANGE", "axis_segments", "metric_figure", "one_length", "written_value"]
+
+#: A range no wider than this ratio is the object's own adjustment or a tolerance (``30-32 cm``, ``1,2 – 1,5
+#: kg``); a wider one spans variants of different sizes.
+NARROW_RANGE = 1.5
+
+_SEGMENT_SPLIT = re.compile(r"\s+|[、，,;/／|]+")
+
+
+def axis_segments(value: str, unit: str | None, decimal_comma: bool | None) -> list[tuple[str, float]]:
+    """The extents of a value written as axis words each followed by a number (``幅30cm 奥行20cm 高さ10cm``,
+    ``W 30 cm, D 20 cm``): (axis, cm) per segment, [] unless every axis is named once."""
+    found: list[tuple[str, float]] = []
+    text = clean_text(value)
+    if len(text) > 200:
+        return []
+    for segment in _SEGMENT_SPLIT.split(text):
+        m = re.match(r"([^\W\d_]+)\s*(?:約|约)?\s*(\d.*)$", segment)
+        if not m:
+            continue
+        info = classify_label(m.group(1))
+        if info is None or info.kind not in AXES:
+            continue
+        length = parse_length(m.group(2), unit, decimal_comma)
+        if length is not None:
+            found.append((info.kind, length))
+    kinds = [k for k, _ in found]
+    return found if len(set(kinds)) == len(kinds) <= 3 else []
+
+
+def one_length(value: str, unit: str | None, decimal_comma: bool | None) -> float | None:
+    """The one length a size value states before any other word (``19cm／240p``), else None."""
+    head = re.split(r"[／/|;,、]", clean_text(value), maxsplit=1)[0]
+    return parse_length(head, unit, decimal_comma) if len(head) <= 30 else None
+
+
+# A figure with an imperial or a metric length or mass unit (the words of the one unit table).
+_IMPERIAL = re.compile(rf"\d\s*(?:\"|(?:{units_pattern('length', 'mass', imperial=True)})\b)", re.IGNORECASE)
+_METRIC = re.compile(rf"\d\s*(?:{units_pattern('length', 'mass', imperial=False)})\b", re.IGNORECASE)
+_BRACKETED = re.compile(r"[(（]([^()（）]{1,80})[)）]")
+
+
+_TILDE_RANGE = re.compile(r"(?<![\d.,])(\d+(?:[.,]\d+)?)\s*[~～〜]\s*(\d+(?:[.,]\d+)?)(?![\d.,])")
+_BRACKETED_UNIT = re.compile(r"[(（]\s*([^\W\d_]{1,12}\.?)\s*[)）]")
+
+
+def written_value(value: str) -> tuple[str, str | None]:
+    """A value as the readers take it, with a note when it was rewritten: the metric figure when both are
+    stated (:func:`metric_figure`), a unit in brackets after the number (``0.35 (pounds)``), and a
+    narrow range inside a size (ASUS' ``31.18 x 22.25 x 1.49 ~ 1.69 cm``: the upper bound, the most room
+    the object needs, as :func:`range_extent` takes one)."""
+    note = None
+    metric = metric_figure(value)
+    if metric is not None:
+        value = metric  # "Height: 0.61 inch (1.56 cm)": the metric figure
+    if "(" in value or "（" in value:
+        value = _BRACKETED_UNIT.sub(lambda m: f" {m.group(1)}" if _is_unit_word(m.group(1)) else m.group(0), value)
+    if " x " in clean_text(value) and _TILDE_RANGE.search(value):
+        def upper(m: re.Match) -> str:
+            low, high = (float(g.replace(",", ".")) for g in m.groups())
+            return m.group(2) if 0 < low <= high <= NARROW_RANGE * low else m.group(0)
+
+        rewritten = _TILDE_RANGE.sub(upper, value)
+        if rewritten != value:
+            note, value = f"a range inside the size ({value[:80]}); took the upper bound", rewritten
+    return value, note
+
+
+def _is_unit_word(word: str) -> bool:
+    return length_unit(word) is not None or mass_unit(word) is not None
+
+
+def metric_figure(value: str) -> str | None:
+    """The metric figure of a value that states both (``0.61 inch (1.56 cm)``, ``2.8 lb (1.27 kg)``,
+    ``12.32 x 8.72 in (312.8 x 221.6 mm)``): the bracketed metric part when the rest is imperial, else
+    None (the value is read as written). Computer makers round each figure separately; the metric one
+    is the product's own."""
+    if "(" not in value and "（" not in value:
+        return None
+    m = _BRACKETED.search(value)
+    if not m or not _METRIC.search(m.group(1)) or _IMPERIAL.search(m.group(1)):
+        return None
+    outside = value[: m.start()]
+    if not _IMPERIAL.search(outside) or _METRIC.search(outside):
+        return None
+    return m.group(1)
