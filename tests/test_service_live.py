@@ -159,7 +159,8 @@ def test_reads_keep_answering_while_the_nightly_job_writes(live):
         requests_ = [
             ("GET", "/objects", {"params": {"limit": 20, "offset": kind * 7}}),
             ("POST", "/recall", {"json": {"text": "a ceramic coffee mug about 10 cm tall, 330 g", "top": 3}}),
-            ("POST", "/sql", {"json": {"query": "SELECT count(*) AS n FROM objects"}}),
+            # its time limit counts the wait for the writers: under load the default 5 s ran out (10 s: the most)
+            ("POST", "/sql", {"json": {"query": "SELECT count(*) AS n FROM objects", "timeout_s": 10}}),
             ("GET", "/objects/coffee mug", {}),
             ("GET", "/ingestion/runs", {}),
         ]
