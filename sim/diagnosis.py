@@ -6,7 +6,7 @@ numbers (stored with every result: its ``params`` and grip force, sim/planner.py
 
 | cause | when | what it means |
 |---|---|---|
-| ``aperture`` | the plan is infeasible (every side wider than the hand's span), or the hand, opened for this grasp, starts inside the object | the hand cannot open round it |
+| ``aperture`` | the plan is infeasible (every side wider than the hand's span), its grasp needs a wider opening than the span (``fits_aperture`` false: width plus the planner's margin), or the hand, opened for this grasp, starts inside the object | the hand cannot open round it: a setup problem, counted apart from grasp failures in the report |
 | ``mass`` | the squeeze its weight needs (against friction, or against the moment of its weight at a table edge) is more than this grasp can give | too heavy for this grasp: a stronger grasp, or two hands |
 | ``size`` | the digits closed without touching it | too small or thin for the pads |
 | ``friction`` | not lifted, or slipped past the limit, with a squeeze within the grasp's strength | squeeze times friction did not carry its weight and the push |
@@ -26,7 +26,7 @@ from sim.grasps import HAND_MAX_APERTURE_CM, side_force_capacity
 from sim.grip_force import GRAVITY
 from sim.task import row_details
 
-__all__ = ["CAUSES", "Cause", "diagnose", "failure_cause"]
+__all__ = ["CAUSES", "Cause", "diagnose", "failure_cause", "is_setup_failure"]
 
 CAUSES = ("aperture", "mass", "size", "friction", "moment")
 
@@ -71,6 +71,13 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
         return Cause(
             "aperture", f"its smallest side ({width:g} cm) is wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span: it needs two hands"
         )
+    if params.get("fits_aperture") is False:
+        opening = _num(params.get("opening_needed_cm"))
+        return Cause(
+            "aperture",
+            f"a {grasp.replace('_', ' ')} round {width:g} cm needs a {opening:g} cm opening, more than the hand's "
+            f"{HAND_MAX_APERTURE_CM:g} cm: a setup problem, not a grasp that slipped",
+        )
     if "inside" in reason:
         return Cause("aperture", f"the hand, opened for a {grasp.replace('_', ' ')}, cannot get round it ({width:g} cm across)")
     if params.get("force_within_capacity") is False:
@@ -101,3 +108,10 @@ def failure_cause(row: Mapping[str, Any]) -> str:
     """:func:`diagnose` as one line (``"mass: ..."``); the reason itself for a held or unexplained row."""
     cause = diagnose(row)
     return str(cause) if cause is not None else str(row.get("reason") or "held")
+
+
+def is_setup_failure(row: Mapping[str, Any]) -> bool:
+    """Did the trial fail because the hand could not be set up round the object (cause ``aperture``)?
+    Such a trial says nothing about how well the grasp holds: the report counts it apart."""
+    cause = diagnose(row)
+    return cause is not None and cause.kind == "aperture"

@@ -68,7 +68,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "7"  # 7: side wraps of deep objects squeeze for the moment of their weight
+PLANNER_VERSION = "8"  # 8: candidates the hand cannot open round, or cannot squeeze enough, ranked below the rest
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -77,16 +77,27 @@ TYPICAL_MAX_WIDTH_CM = 7.0
 #: prehension movements"). 1 cm left the pads' capsules brushing round objects and boxes on the way down
 #: (pinched higher, they squeezed them out); 2 cm: 127 instead of 124 of the seed catalog's best plans held.
 PRECISION_APERTURE_MARGIN_CM = 2.0
+#: Score factors of a candidate whose needed squeeze exceeds its grasp's capacity, and of one the hand cannot
+#: open round (needed opening over the span). The order does not rest on them: plan_grasps ranks every
+#: candidate that fits above every one that does not, then those within capacity above those beyond it.
+FORCE_PENALTY = 0.4
+APERTURE_PENALTY = 0.2
 
 
-def _aperture(grasp_type: str, width_cm: float) -> float:
-    """Opening before closing: the grasped width plus a margin (more for wraps, which close around)."""
+def opening_needed(grasp_type: str, width_cm: float) -> float:
+    """The opening a grasp needs before closing: the grasped width plus a margin (more for wraps, which
+    close around). A candidate fits the hand when this is at most :data:`HAND_MAX_APERTURE_CM`."""
     margin = (
         max(1.5, 0.25 * width_cm)
         if GRASP_TYPES[grasp_type] == "power"
         else max(PRECISION_APERTURE_MARGIN_CM, 0.2 * width_cm)
     )
-    return round(min(HAND_MAX_APERTURE_CM, width_cm + margin), 2)
+    return round(width_cm + margin, 2)
+
+
+def _aperture(grasp_type: str, width_cm: float) -> float:
+    """Opening before closing, capped by the hand's span."""
+    return round(min(HAND_MAX_APERTURE_CM, opening_needed(grasp_type, width_cm)), 2)
 
 
 @dataclass(frozen=True)
@@ -164,18 +175,25 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
         )
     if rank == 0:
         rationale.append(f"grasped across its smallest side c = {width:g} cm (Feix 2014: 94 % of grasps)")
-    score = 1.0 - 0.2 * rank
+    # Score: rule order (1.0 down to 0.5), times the two penalties, so that scores fall in the order of
+    # _rank_key (fit, then force, then rule order), which the ranking itself uses.
+    score = max(0.5, 1.0 - 0.2 * rank)
     capacity = side_force_capacity(grasp_type)
-    force, ranked = _planned_force(ctx, program, rationale)
+    force, _ranked = _planned_force(ctx, program, rationale)
     needed = force
     force_ok = force <= capacity
-    if ranked > capacity:
-        score *= 0.4
     if not force_ok:
-        rationale.append(f"needs {force:g} N, more than a {grasp_type} grasp's {capacity:g} N: risky")
+        score *= FORCE_PENALTY
+        rationale.append(f"force: needs {force:g} N, more than a {grasp_type} grasp's {capacity:g} N: ranked down")
         force = capacity
-    if not ctx.feasible:
-        score *= 0.2
+    opening = opening_needed(grasp_type, width)
+    fits = opening <= HAND_MAX_APERTURE_CM
+    if not fits:
+        score *= APERTURE_PENALTY
+        rationale.append(
+            f"aperture: needs a {opening:g} cm opening round {width:g} cm, more than the hand's "
+            f"{HAND_MAX_APERTURE_CM:g} cm: ranked down"
+        )
     return GraspPlan(
         grasp_type=grasp_type,
         family=GRASP_TYPES[grasp_type],
@@ -193,12 +211,19 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
             "needed_force_n": needed,
             "force_within_capacity": force_ok,
             "feasible": ctx.feasible,
+            "opening_needed_cm": opening,
+            "fits_aperture": fits,
             "two_hands": not ctx.feasible,
             "assumed_mass_g": round(o.mass_g, 1),
             "planner_version": PLANNER_VERSION,
             "program": program.name,
         },
     )
+
+
+def _rank_key(p: GraspPlan) -> tuple[bool, bool, float]:
+    """Candidates the hand can open round first, then those it can squeeze enough, then by score."""
+    return (not p.params["fits_aperture"], not p.params["force_within_capacity"], -p.score)
 
 
 def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None) -> list[GraspPlan]:
@@ -217,7 +242,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
             continue
         seen.add(program.name)
         plans.append(_plan(ctx, rank, grasp_type, reason, program))
-    plans.sort(key=lambda p: -p.score)  # stable: rule order breaks ties
+    plans.sort(key=_rank_key)  # stable: rule order breaks ties
     return plans[:top] if top else plans
 
 

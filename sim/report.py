@@ -29,7 +29,7 @@ from string import Template
 from typing import Any
 
 from kb.jsonable import to_jsonable
-from sim.diagnosis import failure_cause
+from sim.diagnosis import failure_cause, is_setup_failure
 from sim.task import row_details
 
 __all__ = ["CSV_FIELDS", "success_rates", "write_report"]
@@ -220,6 +220,7 @@ def write_report(
     )
     total = len(rows)
     counts = {k: sum(r["outcome"] == k for r in rows) for k in ("success", "failure", "error")}
+    setup = sum(r["outcome"] == "failure" and is_setup_failure(r) for r in rows)  # counted apart
     objects = len({r.get("object_name") for r in rows})
     rates = {key: success_rates(rows, key) for key, _ in _GROUPS}
 
@@ -252,7 +253,8 @@ def write_report(
             ("objects", objects),
             ("trials", total),
             ("success", counts["success"]),
-            ("failure", counts["failure"]),
+            ("grasp failure", counts["failure"] - setup),
+            ("setup failure (aperture)", setup),
             ("error", counts["error"]),
             ("success rate", f"{100 * rate:.0f} %"),
             ("first choice holds", f"{chosen.first_holds} / {objects}"),

@@ -126,3 +126,19 @@ def test_every_seed_like_plan_gets_a_known_cause_for_every_reason():
         for plan in plan_grasps(features):
             for reason in (TURNED, SLIPPED, NOT_LIFTED, INSIDE, NO_CONTACT):
                 assert diagnose(_row(plan, reason)).kind in CAUSES
+
+
+def test_a_plan_the_hand_cannot_open_round_is_a_setup_failure_whatever_the_trial_said():
+    from sim.diagnosis import is_setup_failure
+
+    # A teapot 10.8 cm across (data written here): within the span, but a wrap needs a 13.5 cm opening.
+    plan = best_grasp(dict(name="ceramic teapot", a_cm=22, b_cm=10.8, c_cm=10.8, mass_g=900, material="ceramic"))
+    assert plan.params["feasible"] and not plan.params["fits_aperture"]
+    for reason in (TURNED, SLIPPED, NOT_LIFTED, INSIDE):
+        cause = diagnose(_row(plan, reason))
+        assert cause.kind == "aperture" and "13.5 cm opening" in cause.text, reason
+        assert is_setup_failure(_row(plan, reason))
+    assert not is_setup_failure(_row(plan, "held", outcome="success"))
+    fits = best_grasp(REMOTE)
+    assert fits.params["fits_aperture"]
+    assert not is_setup_failure(_row(fits, SLIPPED)) and is_setup_failure(_row(fits, INSIDE))

@@ -219,8 +219,11 @@ def test_any_valid_features_get_valid_ranked_plans(features):
 @settings(max_examples=100, deadline=None)
 @given(features_strategy, st.floats(500, 100_000))
 def test_heavy_objects_always_get_power_grasps(features, mass):
-    """Feix et al. 2014: heavy objects are held with power grasps."""
-    assert best_grasp({**features, "mass_g": mass}).family == "power"
+    """Feix et al. 2014: heavy objects are held with power grasps, whenever one of the power candidates is one
+    the hand can open round and squeeze hard enough (else the one that can comes first: sim/PLANNER.md)."""
+    plans = plan_grasps({**features, "mass_g": mass})
+    if any(p.family == "power" and p.params["fits_aperture"] and p.params["force_within_capacity"] for p in plans):
+        assert plans[0].family == "power"
 
 
 @settings(max_examples=100, deadline=None)
@@ -369,3 +372,85 @@ def test_partial_sizes_plan_from_what_is_known():
 
     model = object_model(ObjectRecord.create("rod", a_cm=30.0, shape="long"))
     assert model.extent_cm("a") == pytest.approx(30.0) and model.extent_cm("c") == pytest.approx(4.5, abs=0.6)
+
+
+# -- Ranking: a candidate the hand cannot open round, or cannot squeeze enough, comes after the rest -------
+
+
+def test_opening_needed_fits_the_hand_exactly_at_its_span():
+    from sim.planner import opening_needed
+
+    # Power grasps open 1.5 cm or a quarter wider; precision grasps 2 cm or a fifth (sim/planner.py).
+    assert opening_needed("medium_wrap", 9.6) == HAND_MAX_APERTURE_CM
+    assert opening_needed("medium_wrap", 9.61) > HAND_MAX_APERTURE_CM
+    assert opening_needed("thumb_4_finger", 10.0) == HAND_MAX_APERTURE_CM
+    at = plan_grasps(dict(a_cm=20, b_cm=9.6, c_cm=9.6, mass_g=400, shape="prism", material="plastic"))
+    over = plan_grasps(dict(a_cm=20, b_cm=9.61, c_cm=9.61, mass_g=400, shape="prism", material="plastic"))
+    assert all(p.family == "power" for p in at + over)
+    assert all(p.params["fits_aperture"] for p in at)  # exactly the span: fits
+    assert not any(p.params["fits_aperture"] for p in over)
+    assert all(any(r.startswith("aperture:") for r in p.rationale) for p in over)
+    assert not any(any(r.startswith("aperture:") for r in p.rationale) for p in at)
+
+
+def test_a_candidate_that_fits_is_ranked_before_those_the_hand_cannot_open_round():
+    # 9.7 cm across: the rules' wraps need 12.1 cm, the four-finger pinch (their third choice) 11.64 cm.
+    plans = plan_grasps(dict(a_cm=29.1, b_cm=19.4, c_cm=9.7, mass_g=50, shape="long"))
+    assert plans[0].grasp_type == "thumb_4_finger" and plans[0].params["fits_aperture"]
+    assert [p.params["fits_aperture"] for p in plans] == [True, False, False]
+    assert plans[0].score > plans[1].score
+
+
+def test_the_blind_testers_teapot_is_planned_as_not_fitting_the_hand():
+    """A ceramic teapot 10.8 cm across (data written here): every wrap needs 13.5 cm; none is said to fit."""
+    plans = plan_grasps(dict(name="ceramic teapot", a_cm=22, b_cm=10.8, c_cm=10.8, mass_g=900, material="ceramic"))
+    assert plans and not any(p.params["fits_aperture"] for p in plans)
+    assert all(p.params["opening_needed_cm"] > HAND_MAX_APERTURE_CM >= p.aperture_cm for p in plans)
+
+
+def test_a_candidate_that_can_squeeze_enough_is_ranked_before_one_that_cannot():
+    # A brick (seed catalog's sizes): the side wraps must hold its weight's moment, 75 N > their 60 N; the
+    # top power sphere needs 56.7 N.
+    plans = plan_grasps(dict(a_cm=21.5, b_cm=10.25, c_cm=6.5, mass_g=2300, shape="prism", texture="rough",
+                             fragility="sturdy", material="other"))  # fmt: skip
+    assert plans[0].grasp_type == "power_sphere" and plans[0].params["force_within_capacity"]
+    assert not any(p.params["force_within_capacity"] for p in plans[1:])
+    assert all(any(r.startswith("force:") for r in p.rationale) for p in plans[1:])
+    assert plans[0].score > plans[1].score
+
+
+def test_a_squeeze_exactly_at_the_grasps_strength_is_within_it():
+    from sim.grasps import side_force_capacity
+
+    def sphere(mass_g):
+        f = dict(a_cm=8, b_cm=8, c_cm=8, mass_g=mass_g, shape="radial", material="plastic", texture="medium",
+                 fragility="sturdy")  # fmt: skip
+        return next(p for p in plan_grasps(f) if p.grasp_type == "power_sphere")
+
+    cap = side_force_capacity("power_sphere")
+    mu = resolve_features(dict(a_cm=8, material="plastic", texture="medium")).friction
+    at = cap * 2 * mu * 1000 / (GRAVITY * SAFETY_FACTOR["sturdy"])
+    assert sphere(at).params["needed_force_n"] == cap and sphere(at).params["force_within_capacity"]
+    assert not any(r.startswith("force:") for r in sphere(at).rationale)
+    over = sphere(at * 1.001)
+    assert over.params["needed_force_n"] > cap and not over.params["force_within_capacity"]
+
+
+@settings(max_examples=150, deadline=None)
+@given(features_strategy)
+def test_fitting_then_strong_enough_candidates_come_first(features):
+    plans = plan_grasps(features)
+    keys = [(not p.params["fits_aperture"], not p.params["force_within_capacity"]) for p in plans]
+    assert keys == sorted(keys)
+    assert [p.score for p in plans] == sorted((p.score for p in plans), reverse=True)
+    for p in plans:
+        assert p.params["fits_aperture"] == (p.params["opening_needed_cm"] <= HAND_MAX_APERTURE_CM)
+
+
+def test_fitting_the_hand_comes_before_squeezing_enough():
+    # 2 kg, 9.7 cm across: the precision sphere fits (11.64 cm) but is too weak; the power grasps are strong
+    # enough but need 12.1 cm. A grasp the hand cannot open round cannot be tried at all: the fitting one first.
+    plans = plan_grasps(dict(a_cm=20, b_cm=9.7, c_cm=9.7, mass_g=2000, shape="radial"))
+    flags = [(p.grasp_type, p.params["fits_aperture"], p.params["force_within_capacity"]) for p in plans]
+    assert flags[0] == ("precision_sphere", True, False)
+    assert ("power_sphere", False, True) in flags[1:]

@@ -149,6 +149,8 @@ def test_report_shows_first_and_validated_choice_and_why_nothing_holds(tmp_path)
     assert "no candidate holds" in page
     assert "aperture: the hand, opened for a" in page and "cannot get round it" in page  # the soccer ball: why
     assert "mass: holding it needs a squeeze of 80 N, more than the 30 N a thumb 2 finger gives" in page  # the anvil
+    # the soccer ball started inside: a setup failure, counted apart from the two grasps that failed
+    assert "grasp failure<b>2</b>" in page and "setup failure (aperture)<b>1</b>" in page
     doc = json.loads((tmp_path / "results.json").read_text())
     assert doc["summary"]["choices"] == {"objects": 3, "first_holds": 0, "validated": 1, "differs": 3}
     remote = next(c for c in doc["choices"] if c["object_name"] == "remote")
