@@ -56,7 +56,7 @@ LOOKUP_BELOW_CONFIDENCE = 0.5
 FIT_CLOSENESS = 0.30
 #: Seconds of the budget kept for judging the pages, writing and recalling again (at most half the budget).
 RESERVE_S = 2.0
-NOT_FOUND = "not found in the catalog or the stores"
+NOT_FOUND = "no close match in the catalog, and none found in the stores"
 
 
 @dataclass

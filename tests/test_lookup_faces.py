@@ -65,7 +65,7 @@ def test_cli_lookup_says_what_it_did(db, sources_file):
     res = cli("recall", "a purple velvet hippo 40 cm long", "--lookup", "--sources", sources_file, "--db", db)
     assert res.exit_code == 0, res.output
     said = " ".join(res.stdout.split())  # rich wraps long lines
-    assert "not found in the catalog or the stores" in said and "store demo: no_results" in said
+    assert "no close match in the catalog, and none found in the stores" in said and "store demo: no_results" in said
     res = cli("recall", TEAPOT, "--lookup", "--sources", sources_file, "--db", db)
     said = " ".join(res.stdout.split())
     assert "added from 1 of 1 store(s)" in said and "-> added" in said
