@@ -10,8 +10,8 @@ file at all, not even read-only. So :class:`KnowledgeBase` never keeps a connect
   seconds (default 30 s), then raises :class:`~kb.errors.DatabaseBusy`;
 * writers (CSV import, the nightly ingestion, grasp results) prepare everything first and hold the write
   connection only for one short transaction;
-* readers use a *sandboxed* read-only connection (no file or network access, no extensions, locked
-  configuration, a memory cap), which is also what user SQL runs on;
+* readers use a *sandboxed* read-only connection (no file or network access, no extensions, a memory cap);
+  user SQL runs on the same settings with the configuration locked, in a worker process of its own;
 * inside one process a reader/writer lock keeps read and write connections from overlapping (DuckDB refuses
   two connections with different settings on one file in one process).
 
@@ -32,7 +32,14 @@ from kb.csvio import read_catalog_csv, write_catalog_csv
 from kb.errors import DatabaseError, ObjectNotFound, QueryFailed
 from kb.features import CATEGORICAL_FEATURES, FEATURES, ObjectRecord, normalize_name
 from kb.locks import lock_for
-from kb.sandbox import ALLOWED_STATEMENTS, SANDBOX_CONFIG, open_connection, retry_while_locked, run_user_sql
+from kb.sandbox import (
+    ALLOWED_STATEMENTS,
+    CATALOG_READ_CONFIG,
+    SANDBOX_CONFIG,
+    open_connection,
+    retry_while_locked,
+    run_user_sql,
+)
 from kb.upserts import ARROW_TYPES, OBJECT_COLUMNS, ImportReport, bulk_execute, features_hash, upsert_records
 
 __all__ = [
@@ -135,7 +142,7 @@ class KnowledgeBase:
             if write:
                 con = self._retry(lambda: open_connection(self.path, read_only=False))
             else:
-                con = self._retry(lambda: open_connection(self.path, read_only=True, config=SANDBOX_CONFIG))
+                con = self._retry(lambda: open_connection(self.path, read_only=True, config=CATALOG_READ_CONFIG))
             try:
                 yield con
             finally:

@@ -41,6 +41,7 @@ from kb.errors import DatabaseBusy, DatabaseError, ObjrecallError, QueryFailed, 
 __all__ = [
     "ALLOWED_STATEMENTS",
     "HIDDEN_FUNCTIONS",
+    "CATALOG_READ_CONFIG",
     "SANDBOX_CONFIG",
     "USER_SQL_CONFIG",
     "WORKER_MEMORY_BYTES",
@@ -64,13 +65,20 @@ SANDBOX_CONFIG: dict[str, Any] = {
     "max_memory": "2GB",
     "lock_configuration": True,
 }
+#: Settings of the catalog's own read connections (:meth:`kb.catalog.KnowledgeBase.connect`): the sandbox
+#: without the configuration lock. Only the project's own statements run on them (user SQL runs in a worker
+#: process, :func:`run_user_sql`), and a lock set after connecting would make every later connection to the
+#: file in this process differ from the first one's settings, which DuckDB refuses.
+CATALOG_READ_CONFIG: dict[str, Any] = {k: v for k, v in SANDBOX_CONFIG.items() if k != "lock_configuration"}
 
 def open_connection(path: Path | str, *, read_only: bool, config: dict[str, Any] | None = None):
     """A DuckDB connection to ``path`` that never draws DuckDB's progress bar, then ``config``.
 
     DuckDB draws a progress bar on stdout for any statement over 2 s, terminal or not, which corrupts the
     output of ``--json`` and CSV commands. The bar can only be turned off per connection (not as a connect
-    setting), so the configuration lock of ``config`` is applied after turning it off.
+    setting), so the configuration lock of ``config`` is applied after turning it off. A locked connection
+    must be the process's only one to the file (as in a user-SQL worker): DuckDB refuses a second connection
+    whose settings differ from the first's, and the lock changed them.
     """
     import duckdb
 
