@@ -379,6 +379,41 @@ def test_body_limit_over_asgi_chunks(sizes, passed, declared):
     assert seen == ([b"x" * 1000] if passed else [])
 
 
+@pytest.mark.parametrize("before_start", [True, False], ids=["late start", "late body"])
+def test_the_time_limit_never_cuts_a_started_answer(before_start):
+    """Past the limit, an answer not yet started becomes a 504; one whose start was sent is finished (cutting
+    it off left an empty body behind a 504 the route itself had built: seen in CI under load)."""
+    import asyncio
+
+    from kb.service.http.limits import LimitsMiddleware
+
+    async def app(scope, receive, send):
+        await receive()
+        if before_start:
+            await asyncio.sleep(0.3)
+        await send({"type": "http.response.start", "status": 200, "headers": []})
+        await asyncio.sleep(0.3)
+        await send({"type": "http.response.body", "body": b'{"ok": true}'})
+
+    sent: list[dict] = []
+
+    async def receive():
+        return {"type": "http.request", "body": b"", "more_body": False}
+
+    async def send(message):
+        sent.append(message)
+
+    middleware = LimitsMiddleware(app, max_body_bytes=1000, timeout=0.1)
+    asyncio.run(middleware({"type": "http", "path": "/sql", "headers": []}, receive, send))
+    starts = [m for m in sent if m["type"] == "http.response.start"]
+    bodies = b"".join(m.get("body", b"") for m in sent if m["type"] == "http.response.body")
+    assert len(starts) == 1
+    if before_start:
+        assert starts[0]["status"] == 504 and b"RequestTimeout" in bodies
+    else:
+        assert starts[0]["status"] == 200 and bodies == b'{"ok": true}'
+
+
 def test_request_time_limit(shared_db):
     slow = TestClient(create_app(shared_db, token="", request_timeout=0.5), **LOCAL)
     r = slow.post(

@@ -4,6 +4,7 @@ the web page's content security policy."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 from typing import Any
 
@@ -38,6 +39,10 @@ def host_name(header: bytes | None) -> str:
     if text.startswith("["):
         return text[1:].split("]", 1)[0]
     return text.rsplit(":", 1)[0] if text.count(":") == 1 else text
+
+
+#: Seconds a response whose start was sent before the time limit gets to finish sending its body.
+FINISH_GRACE_S = 10.0
 
 
 class LimitsMiddleware:
@@ -123,13 +128,23 @@ class LimitsMiddleware:
                 message = {**message, "headers": [*message.get("headers", []), *extra]}
             await send(message)
 
+        task = asyncio.ensure_future(self.app(scope, replay, tracking_send))
         try:
-            await asyncio.wait_for(self.app(scope, replay, tracking_send), timeout=self.timeout)
+            await asyncio.wait_for(asyncio.shield(task), timeout=self.timeout)
+            return
         except TimeoutError:
-            if not started:
-                await _send_error(
-                    send, 504, "RequestTimeout", f"the request took longer than the {self.timeout:g} s limit"
-                )
+            pass
+        if started:  # the answer is on its way (a 504 of the route's own included): let it finish, within bounds
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(task, timeout=FINISH_GRACE_S)
+            return
+        task.cancel()
+        with contextlib.suppress(asyncio.CancelledError):
+            await task
+        if not started:
+            await _send_error(
+                send, 504, "RequestTimeout", f"the request took longer than the {self.timeout:g} s limit"
+            )
 
 
 class LimitsWrapped:
