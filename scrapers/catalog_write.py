@@ -38,11 +38,6 @@ _OBS_COLS = [
 ]  # fmt: skip
 
 
-def _bulk(con, view: str, columns: list[str], rows: list[dict[str, Any]], sql: str) -> None:
-    """Run ``sql`` once over ``rows`` exposed as the relation ``view`` (see kb.catalog.bulk_execute)."""
-    bulk_execute(con, view, columns, rows, sql)
-
-
 def _warm_up_arrow() -> None:
     """Register one Arrow table on a throwaway in-memory database: DuckDB and pyarrow import what they need
     for that (pandas and friends, seconds on a cold, busy machine) now, not while we hold the write lock."""
@@ -82,7 +77,7 @@ def write(
             _insert_observations(con, obs_rows, run_id, now)
             report.observations_added = len(obs_rows)
             _write_pages(con, outcomes, object_of_page, run_id, now)
-            _bulk(
+            bulk_execute(
                 con,
                 "ingest_events",
                 ["run_id", "url", "stage", "reason", "occurred_at"],
@@ -113,7 +108,7 @@ def _read_index(con) -> plan.CatalogIndex:
 def _insert_new(con, fresh, report, object_of_page: dict[str, int], now) -> list[dict[str, Any]]:
     """Insert the new objects; returns their observation rows (with object ids)."""
     planned = [plan.plan_new(group, report.warnings, now) for group in fresh]
-    _bulk(
+    bulk_execute(
         con,
         "ingest_new_objects",
         _NEW_COLS,
@@ -165,7 +160,7 @@ def _update_matched(con, matched, index, report, object_of_page, run_id, now) ->
         obs_rows.extend({**r, "object_id": oid} for r in added)
         report.updated_objects.append(index.objects[oid]["name"])
     sets = ", ".join(f"{c} = u.{c}" for c in _UPDATE_COLS[1:])
-    _bulk(
+    bulk_execute(
         con,
         "ingest_updates",
         _UPDATE_COLS,
@@ -202,7 +197,7 @@ def _insert_aliases(con, fresh, matched, index, object_of_page, report, events) 
                 alias_rows.append({"alias": named.english, "object_id": oid})
                 reason = f"kind {named.kind}; English alias {named.english!r} from the {named.provenance}"
                 events.append((p.url, "naming", reason))
-    _bulk(
+    bulk_execute(
         con,
         "ingest_aliases",
         ["alias", "object_id"],
@@ -216,7 +211,7 @@ def _insert_observations(con, obs_rows: list[dict[str, Any]], run_id: int, now) 
     for r in obs_rows:
         r["run_id"] = run_id
         r["fetched_at"] = plan.naive(r["fetched_at"]) or now
-    _bulk(
+    bulk_execute(
         con,
         "ingest_observations",
         _OBS_COLS,
@@ -228,7 +223,7 @@ def _insert_observations(con, obs_rows: list[dict[str, Any]], run_id: int, now) 
 def _write_pages(con, outcomes, object_of_page, run_id: int, now) -> None:
     """Pages: validators for next time (not-modified pages keep their object and hash)."""
     not_modified, others = plan.page_rows(outcomes, object_of_page, run_id, now)
-    _bulk(
+    bulk_execute(
         con,
         "ingest_seen",
         ["url", "status", "fetched_at", "run_id", "etag", "last_modified"],
@@ -238,8 +233,8 @@ def _write_pages(con, outcomes, object_of_page, run_id: int, now) -> None:
         "FROM ingest_seen s WHERE pages.url = s.url",
     )
     page_cols = list(others[0]) if others else []
-    _bulk(con, "ingest_pages", ["url"], others, "DELETE FROM pages WHERE url IN (SELECT url FROM ingest_pages)")
-    _bulk(
+    bulk_execute(con, "ingest_pages", ["url"], others, "DELETE FROM pages WHERE url IN (SELECT url FROM ingest_pages)")
+    bulk_execute(
         con,
         "ingest_pages",
         page_cols,
