@@ -134,11 +134,14 @@ class CellIndex:
         best_scores: np.ndarray,
         lb: np.ndarray | None = None,
         items: list | None = None,
+        give_up: float | None = None,
     ):
         """Improve a top-k (rows, scores) whose k-th score bounds the answer (none: every cell), visiting
         the cells within the bound best first, in batches of CELL_BATCH / 4 rows growing to MAX_BATCH
         (the bound tightens between batches). ``items``: the stated features in the order to filter
-        by (the most selective first; default the query's order)."""
+        by (the most selective first; default the query's order). ``give_up`` (rows): None when, once
+        a quarter of that many rows are read, the rows read and those of the cells left within the
+        bound are still more (the caller then scans)."""
         lb = self.bounds(query) if lb is None else lb
         if items is None:
             items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
@@ -146,12 +149,17 @@ class CellIndex:
         order = np.flatnonzero(lb <= _limit(s)) if math.isfinite(s) else np.arange(len(lb))
         order = order[np.argsort(lb[order], kind="stable")]
         ends = np.cumsum(self.sizes[order])
+        sorted_lb = lb[order] if give_up is not None else None
         i, budget = 0, CELL_BATCH // 4
         while i < len(order):
-            j = max(i + 1, int(np.searchsorted(ends, (ends[i - 1] if i else 0) + budget, "right")))
+            done = int(ends[i - 1]) if i else 0
+            limit = _limit(s)
+            if sorted_lb is not None and 4 * done >= give_up:  # a quarter done: is the whole still more?
+                if int(ends[int(np.searchsorted(sorted_lb, limit, "right")) - 1]) > give_up:
+                    return None
+            j = max(i + 1, int(np.searchsorted(ends, done + budget, "right")))
             batch = order[i:j]
             i, budget = j, min(max(budget * 2, CELL_BATCH), MAX_BATCH)
-            limit = _limit(s)
             if lb[batch[0]] > limit:
                 break
             pos = self._positions(batch[lb[batch] <= limit])

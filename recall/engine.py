@@ -23,6 +23,7 @@ import numpy as np
 from kb.errors import RecallError
 from kb.features import FEATURES, NUMERIC_FEATURES
 from kb.kinds import ROOT, words_of
+from recall.alternatives import alternatives, with_alternatives
 from recall.confidence import (
     COMPETITOR_POOL,
     CONFIDENCE_COEF,
@@ -167,6 +168,7 @@ class Recaller:
                 soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols),
                 self._submaterial(parsed),
             )
+            query, soft = with_alternatives(query, soft, alternatives(query, parsed), self.snapshot.cat_cols)
             subject = subject_phrase(text)
             noun = self.described(text)
         result = self._recall(
@@ -281,6 +283,7 @@ class Recaller:
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         matches = self._matches(rows, score, parts, query, metric, set(names.exact))
         errors = relative_errors(self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query)
+        errors.update(soft.errors_of(int(rows[0])) if soft is not None else {})
         closeness = float(np.mean(list(errors.values()))) if errors else None
         # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
         # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)

@@ -64,6 +64,13 @@ class SoftEvidence:
     penalty: np.ndarray
     #: (feature, limit, side) of each word used: side -1 = at most the limit, +1 = at least.
     limits: tuple[tuple[str, float, int], ...] = ()
+    #: Relative errors (0 match, 0.5 half, 1 mismatch) per row of stated categories scored here instead
+    #: of by the metric (:mod:`recall.alternatives`): they count in the closeness as stated features.
+    errors: tuple[tuple[str, np.ndarray], ...] = ()
+
+    def errors_of(self, row: int) -> dict[str, float]:
+        """The relative errors of ``row`` for the categories scored here (see ``errors``)."""
+        return {feature: float(err[row]) for feature, err in self.errors}
 
     def to_dict(self) -> dict[str, object]:
         return {"words": list(self.words), "max_penalty": VAGUE_WEIGHT}
