@@ -19,13 +19,14 @@ each query the cheapest of these plans from counts it can take before scoring an
   rows of the cells within the bound are fewer than those of any window;
 * **ties at 0**: when the k-th best is already 0, the answer is the k lowest row numbers at distance 0:
   the smallest zero window in row order, or a row-order scan that stops at the k-th;
-* **scan**: one pass of float32 products over every row, then the rows within the k-th product
-  (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects and whenever the
-  estimated cost of the others exceeds it (:data:`COST`).
+* **brute**: up to :data:`BRUTE_BELOW` objects, every row scored in float64 (the brute force itself);
+* **scan**: every row's float32 product in few passes (:meth:`JPIndex.products`), then the rows within
+  the k-th product (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects
+  and whenever the cost model (:mod:`recall.costs`) estimates the others dearer.
 
-The costs per row of :data:`COST` and the thresholds were measured on this machine (plans forced on the
-same queries in one process; ``benchmarks/recall_bench.py``); ``tests/test_search.py`` pins each
-threshold at its boundary.
+The cost model's figures and the thresholds were measured on this machine (plans forced on the same
+queries in one process; ``recall/RECALL.md``); ``tests/test_search.py`` pins each threshold and rule at
+its boundary.
 """
 
 from __future__ import annotations
