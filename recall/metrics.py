@@ -172,8 +172,19 @@ class FeatureQuery:
         return len(self.numeric) + len(self.categorical)
 
     def log_scaled(self) -> FeatureQuery:
-        """The query for ``jplog``: numeric conditions in log units, categories unchanged."""
-        return FeatureQuery(tuple(c.log_scaled() for c in self.numeric), self.categorical)
+        """The query for ``jplog``: numeric conditions in log units, categories unchanged. The same
+        values as :meth:`NumericCondition.log_scaled` (tested), in one NumPy pass over every stated
+        number rather than nine scalar calls each (every ``jplog`` recall builds one)."""
+        if not self.numeric:
+            return FeatureQuery((), self.categorical)
+        ends = np.array([(c.value, max(c.low, LOG_FLOOR), max(c.high, LOG_FLOOR)) for c in self.numeric])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            logs = (np.log(np.maximum(ends, 0.0)) / LOG_STEP).astype(np.float32).tolist()
+        conds = tuple(
+            _condition(c.feature, v, lo, hi, c.qualifier, _LOG_UNKNOWN)
+            for c, (v, lo, hi) in zip(self.numeric, logs, strict=True)
+        )
+        return FeatureQuery(conds, self.categorical)
 
     def values(self) -> dict[str, Any]:
         """Point values of the stated features."""
