@@ -134,13 +134,14 @@ class NumericCondition:
             _LOG_UNKNOWN,
         )
 
-    def differences(self, x: np.ndarray) -> np.ndarray:
-        """Distance of catalog values ``x`` (NaN = unknown) to the interval; unknown gets the fixed penalty."""
+    def differences(self, x: np.ndarray, unknown: np.ndarray | None = None) -> np.ndarray:
+        """Distance of catalog values ``x`` (NaN = unknown) to the interval; unknown gets the fixed penalty.
+        ``unknown``: ``np.isnan(x)`` when already at hand (speed only: the same result)."""
         if self.low == self.high:  # a point: |x - v| is max(v - x, x - v, 0) exactly, in fewer passes
             d = np.abs(x - self.low)
         else:
             d = np.maximum(np.maximum(self.low - x, x - self.high), 0.0)
-        return np.where(np.isnan(x), self.unknown_difference, d)
+        return np.where(np.isnan(x) if unknown is None else unknown, self.unknown_difference, d)
 
 
 _LOG_UNKNOWN = float(log_units(1.0 + UNKNOWN_NUMERIC_FRACTION))

@@ -53,6 +53,7 @@ from recall.ranking import (
     CAT_INDEX,
     FILTER_SLACK,
     NUM_INDEX,
+    WideColumns,
     category_terms,
     factors,
     jp_scores,
@@ -152,6 +153,11 @@ class JPIndex(SortedColumns):
         return CellIndex(self.num_cols, self.cat_cols)
 
     @cached_property
+    def wide(self) -> WideColumns:
+        """The numeric columns in float64 (the brute plan's, up to BRUTE_BELOW rows: +36 B a row)."""
+        return WideColumns(self.num_cols)
+
+    @cached_property
     def combinations(self) -> CombinationIndex:
         return CombinationIndex(self.cat_cols)
 
@@ -159,13 +165,15 @@ class JPIndex(SortedColumns):
         """Build the parts built on first use (cells, combinations) now, and run one query (NumPy's
         first call of some routines imports modules: ~40 ms, not to be paid by the first description)."""
         _ = self.cells, self.combinations, self.records
+        if self.n <= BRUTE_BELOW:
+            _ = self.wide
         self.plan_and_search(FeatureQuery.from_values({"a_cm": 10.0, "material": "wood"}), 1)
         return self
 
     @property
     def nbytes(self) -> int:
         """Bytes of the index (the parts built so far; the columns themselves not included)."""
-        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records")]
+        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records", "wide")]
         return self.sorted_nbytes + sum(p.nbytes for p in parts if p is not None)
 
     @cached_property
@@ -225,7 +233,7 @@ class JPIndex(SortedColumns):
             if force == "column":
                 raise ValueError("the column plan found more rows near the value, or ties, than it reads")
         if force == "brute" or (force is None and self.n <= BRUTE_BELOW):
-            return "brute", *select_top_k(None, self.score(query), k)
+            return "brute", *select_top_k(None, jp_scores(None, self.cat_cols, query, wide=self.wide), k)
         if force == "scan" or (force is None and small):
             return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
