@@ -36,6 +36,9 @@ _PHRASE_ENDS = frozenset(
     "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
 )
 _PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: A past participle ("shaped", "filled", "covered"), which after the head noun and before a function word
+#: ends the subject phrase.
+_ADJECTIVE_PARTICIPLE = re.compile(r"..ed$")
 #: Verbs of measuring that also make compound nouns ("a glass *measuring* cup", "a *weighing* scale").
 _COMPOUND_VERBS = frozenset({"measuring", "weighing"})
 #: Words skipped inside the subject phrase (determiners, vague size words).
@@ -66,12 +69,14 @@ def subject_phrase(text: str) -> tuple[str, ...]:
             if word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
                 if phrase:
                     break
+            elif phrase and _ADJECTIVE_PARTICIPLE.search(word) and set(words[i + 1 : i + 2]) & _PHRASE_ENDS:
+                break  # "a kitchen timer *shaped* like a tomato", "a tin *filled* with buttons"
             elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
                 pass
             elif word not in _PHRASE_SKIP:
                 phrase.append(word)
             previous = word
-        if phrase:
+        if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
             return tuple(singular(w) for w in phrase)
     return ()
 
