@@ -121,3 +121,41 @@ def test_soft_categories_count_in_the_closeness_as_the_metric_would():
 def test_wire_and_foil_are_metal():
     assert parse("wire loops, 11 inches long").values()["material"] == "metal"
     assert parse("a foil tray").values()["material"] == "metal"
+
+
+# ------------------------------------------------------------------ light words, relative to the size
+def test_light_words_compare_a_row_with_the_objects_of_its_size():
+    from recall.vague import MIN_OF_SIZE, SIZE_FACTOR, VERY_LIGHT_Q, soft_evidence
+
+    # 20 small objects (2 cm, 1-20 g) and 20 large ones (40 cm, 100-2000 g)
+    a = np.array([2.0] * 20 + [40.0] * 20)
+    m = np.concatenate([np.arange(1.0, 21.0), np.arange(100.0, 2100.0, 100.0)])
+    ev = soft_evidence("it is very light", {}, None, [a, a, a, m])
+    small_limit, large_limit = np.quantile(m[:20], VERY_LIGHT_Q), np.quantile(m[20:], VERY_LIGHT_Q)
+    assert np.all(ev.penalty[:20][m[:20] <= small_limit] == 0.0) and np.all(
+        ev.penalty[:20][m[:20] > small_limit] > 0
+    )
+    # a 300 g object is very light for 40 cm, though heavier than every small one
+    assert np.all(ev.penalty[20:][m[20:] <= large_limit] == 0.0) and ev.penalty[22] == 0.0
+    assert np.all(ev.penalty[20:][m[20:] > large_limit] > 0)
+    assert SIZE_FACTOR < 40 / 2 and MIN_OF_SIZE <= 20
+
+
+def test_light_words_use_the_whole_catalog_when_few_objects_have_the_size():
+    from recall.vague import MIN_OF_SIZE, VERY_LIGHT_Q, soft_evidence
+
+    n = MIN_OF_SIZE - 1  # too few of either size
+    a = np.array([2.0] * n + [40.0] * n + [np.nan])
+    m = np.concatenate([np.arange(1.0, n + 1.0), np.arange(100.0, 100.0 * (n + 1), 100.0), [50.0]])
+    ev = soft_evidence("weighs almost nothing", {}, None, [a, a, a, m])
+    limit = np.quantile(m, VERY_LIGHT_Q)
+    assert np.all((ev.penalty == 0.0) == (m <= limit))  # the unknown size too
+
+
+def test_heavy_words_stay_on_the_whole_catalog():
+    from recall.vague import soft_evidence
+
+    a = np.array([2.0] * 20 + [40.0] * 20)
+    m = np.concatenate([np.arange(1.0, 21.0), np.arange(100.0, 2100.0, 100.0)])
+    ev = soft_evidence("a very heavy thing", {}, None, [a, a, a, m])
+    assert np.all(ev.penalty[:20] > 0)  # no small object is heavy for the catalog
