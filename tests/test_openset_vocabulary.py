@@ -185,3 +185,22 @@ def test_a_word_said_in_the_plural_is_a_noun_whatever_its_ending():
 def test_a_y_after_a_vowel_is_no_adjective_ending():
     assert is_adjective("squishy") and is_adjective("fuzzy")
     assert not is_adjective("trolley") and not is_adjective("key") and not is_adjective("tray")
+
+
+# ------------------------------------------------------------------------------------------ verdict
+def test_one_verdict_line_for_every_face():
+    from recall.openset import verdict
+
+    cases = {
+        "An orange of 7 cm diameter.": "not in the catalog",
+        "a fuzzy yellow tennis ball, about 6.5 cm across, 58 g": "close match",
+        "something small and round": "a guess",
+    }
+    for text, label in cases.items():
+        res = seed().recall_text(text)
+        got = verdict(res)
+        assert got.label == label, (text, got)
+        assert res.to_dict()["verdict"] == got.to_dict()  # --json and POST /recall carry the CLI's line
+        assert f"confidence {res.confidence:.2f}" in got.text
+    far = seed().recall_text("steel, 3 m long, 90 kg")
+    assert far.open_set and not far.not_in_catalog and verdict(far).label == "not a close match"
