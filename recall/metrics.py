@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -125,13 +125,13 @@ class NumericCondition:
     def log_scaled(self) -> NumericCondition:
         """The same condition in log units (:func:`log_units`); an unknown catalog value still counts as
         off by UNKNOWN_NUMERIC_FRACTION (a factor 1.5)."""
-        return NumericCondition(
+        return _condition(
             self.feature,
             as_stored(float(log_units(self.value))),
             as_stored(float(log_units(max(self.low, LOG_FLOOR)))),  # "at most" keeps a finite lower end
             as_stored(float(log_units(max(self.high, LOG_FLOOR)))),
             self.qualifier,
-            float(log_units(1.0 + UNKNOWN_NUMERIC_FRACTION)),
+            _LOG_UNKNOWN,
         )
 
     def differences(self, x: np.ndarray) -> np.ndarray:
@@ -141,6 +141,18 @@ class NumericCondition:
         else:
             d = np.maximum(np.maximum(self.low - x, x - self.high), 0.0)
         return np.where(np.isnan(x), self.unknown_difference, d)
+
+
+_LOG_UNKNOWN = float(log_units(1.0 + UNKNOWN_NUMERIC_FRACTION))
+_CONDITION_FIELDS = tuple(f.name for f in fields(NumericCondition))
+
+
+def _condition(*values: Any) -> NumericCondition:
+    """A :class:`NumericCondition` of these field values, built without the frozen dataclass's
+    ``__setattr__`` per field (~1.1 µs of ~1.5; every ``jplog`` recall builds one per stated number)."""
+    cond = object.__new__(NumericCondition)
+    cond.__dict__.update(zip(_CONDITION_FIELDS, values, strict=True))
+    return cond
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,7 @@ from kb.kinds import singular, words_of
 
 __all__ = [
     "adjective_feature_words",
+    "said_in_plural",
     "feature_words",
     "is_adjective",
     "is_participle",
@@ -36,6 +37,9 @@ _PHRASE_ENDS = frozenset(
     "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
 )
 _PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: A past participle ("shaped", "filled", "covered"), which after the head noun and before a function word
+#: ends the subject phrase.
+_ADJECTIVE_PARTICIPLE = re.compile(r"..ed$")
 #: Verbs of measuring that also make compound nouns ("a glass *measuring* cup", "a *weighing* scale").
 _COMPOUND_VERBS = frozenset({"measuring", "weighing"})
 #: Words skipped inside the subject phrase (determiners, vague size words).
@@ -66,12 +70,14 @@ def subject_phrase(text: str) -> tuple[str, ...]:
             if word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
                 if phrase:
                     break
+            elif phrase and _ADJECTIVE_PARTICIPLE.search(word) and set(words[i + 1 : i + 2]) & _PHRASE_ENDS:
+                break  # "a kitchen timer *shaped* like a tomato", "a tin *filled* with buttons"
             elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
                 pass
             elif word not in _PHRASE_SKIP:
                 phrase.append(word)
             previous = word
-        if phrase:
+        if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
             return tuple(singular(w) for w in phrase)
     return ()
 
@@ -131,7 +137,8 @@ def adjective_feature_words() -> frozenset[str]:
     return frozenset(w for table in tables for w in table if " " not in w)
 
 
-_ADJECTIVE = re.compile(r"(al|ic|ed|y|ish|ar|shaped|like)$")
+#: Adjective endings; "-y" only after a consonant ("squishy", "fuzzy"), not in "key", "tray", "trolley".
+_ADJECTIVE = re.compile(r"(al|ic|ed|[^aeiou]y|ish|ar|shaped|like)$")
 _SHAPE_ADJECTIVES = frozenset(
     {"flat", "round", "long", "thin", "slim", "slender", "compact", "oval", "squat", "floppy"}
 )
@@ -151,3 +158,12 @@ def is_adjective(word: str) -> bool:
     ("metallic", "round", "folded"); a heuristic without a tagger (nouns such as "garlic" match too:
     callers check the noun lexicon first)."""
     return bool(_ADJECTIVE.search(word)) or word in _SHAPE_ADJECTIVES or is_participle(word)
+
+
+def said_in_plural(word: str, text: str) -> bool:
+    """Whether ``text`` has ``word`` (singular) in a plural form ("binoculars", "boxes"): an adjective has
+    none, so a word said in the plural is a noun whatever its ending."""
+    low = text.lower()
+    return any(re.search(rf"\b{re.escape(word)}{end}\b", low) for end in ("s", "es")) or (
+        word.endswith("y") and re.search(rf"\b{re.escape(word[:-1])}ies\b", low) is not None
+    )
