@@ -295,13 +295,12 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
     aliases = tuple(obj.aliases) if isinstance(obj, ObjectRecord) else tuple(obj.get("aliases") or ())
     hold = _handle_hold(ctx, aliases)
     plans: list[GraspPlan] = [_handle_plan(ctx, hold)] if hold else []
-    # Hand programs already listed: a merged type is simulated once. A handle hold is its own (it wraps
-    # another part), but its grasp type is not listed again (results are grouped by grasp type).
-    seen: set[str] = set()
-    types = {p.grasp_type for p in plans}
+    # Hand programs already listed (the handle hold's too): a merged type is simulated once, and results,
+    # grouped by grasp type, never mix a handle hold with a grasp of the body.
+    seen: set[str] = {program_for(p.grasp_type).name for p in plans}
     for rank, (grasp_type, reason) in enumerate(candidates(ctx.o), start=len(plans)):
         program = program_for(grasp_type)
-        if program.name in seen or grasp_type in types:
+        if program.name in seen:
             continue
         seen.add(program.name)
         plans.append(_plan(ctx, rank, grasp_type, reason, program))
