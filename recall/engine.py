@@ -47,6 +47,7 @@ from recall.openset import (
     KindIndex,
     compound_head,
     described_noun,
+    foreign_head,
     foreign_modifier,
     is_open_set,
     material_agrees,
@@ -57,7 +58,7 @@ from recall.openset import (
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
-from recall.subject import subject_head, subject_phrase
+from recall.subject import said_in_plural, subject_head, subject_phrase
 from recall.submaterials import SubmaterialIndex, with_submaterial
 from recall.vague import SoftEvidence, soft_evidence
 
@@ -240,7 +241,10 @@ class Recaller:
         )
         if noun is not None or any(w in idx.vocabulary for w in after_of):
             return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
-        return unseen_noun(idx.unknown_noun(text) or compound_head(subject, idx.vocabulary), subject)
+        head = idx.unknown_noun(text) or compound_head(subject, idx.vocabulary)
+        if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
+            subject, head = after_of, foreign_head(after_of, idx.vocabulary)
+        return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))
 
     # -- the ranking
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:

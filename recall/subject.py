@@ -16,6 +16,7 @@ from kb.kinds import singular, words_of
 
 __all__ = [
     "adjective_feature_words",
+    "said_in_plural",
     "feature_words",
     "is_adjective",
     "is_participle",
@@ -136,7 +137,8 @@ def adjective_feature_words() -> frozenset[str]:
     return frozenset(w for table in tables for w in table if " " not in w)
 
 
-_ADJECTIVE = re.compile(r"(al|ic|ed|y|ish|ar|shaped|like)$")
+#: Adjective endings; "-y" only after a consonant ("squishy", "fuzzy"), not in "key", "tray", "trolley".
+_ADJECTIVE = re.compile(r"(al|ic|ed|[^aeiou]y|ish|ar|shaped|like)$")
 _SHAPE_ADJECTIVES = frozenset(
     {"flat", "round", "long", "thin", "slim", "slender", "compact", "oval", "squat", "floppy"}
 )
@@ -156,3 +158,12 @@ def is_adjective(word: str) -> bool:
     ("metallic", "round", "folded"); a heuristic without a tagger (nouns such as "garlic" match too:
     callers check the noun lexicon first)."""
     return bool(_ADJECTIVE.search(word)) or word in _SHAPE_ADJECTIVES or is_participle(word)
+
+
+def said_in_plural(word: str, text: str) -> bool:
+    """Whether ``text`` has ``word`` (singular) in a plural form ("binoculars", "boxes"): an adjective has
+    none, so a word said in the plural is a noun whatever its ending."""
+    low = text.lower()
+    return any(re.search(rf"\b{re.escape(word)}{end}\b", low) for end in ("s", "es")) or (
+        word.endswith("y") and re.search(rf"\b{re.escape(word[:-1])}ies\b", low) is not None
+    )
