@@ -29,7 +29,7 @@ SCAN_NS = {"numeric": (0.8, 1.0), "categories": (1.0, 2.25), "row": (0.9, 0.6)}
 WINDOW_NS = (4.0, 8.0)
 CACHE_ROWS = 1 << 18
 PROBE_NS, PROBE_FEATURE_NS, BOUND_CELL_NS = 80_000.0, 11_000.0, 1.8
-CELLS_FIXED_NS, CELL_NS, CELLS_FEATURE_NS, CELLS_NS = 40_000.0, 20.0, 15_000.0, (5.0, 2.5)
+CELLS_FIXED_NS, CELL_NS, CELLS_FEATURE_NS, CELLS_NS = 40_000.0, 20.0, 15_000.0, (3.5, 2.5)
 PLAN_FIXED_NS = 50_000.0
 #: Above CACHE_ROWS rows, when the cell plan's estimate exceeds the scan's by at most this factor, the
 #: cell plan is tried first: it gives up for the scan once it has read a quarter of the rows the scan's
