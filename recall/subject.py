@@ -67,7 +67,9 @@ def subject_phrase(text: str) -> tuple[str, ...]:
         previous = ""
         words = _WORD.findall(chunk)
         for i, word in enumerate(words):
-            if word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
+            if not phrase and _request_word(word, words[i + 1 : i + 2]):
+                pass  # "Could you pass the salt shaker", "Where is the scoop", "Hand me the hammer"
+            elif word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
                 if phrase:
                     break
             elif phrase and _ADJECTIVE_PARTICIPLE.search(word) and set(words[i + 1 : i + 2]) & _PHRASE_ENDS:
@@ -80,6 +82,23 @@ def subject_phrase(text: str) -> tuple[str, ...]:
         if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
             return tuple(singular(w) for w in phrase)
     return ()
+
+
+#: Words of a request or question before the subject ("please", "could you", "where is", "find me",
+#: "looking for"): skipped before the subject phrase starts, when a function word, pronoun or
+#: determiner follows them ("*hand* me the hammer"; not "a *hand* towel": a noun follows).
+_REQUEST_WORDS = frozenset(
+    "please can could would will find get grab bring hand pass give fetch show locate pick need want where "
+    "what which looking look search searching seeking got".split()
+)
+
+
+def _request_word(word: str, following: list[str]) -> bool:
+    if word == "please":
+        return True
+    if word not in _REQUEST_WORDS or not following:
+        return False
+    return following[0] in _PHRASE_ENDS or following[0] in _PHRASE_SKIP
 
 
 def _compound_verb(word: str, following: list[str]) -> bool:
