@@ -142,7 +142,12 @@ def soft_evidence(
         part[~known] = VAGUE_WEIGHT / 2
         penalty += part
         unit = "cm" if feature == "a_cm" else "g"
-        words.append(f"{word} -> {feature} {'<=' if side < 0 else '>='} {limit:.3g} {unit}")
+        bound = f"{'<=' if side < 0 else '>='} {limit:.3g} {unit}"
+        if feature == "mass_g" and side < 0 and SIZE_RELATIVE_MASS:
+            bound = (
+                f"in the lightest {round(100 * q)} % of objects of its size (<= {limit:.3g} {unit} overall)"
+            )
+        words.append(f"{word} -> {feature} {bound}")
         limits.append((feature, limit, side))
     return SoftEvidence(tuple(words), penalty, tuple(limits)) if words else None
 
