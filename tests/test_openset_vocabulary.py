@@ -217,3 +217,13 @@ def test_a_request_or_question_before_the_subject_is_skipped():
     res = seed().recall_text("Could you pass the salt shaker, glass, 8 cm tall?")
     assert res.not_in_catalog and res.described.noun == "salt shaker"
     assert seed().recall_text("Hand me the hammer, 33 cm, 600 g.").best.name == "hammer"
+
+
+def test_a_noun_after_a_subject_of_feature_words_is_the_described_noun():
+    from recall.subject import noun_phrase
+
+    assert noun_phrase("Steel, about 15 cm long, 150 g, a nutcracker.") == ("nutcracker",)
+    assert noun_phrase("Metal, 5.5 inches long, a fifth of an ounce.") == ("metal",)  # no lexicon noun later
+    assert noun_phrase("A plush dinosaur toy, 35 cm, a gift") == ("plush", "dinosaur", "toy")  # a noun first
+    res = seed().recall_text("Plastic, 27 cm across, 175 g, a frisbee.")
+    assert res.not_in_catalog and res.described.noun == "frisbee"
