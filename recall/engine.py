@@ -47,6 +47,7 @@ from recall.openset import (
     KindIndex,
     compound_head,
     described_noun,
+    foreign_head,
     foreign_modifier,
     is_open_set,
     material_agrees,
@@ -57,7 +58,7 @@ from recall.openset import (
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
-from recall.subject import subject_head, subject_phrase
+from recall.subject import noun_phrase, said_in_plural, subject_head, subject_phrase
 from recall.submaterials import SubmaterialIndex, with_submaterial
 from recall.vague import SoftEvidence, soft_evidence
 
@@ -169,7 +170,7 @@ class Recaller:
                 self._submaterial(parsed),
             )
             query, soft = with_alternatives(query, soft, alternatives(query, parsed), self.snapshot.cat_cols)
-            subject = subject_phrase(text)
+            subject = noun_phrase(text)
             noun = self.described(text)
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun,
@@ -199,7 +200,7 @@ class Recaller:
             else self.names.find(text, (), query.values().get("material"))
         )
         noun = self.described(text) if text and not features_only else None
-        subject = subject_phrase(text) if text and not features_only else ()
+        subject = noun_phrase(text) if text and not features_only else ()
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, noun=noun, subject=subject
         )
@@ -230,7 +231,7 @@ class Recaller:
     def described(self, text: str) -> DescribedNoun | None:
         """The lexicon noun the description's subject names, and whether the catalog has it."""
         idx = self.names
-        subject = subject_phrase(text)
+        subject = noun_phrase(text)
         after_of: tuple[str, ...] = ()
         if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
             m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
@@ -240,7 +241,10 @@ class Recaller:
         )
         if noun is not None or any(w in idx.vocabulary for w in after_of):
             return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
-        return unseen_noun(idx.unknown_noun(text) or compound_head(subject, idx.vocabulary), subject)
+        head = idx.unknown_noun(text) or compound_head(subject, idx.vocabulary)
+        if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
+            subject, head = after_of, foreign_head(after_of, idx.vocabulary)
+        return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))
 
     # -- the ranking
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:

@@ -26,6 +26,7 @@ __all__ = [
     "KindIndex",
     "Verdict",
     "compound_head",
+    "foreign_head",
     "described_noun",
     "foreign_modifier",
     "material_agrees",
@@ -191,20 +192,20 @@ PART_NOUNS = frozenset(
 NOTE_WORDS = frozenset("dim dims dimension measurement approx wt weight size spec specs pic photo".split())
 
 
-def unseen_noun(unknown: str | None, subject: Sequence[str]) -> DescribedNoun | None:
+def unseen_noun(unknown: str | None, subject: Sequence[str], plural: bool = False) -> DescribedNoun | None:
     """The unseen-noun rule (RECALL.md, "Not in the catalog"): the subject's head ``unknown`` is a noun
     the catalog's names and aliases do not know (:meth:`recall.name_index.NameIndex.unknown_noun`: no
     catalog word, generic noun or feature word), the kinds lexicon does not list it either, and it is no
     placeholder ("something"), part of a thing ("blade", :data:`PART_NOUNS`), listing abbreviation
     ("dims"), shape noun ("wire *loops*", :data:`SHAPE_NOUNS`), colour or adjective-like word
-    (:func:`noun_like`): the description names an object the catalog does not have, of unknown kind (the
+    (:func:`noun_like`; a word said in the plural, ``plural``, is a noun whatever its ending): the description names an object the catalog does not have, of unknown kind (the
     root). The noun reported is the head with the noun before it when there is one ("lint roller"; its
     ``english``, the search word of a store lookup, is the head alone). The recall uses it only when the
     description states a feature ("qwerty uiop" is nothing to recall). None otherwise (a lexicon noun is :func:`described_noun`'s to judge)."""
     if unknown is None or any(unknown in words for words in (PLACEHOLDERS, PART_NOUNS, NOTE_WORDS, SHAPE_NOUNS)):
         return None
-    if noun_in([unknown]) is not None or not noun_like(unknown):
-        return None
+    if noun_in([unknown]) is not None or not (noun_like(unknown) or (plural and _plural_noun(unknown))):
+        return None  # ``plural``: said in the plural ("binoculars"), a noun whatever its ending
     before = subject[-2] if len(subject) > 1 and subject[-1] == unknown else None
     text = f"{before} {unknown}" if before and before not in PLACEHOLDERS and noun_like(before) else unknown
     return DescribedNoun(text, ROOT, unknown, False)
@@ -242,12 +243,18 @@ def compound_head(subject: Sequence[str], vocabulary: frozenset[str]) -> str | N
     (:func:`unseen_noun` then applies its exclusions), which :meth:`recall.name_index.NameIndex.unknown_noun`
     does not give for a compound on a catalog head noun (there "remote control" must stay the tv remote:
     "control" is a catalog word, so it is none here either). None otherwise."""
+    return foreign_head(subject, vocabulary) if len(subject) >= 2 else None
+
+
+def foreign_head(words: Sequence[str], vocabulary: frozenset[str]) -> str | None:
+    """The last of ``words`` when it is no catalog word, generic noun, feature word or participle: the
+    head of a phrase the catalog's names do not know (also the phrase after "a pair of")."""
     from recall.names import GENERIC_NOUNS
 
-    if len(subject) < 2:
+    head = words[-1] if words else None
+    if head is None or head in vocabulary or head in GENERIC_NOUNS:
         return None
-    head = subject[-1]
-    if head in vocabulary or head in GENERIC_NOUNS or head in feature_words() or is_participle(head):
+    if head in feature_words() or is_participle(head):
         return None
     return head
 
@@ -290,6 +297,14 @@ def material_of_word(word: str) -> str | None:
     from recall.lexicon import MATERIAL_WORDS
 
     return MATERIAL_WORDS.get(word)
+
+
+def _plural_noun(word: str) -> bool:
+    from recall.lexicon import COLOUR_WORDS
+
+    return len(word) >= 3 and word.isalpha() and word not in COLOURS and word not in COLOUR_WORDS and (
+        word not in feature_words()
+    )
 
 
 def noun_like(word: str) -> bool:

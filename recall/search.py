@@ -19,13 +19,14 @@ each query the cheapest of these plans from counts it can take before scoring an
   rows of the cells within the bound are fewer than those of any window;
 * **ties at 0**: when the k-th best is already 0, the answer is the k lowest row numbers at distance 0:
   the smallest zero window in row order, or a row-order scan that stops at the k-th;
-* **scan**: one pass of float32 products over every row, then the rows within the k-th product
-  (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects and whenever the
-  estimated cost of the others exceeds it (:data:`COST`).
+* **brute**: up to :data:`BRUTE_BELOW` objects, every row scored in float64 (the brute force itself);
+* **scan**: every row's float32 product in few passes (:meth:`JPIndex.products`), then the rows within
+  the k-th product (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects
+  and whenever the cost model (:mod:`recall.costs`) estimates the others dearer.
 
-The costs per row of :data:`COST` and the thresholds were measured on this machine (plans forced on the
-same queries in one process; ``benchmarks/recall_bench.py``); ``tests/test_search.py`` pins each
-threshold at its boundary.
+The cost model's figures and the thresholds were measured on this machine (plans forced on the same
+queries in one process; ``recall/RECALL.md``); ``tests/test_search.py`` pins each threshold and rule at
+its boundary.
 """
 
 from __future__ import annotations
@@ -52,6 +53,7 @@ from recall.ranking import (
     CAT_INDEX,
     FILTER_SLACK,
     NUM_INDEX,
+    WideColumns,
     category_terms,
     factors,
     jp_scores,
@@ -76,6 +78,9 @@ SCAN_WORK = 40_000
 COLUMN_FROM = 1024
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
+#: The scan's first bound: the k-th of a sample of SAMPLE_PER_ROW_K * sqrt(n k) rows (n k / sample
+#: rows then pass it, ~sqrt(n k) / SAMPLE_PER_ROW_K: a few dozen to a few hundred).
+SAMPLE_PER_ROW_K = 4.0
 #: Rows of the nearest cells scored to tighten the first bound before choosing a plan.
 PROBE_ROWS = 2048
 #: Rows filtered per step of the window plan (the bound tightens between steps).
@@ -148,6 +153,11 @@ class JPIndex(SortedColumns):
         return CellIndex(self.num_cols, self.cat_cols)
 
     @cached_property
+    def wide(self) -> WideColumns:
+        """The numeric columns in float64 (the brute plan's, up to BRUTE_BELOW rows: +36 B a row)."""
+        return WideColumns(self.num_cols)
+
+    @cached_property
     def combinations(self) -> CombinationIndex:
         return CombinationIndex(self.cat_cols)
 
@@ -155,13 +165,15 @@ class JPIndex(SortedColumns):
         """Build the parts built on first use (cells, combinations) now, and run one query (NumPy's
         first call of some routines imports modules: ~40 ms, not to be paid by the first description)."""
         _ = self.cells, self.combinations, self.records
+        if self.n <= BRUTE_BELOW:
+            _ = self.wide
         self.plan_and_search(FeatureQuery.from_values({"a_cm": 10.0, "material": "wood"}), 1)
         return self
 
     @property
     def nbytes(self) -> int:
         """Bytes of the index (the parts built so far; the columns themselves not included)."""
-        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records")]
+        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records", "wide")]
         return self.sorted_nbytes + sum(p.nbytes for p in parts if p is not None)
 
     @cached_property
@@ -221,7 +233,7 @@ class JPIndex(SortedColumns):
             if force == "column":
                 raise ValueError("the column plan found more rows near the value, or ties, than it reads")
         if force == "brute" or (force is None and self.n <= BRUTE_BELOW):
-            return "brute", *select_top_k(None, self.score(query), k)
+            return "brute", *select_top_k(None, jp_scores(None, self.cat_cols, query, wide=self.wide), k)
         if force == "scan" or (force is None and small):
             return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
@@ -280,25 +292,40 @@ class JPIndex(SortedColumns):
         """Every row's product Π (1 + d_j) in float32 (:meth:`products`); the rows within the k-th
         (widened) scored."""
         prod = self.products(query)
-        kth = np.partition(prod, k - 1)[k - 1]
-        rows = np.flatnonzero(prod <= kth * np.float32(1.0 + FILTER_SLACK))
-        return select_top_k(rows, self.score(query, rows), k)
+        return select_top_k(*self._within_kth(prod, k, query), k)
+
+    def _within_kth(self, prod: np.ndarray, k: int, query: FeatureQuery):
+        """The rows whose product is within the k-th smallest (widened by FILTER_SLACK) and their exact
+        distances. The k-th of a strided sample of ~SAMPLE_PER_ROW_K * sqrt(n k) rows bounds the k-th
+        from above (a selection over the sample, not over every row); should more than 32 k rows fall
+        within it, the k-th among those (the true k-th: they hold every row below the bound) is taken."""
+        slack = np.float32(1.0 + FILTER_SLACK)
+        step = max(1, int(self.n / max(4 * k, SAMPLE_PER_ROW_K * math.sqrt(self.n * k))))
+        sample = prod[::step]
+        rows = np.flatnonzero(prod <= np.partition(sample, k - 1)[k - 1] * slack) if step > 1 else None
+        if rows is None or len(rows) > 4 * k:
+            within = prod if rows is None else prod[rows]
+            keep = np.flatnonzero(within <= np.partition(within, k - 1)[k - 1] * slack)
+            rows = keep if rows is None else rows[keep]
+        num, cat = self._block(rows)  # one gather of the packed rows, not one per column
+        return rows, jp_scores(num, cat, query)
 
     def products(self, query: FeatureQuery) -> np.ndarray:
         """Π (1 + d_j) of every row in float32, in as few passes as the mask allows (the scan's work;
         the same factors as :func:`recall.ranking.factors`, multiplied in another order, so within
-        ``FILTER_SLACK`` of the exact product): a numeric feature's ``1 + d`` takes 3–4 passes with
-        unknown values counted 1, then its unknown rows (the tail of its sorted order, ~3 %) are
-        multiplied by the unknown factor; every stated category together is one gather of a table
-        over the category combinations (:attr:`combinations`), whose factors 1 / 2 / 4 are exact."""
+        ``FILTER_SLACK`` of the exact product): a numeric feature's ``1 + d`` takes 3 passes for a
+        point, 5 for an interval (no NaN-aware fmax: 5x slower than an add), then its unknown rows
+        (the tail of its sorted order, ~3 %) are set to the unknown factor; every stated category
+        together is one gather of a table over the category combinations (:attr:`combinations`),
+        whose factors 1 / 2 / 4 are exact."""
         prod = None
         for cond in query.numeric:
             j = NUM_INDEX[cond.feature]
             d = _one_plus_distance(cond, self.num_cols[j])
-            prod = d if prod is None else np.multiply(prod, d, out=prod)
             unknown = self.num_order[j][self.num_known[j] :]
             if len(unknown):
-                prod[unknown] *= np.float32(1.0 + cond.unknown_difference)
+                d[unknown] = np.float32(1.0 + cond.unknown_difference)
+            prod = d if prod is None else np.multiply(prod, d, out=prod)
         if query.categorical:
             comb = self.combinations
             table = None
@@ -374,7 +401,7 @@ _ONE = np.float32(1.0)
 
 
 def _one_plus_distance(cond, x: np.ndarray) -> np.ndarray:
-    """``1 + d`` of a numeric condition for a float32 column, an unknown value (NaN) counted 1."""
+    """``1 + d`` of a numeric condition for a float32 column (a new array; NaN where unknown, or 1)."""
     low, high = np.float32(cond.low), np.float32(cond.high)
     if float(low) != cond.low or float(high) != cond.high:  # bounds not held in float32: float64
         d = factors(("num", cond), [x] * len(NUMERIC_FEATURES), None, optimistic=True)
@@ -382,7 +409,9 @@ def _one_plus_distance(cond, x: np.ndarray) -> np.ndarray:
     if cond.low == cond.high:
         d = np.subtract(x, low)
         np.abs(d, out=d)
-    elif math.isinf(cond.high):
+        d += _ONE
+        return d
+    if math.isinf(cond.high):
         d = np.subtract(low, x)
     elif math.isinf(cond.low):
         d = np.subtract(x, high)
@@ -390,7 +419,7 @@ def _one_plus_distance(cond, x: np.ndarray) -> np.ndarray:
         d = np.subtract(low, x)
         np.maximum(d, np.subtract(x, high), out=d)
     d += _ONE
-    return np.fmax(d, _ONE, out=d)  # inside the interval (1 + d < 1) and NaN: 1
+    return np.maximum(d, _ONE, out=d)  # inside the interval (1 + d < 1): 1
 
 
 @functools.cache

@@ -40,9 +40,9 @@ def test_a_pan_is_planned_by_its_handle_first():
     # Squeezed at the wrap's full capacity (the pan's moment beyond the grip), said in the rationale.
     assert first.grip_force_n == 60.0 and first.params["force_within_capacity"]
     assert any(line.startswith("handle:") for line in first.rationale)
-    # The body's candidates follow, each grasp type once, none of them a handle hold.
-    types = [p.grasp_type for p in plans]
-    assert len(types) == len(set(types))
+    # The body's candidates follow, each hand program once, none of them a handle hold.
+    programs = [p.params["program"] for p in plans]
+    assert len(programs) == len(set(programs))
     assert all("hold" not in p.params for p in plans[1:])
     assert plans[1].grasp_type == "medium_wrap"  # the flat rule's first choice, as before version 9
 
@@ -68,6 +68,14 @@ def test_a_pan_named_in_another_language_or_by_alias_is_held_by_its_handle():
 )
 def test_objects_without_a_long_handle_get_no_handle_hold(obj):
     assert all("hold" not in p.params for p in plan_grasps(obj))
+
+
+def test_a_round_pot_with_a_long_handle_lists_the_wrap_program_once():
+    """A saucepan is not flat: its body would be wrapped by the heavy wrap, the program the handle hold
+    uses; the planner lists that program once, on the handle."""
+    plans = plan_grasps(_rec("saucepan", 36, 18, 10, 900, "prism"))
+    assert plans[0].params["hold"] == HOLD_HANDLE
+    assert [p.params["program"] for p in plans].count("heavy_wrap") == 1
 
 
 @pytest.mark.parametrize(
