@@ -227,3 +227,9 @@ def test_a_noun_after_a_subject_of_feature_words_is_the_described_noun():
     assert noun_phrase("A plush dinosaur toy, 35 cm, a gift") == ("plush", "dinosaur", "toy")  # a noun first
     res = seed().recall_text("Plastic, 27 cm across, 175 g, a frisbee.")
     assert res.not_in_catalog and res.described.noun == "frisbee"
+
+
+def test_a_collective_or_kind_word_names_no_missing_object():
+    for text in ("A piece of clothing, cotton, 70 by 50 cm, 150 g.", "Some cutlery, steel, 20 cm long, 50 g."):
+        res = seed().recall_text(text)
+        assert not res.not_in_catalog and not res.open_set, text
