@@ -123,6 +123,10 @@ def test_wire_and_foil_are_metal():
     assert parse("a foil tray").values()["material"] == "metal"
 
 
+def test_porous_is_rough():
+    assert parse("soft and porous, 4 by 3 by 1.5 inches").values()["texture"] == "rough"
+
+
 # ------------------------------------------------------------------ light words, relative to the size
 def test_light_words_compare_a_row_with_the_objects_of_its_size():
     from recall.vague import MIN_OF_SIZE, SIZE_FACTOR, VERY_LIGHT_Q, soft_evidence
