@@ -347,10 +347,10 @@ def read_index(file: Path, fingerprint: list[int], code: str) -> RecallIndex | N
 def _from_arrays(data: dict[str, np.ndarray], meta: dict, origin: str = "stored") -> RecallIndex:
     from recall.names import RowsByKey, _HeadMaterials
     from recall.snapshot import CatalogSnapshot
-    from recall.string_table import KeyRows, StringSet, StringTable
+    from recall.string_table import KeyRows, StringColumn, StringSet, StringTable
 
     n = int(meta["n"])
-    names = _strings(data["names"], n)
+    names = StringColumn(data["names"], n)
     flat = _strings(data["alias_text"], int(meta["aliases"]))
     starts = data["alias_starts"]
     aliases: list[tuple[str, ...]] = [()] * n

@@ -53,3 +53,18 @@ def test_set_and_rows_behave_as_a_frozenset_and_a_dict_of_sets():
     assert set(phrases) == {("tea", "cup"), ("mug",)} and len(phrases) == 2
     with pytest.raises(KeyError):
         phrases.span(("pan",))
+
+
+@pytest.mark.parametrize("strings", [[], ["only"], ["", "mug", ""], ["tasse à thé", "red mug 12", "x" * 3000]])
+def test_a_string_column_is_the_list_it_holds(strings):
+    from recall.stored_index import _blob
+    from recall.string_table import StringColumn
+
+    column = StringColumn(_blob(strings), len(strings))
+    assert column == strings and strings == column and list(column) == strings and len(column) == len(strings)
+    assert [column[i] for i in range(len(strings))] == strings and column[::-1] == strings[::-1]
+    if strings:
+        assert column[-1] == strings[-1] and column[np.int64(0)] == strings[0]
+    with pytest.raises(IndexError):
+        column[len(strings)]
+    assert column != [*strings, "more"]
