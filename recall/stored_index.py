@@ -347,15 +347,13 @@ def read_index(file: Path, fingerprint: list[int], code: str) -> RecallIndex | N
 def _from_arrays(data: dict[str, np.ndarray], meta: dict, origin: str = "stored") -> RecallIndex:
     from recall.names import RowsByKey, _HeadMaterials
     from recall.snapshot import CatalogSnapshot
-    from recall.string_table import KeyRows, StringColumn, StringSet, StringTable
+    from recall.string_table import GroupColumn, KeyRows, StringColumn, StringSet, StringTable
 
     n = int(meta["n"])
     names = StringColumn(data["names"], n)
-    flat = _strings(data["alias_text"], int(meta["aliases"]))
-    starts = data["alias_starts"]
-    aliases: list[tuple[str, ...]] = [()] * n
-    for i in np.flatnonzero(np.diff(starts)).tolist():  # the rows with aliases only
-        aliases[i] = tuple(flat[int(starts[i]) : int(starts[i + 1])])
+    aliases = GroupColumn(StringColumn(data["alias_text"], int(meta["aliases"])), data["alias_starts"])
+    if len(aliases) != n:
+        raise ValueError("alias rows")
     num, cat = data["num"], data["cat"]
     snap = CatalogSnapshot.from_columns(names, aliases, list(num), list(cat),
                                         version=("fingerprint", *meta["catalog"]))  # fmt: skip

@@ -17,7 +17,7 @@ from collections.abc import Iterator, Sequence, Set
 
 import numpy as np
 
-__all__ = ["KeyRows", "StringColumn", "StringSet", "StringTable", "key_hash", "key_hashes"]
+__all__ = ["GroupColumn", "KeyRows", "StringColumn", "StringSet", "StringTable", "key_hash", "key_hashes"]
 
 _P = 0x100000001B3  # the 64-bit FNV prime
 _LENGTH = 0x9E3779B97F4A7C15  # mixes in the length
@@ -213,3 +213,45 @@ class StringColumn(Sequence):
     @property
     def nbytes(self) -> int:
         return int(self.text.nbytes + self.starts.nbytes)
+
+
+class GroupColumn(Sequence):
+    """A read-only list of tuples of strings (row i: ``strings[starts[i] : starts[i+1]]``, a
+    :class:`StringColumn`): the catalog's aliases at their bytes plus 4 B per row, instead of a list
+    slot per row and a tuple per aliased row. Equal to any sequence of the same tuples."""
+
+    def __init__(self, strings: StringColumn, starts: np.ndarray):
+        if len(starts) == 0 or int(starts[-1]) != len(strings):
+            raise ValueError("group starts do not match the strings")
+        self.strings = strings
+        self.starts = starts.astype(np.int32 if len(strings) < 2**31 else np.int64)
+
+    def __len__(self) -> int:
+        return len(self.starts) - 1
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
+        i = int(i)
+        if i < 0:
+            i += len(self)
+        if not 0 <= i < len(self):
+            raise IndexError(i)
+        a, b = int(self.starts[i]), int(self.starts[i + 1])
+        return tuple(self.strings[j] for j in range(a, b))
+
+    def __iter__(self) -> Iterator[tuple[str, ...]]:
+        flat = list(self.strings)
+        bounds = self.starts.tolist()
+        return (tuple(flat[a:b]) for a, b in zip(bounds[:-1], bounds[1:], strict=True))
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, Sequence) and not isinstance(other, str):
+            return len(self) == len(other) and all(tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
+        return NotImplemented
+
+    __hash__ = None  # like a list
+
+    @property
+    def nbytes(self) -> int:
+        return int(self.strings.nbytes + self.starts.nbytes)

@@ -68,3 +68,19 @@ def test_a_string_column_is_the_list_it_holds(strings):
     with pytest.raises(IndexError):
         column[len(strings)]
     assert column != [*strings, "more"]
+
+
+@pytest.mark.parametrize("groups", [[], [()], [(), ("mug",), (), ("a", "b", "")], [("tasse à thé",), ()]])
+def test_a_group_column_is_the_list_of_tuples_it_holds(groups):
+    from recall.stored_index import _blob
+    from recall.string_table import GroupColumn, StringColumn
+
+    flat = [s for g in groups for s in g]
+    starts = np.concatenate(([0], np.cumsum([len(g) for g in groups]))).astype(np.int64)
+    column = GroupColumn(StringColumn(_blob(flat), len(flat)), starts)
+    assert column == groups and groups == column and list(column) == groups and len(column) == len(groups)
+    assert [column[i] for i in range(len(groups))] == groups and column[1:] == groups[1:]
+    if groups:
+        assert column[-1] == groups[-1]
+    with pytest.raises(IndexError):
+        column[len(groups)]
