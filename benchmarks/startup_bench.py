@@ -9,7 +9,9 @@ temporary ``PYTHONPYCACHEPREFIX``, after one warm-up run), as an installed packa
 The one-shot recall reads a fresh ``objrecall init --seed`` catalog (169 objects). The build catalogs are
 synthetic (data written here): DuckDB files of N objects with names "adjective noun number" over 20
 nouns, every 10th with an alias; "cold" builds the index (and stores it), "stored" reloads it. Memory
-per object: what the built recaller holds (tracemalloc, in a separate run) and the stored file's size.
+per object: what the built recaller holds (tracemalloc, in a separate run), broken down by part (the
+arrays' sizes), then what the first recall adds (the default metric's query structures, by the module
+that builds them), and the stored file's size.
 
     python benchmarks/startup_bench.py [--sizes 100000,1000000] [--runs 5] [--save]
 """
@@ -69,8 +71,11 @@ def held_parts(recaller) -> dict[str, int]:
     """Bytes held by a recaller just built, by part (``part:`` keys; the arrays' own sizes, the Python
     objects' ``sys.getsizeof``)."""
     snap, names = recaller.snapshot, recaller.names
-    aliases = sys.getsizeof(snap.aliases) + sum(sys.getsizeof(a) + sum(sys.getsizeof(x) for x in a)
-                                                 for a in snap.aliases if a)  # fmt: skip
+    if hasattr(snap.aliases, "nbytes"):  # read back from the index: arrays
+        aliases = snap.aliases.nbytes
+    else:
+        aliases = sys.getsizeof(snap.aliases) + sum(sys.getsizeof(a) + sum(sys.getsizeof(x) for x in a)
+                                                     for a in snap.aliases if a)  # fmt: skip
     if hasattr(snap.names, "nbytes"):
         name_bytes = snap.names.nbytes
     else:
@@ -81,7 +86,7 @@ def held_parts(recaller) -> dict[str, int]:
     return {
         "part:feature columns (4 float32, 5 int8)": snap.nbytes,
         "part:names (UTF-8 text, int32 starts)": name_bytes,
-        "part:aliases (Python tuples of str)": aliases,
+        "part:aliases (UTF-8 text, int32 starts per alias and per row)": aliases,
         "part:name index phrases (string table, CSR rows)": getattr(names.phrases, "nbytes", 0),
         "part:name index vocabulary (string table)": vocabulary.nbytes if vocabulary is not None else 0,
         "part:name index head nouns (CSR rows, uint8 material masks)": head_bytes,
@@ -234,7 +239,7 @@ def print_parts(built: dict) -> None:
     for key, value in parts.items():
         if key.startswith("part:"):
             print(f"{'':>14}{value:8.1f}  {key[5:]}")
-    print(f"{'':>14}{built['memory_per_object'] - held:8.1f}  not in a part above (containers, fixed costs / N)")
+    print(f"{'':>14}{built['memory_per_object'] - held:8.1f}  the rest (Python containers, fixed costs / N)")
     print(f"{'':>10}  B/object after the first recall (default metric): {built['queried_per_object']:.1f}, added:")
     for key, value in parts.items():
         if key.startswith("query:"):
@@ -276,9 +281,15 @@ def _save(cmds: dict, built: dict, load: float, runs: int) -> None:
              f"one-shot `objrecall recall` {rec_wall:.2f} s wall / {rec_cpu:.2f} s CPU "
              f"({rec_cpu / cmds['import numpy, duckdb'][1]:.1f}x `import numpy, duckdb`)"]  # fmt: skip
     for n, b in built.items():
+        p = b["parts_per_object"]
+        names = sum(v for k, v in p.items() if k.startswith("part:name") or k.startswith("part:aliases"))
+        columns = p["part:feature columns (4 float32, 5 int8)"] + sum(v for k, v in p.items()
+                                                                       if k.startswith("query:") and "other" not in k)  # fmt: skip
         parts.append(f"Recaller at {n:,} (synthetic): cold {b['cold_cpu']:.1f} s, from the stored index "
                      f"{b['stored_cpu']:.2f} s CPU ({b['stored_cpu'] / b['plain_cpu']:.1f}x a plain DuckDB read), "
-                     f"{b['memory_per_object']:.0f} B/object held")  # fmt: skip
+                     f"{b['memory_per_object']:.0f} B/object held once built (names, aliases and name index "
+                     f"{names:.0f}), {b['queried_per_object']:.0f} after the first recall (the default metric's "
+                     f"columns and their index {columns:.0f})")  # fmt: skip
     data = {"commands": {k: list(v) for k, v in cmds.items()}, "builds": {str(k): v for k, v in built.items()},
             "load_average": load, "runs": runs}  # fmt: skip
     save_result("startup_bench", benchmark="start-up: CLI and Recaller build, fresh subprocesses, min of "
