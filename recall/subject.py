@@ -20,6 +20,7 @@ __all__ = [
     "feature_words",
     "is_adjective",
     "is_participle",
+    "noun_phrase",
     "subject_head",
     "subject_phrase",
 ]
@@ -59,6 +60,11 @@ def subject_phrase(text: str) -> tuple[str, ...]:
     noun phrase of the first sentence (words up to a comma, a number or a word of :data:`_PHRASE_ENDS`; determiners and vague size
     words skipped), singular. "A plush dinosaur toy, 35 cm" -> toy; "An orange of 7 cm" -> orange;
     "My daughter's teddy bear" -> bear. No part-of-speech tagger: a heuristic, used only as evidence."""
+    return next(_phrases(text), ())
+
+
+def _phrases(text: str):
+    """The noun phrases of the first sentence, one per chunk (see :func:`subject_phrase`), in order."""
     low = text.lower().replace("\u2019", "'")
     low = re.sub(r"\b(it|that|there|what|he|she)'s\b", r"\1 is", low).replace("'s", "").replace("'", "")
     sentence = re.split(r"[.!?;:\n]", low, maxsplit=1)[0]
@@ -67,7 +73,9 @@ def subject_phrase(text: str) -> tuple[str, ...]:
         previous = ""
         words = _WORD.findall(chunk)
         for i, word in enumerate(words):
-            if word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
+            if not phrase and _request_word(word, words[i + 1 : i + 2]):
+                pass  # "Could you pass the salt shaker", "Where is the scoop", "Hand me the hammer"
+            elif word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
                 if phrase:
                     break
             elif phrase and _ADJECTIVE_PARTICIPLE.search(word) and set(words[i + 1 : i + 2]) & _PHRASE_ENDS:
@@ -78,8 +86,37 @@ def subject_phrase(text: str) -> tuple[str, ...]:
                 phrase.append(word)
             previous = word
         if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
-            return tuple(singular(w) for w in phrase)
-    return ()
+            yield tuple(singular(w) for w in phrase)
+
+
+def noun_phrase(text: str) -> tuple[str, ...]:
+    """The subject phrase (:func:`subject_phrase`), or, when its words only state features ("Steel, 15
+    cm long, a nutcracker": "steel"), the first later phrase of the sentence that ends in a noun of the
+    kinds lexicon (:func:`kb.kinds.noun_in`); the subject phrase otherwise."""
+    from kb.kinds import noun_in
+
+    phrases = _phrases(text)
+    first = next(phrases, ())
+    if first and not all(w in feature_words() for w in first):
+        return first
+    return next((p for p in phrases if noun_in(list(p)) is not None), first)
+
+
+#: Words of a request or question before the subject ("please", "could you", "where is", "find me",
+#: "looking for"): skipped before the subject phrase starts, when a function word, pronoun or
+#: determiner follows them ("*hand* me the hammer"; not "a *hand* towel": a noun follows).
+_REQUEST_WORDS = frozenset(
+    "please can could would will find get grab bring hand pass give fetch show locate pick need want where "
+    "what which looking look search searching seeking got".split()
+)
+
+
+def _request_word(word: str, following: list[str]) -> bool:
+    if word == "please":
+        return True
+    if word not in _REQUEST_WORDS or not following:
+        return False
+    return following[0] in _PHRASE_ENDS or following[0] in _PHRASE_SKIP
 
 
 def _compound_verb(word: str, following: list[str]) -> bool:

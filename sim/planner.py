@@ -69,7 +69,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "9"  # 9: a pan (a long handle) is held by its handle first; 8: unfit candidates ranked down
+PLANNER_VERSION = "10"  # 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -233,19 +233,18 @@ def _plan(
     )
 
 
-def _handle_hold(ctx: _Context, aliases: tuple[str, ...]) -> dict[str, Any] | None:
+def _handle_hold(ctx: _Context) -> dict[str, Any] | None:
     """The hold params of a pan's handle (the one the simulator builds, sim/bodies.py), or None when the
     object's kind has no long handle. A loop handle (mug, pitcher) is not held: this hand's fingers cannot
     pass through the loop without abduction (PHYSICS.md), and its body is wrapped instead."""
-    from sim.bodies import HOLD_HANDLE, body_for
+    from sim.bodies import HOLD_HANDLE
 
-    o = ctx.o
-    body = body_for((o.a_cm, o.b_cm, o.c_cm), o.shape, o.mass_g / 1000.0, name=o.name, aliases=aliases)
+    body = ctx.o.body()
     handle = body.handle
     if handle is None or handle.style != "long" or body.up is None:
         return None
     across = next(d for d in "abc" if d not in (body.up, handle.dim))
-    where = "middle" if o.mass_g >= HANDLE_MIDDLE_MIN_MASS_G else "end"
+    where = "middle" if ctx.o.mass_g >= HANDLE_MIDDLE_MIN_MASS_G else "end"
     # A long handle is wrapped from above (sim/world.py places the hand on it so).
     return {
         "hold": HOLD_HANDLE,
@@ -292,8 +291,7 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
     Each hand program is listed once: a merged type the rules reach later is dropped.
     """
     ctx = _context(resolve_features(obj))
-    aliases = tuple(obj.aliases) if isinstance(obj, ObjectRecord) else tuple(obj.get("aliases") or ())
-    hold = _handle_hold(ctx, aliases)
+    hold = _handle_hold(ctx)
     plans: list[GraspPlan] = [_handle_plan(ctx, hold)] if hold else []
     # Hand programs already listed (the handle hold's too): a merged type is simulated once, and results,
     # grouped by grasp type, never mix a handle hold with a grasp of the body.

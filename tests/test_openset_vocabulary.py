@@ -185,3 +185,51 @@ def test_a_word_said_in_the_plural_is_a_noun_whatever_its_ending():
 def test_a_y_after_a_vowel_is_no_adjective_ending():
     assert is_adjective("squishy") and is_adjective("fuzzy")
     assert not is_adjective("trolley") and not is_adjective("key") and not is_adjective("tray")
+
+
+# ------------------------------------------------------------------------------------------ verdict
+def test_one_verdict_line_for_every_face():
+    from recall.openset import verdict
+
+    cases = {
+        "An orange of 7 cm diameter.": "not in the catalog",
+        "a fuzzy yellow tennis ball, about 6.5 cm across, 58 g": "close match",
+        "something small and round": "a guess",
+    }
+    for text, label in cases.items():
+        res = seed().recall_text(text)
+        got = verdict(res)
+        assert got.label == label, (text, got)
+        assert res.to_dict()["verdict"] == got.to_dict()  # --json and POST /recall carry the CLI's line
+        assert f"confidence {res.confidence:.2f}" in got.text
+    far = seed().recall_text("steel, 3 m long, 90 kg")
+    assert far.open_set and not far.not_in_catalog and verdict(far).label == "not a close match"
+
+
+def test_a_request_or_question_before_the_subject_is_skipped():
+    assert subject_phrase("Could you pass the salt shaker, glass, 8 cm tall?") == ("salt", "shaker")
+    assert subject_phrase("Where is the ice cream scoop? steel, 20 cm.") == ("ice", "cream", "scoop")
+    assert subject_phrase("Looking for my harmonica, it's metal") == ("harmonica",)
+    assert subject_phrase("Please get the tea kettle, 2 kg.") == ("tea", "kettle")
+    assert subject_phrase("Hand me the hammer, 33 cm") == ("hammer",)
+    assert subject_phrase("Hand towel, 50 cm by 30 cm") == ("hand", "towel")  # a noun follows: no request
+    assert subject_phrase("A pass key, 5 cm") == ("pass", "key")  # inside the phrase it is a word of it
+    res = seed().recall_text("Could you pass the salt shaker, glass, 8 cm tall?")
+    assert res.not_in_catalog and res.described.noun == "salt shaker"
+    assert seed().recall_text("Hand me the hammer, 33 cm, 600 g.").best.name == "hammer"
+
+
+def test_a_noun_after_a_subject_of_feature_words_is_the_described_noun():
+    from recall.subject import noun_phrase
+
+    assert noun_phrase("Steel, about 15 cm long, 150 g, a nutcracker.") == ("nutcracker",)
+    assert noun_phrase("Metal, 5.5 inches long, a fifth of an ounce.") == ("metal",)  # no lexicon noun later
+    assert noun_phrase("A plush dinosaur toy, 35 cm, a gift") == ("plush", "dinosaur", "toy")  # a noun first
+    res = seed().recall_text("Plastic, 27 cm across, 175 g, a frisbee.")
+    assert res.not_in_catalog and res.described.noun == "frisbee"
+
+
+def test_a_collective_or_kind_word_names_no_missing_object():
+    for text in ("A piece of clothing, cotton, 70 by 50 cm, 150 g.", "Some cutlery, steel, 20 cm long, 50 g."):
+        res = seed().recall_text(text)
+        assert not res.not_in_catalog and not res.open_set, text

@@ -437,3 +437,13 @@ def test_init_installs_every_metrics_macro_and_sql_recalls_like_the_engine(tmp_p
     for metric in ("jplog", "jp"):
         (name,) = kb.sql(f"SELECT name FROM {metric}_rank(qa := 6.5, qb := 6.5, qc := 6.5, qmaterial := 'fabric') LIMIT 1").rows[0]
         assert name == recaller.recall_features(values, metric=metric, features_only=True).best.name
+
+
+@settings(max_examples=200, deadline=None)
+@given(query=arbitrary_queries())
+def test_a_query_in_log_units_equals_its_conditions_in_log_units(query):
+    """FeatureQuery.log_scaled (one NumPy pass) gives NumericCondition.log_scaled's values exactly."""
+    one_by_one = FeatureQuery(tuple(c.log_scaled() for c in query.numeric), query.categorical)
+    assert query.log_scaled() == one_by_one
+    for a, b in zip(query.log_scaled().numeric, one_by_one.numeric, strict=True):
+        assert (a.value, a.low, a.high, a.unknown) == (b.value, b.low, b.high, b.unknown)
