@@ -189,7 +189,7 @@ def test_a_y_after_a_vowel_is_no_adjective_ending():
 
 # ------------------------------------------------------------------------------------------ verdict
 def test_one_verdict_line_for_every_face():
-    from recall.openset import verdict
+    from recall.verdict import verdict
 
     cases = {
         "An orange of 7 cm diameter.": "not in the catalog",
@@ -241,3 +241,21 @@ def test_made_of_a_material_is_no_subject_and_a_colon_ends_a_chunk():
     assert noun_phrase("Made of glass, 8 cm tall: a salt shaker.") == ("salt", "shaker")
     assert subject_phrase("Teapot: ceramic, 900 g") == ("teapot",)
     assert subject_phrase("A bowl made of glass, 12 cm") == ("bowl",)
+
+
+# ------------------------------------------------------------------------------------------- typos
+def test_a_typing_slip_in_a_catalog_or_lexicon_noun_is_read_as_that_noun():
+    from recall.typos import MIN_LENGTH, corrected, edits
+
+    heads = seed().names.heads
+    assert "screwdriver" in edits("screwdiver") and "screwdiver" not in edits("screwdiver")
+    assert corrected("screwdiver", heads) == "screwdriver" and corrected("stappler", heads) == "stapler"
+    assert corrected("nutcraker", heads) == "nutcracker"  # a lexicon noun
+    assert corrected("flyswatter", heads) is None  # nothing one edit away
+    assert corrected("jugg", heads) is None and MIN_LENGTH == 6  # too short to correct
+    res = seed().recall_text("A screwdiver, 20 cm long, 80 g.")
+    assert not res.not_in_catalog and res.described.noun == "screwdriver"
+    res = seed().recall_text("A nutcraker, metal, 15 cm long, 150 g.")
+    assert res.not_in_catalog and res.described.noun == "nutcracker"
+    # a correction that names no noun (a participle of a catalog name: "sliced") is no correction
+    assert seed().recall_text("A bagel slicer, plastic, 25 cm long, 300 g.").not_in_catalog
