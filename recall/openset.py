@@ -19,6 +19,7 @@ from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_
 from recall.subject import feature_words, is_adjective, is_participle
 
 __all__ = [
+    "KIND_SCAN_LIMIT",
     "OPEN_SET_NAMED_THRESHOLD",
     "OPEN_SET_THRESHOLD",
     "OPEN_SET_UNKNOWN_NOUN_THRESHOLD",
@@ -44,6 +45,11 @@ OPEN_SET_NAMED_THRESHOLD = 0.45
 #: ... and above this when the subject of the description is a noun the catalog does not know ("an
 #: orange", "a watermelon"): an unknown noun alone is not enough (synonyms), with a loose match it is.
 OPEN_SET_UNKNOWN_NOUN_THRESHOLD = 0.15
+
+
+#: Catalogs larger than this are not scanned for their kinds just to tell a kind name's hypernym
+#: (:meth:`KindIndex.has_kind`).
+KIND_SCAN_LIMIT = 20_000
 
 
 @dataclass(frozen=True)
@@ -86,7 +92,11 @@ class KindIndex:
         return self._rows
 
     def has_kind(self, kind: str) -> bool:
-        """Whether some catalog object is of ``kind`` or of a kind below it."""
+        """Whether some catalog object is of ``kind`` or of a kind below it. On a catalog of more than
+        :data:`KIND_SCAN_LIMIT` objects, whose kinds are not yet worked out, assumed so (working out every
+        row's kind costs ~30 s at a million rows; a large catalog has most kinds)."""
+        if self._rows is None and len(self._names) > KIND_SCAN_LIMIT:
+            return True
         return bool(self._rows_by_kind().get(kind))
 
     def rows_of_kind(self, kind: str) -> tuple[str | None, list[int]]:

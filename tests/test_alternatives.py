@@ -123,8 +123,9 @@ def test_wire_and_foil_are_metal():
     assert parse("a foil tray").values()["material"] == "metal"
 
 
-def test_porous_is_rough():
-    assert parse("soft and porous, 4 by 3 by 1.5 inches").values()["texture"] == "rough"
+@pytest.mark.parametrize("word", ["porous", "prickly", "spiky", "scaly", "thorny"])
+def test_surface_words_that_are_rough(word):
+    assert parse(f"soft and {word}, 4 by 3 by 1.5 inches").values()["texture"] == "rough"
 
 
 # ------------------------------------------------------------------ light words, relative to the size

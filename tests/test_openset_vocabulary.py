@@ -81,6 +81,16 @@ def test_kind_index_has_kind_counts_kinds_below():
     assert not kinds.has_kind("jar") and not kinds.has_kind("bottle")
 
 
+def test_a_large_catalog_is_not_scanned_for_its_kinds_to_tell_a_hypernym():
+    from recall.openset import KIND_SCAN_LIMIT
+
+    names = ["apple"] * (KIND_SCAN_LIMIT + 1)
+    kinds = KindIndex(names, [()] * len(names))
+    assert kinds.has_kind("jar") and kinds._rows is None  # assumed, nothing worked out
+    small = KindIndex(names[:KIND_SCAN_LIMIT], [()] * KIND_SCAN_LIMIT)
+    assert not small.has_kind("jar") and small._rows is not None
+
+
 # ------------------------------------------------------------------------------------------ compounds
 def test_a_listed_compound_is_another_object_even_with_catalog_words_in_it():
     for subject in (("egg", "cup"), ("toilet", "brush"), ("watering", "can"), ("garlic", "bulb")):
