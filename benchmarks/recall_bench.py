@@ -300,6 +300,32 @@ def _save(by_size, summaries, bad):
     return sizes
 
 
+def markdown_table(path: Path, before: Path | None = None) -> str:
+    """The saved results (``path``) as the table of ``recall/RECALL.md``: per size and mask the float32
+    scan, JP and jplog p50 / p99 with the ratio scan / engine, and ``before``'s JP when given."""
+
+    def cell(row, method):
+        e, s = row[method], row["scan float32"]
+        return f"{e[0]:.2f} / {e[1]:.2f} ({s[0] / e[0]:.2f}× / {s[1] / e[1]:.2f}×)"
+
+    import json
+
+    sizes = json.loads(path.read_text())["data"]["sizes"]
+    old = json.loads(before.read_text())["data"]["sizes"] if before else {}
+    head = "| size | mask | float32 scan p50 / p99 | " + ("before: JP p50 / p99 (scan ÷ JP) | " if before else "")
+    lines = [head + "JP p50 / p99 (scan ÷ JP) | jplog p50 / p99 (scan ÷ jplog) | load |",
+             "|---" * (6 + bool(before)) + "|"]  # fmt: skip
+    for n in sorted(sizes, key=int):
+        olds = {r["family"]: r for r in old.get(n, ())}
+        for row in sizes[n]:
+            s = row["scan float32"]
+            was = olds.get(row["family"])
+            prior = (cell(was, "engine jp") if was else "not measured") + " | " if before else ""
+            lines.append(f"| {int(n):,} | {row['family']} | {s[0]:.2f} / {s[1]:.2f} | {prior}"
+                         f"{cell(row, 'engine jp')} | {cell(row, 'engine jplog')} | {row['load']} |")  # fmt: skip
+    return "\n".join(lines)
+
+
 def main() -> None:
     global _clock, REPEAT
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -312,7 +338,14 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3, help="runs per query, the fastest kept")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--save", action="store_true", help="merge the sizes into the saved results, write the README row")
+    ap.add_argument("--table", nargs="?", const="", metavar="BEFORE_JSON",
+                    help="print the saved results as RECALL.md's table (with an earlier results file's JP) and exit")  # fmt: skip
     args = ap.parse_args()
+    if args.table is not None:
+        from saved import RESULTS
+
+        print(markdown_table(RESULTS / "recall_bench.json", Path(args.table) if args.table else None))
+        return
     REPEAT = max(1, args.repeat)
     if args.wall:
         _clock = time.perf_counter

@@ -226,13 +226,18 @@ class KnowledgeBase:
             cols = [d[0] for d in cur.description]
             return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
 
-    def catalog_version(self) -> tuple[int, int, str]:
-        """(object count, largest id, latest update): changes whenever the catalog's objects change."""
+    def catalog_version(self) -> tuple[int, int, str, int, int]:
+        """(object count, largest id, latest update, alias count, XOR of a 64-bit hash of every alias row):
+        changes whenever the catalog's objects change, and when an alias is added, removed or moved to
+        another object without any other change (aliases carry no update time)."""
         with self.connect() as con:
             n, max_id, latest = con.execute(
                 "SELECT count(*), coalesce(max(id), 0), coalesce(CAST(max(updated_at) AS VARCHAR), '') FROM objects"
             ).fetchone()
-        return int(n), int(max_id), str(latest)
+            aliases, mixed = con.execute(
+                "SELECT count(*), coalesce(bit_xor(hash(alias, object_id)), 0) FROM object_aliases"
+            ).fetchone()
+        return int(n), int(max_id), str(latest), int(aliases), int(mixed)
 
     def summary(self) -> dict[str, Any]:
         """Counts for a quick look: objects, per category value, observations, runs, grasp trials."""

@@ -12,6 +12,7 @@ Rows of a cell are contiguous in copies of the columns sorted by cell.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -100,9 +101,7 @@ class CellIndex:
             np.minimum(gap, np.float32(1.0 + cond.unknown_difference), out=gap, where=self.cnan[j])
             prod = gap if prod is None else np.multiply(prod, gap, out=prod)
         for feat, value in query.categorical:
-            j = CAT_INDEX[feat]
-            bit = np.uint16(1 << (CATEGORY_CODES[feat][value] + 1))
-            f = _CAT_FACTORS[((self.present[j] & bit) != 0) * 2 + ((self.present[j] & np.uint16(1)) != 0)]
+            f = _present_factors(feat, value).take(self.present[CAT_INDEX[feat]])
             prod = f if prod is None else np.multiply(prod, f, out=prod)
         return np.ones(m, dtype=np.float32) if prod is None else prod
 
@@ -134,24 +133,32 @@ class CellIndex:
         best_scores: np.ndarray,
         lb: np.ndarray | None = None,
         items: list | None = None,
+        give_up: float | None = None,
     ):
         """Improve a top-k (rows, scores) whose k-th score bounds the answer (none: every cell), visiting
         the cells within the bound best first, in batches of CELL_BATCH / 4 rows growing to MAX_BATCH
         (the bound tightens between batches). ``items``: the stated features in the order to filter
-        by (the most selective first; default the query's order)."""
+        by (the most selective first; default the query's order). ``give_up`` (rows): None when, once
+        a quarter of that many rows are read, the rows read and those of the cells left within the
+        bound are still more (the caller then scans)."""
         lb = self.bounds(query) if lb is None else lb
         if items is None:
             items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
         s = float(best_scores[-1]) if len(best_scores) >= k else math.inf
         order = np.flatnonzero(lb <= _limit(s)) if math.isfinite(s) else np.arange(len(lb))
-        order = order[np.argsort(lb[order], kind="stable")]
+        order = order[np.argsort(lb[order])]  # not stable: ~6x faster, and any order of equal bounds is exact
         ends = np.cumsum(self.sizes[order])
+        sorted_lb = lb[order] if give_up is not None else None
         i, budget = 0, CELL_BATCH // 4
         while i < len(order):
-            j = max(i + 1, int(np.searchsorted(ends, (ends[i - 1] if i else 0) + budget, "right")))
+            done = int(ends[i - 1]) if i else 0
+            limit = _limit(s)
+            if sorted_lb is not None and 4 * done >= give_up:  # a quarter done: is the whole still more?
+                if int(ends[int(np.searchsorted(sorted_lb, limit, "right")) - 1]) > give_up:
+                    return None
+            j = max(i + 1, int(np.searchsorted(ends, done + budget, "right")))
             batch = order[i:j]
             i, budget = j, min(max(budget * 2, CELL_BATCH), MAX_BATCH)
-            limit = _limit(s)
             if lb[batch[0]] > limit:
                 break
             pos = self._positions(batch[lb[batch] <= limit])
@@ -167,8 +174,16 @@ class CellIndex:
         return best_rows, best_scores
 
 
-#: Bound factor of a category by (cell holds the value) * 2 + (cell holds unknown): e^term, exact.
-_CAT_FACTORS = np.array([4.0, 2.0, 1.0, 1.0], dtype=np.float32)
+@functools.cache
+def _present_factors(feature: str, value: str) -> np.ndarray:
+    """The bound factor (e^term: 1, 2, 4, exact) of a cell by its set of codes present (bit c + 1 for
+    code c, bit 0 unknown): 1 when it holds the value, else 2 when it holds an unknown, else 4; one
+    gather per stated category (at most 2^9 sets: the widest feature has 8 values)."""
+    sets = np.arange(1 << (len(CATEGORY_CODES[feature]) + 1))
+    bit = 1 << (CATEGORY_CODES[feature][value] + 1)
+    table = np.where(sets & bit, 1.0, np.where(sets & 1, 2.0, 4.0)).astype(np.float32)
+    table.flags.writeable = False
+    return table
 
 
 def _outward(x: float, toward: float) -> np.float32:

@@ -178,12 +178,13 @@ def _by_role(reading: Reading, cues: _Cues) -> dict[str, Stated]:
     dropped when an overall extent is stated (it is a part's)."""
     by_role: dict[str, Stated] = {}
     stated_width = any(stmt.role == "width" for stmt in reading.dims)  # "65 cm across and 20 cm wide"
+    squat = _squat(reading)
     for stmt in reading.dims:
         role = stmt.role
         if role == "radius":
             role = "diameter"
         elif role == "across":
-            role = "diameter" if cues.round or stated_width else "width"
+            role = "diameter" if cues.round or stated_width or squat else "width"
         if role in by_role:
             continue
         dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)
@@ -197,6 +198,29 @@ def _by_role(reading: Reading, cues: _Cues) -> dict[str, Stated]:
     if "overall" in by_role and "length" in by_role:
         del by_role["length"]  # "the blade is 20 cm long, 33 cm overall": the length of a part
     return by_role
+
+
+#: The extents of a squat thing's height: "3 cm across and 1.5 cm tall" is a cap, a tin, a plate.
+_SQUAT_ROLES = frozenset({"height", "thickness", "depth"})
+
+
+def _squat(reading: Reading) -> bool:
+    """Whether the text states an extent across and a smaller height, thickness or depth, and no length:
+    then "across" is a diameter (a = b = across, c = the height), not one width. Measured on the
+    development sets: every such description is of a round or square-footed thing (RECALL.md)."""
+    roles = {stmt.role: stmt for stmt in reversed(reading.dims)}  # the first of each role
+    across = roles.get("across")
+    if across is None or roles.keys() & {"length", "overall", "width", "diameter", "radius"}:
+        return False
+    wide = _cm_value(across.quantities[0], reading)
+    lows = [_cm_value(roles[role].quantities[0], reading) for role in _SQUAT_ROLES & roles.keys()]
+    return wide is not None and any(low is not None and low < wide for low in lows)
+
+
+def _cm_value(q: Quantity, reading: Reading) -> float | None:
+    """The quantity in cm, or None when it is no length (no refusal recorded: :func:`_to_cm` does that)."""
+    unit = _unit_for(q, reading)
+    return q.value * unit.factor if unit is not None and unit.kind == "length" else None
 
 
 def _tuple(reading: Reading, linear: list[tuple[Stated, str]]) -> list[Stated] | None:

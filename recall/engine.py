@@ -23,6 +23,7 @@ import numpy as np
 from kb.errors import RecallError
 from kb.features import FEATURES, NUMERIC_FEATURES
 from kb.kinds import ROOT, words_of
+from recall.alternatives import alternatives, with_alternatives
 from recall.confidence import (
     COMPETITOR_POOL,
     CONFIDENCE_COEF,
@@ -44,16 +45,20 @@ from recall.openset import (
     OPEN_SET_UNKNOWN_NOUN_THRESHOLD,
     DescribedNoun,
     KindIndex,
+    compound_head,
     described_noun,
+    foreign_head,
     foreign_modifier,
     is_open_set,
     material_agrees,
+    names_inside,
+    synonym_rows,
     unseen_noun,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
-from recall.subject import subject_head, subject_phrase
+from recall.subject import said_in_plural, subject_head, subject_phrase
 from recall.submaterials import SubmaterialIndex, with_submaterial
 from recall.vague import SoftEvidence, soft_evidence
 
@@ -164,6 +169,7 @@ class Recaller:
                 soft_evidence(text, parsed.values(), parsed.mass_hint, self.snapshot.num_cols),
                 self._submaterial(parsed),
             )
+            query, soft = with_alternatives(query, soft, alternatives(query, parsed), self.snapshot.cat_cols)
             subject = subject_phrase(text)
             noun = self.described(text)
         result = self._recall(
@@ -230,8 +236,15 @@ class Recaller:
         if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
             m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
             after_of = subject_phrase(m.group(1)) if m else ()
-        noun = described_noun(subject, idx.phrases, idx.heads, idx.vocabulary, GENERIC_NOUNS, after_of)
-        return noun or unseen_noun(idx.unknown_noun(text), subject)
+        noun = described_noun(
+            subject, idx.phrases, idx.heads, idx.vocabulary, GENERIC_NOUNS, after_of, self.kinds
+        )
+        if noun is not None or any(w in idx.vocabulary for w in after_of):
+            return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
+        head = idx.unknown_noun(text) or compound_head(subject, idx.vocabulary)
+        if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
+            subject, head = after_of, foreign_head(after_of, idx.vocabulary)
+        return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))
 
     # -- the ranking
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:
@@ -274,14 +287,27 @@ class Recaller:
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         matches = self._matches(rows, score, parts, query, metric, set(names.exact))
         errors = relative_errors(self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query)
+        errors.update(soft.errors_of(int(rows[0])) if soft is not None else {})
         closeness = float(np.mean(list(errors.values()))) if errors else None
-        not_in_catalog = not_in_catalog and not matches[0].matched_by_name
+        # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
+        # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)
+        named_whole = matches[0].matched_by_name and not names_inside(noun, names.phrases)
+        not_in_catalog = not_in_catalog and not named_whole
+        # a lexicon synonym of a catalog object ("cellphone", "pen drive": smartphone, usb stick) is no
+        # unknown noun, and names it with all its words
+        unknown = None if noun is not None and noun.in_catalog else names.unknown_noun
+        synonym = int(rows[0]) in synonym_rows(noun, self.names.phrases)
         modifier = self._foreign_modifier(subject, int(rows[0]), names)
-        trusted = matches[0].matched_by_name and modifier is None and material_agrees(subject, matches[0].features.get("material"))
-        open_set = not_in_catalog or is_open_set(closeness, trusted, names.unknown_noun or modifier)
+        modifier = None if synonym and modifier in noun.noun.split() else modifier
+        trusted = (
+            (matches[0].matched_by_name or synonym)
+            and modifier is None
+            and material_agrees(subject, matches[0].features.get("material"))
+        )
+        open_set = not_in_catalog or is_open_set(closeness, trusted, unknown or modifier)
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
-            margin, closeness, names.unknown_noun is not None, metric, competitors, open_set, not_in_catalog
+            margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog
         )
         same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
         return RecallResult(
@@ -290,7 +316,7 @@ class Recaller:
             open_set=open_set,
             named=list(names.phrases),
             closeness=closeness,
-            unknown_noun=names.unknown_noun,
+            unknown_noun=unknown,
             evidence=names,
             not_in_catalog=not_in_catalog,
             described=noun,

@@ -145,7 +145,7 @@ MATERIAL_WORDS: dict[str, str] = {
     "metal": "metal", "metallic": "metal", "metals": "metal", "steel": "metal", "stainless": "metal",
     "aluminum": "metal", "aluminium": "metal", "iron": "metal", "tin": "metal", "copper": "metal",
     "brass": "metal", "bronze": "metal", "chrome": "metal", "silver": "metal", "zinc": "metal",
-    "titanium": "metal", "cast-iron": "metal", "nickel": "metal",
+    "titanium": "metal", "cast-iron": "metal", "nickel": "metal", "wire": "metal", "foil": "metal",
     "wood": "wood", "wooden": "wood", "woody": "wood", "timber": "wood", "bamboo": "wood", "oak": "wood",
     "pine": "wood", "plywood": "wood", "beech": "wood", "maple": "wood", "birch": "wood", "balsa": "wood",
     "mdf": "wood", "cork": "wood", "walnut": "wood", "hardwood": "wood",

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -125,22 +125,35 @@ class NumericCondition:
     def log_scaled(self) -> NumericCondition:
         """The same condition in log units (:func:`log_units`); an unknown catalog value still counts as
         off by UNKNOWN_NUMERIC_FRACTION (a factor 1.5)."""
-        return NumericCondition(
+        return _condition(
             self.feature,
             as_stored(float(log_units(self.value))),
             as_stored(float(log_units(max(self.low, LOG_FLOOR)))),  # "at most" keeps a finite lower end
             as_stored(float(log_units(max(self.high, LOG_FLOOR)))),
             self.qualifier,
-            float(log_units(1.0 + UNKNOWN_NUMERIC_FRACTION)),
+            _LOG_UNKNOWN,
         )
 
-    def differences(self, x: np.ndarray) -> np.ndarray:
-        """Distance of catalog values ``x`` (NaN = unknown) to the interval; unknown gets the fixed penalty."""
+    def differences(self, x: np.ndarray, unknown: np.ndarray | None = None) -> np.ndarray:
+        """Distance of catalog values ``x`` (NaN = unknown) to the interval; unknown gets the fixed penalty.
+        ``unknown``: ``np.isnan(x)`` when already at hand (speed only: the same result)."""
         if self.low == self.high:  # a point: |x - v| is max(v - x, x - v, 0) exactly, in fewer passes
             d = np.abs(x - self.low)
         else:
             d = np.maximum(np.maximum(self.low - x, x - self.high), 0.0)
-        return np.where(np.isnan(x), self.unknown_difference, d)
+        return np.where(np.isnan(x) if unknown is None else unknown, self.unknown_difference, d)
+
+
+_LOG_UNKNOWN = float(log_units(1.0 + UNKNOWN_NUMERIC_FRACTION))
+_CONDITION_FIELDS = tuple(f.name for f in fields(NumericCondition))
+
+
+def _condition(*values: Any) -> NumericCondition:
+    """A :class:`NumericCondition` of these field values, built without the frozen dataclass's
+    ``__setattr__`` per field (~1.1 µs of ~1.5; every ``jplog`` recall builds one per stated number)."""
+    cond = object.__new__(NumericCondition)
+    cond.__dict__.update(zip(_CONDITION_FIELDS, values, strict=True))
+    return cond
 
 
 @dataclass(frozen=True)
@@ -160,8 +173,19 @@ class FeatureQuery:
         return len(self.numeric) + len(self.categorical)
 
     def log_scaled(self) -> FeatureQuery:
-        """The query for ``jplog``: numeric conditions in log units, categories unchanged."""
-        return FeatureQuery(tuple(c.log_scaled() for c in self.numeric), self.categorical)
+        """The query for ``jplog``: numeric conditions in log units, categories unchanged. The same
+        values as :meth:`NumericCondition.log_scaled` (tested), in one NumPy pass over every stated
+        number rather than nine scalar calls each (every ``jplog`` recall builds one)."""
+        if not self.numeric:
+            return FeatureQuery((), self.categorical)
+        ends = np.array([(c.value, max(c.low, LOG_FLOOR), max(c.high, LOG_FLOOR)) for c in self.numeric])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            logs = (np.log(np.maximum(ends, 0.0)) / LOG_STEP).astype(np.float32).tolist()
+        conds = tuple(
+            _condition(c.feature, v, lo, hi, c.qualifier, _LOG_UNKNOWN)
+            for c, (v, lo, hi) in zip(self.numeric, logs, strict=True)
+        )
+        return FeatureQuery(conds, self.categorical)
 
     def values(self) -> dict[str, Any]:
         """Point values of the stated features."""

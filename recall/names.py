@@ -28,7 +28,9 @@ GENERIC_NOUNS = frozenset(
      "container", "package", "case", "toy", "accessory", "appliance", "equipment", "stuff", "product",
      "one", "kind", "sort", "type", "shape", "something", "model", "unit", "set", "pair", "part", "size",
      "cube", "cuboid", "cylinder", "sphere", "disc", "disk", "rod", "slab", "sheet", "block", "lump", "wedge",
-     "prism", "orb", "globe", "stick", "tube", "ring", "nugget"}
+     "prism", "orb", "globe", "stick", "tube", "ring", "nugget",
+     # what is left of or taken from a thing: a piece of it ("a wooden dowel offcut")
+     "offcut", "remnant", "fragment", "shard", "sample", "specimen", "leftover"}
 )  # fmt: skip
 #: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
 _VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})

@@ -15,8 +15,8 @@ import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from kb.kinds import ROOT, Noun, ancestors, kind_of_name, noun_in, words_of
-from recall.subject import feature_words, is_adjective
+from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_of
+from recall.subject import feature_words, is_adjective, is_participle
 
 __all__ = [
     "OPEN_SET_NAMED_THRESHOLD",
@@ -24,12 +24,17 @@ __all__ = [
     "OPEN_SET_UNKNOWN_NOUN_THRESHOLD",
     "DescribedNoun",
     "KindIndex",
+    "Verdict",
+    "compound_head",
+    "foreign_head",
     "described_noun",
     "foreign_modifier",
     "material_agrees",
     "material_of_word",
     "is_open_set",
+    "synonym_rows",
     "unseen_noun",
+    "verdict",
 ]
 
 #: Open set: the best match's closeness (mean relative error over the stated features, see
@@ -71,9 +76,7 @@ class KindIndex:
             self._kinds[row] = kind_of_name(self._names[row], self._aliases[row])
         return self._kinds[row]
 
-    def rows_of_kind(self, kind: str) -> tuple[str | None, list[int]]:
-        """The rows of ``kind`` or of its nearest ancestor that has rows (never the root): (kind used,
-        rows); (None, []) when none."""
+    def _rows_by_kind(self) -> dict[str, list[int]]:
         if self._rows is None:
             rows: dict[str, list[int]] = {}
             for row in range(len(self._names)):
@@ -81,6 +84,16 @@ class KindIndex:
                 for k in ancestors(own) if own else ():
                     rows.setdefault(k, []).append(row)
             self._rows = rows
+        return self._rows
+
+    def has_kind(self, kind: str) -> bool:
+        """Whether some catalog object is of ``kind`` or of a kind below it."""
+        return bool(self._rows_by_kind().get(kind))
+
+    def rows_of_kind(self, kind: str) -> tuple[str | None, list[int]]:
+        """The rows of ``kind`` or of its nearest ancestor that has rows (never the root): (kind used,
+        rows); (None, []) when none."""
+        self._rows_by_kind()
         for k in ancestors(kind):
             if k == ROOT:
                 break
@@ -96,16 +109,19 @@ def described_noun(
     vocabulary: frozenset[str],
     generic: frozenset[str],
     after_of: Sequence[str] = (),
+    kinds_of: KindIndex | None = None,
 ) -> DescribedNoun | None:
     """The lexicon noun heading the subject phrase (``subject``: its words, singular), and whether the
     catalog knows it: the noun or its English name is a catalog name or alias (``phrases``: word tuples),
     or its head is a catalog head noun (``heads``). Generic nouns ("thing", "piece", "fruit", "toy") name
     a kind, not an object: None. ``after_of``: the phrase after "of" when the subject is a measure of
     something ("a bar of soap", "a pair of scissors"), used when the subject itself names no noun;
-    ``vocabulary``: every word of the catalog's names and aliases."""
+    ``vocabulary``: every word of the catalog's names and aliases; ``kinds_of``: the catalog's kinds, for
+    the hypernym and compound rules (:func:`_names_catalog_object`; without it a kind's name is a
+    hypernym whenever it is no catalog head, and a compound never agrees by kind)."""
     noun: Noun | None = noun_in(list(subject))
     before = subject[-len(noun.words) - 1] if noun is not None and len(subject) > len(noun.words) else None
-    if noun is not None and noun.words[-1] in generic and before is not None:
+    if noun is not None and len(noun.words) == 1 and noun.words[-1] in generic and before is not None:
         # "a plush dinosaur toy": a generic noun after a noun the catalog does not know names a thing of
         # the generic noun's kind that the catalog does not have
         if before not in vocabulary and before not in generic and noun_like(before):
@@ -115,18 +131,49 @@ def described_noun(
         and before is not None and (before in _material_words() or before in COLOURS)
     ):  # fmt: skip
         return None  # "a wood plate", "a white stick": a material or colour and a shape, no object's name
-    if (noun is None or noun.words[-1] in generic) and after_of:
-        noun = noun_in(list(after_of))
-    if noun is None or noun.words[-1] in generic:
+    if (noun is None or _generic(noun, generic) or _hypernym(noun, kinds_of, heads)) and after_of:
+        noun = noun_in(list(after_of)) or noun
+    if noun is None or _generic(noun, generic):
+        return None  # a generic noun ("thing", "toy") names a kind; a compound on one ("glue stick") an object
+    if _hypernym(noun, kinds_of, heads):
         return None
     english = tuple(words_of(noun.english))
-    # known: a catalog name or alias, or a catalog head noun ("bottle": every bottle) whose modifiers are
-    # all catalog words ("bottle cap"; but "bowling ball" is no catalog ball)
-    known = any(
-        words in phrases or (words and words[-1] in heads and all(w in vocabulary for w in words[:-1]))
-        for words in (noun.words, english)
-    )
+    known = _names_catalog_object(noun.words, phrases, heads) or (
+        noun.english != noun.text and bool(english)
+        and (_names_catalog_object(english, phrases, heads) or english[-1] in heads)
+    )  # a synonym names a sort of its English name's head noun ("puzzle cube" -> rubik's cube: a cube)
     return DescribedNoun(noun.text, noun.kind, noun.english, known)
+
+
+def _generic(noun: Noun, generic: frozenset[str]) -> bool:
+    return len(noun.words) == 1 and noun.words[0] in generic
+
+
+def _hypernym(noun: Noun, kinds_of: KindIndex | None, heads=()) -> bool:
+    """Whether the noun is a kind's own name ("a cup", "a jar", "a battery") and the catalog has objects
+    of that kind: it names any of them (a mug is a cup), not a missing object. Where the catalog has
+    none of the kind, it names an object the catalog does not have. A kind name that is a catalog head
+    noun needs no look at the kinds (which works out every row's kind once: seconds on a large catalog)."""
+    if noun.text not in kinds() or noun.text == ROOT:
+        return False
+    return noun.text in heads or kinds_of is None or kinds_of.has_kind(noun.kind)
+
+
+def _names_catalog_object(words: tuple[str, ...], phrases, heads) -> bool:
+    """Whether a lexicon noun's words (or its English name's) name a catalog object: a catalog name or
+    alias; a single word that is a catalog head noun ("bottle": every bottle); or a catalog head noun after
+    material or colour words only ("metal cap"). A compound the lexicon lists ("egg cup", "watering can",
+    "toilet brush", "bowling ball") names another object than the catalog's cups, cans, brushes and balls,
+    even when its modifier is a catalog word ("egg"): the lexicon lists it because it is one. A compound
+    that is a sort of the catalog's objects has its catalog word as its English name ("bottle cap" ->
+    cap, "frypan" -> frying pan)."""
+    if not words:
+        return False
+    if words in phrases:
+        return True
+    if words[-1] not in heads:
+        return False
+    return all(w in _material_words() or w in COLOURS for w in words[:-1])
 
 
 #: Words that hold the place of an object without naming one ("something", "a whatsit"): never an
@@ -145,23 +192,71 @@ PART_NOUNS = frozenset(
 NOTE_WORDS = frozenset("dim dims dimension measurement approx wt weight size spec specs pic photo".split())
 
 
-def unseen_noun(unknown: str | None, subject: Sequence[str]) -> DescribedNoun | None:
+def unseen_noun(unknown: str | None, subject: Sequence[str], plural: bool = False) -> DescribedNoun | None:
     """The unseen-noun rule (RECALL.md, "Not in the catalog"): the subject's head ``unknown`` is a noun
     the catalog's names and aliases do not know (:meth:`recall.name_index.NameIndex.unknown_noun`: no
     catalog word, generic noun or feature word), the kinds lexicon does not list it either, and it is no
     placeholder ("something"), part of a thing ("blade", :data:`PART_NOUNS`), listing abbreviation
     ("dims"), shape noun ("wire *loops*", :data:`SHAPE_NOUNS`), colour or adjective-like word
-    (:func:`noun_like`): the description names an object the catalog does not have, of unknown kind (the
+    (:func:`noun_like`; a word said in the plural, ``plural``, is a noun whatever its ending): the description names an object the catalog does not have, of unknown kind (the
     root). The noun reported is the head with the noun before it when there is one ("lint roller"; its
     ``english``, the search word of a store lookup, is the head alone). The recall uses it only when the
     description states a feature ("qwerty uiop" is nothing to recall). None otherwise (a lexicon noun is :func:`described_noun`'s to judge)."""
     if unknown is None or any(unknown in words for words in (PLACEHOLDERS, PART_NOUNS, NOTE_WORDS, SHAPE_NOUNS)):
         return None
-    if noun_in([unknown]) is not None or not noun_like(unknown):
-        return None
+    if noun_in([unknown]) is not None or not (noun_like(unknown) or (plural and _plural_noun(unknown))):
+        return None  # ``plural``: said in the plural ("binoculars"), a noun whatever its ending
     before = subject[-2] if len(subject) > 1 and subject[-1] == unknown else None
     text = f"{before} {unknown}" if before and before not in PLACEHOLDERS and noun_like(before) else unknown
     return DescribedNoun(text, ROOT, unknown, False)
+
+
+def names_inside(noun: DescribedNoun | None, phrases: Sequence[str]) -> bool:
+    """Whether every catalog name the text names (``phrases``) is only a part of the described noun's
+    words ("egg" in "egg cup", "lemon" in "lemon squeezer", the alias "bulb" in "garlic bulb"): the
+    noun, a compound the catalog does not have, says what the text describes, not the name inside it.
+    False when it names none."""
+    if noun is None or not phrases:
+        return False
+    words = tuple(noun.noun.split())
+    return all(_proper_part(tuple(words_of(p)), words) for p in phrases)
+
+
+def _proper_part(part: tuple[str, ...], words: tuple[str, ...]) -> bool:
+    n = len(part)
+    return 0 < n < len(words) and any(words[i : i + n] == part for i in range(len(words) - n + 1))
+
+
+def synonym_rows(noun: DescribedNoun | None, phrases) -> set[int]:
+    """The catalog rows a lexicon synonym names by its English word ("cellphone" -> the smartphone,
+    "frypan" -> the frying pan): the rows of that whole catalog name or alias; empty for a noun that is
+    not in the catalog, that has no other English word, or none that is a catalog name."""
+    if noun is None or not noun.in_catalog or noun.english == noun.noun:
+        return set()
+    words = tuple(words_of(noun.english))
+    return set(phrases.get(words, ()) or ())
+
+
+def compound_head(subject: Sequence[str], vocabulary: frozenset[str]) -> str | None:
+    """The head of a compound whose modifier is a catalog noun and whose head is no catalog word at all
+    ("a bottle *warmer*", "a key *holder*", "a back *scratcher*"): a candidate for the unseen-noun rule
+    (:func:`unseen_noun` then applies its exclusions), which :meth:`recall.name_index.NameIndex.unknown_noun`
+    does not give for a compound on a catalog head noun (there "remote control" must stay the tv remote:
+    "control" is a catalog word, so it is none here either). None otherwise."""
+    return foreign_head(subject, vocabulary) if len(subject) >= 2 else None
+
+
+def foreign_head(words: Sequence[str], vocabulary: frozenset[str]) -> str | None:
+    """The last of ``words`` when it is no catalog word, generic noun, feature word or participle: the
+    head of a phrase the catalog's names do not know (also the phrase after "a pair of")."""
+    from recall.names import GENERIC_NOUNS
+
+    head = words[-1] if words else None
+    if head is None or head in vocabulary or head in GENERIC_NOUNS:
+        return None
+    if head in feature_words() or is_participle(head):
+        return None
+    return head
 
 
 def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) -> bool:
@@ -204,6 +299,14 @@ def material_of_word(word: str) -> str | None:
     return MATERIAL_WORDS.get(word)
 
 
+def _plural_noun(word: str) -> bool:
+    from recall.lexicon import COLOUR_WORDS
+
+    return len(word) >= 3 and word.isalpha() and word not in COLOURS and word not in COLOUR_WORDS and (
+        word not in feature_words()
+    )
+
+
 def noun_like(word: str) -> bool:
     """Whether a word of a subject phrase can be a noun modifier ("salad" in "salad plate", "garlic",
     "dinosaur"): a lexicon noun, or a word of three letters or more that is no feature word (material,
@@ -225,7 +328,8 @@ def foreign_modifier(subject: Sequence[str], object_words: frozenset[str]) -> st
     if len(subject) < 2 or subject[-1] not in object_words:
         return None
     word = subject[-2]
-    return word if word not in object_words and noun_like(word) else None
+    # a gerund says what the object is for ("a *baking* potato", "a *mixing* bowl"), not another object
+    return word if word not in object_words and noun_like(word) and not word.endswith("ing") else None
 
 
 def material_agrees(subject: Sequence[str], material: str | None) -> bool:
@@ -234,3 +338,49 @@ def material_agrees(subject: Sequence[str], material: str | None) -> bool:
     no steel spoon)."""
     stated = {material_of_word(w) for w in subject[:-1]} - {None}
     return material is None or not stated or material in stated
+
+
+# --------------------------------------------------------------------------------------------- verdict
+@dataclass(frozen=True)
+class Verdict:
+    """What a recall says about its first match, in one line, the same in the CLI, ``--json``, the HTTP
+    API and the web page: ``label`` is one of "not in the catalog", "not a close match", "a guess" and
+    "close match"; ``text`` the line, with the confidence to two decimals and why."""
+
+    label: str
+    text: str
+
+    def to_dict(self) -> dict[str, str]:
+        return {"label": self.label, "text": self.text}
+
+
+#: Competitors (the ranking's effective number of candidates) from which a result is "a guess".
+GUESS_COMPETITORS = 3.0
+
+
+def verdict(result) -> Verdict:
+    """The verdict of a :class:`recall.results.RecallResult` (see :class:`Verdict`)."""
+    if result.not_in_catalog and result.described is not None:
+        noun = result.described
+        near = ", ".join(m.name for m in result.matches[:3]) or "nothing (no feature stated)"
+        kind = ", ".join(m.name for m in result.same_kind) or "none"
+        return Verdict(
+            "not in the catalog",
+            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (kind: {noun.kind}) in the catalog; physically "
+            f"closest: {near}; closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}",
+        )
+    if result.open_set:
+        label, said = "not a close match", "NOT a close match (open set): nothing in the catalog is near"
+    elif result.competitors >= GUESS_COMPETITORS:
+        label, said = "a guess", "a guess: many objects fit the description equally"
+    else:
+        label, said = "close match", "close match"
+    why = []
+    if result.closeness is not None:
+        why.append(f"mean relative error of the best match {result.closeness:.2f}")
+    if result.unknown_noun:
+        why.append(f"'{result.unknown_noun}' is no catalog noun")
+    if result.competitors >= 1.5:
+        why.append(f"about {round(result.competitors)} candidates as good")  # a soft count
+    reasons = f" ({'; '.join(why)})" if why else ""
+    return Verdict(label, f"confidence {result.confidence:.2f}; {said}{reasons}")

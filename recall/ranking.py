@@ -53,14 +53,18 @@ def _category_lookup(feature: str, value: str, codes: np.ndarray, factor: bool) 
     return byte_table(feature, value, factor)[codes.view(np.uint8)]
 
 
-def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None) -> np.ndarray:
+def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None, wide=None) -> np.ndarray:
     """JP distance of ``rows`` (an index array, a slice, or all when None) of float32 / int8 columns,
-    in float64, summed in the query's order (numeric terms, then categorical ones)."""
+    in float64, summed in the query's order (numeric terms, then categorical ones). ``wide``: the
+    numeric columns already in float64 and their unknown masks (:class:`WideColumns`; every row)."""
     total = None
     for cond in query.numeric:
-        col = num_cols[NUM_INDEX[cond.feature]]
-        x = (col if rows is None else col[rows]).astype(np.float64)
-        term = np.log1p(cond.differences(x))
+        j = NUM_INDEX[cond.feature]
+        if wide is not None:
+            term = np.log1p(cond.differences(wide.values[j], wide.unknown[j]))
+        else:
+            x = (num_cols[j] if rows is None else num_cols[j][rows]).astype(np.float64)
+            term = np.log1p(cond.differences(x))
         total = term if total is None else np.add(total, term, out=total)
     for feat, value in query.categorical:
         col = cat_cols[CAT_INDEX[feat]]
@@ -71,6 +75,19 @@ def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None) -> np.ndarray:
         size = len(num_cols[0]) if rows is None else len(np.arange(len(num_cols[0]))[rows])
         return np.zeros(size)
     return total
+
+
+class WideColumns:
+    """Numeric columns in float64 with their unknown masks (9 B per value), for scoring every row of a
+    small catalog without converting them at each query (the same float64 values: exact)."""
+
+    def __init__(self, num_cols):
+        self.values = [c.astype(np.float64) for c in num_cols]
+        self.unknown = [np.isnan(c) for c in self.values]
+
+    @property
+    def nbytes(self) -> int:
+        return int(sum(a.nbytes for a in (*self.values, *self.unknown)))
 
 
 def factors(item, num_cols, cat_cols, rows=None, optimistic: bool = False) -> np.ndarray:

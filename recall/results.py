@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from recall.name_index import NameEvidence
-from recall.openset import DescribedNoun
+from recall.openset import DescribedNoun, verdict
 
 __all__ = ["Match", "RecallResult"]
 
@@ -97,6 +97,7 @@ class RecallResult:
             "vague": list(self.vague),
             "competitors": self.competitors,
             "foreign_modifier": self.foreign_modifier,
+            "verdict": verdict(self).to_dict(),
             "query": dict(self.query),
             "parsed": self.parsed,
         }

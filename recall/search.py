@@ -19,17 +19,19 @@ each query the cheapest of these plans from counts it can take before scoring an
   rows of the cells within the bound are fewer than those of any window;
 * **ties at 0**: when the k-th best is already 0, the answer is the k lowest row numbers at distance 0:
   the smallest zero window in row order, or a row-order scan that stops at the k-th;
-* **scan**: one pass of float32 products over every row, then the rows within the k-th product
-  (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects and whenever the
-  estimated cost of the others exceeds it (:data:`COST`).
+* **brute**: up to :data:`BRUTE_BELOW` objects, every row scored in float64 (the brute force itself);
+* **scan**: every row's float32 product in few passes (:meth:`JPIndex.products`), then the rows within
+  the k-th product (widened by ``FILTER_SLACK``) scored exactly: used below :data:`SCAN_BELOW` objects
+  and whenever the cost model (:mod:`recall.costs`) estimates the others dearer.
 
-The costs per row of :data:`COST` and the thresholds were measured on this machine (plans forced on the
-same queries in one process; ``benchmarks/recall_bench.py``); ``tests/test_search.py`` pins each
-threshold at its boundary.
+The cost model's figures and the thresholds were measured on this machine (plans forced on the same
+queries in one process; ``recall/RECALL.md``); ``tests/test_search.py`` pins each threshold and rule at
+its boundary.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import threading
 import weakref
@@ -41,13 +43,18 @@ from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
 from recall.cells import CellIndex
 from recall.columns import SortedColumns
 from recall.combinations import CombinationIndex
+from recall.costs import PlanCosts, after_probe, before_probe
 from recall.metrics import (
     FeatureQuery,
     distances,
     kdtree_query,
 )
 from recall.ranking import (
+    CAT_INDEX,
     FILTER_SLACK,
+    NUM_INDEX,
+    WideColumns,
+    category_terms,
     factors,
     jp_scores,
     merge_top_k,
@@ -58,24 +65,24 @@ from recall.snapshot import CatalogSnapshot
 
 __all__ = ["JPIndex", "brute_force_top_k", "index_for", "score_rows", "select_top_k", "top_k"]
 
+#: Catalogs up to this size are scored whole in float64 (the brute force itself): below, the scan's
+#: second step (the rows within the k-th product scored exactly, ~25 NumPy calls of fixed cost for 8
+#: features) costs more than scoring every row (measured, see RECALL.md).
+BRUTE_BELOW = 3072
 #: Catalogs up to this size are always scanned, and so is any query of at most SCAN_WORK row-features
 #: (below that, the fixed costs of the other plans exceed the scan; measured, see RECALL.md).
 SCAN_BELOW = 32768
 SCAN_WORK = 40_000
 #: One number and nothing else is read off its sorted column above this many objects (below, a scan is
 #: cheaper: ~12 NumPy calls of fixed cost against a pass over a few thousand rows; measured).
-COLUMN_FROM = 4096
+COLUMN_FROM = 1024
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
-#: A window of at most this many row-features (rows x stated features) is filtered without weighing the
-#: other plans.
-SMALL_WINDOW = 8192
-#: Relative cost per row (per stated feature) of each plan's work, measured (see the module docstring).
-COST = {"scan": 1.0, "window": 6.0, "cells": 4.0}
+#: The scan's first bound: the k-th of a sample of SAMPLE_PER_ROW_K * sqrt(n k) rows (n k / sample
+#: rows then pass it, ~sqrt(n k) / SAMPLE_PER_ROW_K: a few dozen to a few hundred).
+SAMPLE_PER_ROW_K = 4.0
 #: Rows of the nearest cells scored to tighten the first bound before choosing a plan.
 PROBE_ROWS = 2048
-#: Fixed cost of the cell search, in row-equivalents of the scan (bounds of every cell, batches).
-CELLS_FIXED = 20000
 #: Rows filtered per step of the window plan (the bound tightens between steps).
 CHUNK = 1 << 14
 MAX_CHUNK = 1 << 17
@@ -146,6 +153,11 @@ class JPIndex(SortedColumns):
         return CellIndex(self.num_cols, self.cat_cols)
 
     @cached_property
+    def wide(self) -> WideColumns:
+        """The numeric columns in float64 (the brute plan's, up to BRUTE_BELOW rows: +36 B a row)."""
+        return WideColumns(self.num_cols)
+
+    @cached_property
     def combinations(self) -> CombinationIndex:
         return CombinationIndex(self.cat_cols)
 
@@ -153,13 +165,15 @@ class JPIndex(SortedColumns):
         """Build the parts built on first use (cells, combinations) now, and run one query (NumPy's
         first call of some routines imports modules: ~40 ms, not to be paid by the first description)."""
         _ = self.cells, self.combinations, self.records
+        if self.n <= BRUTE_BELOW:
+            _ = self.wide
         self.plan_and_search(FeatureQuery.from_values({"a_cm": 10.0, "material": "wood"}), 1)
         return self
 
     @property
     def nbytes(self) -> int:
         """Bytes of the index (the parts built so far; the columns themselves not included)."""
-        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records")]
+        parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records", "wide")]
         return self.sorted_nbytes + sum(p.nbytes for p in parts if p is not None)
 
     @cached_property
@@ -218,6 +232,8 @@ class JPIndex(SortedColumns):
                 return "zero", *self._zero_ties(query, items, k)  # at least k rows in the interval: at 0
             if force == "column":
                 raise ValueError("the column plan found more rows near the value, or ties, than it reads")
+        if force == "brute" or (force is None and self.n <= BRUTE_BELOW):
+            return "brute", *select_top_k(None, jp_scores(None, self.cat_cols, query, wide=self.wide), k)
         if force == "scan" or (force is None and small):
             return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
@@ -233,42 +249,92 @@ class JPIndex(SortedColumns):
             raise ValueError("the zero plan needs k rows at distance 0 in the first pool")
         if s == 0.0:
             return "zero", *self._zero_ties(query, items, k)
-        sizes = [self._window_size(it, s) for it in items]
+        return self._costed(query, items, k, best_rows, best_scores)
+
+    def costs(self, query: FeatureQuery) -> PlanCosts:
+        """The cost model's figures for ``query`` (:mod:`recall.costs`)."""
+        m = len(query.numeric) + len(query.categorical)
+        return PlanCosts(self.n, self.cells.cmin.shape[1], len(query.numeric), m, bool(query.categorical))
+
+    def _costed(self, query: FeatureQuery, items: list, k: int, best_rows, best_scores):
+        """The plan of least estimated cost (:mod:`recall.costs`), given a first top-k whose k-th
+        distance is above 0: :func:`~recall.costs.before_probe`, else the probe of the nearest cells
+        tightens the bound and :func:`~recall.costs.after_probe` picks the plan."""
+        costs = self.costs(query)
+        sizes = [self._window_size(it, float(best_scores[-1])) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
-        if sizes[lead] * len(items) <= SMALL_WINDOW:
+        plan = before_probe(costs, sizes[lead])
+        if plan == "window":
             return "window", *self._window(query, items, lead, k, best_rows, best_scores)
-        # a better bound first: the rows of the cells with the smallest bounds
+        if plan == "scan":
+            return "scan", *self._scan(query, items, k)
         lb = self.cells.bounds(query)
         best_rows, best_scores = self.cells.probe(query, k, best_rows, best_scores, lb, PROBE_ROWS)
         s = float(best_scores[-1])
         sizes = [self._window_size(it, s) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
-        cost = {
-            "window": COST["window"] * sizes[lead] * len(items),
-            "cells": COST["cells"] * self.cells.rows_within(lb, s) * len(items) + CELLS_FIXED,
-            "scan": COST["scan"] * self.n * len(items),
-        }
-        if s == 0.0:
-            cost["zero"] = COST["window"] * min(self._zero_reads(items, k)[0], self.n) * len(items)
-        plan = min(cost, key=cost.__getitem__)
-        if plan == "zero" or (plan == "scan" and s == 0.0):
+        zero = self._zero_reads(items, k)[0] if s == 0.0 else None
+        plan, trial = after_probe(costs, sizes[lead], self.cells.rows_within(lb, s), zero)
+        if plan == "zero":
             return "zero", *self._zero_ties(query, items, k)
-        if plan == "scan":
-            return "scan", *self._scan(query, items, k)
         if plan == "window":
             return "window", *self._window(query, items, lead, k, best_rows, best_scores)
+        if plan == "scan":
+            return "scan", *self._scan(query, items, k)
         selective = [items[i] for i in sorted(range(len(items)), key=lambda i: sizes[i])]
-        return "cells", *self.cells.top_k(query, k, best_rows, best_scores, lb, selective)
+        give_up = costs.give_up_rows if trial else None
+        found = self.cells.top_k(query, k, best_rows, best_scores, lb, selective, give_up=give_up)
+        if found is None:
+            return "scan", *self._scan(query, items, k)
+        return "cells", *found
 
     def _scan(self, query: FeatureQuery, items: list, k: int):
-        """Every row's product Π (1 + d_j) in float32; the rows within the k-th (widened) scored."""
+        """Every row's product Π (1 + d_j) in float32 (:meth:`products`); the rows within the k-th
+        (widened) scored."""
+        prod = self.products(query)
+        return select_top_k(*self._within_kth(prod, k, query), k)
+
+    def _within_kth(self, prod: np.ndarray, k: int, query: FeatureQuery):
+        """The rows whose product is within the k-th smallest (widened by FILTER_SLACK) and their exact
+        distances. The k-th of a strided sample of ~SAMPLE_PER_ROW_K * sqrt(n k) rows bounds the k-th
+        from above (a selection over the sample, not over every row); should more than 32 k rows fall
+        within it, the k-th among those (the true k-th: they hold every row below the bound) is taken."""
+        slack = np.float32(1.0 + FILTER_SLACK)
+        step = max(1, int(self.n / max(4 * k, SAMPLE_PER_ROW_K * math.sqrt(self.n * k))))
+        sample = prod[::step]
+        rows = np.flatnonzero(prod <= np.partition(sample, k - 1)[k - 1] * slack) if step > 1 else None
+        if rows is None or len(rows) > 4 * k:
+            within = prod if rows is None else prod[rows]
+            keep = np.flatnonzero(within <= np.partition(within, k - 1)[k - 1] * slack)
+            rows = keep if rows is None else rows[keep]
+        num, cat = self._block(rows)  # one gather of the packed rows, not one per column
+        return rows, jp_scores(num, cat, query)
+
+    def products(self, query: FeatureQuery) -> np.ndarray:
+        """Π (1 + d_j) of every row in float32, in as few passes as the mask allows (the scan's work;
+        the same factors as :func:`recall.ranking.factors`, multiplied in another order, so within
+        ``FILTER_SLACK`` of the exact product): a numeric feature's ``1 + d`` takes 3 passes for a
+        point, 5 for an interval (no NaN-aware fmax: 5x slower than an add), then its unknown rows
+        (the tail of its sorted order, ~3 %) are set to the unknown factor; every stated category
+        together is one gather of a table over the category combinations (:attr:`combinations`),
+        whose factors 1 / 2 / 4 are exact."""
         prod = None
-        for item in items:
-            f = factors(item, self.num_cols, self.cat_cols)
+        for cond in query.numeric:
+            j = NUM_INDEX[cond.feature]
+            d = _one_plus_distance(cond, self.num_cols[j])
+            unknown = self.num_order[j][self.num_known[j] :]
+            if len(unknown):
+                d[unknown] = np.float32(1.0 + cond.unknown_difference)
+            prod = d if prod is None else np.multiply(prod, d, out=prod)
+        if query.categorical:
+            comb = self.combinations
+            table = None
+            for feat, value in query.categorical:
+                f = _category_factors(feat, value).take(comb.codes[CAT_INDEX[feat]])
+                table = f if table is None else np.multiply(table, f, out=table)
+            f = table.take(comb.group)
             prod = f if prod is None else np.multiply(prod, f, out=prod)
-        kth = np.partition(prod, k - 1)[k - 1]
-        rows = np.flatnonzero(prod <= kth * np.float32(1.0 + FILTER_SLACK))
-        return select_top_k(rows, self.score(query, rows), k)
+        return np.ones(self.n, dtype=np.float32) if prod is None else prod
 
     def _window(self, query: FeatureQuery, items: list, lead: int, k: int, best_rows, best_scores):
         """Filter the rows of the lead feature's window in growing chunks (the bound tightens as better
@@ -329,3 +395,36 @@ class JPIndex(SortedColumns):
             start, step = stop, min(step * 2, MAX_CHUNK)
         rows = np.concatenate(found)[:k].astype(np.int64)
         return rows, np.zeros(len(rows))
+
+
+_ONE = np.float32(1.0)
+
+
+def _one_plus_distance(cond, x: np.ndarray) -> np.ndarray:
+    """``1 + d`` of a numeric condition for a float32 column (a new array; NaN where unknown, or 1)."""
+    low, high = np.float32(cond.low), np.float32(cond.high)
+    if float(low) != cond.low or float(high) != cond.high:  # bounds not held in float32: float64
+        d = factors(("num", cond), [x] * len(NUMERIC_FEATURES), None, optimistic=True)
+        return d.astype(np.float32) if d.dtype != np.float32 else d
+    if cond.low == cond.high:
+        d = np.subtract(x, low)
+        np.abs(d, out=d)
+        d += _ONE
+        return d
+    if math.isinf(cond.high):
+        d = np.subtract(low, x)
+    elif math.isinf(cond.low):
+        d = np.subtract(x, high)
+    else:
+        d = np.subtract(low, x)
+        np.maximum(d, np.subtract(x, high), out=d)
+    d += _ONE
+    return np.maximum(d, _ONE, out=d)  # inside the interval (1 + d < 1): 1
+
+
+@functools.cache
+def _category_factors(feature: str, value: str) -> np.ndarray:
+    """e^term of a category by code + 1 (0 = unknown): 1, 2 or 4 (float32, exact)."""
+    table = np.exp(category_terms(feature, value)).round().astype(np.float32)
+    table.flags.writeable = False
+    return table

@@ -49,6 +49,7 @@ __all__ = [
     "RecallIndex",
     "catalog_fingerprint",
     "code_version",
+    "current_version",
     "index_path",
     "load_index",
     "read_index",
@@ -134,6 +135,32 @@ def load_index(db: str | Path, *, store: bool | None = None) -> RecallIndex:
         _record_state(file, state, checked_at, fingerprint, code)
         return RecallIndex(snapshot, tables, "built")
     return RecallIndex(snapshot, tables, "built, not stored")
+
+
+def current_version(db: str | Path) -> tuple:
+    """The version :func:`load_index` would give the snapshot of the catalog at ``db`` now
+    (``("fingerprint", ...)``), without reading the index or the columns: from the note beside the index
+    while the catalog files are as noted, else the content fingerprint (one read-only connection; noted
+    in turn when the files had settled). A long-running reader (the service) compares it with the
+    version of the recaller it holds, and reloads only when they differ."""
+    db = Path(db)
+    file = index_path(db)
+    code = code_version()
+    try:
+        noted = json.loads(_state_path(file).read_bytes())
+        if noted.get("code") == code and _settled(noted["state"], noted["checked_at"]):
+            if noted["state"] == file_state(db):
+                return ("fingerprint", *noted["catalog"])
+    except (OSError, ValueError, KeyError, TypeError):
+        pass
+    from kb.catalog import KnowledgeBase
+
+    checked_at, state = time.time_ns(), file_state(db)
+    with KnowledgeBase.open(db, read_only=True).connect() as con:
+        fingerprint = catalog_fingerprint(con)
+    if file.exists():  # a note of the files' content, for the next check (and load_index)
+        _record_state(file, state, checked_at, fingerprint, code)
+    return ("fingerprint", *fingerprint)
 
 
 # ------------------------------------------------------------------- the catalog file's own state

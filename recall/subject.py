@@ -16,6 +16,7 @@ from kb.kinds import singular, words_of
 
 __all__ = [
     "adjective_feature_words",
+    "said_in_plural",
     "feature_words",
     "is_adjective",
     "is_participle",
@@ -36,6 +37,9 @@ _PHRASE_ENDS = frozenset(
     "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
 )
 _PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: A past participle ("shaped", "filled", "covered"), which after the head noun and before a function word
+#: ends the subject phrase.
+_ADJECTIVE_PARTICIPLE = re.compile(r"..ed$")
 #: Verbs of measuring that also make compound nouns ("a glass *measuring* cup", "a *weighing* scale").
 _COMPOUND_VERBS = frozenset({"measuring", "weighing"})
 #: Words skipped inside the subject phrase (determiners, vague size words).
@@ -63,17 +67,38 @@ def subject_phrase(text: str) -> tuple[str, ...]:
         previous = ""
         words = _WORD.findall(chunk)
         for i, word in enumerate(words):
-            if word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
+            if not phrase and _request_word(word, words[i + 1 : i + 2]):
+                pass  # "Could you pass the salt shaker", "Where is the scoop", "Hand me the hammer"
+            elif word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
                 if phrase:
                     break
+            elif phrase and _ADJECTIVE_PARTICIPLE.search(word) and set(words[i + 1 : i + 2]) & _PHRASE_ENDS:
+                break  # "a kitchen timer *shaped* like a tomato", "a tin *filled* with buttons"
             elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
                 pass
             elif word not in _PHRASE_SKIP:
                 phrase.append(word)
             previous = word
-        if phrase:
+        if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
             return tuple(singular(w) for w in phrase)
     return ()
+
+
+#: Words of a request or question before the subject ("please", "could you", "where is", "find me",
+#: "looking for"): skipped before the subject phrase starts, when a function word, pronoun or
+#: determiner follows them ("*hand* me the hammer"; not "a *hand* towel": a noun follows).
+_REQUEST_WORDS = frozenset(
+    "please can could would will find get grab bring hand pass give fetch show locate pick need want where "
+    "what which looking look search searching seeking got".split()
+)
+
+
+def _request_word(word: str, following: list[str]) -> bool:
+    if word == "please":
+        return True
+    if word not in _REQUEST_WORDS or not following:
+        return False
+    return following[0] in _PHRASE_ENDS or following[0] in _PHRASE_SKIP
 
 
 def _compound_verb(word: str, following: list[str]) -> bool:
@@ -131,7 +156,8 @@ def adjective_feature_words() -> frozenset[str]:
     return frozenset(w for table in tables for w in table if " " not in w)
 
 
-_ADJECTIVE = re.compile(r"(al|ic|ed|y|ish|ar|shaped|like)$")
+#: Adjective endings; "-y" only after a consonant ("squishy", "fuzzy"), not in "key", "tray", "trolley".
+_ADJECTIVE = re.compile(r"(al|ic|ed|[^aeiou]y|ish|ar|shaped|like)$")
 _SHAPE_ADJECTIVES = frozenset(
     {"flat", "round", "long", "thin", "slim", "slender", "compact", "oval", "squat", "floppy"}
 )
@@ -151,3 +177,12 @@ def is_adjective(word: str) -> bool:
     ("metallic", "round", "folded"); a heuristic without a tagger (nouns such as "garlic" match too:
     callers check the noun lexicon first)."""
     return bool(_ADJECTIVE.search(word)) or word in _SHAPE_ADJECTIVES or is_participle(word)
+
+
+def said_in_plural(word: str, text: str) -> bool:
+    """Whether ``text`` has ``word`` (singular) in a plural form ("binoculars", "boxes"): an adjective has
+    none, so a word said in the plural is a noun whatever its ending."""
+    low = text.lower()
+    return any(re.search(rf"\b{re.escape(word)}{end}\b", low) for end in ("s", "es")) or (
+        word.endswith("y") and re.search(rf"\b{re.escape(word[:-1])}ies\b", low) is not None
+    )

@@ -11,6 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from kb.features import FEATURES, NUMERIC_FEATURES, ObjectRecord, sort_dims
+from recall.openset import verdict
 
 __all__ = ["grasp_target"]
 
@@ -29,6 +30,7 @@ def grasp_target(result: Any, get_object: Callable[[str], ObjectRecord]) -> tupl
         "not_in_catalog": result.not_in_catalog,
         "distance": best.distance,
         "alternatives": [m.name for m in result.matches[1:]],
+        "verdict": verdict(result).to_dict(),  # the recall's own line, as in `objrecall recall` and POST /recall
     }
     if not result.open_set:
         info["planned_for"] = best.name

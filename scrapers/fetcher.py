@@ -24,11 +24,9 @@ from __future__ import annotations
 
 import email.utils
 import threading
-import time
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
-from datetime import UTC, datetime
-from typing import Protocol
+from dataclasses import dataclass, field
+from datetime import UTC
 from urllib.parse import urljoin, urlsplit
 
 import requests
@@ -36,6 +34,18 @@ import urllib3
 from protego import Protego
 
 from kb.errors import FetchError, PageTooLarge, RobotsDisallowed
+from scrapers.fetch_policy import (
+    DEFAULT_POLICY,
+    REDIRECT_STATUSES,
+    RETRY_STATUSES,
+    ROBOT_NAME,
+    USER_AGENT,
+    Clock,
+    FetchPolicy,
+    SystemClock,
+    with_overrides,
+)
+from scrapers.fetch_records import FetchResult, Validators, fetch_error_kind, tagged_error
 
 __all__ = [
     "DEFAULT_POLICY",
@@ -49,149 +59,11 @@ __all__ = [
     "SystemClock",
     "Validators",
     "fetch_error_kind",
+    "with_overrides",
 ]
 
 
-def _version() -> str:
-    try:
-        from importlib.metadata import version
-
-        return version("objrecall")
-    except Exception:  # not installed: running from a source tree
-        return "0.1.0"
-
-
-#: The product token robots.txt groups are matched against.
-ROBOT_NAME = "objrecall"
-PROJECT_URL = "https://github.com/objrecall/objrecall"
-USER_AGENT = f"{ROBOT_NAME}/{_version()} (+{PROJECT_URL}; contact: {PROJECT_URL}/issues)"
-
-#: Statuses worth another try (Scrapy's RETRY_HTTP_CODES).
-RETRY_STATUSES: frozenset[int] = frozenset({408, 429, 500, 502, 503, 504})
-REDIRECT_STATUSES: frozenset[int] = frozenset({301, 302, 303, 307, 308})
-
 _CHUNK = 64 * 1024
-
-
-class Clock(Protocol):
-    """Time as the fetcher sees it: a monotonic clock for delays, a sleep, and wall time for records."""
-
-    def monotonic(self) -> float: ...
-
-    def sleep(self, seconds: float) -> None: ...
-
-    def now(self) -> datetime: ...
-
-
-class SystemClock:
-    """The real clock."""
-
-    def monotonic(self) -> float:
-        return time.monotonic()
-
-    def sleep(self, seconds: float) -> None:
-        if seconds > 0:
-            time.sleep(seconds)
-
-    def now(self) -> datetime:
-        return datetime.now(UTC)
-
-
-@dataclass(frozen=True)
-class FetchPolicy:
-    """How politely and patiently to fetch; every field has a safe default.
-
-    ``delay_s`` is the minimum gap between two requests to one host (robots.txt Crawl-delay can raise it,
-    never lower it). ``read_timeout_s`` bounds each wait for bytes; ``max_page_s`` bounds a whole body, so a
-    server that drips a byte at a time cannot hold the crawl. ``max_retries`` counts extra attempts after the first. Backoff before retry *n*
-    (1-based) is ``backoff_s * 2 ** (n - 1)``.
-    """
-
-    delay_s: float = 1.0
-    connect_timeout_s: float = 10.0
-    read_timeout_s: float = 30.0
-    max_bytes: int = 10 * 1024 * 1024
-    max_redirects: int = 5
-    max_retries: int = 3
-    backoff_s: float = 1.0
-    max_retry_after_s: float = 120.0
-    max_page_s: float = 120.0
-    obey_robots: bool = True
-    user_agent: str = USER_AGENT
-
-    def __post_init__(self) -> None:
-        for name in ("delay_s", "backoff_s", "max_retry_after_s"):
-            if getattr(self, name) < 0:
-                raise ValueError(f"{name} must be >= 0")
-        for name in ("connect_timeout_s", "read_timeout_s", "max_page_s"):
-            if getattr(self, name) <= 0:
-                raise ValueError(f"{name} must be > 0")
-        if self.max_bytes <= 0:
-            raise ValueError("max_bytes must be > 0")
-        if self.max_redirects < 0 or self.max_retries < 0:
-            raise ValueError("max_redirects and max_retries must be >= 0")
-
-
-DEFAULT_POLICY = FetchPolicy()
-
-
-@dataclass(frozen=True)
-class Validators:
-    """What a previous fetch of a page said about its version (sent back as a conditional request)."""
-
-    etag: str | None = None
-    last_modified: str | None = None
-
-    def headers(self) -> dict[str, str]:
-        h: dict[str, str] = {}
-        if self.etag:
-            h["If-None-Match"] = self.etag
-        if self.last_modified:
-            h["If-Modified-Since"] = self.last_modified
-        return h
-
-
-@dataclass
-class FetchResult:
-    """One fetched page. ``body`` is None when ``not_modified`` (a 304 answer to a conditional request)."""
-
-    url: str
-    final_url: str
-    status: int
-    body: bytes | None
-    content_type: str | None
-    etag: str | None
-    last_modified: str | None
-    fetched_at: datetime
-    attempts: int = 1
-    redirects: int = 0
-    retry_after: str | None = None  # the Retry-After header of a 408/429/5xx answer
-
-    @property
-    def not_modified(self) -> bool:
-        return self.status == 304
-
-    @property
-    def validators(self) -> Validators:
-        return Validators(self.etag, self.last_modified)
-
-
-def fetch_error_kind(err: FetchError) -> str:
-    """A short, stable key for what went wrong (used to count rejections by reason)."""
-    kind = getattr(err, "kind", None)
-    if kind:
-        return kind
-    if isinstance(err, RobotsDisallowed):
-        return "robots_disallowed"
-    if isinstance(err, PageTooLarge):
-        return "too_large"
-    return "fetch_failed"
-
-
-def _error(cls: type[FetchError], url: str, kind: str, detail: str) -> FetchError:
-    err = cls(url, detail)
-    err.kind = kind  # type: ignore[attr-defined]
-    return err
 
 
 @dataclass
@@ -225,7 +97,7 @@ class PoliteFetcher:
     def _host(self, url: str) -> tuple[str, _Host]:
         parts = urlsplit(url)
         if parts.scheme not in ("http", "https") or not parts.netloc:
-            raise _error(FetchError, url, "invalid_url", "not an http(s) URL")
+            raise tagged_error(FetchError, url, "invalid_url", "not an http(s) URL")
         key = f"{parts.scheme}://{parts.netloc}"
         with self._hosts_lock:
             host = self._hosts.setdefault(key, _Host())
@@ -276,13 +148,13 @@ class PoliteFetcher:
             return policy.delay_s
         self._load_robots(key, host, policy)
         if host.robots_error is not None:
-            raise _error(
+            raise tagged_error(
                 RobotsDisallowed, url, "robots_unavailable", f"robots.txt unavailable: {host.robots_error}"
             )
         if host.robots is None:
             return policy.delay_s
         if not host.robots.can_fetch(url, policy.user_agent):
-            raise _error(RobotsDisallowed, url, "robots_disallowed", "disallowed by robots.txt")
+            raise tagged_error(RobotsDisallowed, url, "robots_disallowed", "disallowed by robots.txt")
         crawl_delay = host.robots.crawl_delay(policy.user_agent)
         return max(policy.delay_s, float(crawl_delay or 0.0))
 
@@ -314,7 +186,7 @@ class PoliteFetcher:
             if result.status in REDIRECT_STATUSES and result.final_url != current:
                 redirects += 1
                 if redirects > policy.max_redirects:
-                    raise _error(
+                    raise tagged_error(
                         FetchError, url, "too_many_redirects", f"more than {policy.max_redirects} redirects"
                     )
                 current = result.final_url
@@ -323,7 +195,7 @@ class PoliteFetcher:
             result.redirects = redirects
             if result.status == 304 or 200 <= result.status < 300:
                 return result
-            raise _error(
+            raise tagged_error(
                 FetchError,
                 url,
                 f"http_{result.status}",
@@ -379,7 +251,7 @@ class PoliteFetcher:
                 if result.status in REDIRECT_STATUSES and follow_redirects and result.final_url != url:
                     hops += 1
                     if hops > policy.max_redirects:
-                        raise _error(
+                        raise tagged_error(
                             FetchError,
                             url,
                             "too_many_redirects",
@@ -429,7 +301,7 @@ class PoliteFetcher:
                 allow_redirects=False,
             )
         except requests.Timeout:
-            raise _error(
+            raise tagged_error(
                 FetchError, url, "timeout", f"timed out (read timeout {policy.read_timeout_s:g} s)"
             ) from None
         except (
@@ -437,13 +309,15 @@ class PoliteFetcher:
             requests.exceptions.MissingSchema,
             requests.exceptions.InvalidSchema,
         ):
-            raise _error(FetchError, url, "invalid_url", "invalid URL") from None
+            raise tagged_error(FetchError, url, "invalid_url", "invalid URL") from None
         except requests.ConnectionError as err:
-            raise _error(
+            raise tagged_error(
                 FetchError, url, "connection_failed", f"connection failed ({type(err).__name__})"
             ) from None
         except requests.RequestException as err:
-            raise _error(FetchError, url, "fetch_failed", f"request failed ({type(err).__name__})") from None
+            raise tagged_error(
+                FetchError, url, "fetch_failed", f"request failed ({type(err).__name__})"
+            ) from None
         try:
             fetched_at = self.clock.now()
             status = resp.status_code
@@ -470,7 +344,7 @@ class PoliteFetcher:
     def _read_capped(self, url: str, resp: requests.Response, policy: FetchPolicy) -> bytes:
         declared = resp.headers.get("Content-Length")
         if declared and declared.strip().isdigit() and int(declared) > policy.max_bytes:
-            raise _error(
+            raise tagged_error(
                 PageTooLarge,
                 url,
                 "too_large",
@@ -482,23 +356,25 @@ class PoliteFetcher:
         try:
             for chunk in _body_chunks(resp):
                 if self.clock.monotonic() > deadline:
-                    raise _error(FetchError, url, "timeout", f"body took longer than {policy.max_page_s:g} s")
+                    raise tagged_error(
+                        FetchError, url, "timeout", f"body took longer than {policy.max_page_s:g} s"
+                    )
                 total += len(chunk)
                 if total > policy.max_bytes:
-                    raise _error(
+                    raise tagged_error(
                         PageTooLarge, url, "too_large", f"body passed the cap of {policy.max_bytes} bytes"
                     )
                 chunks.append(chunk)
         except (requests.exceptions.ReadTimeout, urllib3.exceptions.ReadTimeoutError):
-            raise _error(FetchError, url, "timeout", "timed out while reading the body") from None
+            raise tagged_error(FetchError, url, "timeout", "timed out while reading the body") from None
         except requests.exceptions.ConnectionError as err:
             if "timed out" in str(err).lower():
-                raise _error(FetchError, url, "timeout", "timed out while reading the body") from None
-            raise _error(
+                raise tagged_error(FetchError, url, "timeout", "timed out while reading the body") from None
+            raise tagged_error(
                 FetchError, url, "connection_failed", "connection dropped while reading the body"
             ) from None
         except (requests.exceptions.RequestException, urllib3.exceptions.HTTPError, OSError) as err:
-            raise _error(
+            raise tagged_error(
                 FetchError, url, "connection_failed", f"body could not be read ({type(err).__name__})"
             ) from None
         return b"".join(chunks)
@@ -516,8 +392,3 @@ def _body_chunks(resp: requests.Response):
             yield chunk
     else:  # an adapter without urllib3 underneath
         yield from resp.iter_content(_CHUNK)
-
-
-def with_overrides(policy: FetchPolicy, **changes: object) -> FetchPolicy:
-    """A copy of ``policy`` with the given fields replaced (None values ignored)."""
-    return replace(policy, **{k: v for k, v in changes.items() if v is not None})

@@ -76,6 +76,11 @@ HANDLE_NOUNS: dict[str, str] = {
     "saucepan": "long",
     "wok": "long",
 }
+#: ``GraspPlan.params["hold"]`` for a grasp of the object's handle rather than its body (sim/world.py places
+#: the hand on it; the planner asks for it for a pan, sim/planner.py).
+HOLD_HANDLE = "handle"
+#: ``GraspPlan.params["handle_grip"]``: where along a long handle the palm's middle goes.
+HANDLE_GRIPS = ("end", "middle")
 #: Open vessels show their opening (a dark disk on top); the others have a lid.
 OPEN_VESSELS = frozenset({"mug", "teacup", "measuring cup", "pitcher", "jug"})
 #: A loop handle reaches out this fraction of the vessel's diameter when the stated sizes leave no room.

@@ -249,10 +249,18 @@ def _power_prismatic(o: PlannedObject) -> Candidates | None:
     if w <= PRECISION_MAX_WIDTH_CM + 1.0 and not heavy:
         out.append(("thumb_4_finger", "thumb against four finger pads"))
     elif w >= POWER_SPHERE_MIN_CM:
-        out.append(("power_sphere", "the fingers spread round it"))
+        # The power sphere is a circular grasp (Cutkosky): a heavy box's flat faces are wrapped only.
+        if not (heavy and _is_box(o)):
+            out.append(("power_sphere", "the fingers spread round it"))
     else:
         out.append(("heavy_wrap_small_diameter", "a tight fist round it"))
     return out
+
+
+def _is_box(o: PlannedObject) -> bool:
+    """Is the object, as the simulator builds it, a box (flat faces, square corners: a brick, a carton), not
+    a round body? (sim/bodies.py, from its sizes and kind.)"""
+    return o.body().form == "box"
 
 
 def _pen(o: PlannedObject) -> Candidates | None:

@@ -106,7 +106,7 @@ def evaluate(rows: Sequence[HumanGrasp] | None = None) -> Agreement:
     rows = read_human_grasps() if rows is None else rows
     results = []
     for r in rows:
-        plans = plan_grasps(r.features)
+        plans = plan_grasps({**r.features, "name": r.object})  # the name gives its kind (a pan: its handle)
         results.append(
             ObjectResult(
                 r.object, r.grasp_type, r.family, tuple(p.grasp_type for p in plans), plans[0].family

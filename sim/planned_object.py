@@ -61,6 +61,7 @@ class PlannedObject:
     rigidity: str
     friction: float
     assumptions: tuple[str, ...] = field(default=())
+    aliases: tuple[str, ...] = field(default=())  # with the name, they give its kind (sim/bodies.py)
 
     @property
     def is_disk(self) -> bool:
@@ -79,6 +80,14 @@ class PlannedObject:
     @property
     def is_flat(self) -> bool:
         return self.shape == "thin"
+
+    def body(self) -> Any:
+        """The body the simulator builds for this object (sim/bodies.py ``Body``: its form, handle), from
+        its sizes, shape, mass and kind (name and aliases)."""
+        from sim.bodies import body_for
+
+        sizes = (self.a_cm, self.b_cm, self.c_cm)
+        return body_for(sizes, self.shape, self.mass_g / 1000.0, name=self.name, aliases=self.aliases)
 
 
 def _infer_shape(a: float, b: float, c: float) -> str:
@@ -99,9 +108,11 @@ def resolve_features(obj: ObjectRecord | Mapping[str, Any]) -> PlannedObject:
     """
     if isinstance(obj, ObjectRecord):
         name: str | None = obj.name
+        aliases = tuple(obj.aliases)
         values = obj.features()
     else:
         name = obj.get("name")
+        aliases = tuple(obj.get("aliases") or ())
         raw = {_KEY_ALIASES.get(str(k).lower(), str(k).lower()): v for k, v in obj.items()}
         values = validate_features({k: v for k, v in raw.items() if k in FEATURES})
     notes: list[str] = []
@@ -153,4 +164,5 @@ def resolve_features(obj: ObjectRecord | Mapping[str, Any]) -> PlannedObject:
         rigidity=rigidity,
         friction=mu,
         assumptions=tuple(notes),
+        aliases=aliases,
     )

@@ -22,6 +22,7 @@ rationale, so that ``plan_grasps`` always answers for any valid feature set.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -68,7 +69,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "8"  # 8: candidates the hand cannot open round, or cannot squeeze enough, ranked below the rest
+PLANNER_VERSION = "10"  # 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -82,6 +83,12 @@ PRECISION_APERTURE_MARGIN_CM = 2.0
 #: candidate that fits above every one that does not, then those within capacity above those beyond it.
 FORCE_PENALTY = 0.4
 APERTURE_PENALTY = 0.2
+#: A pan (an object whose kind has a long handle, sim/bodies.py) is picked up by its handle in a
+#: small-diameter wrap from above (Feix 2016 type 2; what people do with a frying pan: PLANNER.md).
+HANDLE_GRASP = "heavy_wrap_small_diameter"
+#: A pan at least this heavy is held at the middle of its handle, nearer its centre of mass (people choke up
+#: on a heavy pan); a lighter one near the handle's end (sim/world.py ``HANDLE_END_MARGIN_CM``).
+HANDLE_MIDDLE_MIN_MASS_G = HEAVY_MASS_G
 
 
 def opening_needed(grasp_type: str, width_cm: float) -> float:
@@ -163,9 +170,13 @@ def _planned_force(ctx: _Context, program: HandProgram, rationale: list[str]) ->
     return force, ranked
 
 
-def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandProgram) -> GraspPlan:
-    """One candidate as a plan: its score from its rank, force and feasibility, and why."""
-    o, width = ctx.o, ctx.o.c_cm
+def _plan(
+    ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandProgram, hold: dict[str, Any] | None = None
+) -> GraspPlan:
+    """One candidate as a plan: its score from its rank, force and feasibility, and why. ``hold``: the plan
+    params of a grasp of a part (a handle: its ``width_cm`` replaces the object's smallest side)."""
+    o = ctx.o
+    width = float(hold["width_cm"]) if hold else o.c_cm
     rationale = [reason]
     if program.merged:
         others = ", ".join(t.replace("_", " ") for t in program.grasp_types if t != grasp_type)
@@ -173,7 +184,7 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
             f"simulated by the {program.name.replace('_', ' ')} hand program, shared with {others}: "
             "this hand (no finger abduction) cannot make them differently (sim/programs.py)"
         )
-    if rank == 0:
+    if rank == 0 and not hold:
         rationale.append(f"grasped across its smallest side c = {width:g} cm (Feix 2014: 94 % of grasps)")
     # Score: rule order (1.0 down to 0.5), times the two penalties, so that scores fall in the order of
     # _rank_key (fit, then force, then rule order), which the ranking itself uses.
@@ -197,9 +208,9 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
     return GraspPlan(
         grasp_type=grasp_type,
         family=GRASP_TYPES[grasp_type],
-        grasped_dim="c",
+        grasped_dim=str(hold["grasped_dim"]) if hold else "c",
         aperture_cm=_aperture(grasp_type, width),
-        approach=program.approach,  # type: ignore[arg-type]
+        approach=str(hold["approach"]) if hold else program.approach,  # type: ignore[arg-type]
         grip_force_n=force,
         score=round(score, 3),
         rationale=tuple(rationale) + ctx.notes,
@@ -217,8 +228,54 @@ def _plan(ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandP
             "assumed_mass_g": round(o.mass_g, 1),
             "planner_version": PLANNER_VERSION,
             "program": program.name,
+            **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
+
+
+def _handle_hold(ctx: _Context) -> dict[str, Any] | None:
+    """The hold params of a pan's handle (the one the simulator builds, sim/bodies.py), or None when the
+    object's kind has no long handle. A loop handle (mug, pitcher) is not held: this hand's fingers cannot
+    pass through the loop without abduction (PHYSICS.md), and its body is wrapped instead."""
+    from sim.bodies import HOLD_HANDLE
+
+    body = ctx.o.body()
+    handle = body.handle
+    if handle is None or handle.style != "long" or body.up is None:
+        return None
+    across = next(d for d in "abc" if d not in (body.up, handle.dim))
+    where = "middle" if ctx.o.mass_g >= HANDLE_MIDDLE_MIN_MASS_G else "end"
+    # A long handle is wrapped from above (sim/world.py places the hand on it so).
+    return {
+        "hold": HOLD_HANDLE,
+        "handle_grip": where,
+        "width_cm": round(handle.width_cm, 3),
+        "grasped_dim": across,
+        "approach": "top",
+    }
+
+
+def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
+    """The handle hold as a plan: the friction bound on the handle, not the body's edge or wrap moment
+    (the pan hangs under the wrap; the trial's pushes test the moment)."""
+    hctx = _Context(ctx.o, True, ctx.notes, ctx.base_force, 0.0, 0.0)
+    where = "at its middle, nearer the pan (it is heavy)" if hold["handle_grip"] == "middle" else "near its end"
+    reason = (
+        f"a pan: held by its handle ({hold['width_cm']:g} cm wide) {where}, in a small-diameter wrap from above, "
+        "as people pick up a frying pan (Feix 2016 type 2; the body is wider than the hand)"
+    )
+    plan = _plan(hctx, 0, HANDLE_GRASP, reason, program_for(HANDLE_GRASP), hold)
+    capacity = side_force_capacity(HANDLE_GRASP)
+    if plan.grip_force_n >= capacity:
+        return plan
+    # The pan hangs beyond the grip: its weight's moment about the handle, and a push's, which the friction
+    # bound does not count, are held by squeezing the handle as hard as the wrap can (measured: a 1.2 kg pan
+    # held at its friction bound, 47.8 N, turned 17 deg in the sideways push; at the wrap's 60 N it holds).
+    line = (
+        f"handle: the pan's weight acts beyond the grip, so the handle is squeezed at the wrap's full "
+        f"{capacity:g} N (its friction bound: {plan.grip_force_n:g} N)"
+    )
+    return dataclasses.replace(plan, grip_force_n=capacity, rationale=(*plan.rationale, line))
 
 
 def _rank_key(p: GraspPlan) -> tuple[bool, bool, float]:
@@ -234,9 +291,12 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
     Each hand program is listed once: a merged type the rules reach later is dropped.
     """
     ctx = _context(resolve_features(obj))
-    plans: list[GraspPlan] = []
-    seen: set[str] = set()  # hand programs already listed: a merged type is simulated once
-    for rank, (grasp_type, reason) in enumerate(candidates(ctx.o)):
+    hold = _handle_hold(ctx)
+    plans: list[GraspPlan] = [_handle_plan(ctx, hold)] if hold else []
+    # Hand programs already listed (the handle hold's too): a merged type is simulated once, and results,
+    # grouped by grasp type, never mix a handle hold with a grasp of the body.
+    seen: set[str] = {program_for(p.grasp_type).name for p in plans}
+    for rank, (grasp_type, reason) in enumerate(candidates(ctx.o), start=len(plans)):
         program = program_for(grasp_type)
         if program.name in seen:
             continue

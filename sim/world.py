@@ -16,6 +16,7 @@ import numpy as np
 from kb.errors import SimulationError
 from kb.features import ObjectRecord
 from sim import hand as H
+from sim.bodies import HOLD_HANDLE as _HOLD_HANDLE
 from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
 from sim.objects import ObjectModel, add_object, add_table, free_dim, object_model, pose_rotation
 from sim.programs import program_for
@@ -158,10 +159,11 @@ def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
 
 
-#: ``GraspPlan.params["hold"]`` for a grasp of the object's handle (sim/bodies.py ``Handle``) rather than its
-#: body: a loop handle's grip bar from the side, a pan's handle from above near its end.
-HOLD_HANDLE = "handle"
-#: A pan's handle is held this far (cm) from its end to the middle of the palm (half the palm and a margin).
+#: ``GraspPlan.params["hold"]`` for a grasp of the object's handle (sim/bodies.py ``Handle``, ``HOLD_HANDLE``)
+#: rather than its body: a loop handle's grip bar from the side, a pan's handle from above.
+HOLD_HANDLE = _HOLD_HANDLE
+#: A pan's handle is held this far (cm) from its end to the middle of the palm (half the palm and a margin),
+#: unless the plan asks for its middle (``params["handle_grip"] = "middle"``: a heavy pan, held nearer it).
 HANDLE_END_MARGIN_CM = H.PALM_HALF_CM[0] + 0.5
 
 
@@ -223,7 +225,8 @@ def _handle_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
     grip_ext = np.zeros(3)
     for dim, ax in axes.items():
         grip_ext[ax] = grip.extent_cm(dim)
-    if handle.style == "long":  # near the end: the part from the rim out is longer than the palm
+    at_end = plan.params.get("handle_grip", "end") == "end"
+    if handle.style == "long" and at_end:  # near the end: the part from the rim out is longer than the palm
         end = centre[0] + grip_ext[0] / 2.0
         centre[0] = max(centre[0], end - HANDLE_END_MARGIN_CM)
     ext = _extents(obj, axes)

@@ -150,6 +150,13 @@ DIMENSION_CASES = [
     ("a length of 19 cm, a width of 3 cm and a height of 2 cm", (19, 3, 2)),
     ("It is 20 cm tall and 5 cm thick", (20, None, 5)),
     ("a car tire, about 65 cm across and 20 cm wide", (65, 65, 20)),
+    # across and a smaller height / thickness / depth, no round cue: a squat thing's diameter
+    ("Small plastic thing, 3 cm across and 1.5 cm tall", (3, 3, 1.5)),
+    ("a metal tin 3.3 inches across and 1.3 inches tall", (8.382, 8.382, 3.302)),
+    ("a thing 10 cm across, 3 cm deep", (10, 10, 3)),
+    ("a thing 3 cm across and 3 cm tall", (3, 3, None)),  # not smaller: one width, sorted as before
+    ("a thing 5 cm across and 8 cm tall", (8, 5, None)),  # taller than across: a width
+    ("a thing 10 cm long, 4 cm across and 2 cm thick", (10, 4, 2)),  # a length: across is a width
 ]
 
 

@@ -409,9 +409,9 @@ def test_the_blind_testers_teapot_is_planned_as_not_fitting_the_hand():
 
 
 def test_a_candidate_that_can_squeeze_enough_is_ranked_before_one_that_cannot():
-    # A brick (seed catalog's sizes): the side wraps must hold its weight's moment, 75 N > their 60 N; the
-    # top power sphere needs 56.7 N.
-    plans = plan_grasps(dict(a_cm=21.5, b_cm=10.25, c_cm=6.5, mass_g=2300, shape="prism", texture="rough",
+    # A brick-sized round prism (c within 20 % of b: a cylinder; a heavy box has no power sphere since planner
+    # 10): the side wraps must hold its weight's moment, 75 N > their 60 N; the top power sphere needs 56.7 N.
+    plans = plan_grasps(dict(a_cm=21.5, b_cm=10.25, c_cm=8.5, mass_g=2300, shape="prism", texture="rough",
                              fragility="sturdy", material="other"))  # fmt: skip
     assert plans[0].grasp_type == "power_sphere" and plans[0].params["force_within_capacity"]
     assert not any(p.params["force_within_capacity"] for p in plans[1:])

@@ -237,9 +237,12 @@ def test_subject_head_and_unknown_nouns():
 
 def test_an_unseen_noun_is_not_in_the_catalog_even_for_a_close_match():
     # an unseen noun is now reported not in the catalog even for a close match (the unseen-noun rule,
-    # tests/test_unseen_noun.py): a synonym the catalog and the lexicon lack ("page") is the price
-    close = seed().recall_text("A thin white page about 30 by 21 cm, floppy, weighs 5 grams.")
-    assert close.unknown_noun == "page" and close.not_in_catalog and close.best.name == "a4 paper sheet"
+    # tests/test_unseen_noun.py): a synonym the catalog and the lexicon lack ("folio") is the price
+    close = seed().recall_text("A thin white folio about 30 by 21 cm, floppy, weighs 5 grams.")
+    assert close.unknown_noun == "folio" and close.not_in_catalog and close.best.name == "a4 paper sheet"
+    # one the lexicon has, with the catalog's English word ("page": a4 paper sheet), is the catalog's object
+    page = seed().recall_text("A thin white page about 30 by 21 cm, floppy, weighs 5 grams.")
+    assert page.unknown_noun is None and not page.open_set and page.best.name == "a4 paper sheet"
     # the paper's orange with a mass: close to a baseball, but its subject is no catalog noun
     orange = seed().recall_text("An orange, about 7 cm across, around 140 grams, with a slightly rough peel.")
     assert orange.open_set and orange.matches and orange.confidence <= 0.5

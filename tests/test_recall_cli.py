@@ -146,6 +146,9 @@ def test_grasp_plan_simulate_a_teapot_simulates_the_described_object(seeded):
     assert res.exit_code == 0, res.output
     out = json.loads(res.stdout)
     assert out["object"] == "described teapot" and out["recalled"]["open_set"]
+    # the recall's own verdict line, the same as `objrecall recall --json` and POST /recall give
+    assert out["recalled"]["verdict"]["label"] == "not in the catalog"
+    assert out["recalled"]["verdict"]["text"].startswith("NOT IN THE CATALOG (open set): no 'teapot'")
     assert out["trial"]["outcome"] in ("success", "failure", "error") and out["features"]["mass_g"] == 900
 
 

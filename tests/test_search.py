@@ -63,7 +63,7 @@ def test_pruned_top_k_equals_brute_force_on_arbitrary_queries(query, k):
 
 
 @settings(max_examples=90, deadline=None)
-@given(query=arbitrary_queries(), k=st.integers(1, 12), plan=st.sampled_from(["scan", "window", "cells"]))
+@given(query=arbitrary_queries(), k=st.integers(1, 12), plan=st.sampled_from(["scan", "window", "cells", "brute"]))
 def test_every_plan_on_its_own_equals_brute_force(query, k, plan):
     """Whatever plan the cost model would pick, each one alone gives the brute force's answer."""
     name, rows, dist = index().plan_and_search(query, k, force=plan)
@@ -212,10 +212,90 @@ def test_one_number_is_read_off_its_column_above_column_from():
     for n in (COLUMN_FROM, COLUMN_FROM + 1):
         small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
         plan, rows, dist = index_for(small).plan_and_search(q, 5)
-        assert plan == ("scan" if n == COLUMN_FROM else "column")
+        assert plan == ("brute" if n == COLUMN_FROM else "column")  # COLUMN_FROM <= BRUTE_BELOW
         brows, bdist = brute_force_top_k(small, q, 5)
         np.testing.assert_array_equal(rows, brows)
         np.testing.assert_array_equal(dist, bdist)
+
+
+def test_catalogs_up_to_brute_below_are_scored_whole():
+    from recall.search import BRUTE_BELOW, COLUMN_FROM
+
+    assert COLUMN_FROM <= BRUTE_BELOW
+    snap = catalog()
+    q = FeatureQuery.from_values({"a_cm": 12, "mass_g": 90, "material": "wood"})
+    for n in (BRUTE_BELOW, BRUTE_BELOW + 1):
+        small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
+        plan, rows, dist = index_for(small).plan_and_search(q, 5)
+        assert plan == ("brute" if n == BRUTE_BELOW else "scan")
+        brows, bdist = brute_force_top_k(small, q, 5)
+        np.testing.assert_array_equal(rows, brows)
+        np.testing.assert_array_equal(dist, bdist)
+
+
+def test_scan_products_are_the_factors_products_within_the_filter_slack():
+    """The scan's few-pass products (unknown rows fixed up afterwards, categories in one gather) equal
+    the product of recall.ranking.factors (unknown values at their penalty) within FILTER_SLACK."""
+    from recall.ranking import FILTER_SLACK, factors
+
+    rng = np.random.default_rng(11)
+    for _ in range(40):
+        _, q = synthetic_description(catalog(), rng)
+        if not len(q):
+            continue
+        items = [("num", c) for c in q.numeric] + [("cat", c) for c in q.categorical]
+        exact = np.ones(len(catalog()))
+        for item in items:
+            exact *= factors(item, catalog().num_cols, catalog().cat_cols).astype(np.float64)
+        got = index().products(q).astype(np.float64)
+        np.testing.assert_allclose(got, exact, rtol=FILTER_SLACK / 4)
+    q = FeatureQuery.from_values({"a_cm": 12.0, "b_cm": 3.0})
+    unknown = np.isnan(catalog().num_cols[0])
+    assert unknown.any()
+    pen = 1.0 + q.numeric[0].unknown_difference
+    assert np.all(index().products(q)[unknown] >= np.float32(pen) * 0.99999)
+
+
+def test_cost_rules_at_their_boundaries():
+    """before_probe / after_probe compare the estimates with <= at each boundary (no timing here)."""
+    from recall.costs import CACHE_ROWS, CELLS_TRIAL, PlanCosts, after_probe, before_probe
+
+    c = PlanCosts(rows=1_000_000, cells=15_625, numbers=3, features=5, categories=True)
+    assert c.big and c.scan == 1_000_000 * (1.0 * 3 + 0.6 + 2.25)
+    per_row = c.window(1) - c.window(0)
+    at = (min(c.probe, c.scan) - c.window(0)) / per_row  # the window's rows costing the probe
+    assert before_probe(c, int(at)) == "window" and before_probe(c, int(at) + 1) is None
+    small = PlanCosts(rows=40_000, cells=625, numbers=1, features=2, categories=True)
+    assert small.scan <= small.probe + small.cells_fixed  # no probe can pay on a small catalog
+    assert before_probe(small, 10**9) == "scan"
+    # after the probe: the cheapest; cells within CELLS_TRIAL of the scan are tried (big catalogs only)
+    scan_rows = c.give_up_rows
+    assert after_probe(c, 10**9, 0, None) == ("cells", False)
+    rows_at_scan = (c.scan - c.cells_fixed) / (c.cell_search(1) - c.cell_search(0))
+    assert after_probe(c, 10**9, int(rows_at_scan) + 1, None) == ("cells", True)
+    trial_rows = (CELLS_TRIAL * c.scan - c.cells_fixed) / (c.cell_search(1) - c.cell_search(0))
+    assert after_probe(c, 10**9, int(trial_rows), None) == ("cells", True)
+    assert after_probe(c, 10**9, int(trial_rows) + 1, None) == ("scan", False)
+    assert after_probe(c, 10**9, 10**9, 10**9) == ("zero", False)  # a scan at a bound of 0
+    assert after_probe(c, 0, 10**9, None) == ("window", False)
+    mid = PlanCosts(rows=CACHE_ROWS, cells=4096, numbers=3, features=5, categories=True)
+    assert not mid.big and after_probe(mid, 10**9, 10**9, None) == ("scan", False)  # no trial in cache
+    assert scan_rows * (c.cell_search(1) - c.cell_search(0)) == pytest.approx(c.scan)
+
+
+def test_a_cell_search_that_gives_up_returns_none_and_otherwise_equals_brute_force():
+    q = FeatureQuery.from_values({"a_cm": 30, "b_cm": 20, "mass_g": 700, "material": "metal", "shape": "prism"})
+    from recall.search import FIRST_POOL, select_top_k
+
+    idx = index()
+    items = [("num", c) for c in q.numeric] + [("cat", c) for c in q.categorical]
+    pool = np.unique(np.concatenate([idx._nearest(it, FIRST_POOL) for it in items]))
+    rows, scores = select_top_k(pool, idx.score(q, pool), 5)
+    brows, bdist = brute_force_top_k(catalog(), q, 5)
+    assert idx.cells.top_k(q, 5, rows, scores, give_up=0) is None
+    got = idx.cells.top_k(q, 5, rows, scores, give_up=10**9)
+    np.testing.assert_array_equal(got[0], brows)
+    np.testing.assert_array_equal(got[1], bdist)
 
 
 def test_ties_are_broken_by_row_like_brute_force():
@@ -357,3 +437,13 @@ def test_init_installs_every_metrics_macro_and_sql_recalls_like_the_engine(tmp_p
     for metric in ("jplog", "jp"):
         (name,) = kb.sql(f"SELECT name FROM {metric}_rank(qa := 6.5, qb := 6.5, qc := 6.5, qmaterial := 'fabric') LIMIT 1").rows[0]
         assert name == recaller.recall_features(values, metric=metric, features_only=True).best.name
+
+
+@settings(max_examples=200, deadline=None)
+@given(query=arbitrary_queries())
+def test_a_query_in_log_units_equals_its_conditions_in_log_units(query):
+    """FeatureQuery.log_scaled (one NumPy pass) gives NumericCondition.log_scaled's values exactly."""
+    one_by_one = FeatureQuery(tuple(c.log_scaled() for c in query.numeric), query.categorical)
+    assert query.log_scaled() == one_by_one
+    for a, b in zip(query.log_scaled().numeric, one_by_one.numeric, strict=True):
+        assert (a.value, a.low, a.high, a.unknown) == (b.value, b.low, b.high, b.unknown)

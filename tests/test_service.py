@@ -495,3 +495,32 @@ def test_grasp_plan_carries_the_latest_validation_and_the_render_shows_it(writer
     assert_error(writer.get("/grasp/render", params={"object": "tennis ball", "grasp_type": "fist"}), 400,
                  words="not a planned grasp")  # fmt: skip
     assert_error(writer.get("/grasp/render", params={"object": "unicorn", "grasp_type": first}), 404)
+
+
+# ------------------------------------------------------------------- the recaller and the stored index
+def test_the_service_recalls_from_the_stored_index_and_reloads_it_when_the_catalog_changes(seeded_db, monkeypatch):
+    """The service loads its recaller with Recaller.from_db (the index stored beside the catalog: written
+    on the first load, reloaded after), keeps it while the catalog's content is unchanged, and loads a new
+    one after any write that changes what recall reads (an alias only, made by another writer)."""
+    from kb.catalog import KnowledgeBase
+    from recall.engine import Recaller
+    from recall.stored_index import index_path
+
+    loads = []
+    real = Recaller.from_db.__func__
+    monkeypatch.setattr(Recaller, "from_db", classmethod(lambda cls, db: loads.append(db) or real(cls, db)))
+    client = TestClient(create_app(seeded_db, token="", snapshot_ttl=0.0), **LOCAL)
+
+    def top(text: str) -> str:
+        response = client.post("/recall", json={"text": text, "top": 1})
+        assert response.status_code == 200, response.text
+        return response.json()["matches"][0]["name"]
+
+    first = top("a tennis ball")
+    assert index_path(seeded_db).exists() and len(loads) == 1
+    assert top("a tennis ball") == first and len(loads) == 1  # checked again (ttl 0), unchanged: kept
+    with KnowledgeBase.open(seeded_db).connect(write=True) as con:
+        (target,) = con.execute("SELECT name FROM objects WHERE name <> ? ORDER BY name LIMIT 1", [first]).fetchone()
+        con.execute("INSERT INTO object_aliases SELECT 'zorbulator', id FROM objects WHERE name = ?", [target])
+    assert top("a zorbulator") == target and len(loads) == 2
+    assert top("a zorbulator") == target and len(loads) == 2

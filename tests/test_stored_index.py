@@ -125,6 +125,40 @@ def test_any_change_to_what_recall_reads_rebuilds_the_index(db: Path, change: st
         assert np.array_equal(x, y, equal_nan=True)
 
 
+@pytest.mark.parametrize(
+    "change",
+    [
+        "INSERT INTO object_aliases (alias, object_id) SELECT 'zorbulator', min(id) FROM objects",
+        "UPDATE object_aliases SET alias = 'zorbulator' WHERE alias = (SELECT min(alias) FROM object_aliases)",
+        "UPDATE object_aliases SET object_id = (SELECT min(id) FROM objects) "
+        "WHERE alias = (SELECT max(alias) FROM object_aliases)",
+        "DELETE FROM object_aliases WHERE alias = (SELECT min(alias) FROM object_aliases)",
+    ],
+)
+def test_an_alias_only_change_gives_a_new_catalog_version(db: Path, change: str) -> None:
+    """No object row changes (count, largest id and latest update stay): the version still moves, so the
+    cached snapshot (and the service's recaller) is rebuilt with the new aliases."""
+    kb = KnowledgeBase.open(db, read_only=True)
+    before, snap = kb.catalog_version(), load_snapshot(db)
+    assert load_snapshot(db) is snap  # unchanged: the cached one
+    _write(db, change)
+    after = kb.catalog_version()
+    assert after[:3] == before[:3] and after != before
+    fresh = load_snapshot(db)
+    assert fresh is not snap and fresh.aliases != snap.aliases
+
+
+def test_a_write_outside_what_recall_reads_keeps_the_catalog_version(db: Path) -> None:
+    kb = KnowledgeBase.open(db, read_only=True)
+    before = kb.catalog_version()
+    _write(
+        db,
+        "INSERT INTO ingestion_runs (id, started_at, status, fetched, not_modified, extracted, rejected, "
+        "new, updated) VALUES (999999, now(), 'ok', 0, 0, 0, 0, 0, 0)",
+    )
+    assert kb.catalog_version() == before
+
+
 def test_the_next_recall_sees_a_change(db: Path) -> None:
     assert Recaller.from_db(db).recall_text("a zorbulator").matches == []  # no such name: nothing stated
     assert load_index(db).origin == "stored"

@@ -149,7 +149,8 @@ def test_page_says_not_in_the_catalog_and_plans_for_the_described_object(site):
     dom = dump_dom(f"{site}/?q={q}")
     assert 'data-ready="true"' in dom, dom[-3000:]
     assert re.search(r'id="not-in-catalog">Not in the catalog<', dom)
-    assert "no orange (kind: fruit)" in dom and "closest fruit: apple" in dom
+    assert "no 'orange' (kind: fruit)" in dom and "closest fruit: apple" in dom
+    assert re.search(r"confidence 0\.0[0-5]", dom)  # the CLI's line, NOT_IN_CATALOG_CONFIDENCE at most
     assert "planned for the described orange: not in the catalog" in dom
 
 

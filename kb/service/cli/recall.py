@@ -249,30 +249,11 @@ def _match_table(matches, result, title: str):
 
 
 def _verdict(result) -> str:
-    """One line: not in the catalog / not a close match / close match, the confidence and why."""
-    if result.not_in_catalog:
-        noun = result.described
-        near = ", ".join(m.name for m in result.matches[:3]) or "nothing (no feature stated)"
-        kind = ", ".join(m.name for m in result.same_kind) or "none"
-        return (
-            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (kind: {noun.kind}) in the catalog; physically closest: {near}; "
-            f"closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}"
-        )
-    verdict = (
-        "NOT a close match (open set): nothing in the catalog is near"
-        if result.open_set
-        else "a guess: many objects fit the description equally"
-        if result.competitors >= 3
-        else "close match"
-    )
-    why = []
-    if result.closeness is not None:
-        why.append(f"mean relative error of the best match {result.closeness:.2f}")
-    if result.unknown_noun:
-        why.append(f"'{result.unknown_noun}' is no catalog noun")
-    if result.competitors >= 1.5:
-        why.append(f"about {round(result.competitors)} candidates as good")  # a soft count
-    return f"confidence {result.confidence:.2f}; {verdict}" + (f" ({'; '.join(why)})" if why else "")
+    """One line: not in the catalog / not a close match / a guess / close match, the confidence and why
+    (:func:`recall.openset.verdict`, the same line as ``--json``'s, the HTTP API's and the web page's)."""
+    from recall.openset import verdict
+
+    return verdict(result).text
 
 
 def _scoreboard_command(blind: bool, json_out: bool) -> None:

@@ -2,7 +2,10 @@
 
 The service never keeps a database connection open: :meth:`ServiceState.knowledge_base` opens a short
 sandboxed read connection per request (retrying while the nightly ingestion holds the file), and recall
-works on an in-memory snapshot of the catalog re-checked at most every ``snapshot_ttl`` seconds.
+works on an in-memory recaller re-checked at most every ``snapshot_ttl`` seconds: it is loaded by
+``Recaller.from_db`` (from the recall index stored beside the catalog while the catalog has not changed,
+``recall/stored_index.py``) and replaced only when the catalog's content version differs from the one it
+was built from (an alias-only change included).
 """
 
 from __future__ import annotations
@@ -30,7 +33,7 @@ class ServiceState:
         self.settings = settings
         self.jobs = jobs
         self._lock = threading.Lock()
-        self._snapshot: Any = None
+        self._loading = threading.Lock()  # one check / load at a time (the others wait for its recaller)
         self._recaller: Any = None
         self._checked = 0.0
         self.renders = RenderCache(settings.render_concurrency, settings.render_cache_entries)
@@ -57,21 +60,39 @@ class ServiceState:
         return self.settings.sources
 
     def recaller(self):
-        """The recall engine over a snapshot of the catalog, re-checked at most every snapshot_ttl s."""
-        from recall.engine import Recaller
-        from recall.snapshot import load_snapshot
-
+        """The recall engine over the catalog, re-checked at most every snapshot_ttl s (see the module)."""
         with self._lock:
-            if self._recaller is not None and time.monotonic() - self._checked < self.settings.snapshot_ttl:
+            if self._fresh():
                 return self._recaller
         self._require_catalog()
-        snap = load_snapshot(self.settings.db)
-        with self._lock:
-            if snap is not self._snapshot:
-                self._recaller = Recaller(snap)
-                self._snapshot = snap
-            self._checked = time.monotonic()
-            return self._recaller
+        with self._loading:
+            with self._lock:
+                if self._fresh():  # another request checked it while this one waited
+                    return self._recaller
+                held = self._recaller
+            recaller = self._load(held)
+            with self._lock:
+                self._recaller, self._checked = recaller, time.monotonic()
+                return recaller
+
+    def _fresh(self) -> bool:
+        return self._recaller is not None and time.monotonic() - self._checked < self.settings.snapshot_ttl
+
+    def _load(self, held):
+        """``held`` while the catalog's content is the one it was built from, else a new recaller."""
+        from recall.engine import Recaller
+
+        db = self.settings.db
+        if db.suffix.lower() == ".csv":  # a catalog CSV: the snapshot cache decides
+            from recall.snapshot import load_snapshot
+
+            snap = load_snapshot(db)
+            return held if held is not None and held.snapshot is snap else Recaller(snap)
+        from recall.stored_index import current_version
+
+        if held is not None and held.snapshot.version == current_version(db):
+            return held
+        return Recaller.from_db(db)
 
     def forget_snapshot(self) -> None:
         """After a write: the next recall re-checks the catalog whatever the TTL."""

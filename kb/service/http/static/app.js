@@ -189,18 +189,15 @@ async function runRecall(text) {
       document.getElementById("grasp").replaceChildren();
     } else {
       summary.replaceChildren();
-      const conf = `confidence ${(answer.confidence * 100).toFixed(0)} %`;
       const best = el("strong", answer.matches[0].name);
       best.id = "top-match";
+      // the verdict line is the recall's own (recall.openset.verdict): the same words as the CLI's
       if (notIn) {
         const verdict = el("strong", "Not in the catalog");
         verdict.id = "not-in-catalog";
-        const kind = answer.same_kind.map((m) => m.name).join(", ") || "none";
-        summary.append(verdict, `: no ${answer.described.noun} (kind: ${answer.described.kind}). Physically closest: `,
-          best, `; closest ${answer.same_kind_as || answer.described.kind}: ${kind} (${conf})`);
+        summary.append(verdict, ". Physically closest: ", best, ". ", answer.verdict.text);
       } else {
-        summary.append("Best match: ", best,
-          ` (${conf}` + (answer.open_set ? "; not a close match: probably not in the catalog" : "") + ")");
+        summary.append("Best match: ", best, `. ${answer.verdict.text}`);
       }
       const plan = await api("/grasp/plan", answer.open_set ? { text } : { name: answer.matches[0].name });
       showGrasp(plan);
