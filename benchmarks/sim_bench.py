@@ -159,7 +159,13 @@ def bench_trials(quick: bool = False, *, limit: int | None = None) -> dict[str, 
 BEFORE = {"objects": 169, "first_holds": 127, "validated": 141, "differs": None, "trials_per_cpu_s": 10.0}
 #: At the start of the fourth session (planner 8, hand ar10like-6.2-g2; the saved row of 2026-12-01 20:51 UTC,
 #: load 1.6). The third session started at 122 / 140 / 47 differing / 8.0 trials per CPU second.
-SESSION_START = {"objects": 169, "first_holds": 132, "validated": 145, "differs": 37, "trials_per_cpu_s": 7.93}
+SESSION_START = {
+    "objects": 169,
+    "first_holds": 132,
+    "validated": 145,
+    "differs": 37,
+    "trials_per_cpu_s": 7.93,
+}
 
 
 def bench_choice(top: int = 3, *, limit: int | None = None, workers: int = 2) -> dict[str, Any]:

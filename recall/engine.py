@@ -13,7 +13,6 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
-import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -45,20 +44,17 @@ from recall.openset import (
     OPEN_SET_UNKNOWN_NOUN_THRESHOLD,
     DescribedNoun,
     KindIndex,
-    compound_head,
-    described_noun,
-    foreign_head,
+    describe,
     foreign_modifier,
     is_open_set,
     material_agrees,
     names_inside,
     synonym_rows,
-    unseen_noun,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
-from recall.subject import said_in_plural, subject_head, subject_phrase
+from recall.subject import noun_phrase, subject_head, subject_phrase
 from recall.submaterials import SubmaterialIndex, with_submaterial
 from recall.vague import SoftEvidence, soft_evidence
 
@@ -170,7 +166,7 @@ class Recaller:
                 self._submaterial(parsed),
             )
             query, soft = with_alternatives(query, soft, alternatives(query, parsed), self.snapshot.cat_cols)
-            subject = subject_phrase(text)
+            subject = noun_phrase(text)
             noun = self.described(text)
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun,
@@ -200,7 +196,7 @@ class Recaller:
             else self.names.find(text, (), query.values().get("material"))
         )
         noun = self.described(text) if text and not features_only else None
-        subject = subject_phrase(text) if text and not features_only else ()
+        subject = noun_phrase(text) if text and not features_only else ()
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, noun=noun, subject=subject
         )
@@ -229,22 +225,8 @@ class Recaller:
         return self._submaterials.penalty(ev.words or "")
 
     def described(self, text: str) -> DescribedNoun | None:
-        """The lexicon noun the description's subject names, and whether the catalog has it."""
-        idx = self.names
-        subject = subject_phrase(text)
-        after_of: tuple[str, ...] = ()
-        if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
-            m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
-            after_of = subject_phrase(m.group(1)) if m else ()
-        noun = described_noun(
-            subject, idx.phrases, idx.heads, idx.vocabulary, GENERIC_NOUNS, after_of, self.kinds
-        )
-        if noun is not None or any(w in idx.vocabulary for w in after_of):
-            return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
-        head = idx.unknown_noun(text) or compound_head(subject, idx.vocabulary)
-        if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
-            subject, head = after_of, foreign_head(after_of, idx.vocabulary)
-        return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))
+        """The noun the description names, and whether the catalog has it (:func:`recall.openset.describe`)."""
+        return describe(text, self.names, self.kinds)
 
     # -- the ranking
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:
@@ -281,7 +263,7 @@ class Recaller:
                 matches=[], confidence=0.0, open_set=not_in_catalog, not_in_catalog=not_in_catalog,
                 described=noun, **base,
             )  # fmt: skip
-        rows, dist = self._candidates(query, named, top, metric, soft is not None)
+        rows, dist = self._candidates(query, named, top, metric, soft)
         score, parts = _ranking_scores(rows, dist, names, soft, metric)
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
@@ -338,15 +320,20 @@ class Recaller:
         return foreign_modifier(subject, words)
 
     def _candidates(
-        self, query: FeatureQuery, named: list[int], top: int, metric: str, every_row: bool
+        self, query: FeatureQuery, named: list[int], top: int, metric: str, soft: SoftEvidence | None
     ) -> tuple[np.ndarray, np.ndarray]:
         """Rows that can rank in the first ``top`` and their distances: the pruned top-k plus the named
-        rows; every row when soft evidence can reorder them (vague words: one scan)."""
+        rows; every row when soft evidence can reorder them (vague words: one scan); for category
+        alternatives alone the union of each variant's pruned top-k (``SoftEvidence.variants``)."""
         snap = self.snapshot
-        if every_row:
+        if soft is not None and (soft.scan or metric not in JP_METRICS):
             rows = np.arange(len(snap), dtype=np.int64)
             return rows, self._distances_of(query, rows, metric) if len(query) else np.zeros(len(rows))
         want = min(len(snap), max(top + 1, COMPETITOR_POOL) + len(named))
+        if soft is not None:
+            found = [top_k(snap, v, want, metric=metric)[0] for v in soft.variants]
+            rows = np.unique(np.concatenate([*found, np.asarray(named, dtype=np.int64)]))
+            return rows, self._distances_of(query, rows, metric) if len(query) else np.zeros(len(rows))
         rows, dist = top_k(snap, query, want, metric=metric, kdtree_cache=self._kdtrees)
         extra = np.setdiff1d(np.asarray(named, dtype=np.int64), rows)
         if len(extra):

@@ -20,6 +20,7 @@ __all__ = [
     "feature_words",
     "is_adjective",
     "is_participle",
+    "noun_phrase",
     "subject_head",
     "subject_phrase",
 ]
@@ -59,10 +60,15 @@ def subject_phrase(text: str) -> tuple[str, ...]:
     noun phrase of the first sentence (words up to a comma, a number or a word of :data:`_PHRASE_ENDS`; determiners and vague size
     words skipped), singular. "A plush dinosaur toy, 35 cm" -> toy; "An orange of 7 cm" -> orange;
     "My daughter's teddy bear" -> bear. No part-of-speech tagger: a heuristic, used only as evidence."""
+    return next(_phrases(text), ())
+
+
+def _phrases(text: str):
+    """The noun phrases of the first sentence, one per chunk (see :func:`subject_phrase`), in order."""
     low = text.lower().replace("\u2019", "'")
     low = re.sub(r"\b(it|that|there|what|he|she)'s\b", r"\1 is", low).replace("'s", "").replace("'", "")
-    sentence = re.split(r"[.!?;:\n]", low, maxsplit=1)[0]
-    for chunk in re.split(r"[,()\[\]\d\"/&+*=-]", sentence):
+    sentence = re.split(r"[.!?;\n]", low, maxsplit=1)[0]  # a colon ends a chunk: "..., 8 cm tall: a salt shaker"
+    for chunk in re.split(r"[,:()\[\]\d\"/&+*=-]", sentence):
         phrase: list[str] = []
         previous = ""
         words = _WORD.findall(chunk)
@@ -76,12 +82,26 @@ def subject_phrase(text: str) -> tuple[str, ...]:
                 break  # "a kitchen timer *shaped* like a tomato", "a tin *filled* with buttons"
             elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
                 pass
+            elif not phrase and previous == "of" and word in _material_words():
+                pass  # "made of glass, ...": a material, not the subject
             elif word not in _PHRASE_SKIP:
                 phrase.append(word)
             previous = word
         if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
-            return tuple(singular(w) for w in phrase)
-    return ()
+            yield tuple(singular(w) for w in phrase)
+
+
+def noun_phrase(text: str) -> tuple[str, ...]:
+    """The subject phrase (:func:`subject_phrase`), or, when its words only state features ("Steel, 15
+    cm long, a nutcracker": "steel"), the first later phrase of the sentence that ends in a noun of the
+    kinds lexicon (:func:`kb.kinds.noun_in`); the subject phrase otherwise."""
+    from kb.kinds import noun_in
+
+    phrases = _phrases(text)
+    first = next(phrases, ())
+    if first and not all(w in feature_words() for w in first):
+        return first
+    return next((p for p in phrases if noun_in(list(p)) is not None), first)
 
 
 #: Words of a request or question before the subject ("please", "could you", "where is", "find me",
@@ -109,6 +129,13 @@ def _compound_verb(word: str, following: list[str]) -> bool:
         return False
     nxt = following[0]
     return nxt not in _PHRASE_ENDS and nxt not in _PHRASE_SKIP and nxt not in _amount_words()
+
+
+@functools.cache
+def _material_words() -> frozenset[str]:
+    from recall.lexicon import MATERIAL_WORDS
+
+    return frozenset(w for w in MATERIAL_WORDS if " " not in w)
 
 
 @functools.cache
