@@ -188,6 +188,7 @@ SHAPE_WORDS: dict[str, tuple[str, int]] = {
     "straw": ("long", 2), "skinny": ("long", 2), "slender": ("long", 3), "bar": ("long", 1), "spoon": ("long", 2), "fork": ("long", 2), "knife": ("long", 2),
     "brush": ("long", 1), "screwdriver": ("long", 2), "wand": ("long", 2), "baton": ("long", 2),
     "marker": ("long", 2), "remote": ("long", 1), "ruler": ("long", 2), "chopstick": ("long", 2),
+    "curved": ("long", 1),
     "round": ("radial", 2), "ball": ("radial", 3), "sphere": ("radial", 3), "spherical": ("radial", 3),
     "globe": ("radial", 2), "orb": ("radial", 2), "ball-shaped": ("radial", 3), "circular": ("radial", 2),
     "disc": ("compact", 2), "disk": ("compact", 2), "disc-shaped": ("compact", 3),

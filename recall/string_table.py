@@ -130,6 +130,10 @@ class StringSet(Set):
     def __len__(self) -> int:
         return len(self.table)
 
+    @classmethod
+    def _from_iterable(cls, it) -> frozenset:
+        return frozenset(it)  # what set operations (|, &, -) give: a plain frozenset
+
     __hash__ = Set._hash
 
 

@@ -46,6 +46,7 @@ def test_set_and_rows_behave_as_a_frozenset_and_a_dict_of_sets():
     words = StringSet(StringTable.of(["mug", "cup", "ball"]))
     assert words == frozenset({"mug", "cup", "ball"}) and frozenset({"mug", "cup", "ball"}) == words
     assert "mug" in words and "pan" not in words and ("mug",) not in words and len(words) == 3
+    assert words | {"pan"} == {"mug", "cup", "ball", "pan"} and words - {"cup"} == {"mug", "ball"}
     phrases = KeyRows(StringTable.of(["tea cup", "mug"]), np.array([0, 2, 3]), np.array([4, 9, 1], np.int32),
                       tuples=True)  # fmt: skip
     assert ("tea", "cup") in phrases and "tea cup" in phrases and ("tea",) not in phrases
