@@ -188,6 +188,7 @@ SHAPE_WORDS: dict[str, tuple[str, int]] = {
     "straw": ("long", 2), "skinny": ("long", 2), "slender": ("long", 3), "bar": ("long", 1), "spoon": ("long", 2), "fork": ("long", 2), "knife": ("long", 2),
     "brush": ("long", 1), "screwdriver": ("long", 2), "wand": ("long", 2), "baton": ("long", 2),
     "marker": ("long", 2), "remote": ("long", 1), "ruler": ("long", 2), "chopstick": ("long", 2),
+    "curved": ("long", 1),
     "round": ("radial", 2), "ball": ("radial", 3), "sphere": ("radial", 3), "spherical": ("radial", 3),
     "globe": ("radial", 2), "orb": ("radial", 2), "ball-shaped": ("radial", 3), "circular": ("radial", 2),
     "disc": ("compact", 2), "disk": ("compact", 2), "disc-shaped": ("compact", 3),
@@ -252,7 +253,8 @@ RIGIDITY_WORDS: dict[str, str] = {
 TEXTURE_WORDS: dict[str, str] = {
     "smooth": "smooth", "glossy": "smooth", "polished": "smooth", "shiny": "smooth", "slick": "smooth",
     "sleek": "smooth", "silky": "smooth", "slippery": "smooth", "glazed": "smooth", "satin": "smooth",
-    "rough": "rough", "coarse": "rough", "fuzzy": "rough", "furry": "rough", "hairy": "rough",
+    "rough": "rough", "coarse": "rough", "porous": "rough", "prickly": "rough", "spiky": "rough",
+    "scaly": "rough", "thorny": "rough", "fuzzy": "rough", "furry": "rough", "hairy": "rough",
     "bumpy": "rough", "grainy": "rough", "gritty": "rough", "scratchy": "rough", "textured": "rough",
     "unfinished": "rough", "unpolished": "rough", "raw": "rough", "splintery": "rough", "felted": "rough",
     "grippy": "grippy", "rubbery": "grippy", "tacky": "grippy", "sticky": "grippy", "non-slip": "grippy",

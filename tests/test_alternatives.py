@@ -123,6 +123,11 @@ def test_wire_and_foil_are_metal():
     assert parse("a foil tray").values()["material"] == "metal"
 
 
+@pytest.mark.parametrize("word", ["porous", "prickly", "spiky", "scaly", "thorny"])
+def test_surface_words_that_are_rough(word):
+    assert parse(f"soft and {word}, 4 by 3 by 1.5 inches").values()["texture"] == "rough"
+
+
 # ------------------------------------------------------------------ light words, relative to the size
 def test_light_words_compare_a_row_with_the_objects_of_its_size():
     from recall.vague import MIN_OF_SIZE, SIZE_FACTOR, VERY_LIGHT_Q, soft_evidence
@@ -205,3 +210,8 @@ def test_alternatives_search_the_union_of_the_variants_and_equal_a_full_scan(tex
     assert {m.name for m in res.matches} <= {
         r.snapshot.names[i] for i in np.flatnonzero(score <= score[best[-1]])
     }
+
+
+def test_curved_is_a_vague_long_shape_that_a_geometric_word_beats():
+    assert parse("curved and soft, about 7.5 inches long").values()["shape"] == "long"
+    assert parse("a curved cylindrical thing").values()["shape"] == "prism"  # priority 3 wins

@@ -81,6 +81,16 @@ def test_kind_index_has_kind_counts_kinds_below():
     assert not kinds.has_kind("jar") and not kinds.has_kind("bottle")
 
 
+def test_a_large_catalog_is_not_scanned_for_its_kinds_to_tell_a_hypernym():
+    from recall.openset import KIND_SCAN_LIMIT
+
+    names = ["apple"] * (KIND_SCAN_LIMIT + 1)
+    kinds = KindIndex(names, [()] * len(names))
+    assert kinds.has_kind("jar") and kinds._rows is None  # assumed, nothing worked out
+    small = KindIndex(names[:KIND_SCAN_LIMIT], [()] * KIND_SCAN_LIMIT)
+    assert not small.has_kind("jar") and small._rows is not None
+
+
 # ------------------------------------------------------------------------------------------ compounds
 def test_a_listed_compound_is_another_object_even_with_catalog_words_in_it():
     for subject in (("egg", "cup"), ("toilet", "brush"), ("watering", "can"), ("garlic", "bulb")):
@@ -189,7 +199,7 @@ def test_a_y_after_a_vowel_is_no_adjective_ending():
 
 # ------------------------------------------------------------------------------------------ verdict
 def test_one_verdict_line_for_every_face():
-    from recall.openset import verdict
+    from recall.verdict import verdict
 
     cases = {
         "An orange of 7 cm diameter.": "not in the catalog",
@@ -233,3 +243,29 @@ def test_a_collective_or_kind_word_names_no_missing_object():
     for text in ("A piece of clothing, cotton, 70 by 50 cm, 150 g.", "Some cutlery, steel, 20 cm long, 50 g."):
         res = seed().recall_text(text)
         assert not res.not_in_catalog and not res.open_set, text
+
+
+def test_made_of_a_material_is_no_subject_and_a_colon_ends_a_chunk():
+    from recall.subject import noun_phrase
+
+    assert noun_phrase("Made of glass, 8 cm tall: a salt shaker.") == ("salt", "shaker")
+    assert subject_phrase("Teapot: ceramic, 900 g") == ("teapot",)
+    assert subject_phrase("A bowl made of glass, 12 cm") == ("bowl",)
+
+
+# ------------------------------------------------------------------------------------------- typos
+def test_a_typing_slip_in_a_catalog_or_lexicon_noun_is_read_as_that_noun():
+    from recall.typos import MIN_LENGTH, corrected, edits
+
+    heads = seed().names.heads
+    assert "screwdriver" in edits("screwdiver") and "screwdiver" not in edits("screwdiver")
+    assert corrected("screwdiver", heads) == "screwdriver" and corrected("stappler", heads) == "stapler"
+    assert corrected("nutcraker", heads) == "nutcracker"  # a lexicon noun
+    assert corrected("flyswatter", heads) is None  # nothing one edit away
+    assert corrected("jugg", heads) is None and MIN_LENGTH == 6  # too short to correct
+    res = seed().recall_text("A screwdiver, 20 cm long, 80 g.")
+    assert not res.not_in_catalog and res.described.noun == "screwdriver"
+    res = seed().recall_text("A nutcraker, metal, 15 cm long, 150 g.")
+    assert res.not_in_catalog and res.described.noun == "nutcracker"
+    # a correction that names no noun (a participle of a catalog name: "sliced") is no correction
+    assert seed().recall_text("A bagel slicer, plastic, 25 cm long, 300 g.").not_in_catalog

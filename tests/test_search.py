@@ -367,7 +367,7 @@ def sql_catalog(tmp_path_factory):
     return kb, Recaller.from_db(tmp / "catalog.duckdb")
 
 
-@pytest.mark.parametrize("metric", ["jp", "jplog", "euclidean", "minkowski", "cosine"])
+@pytest.mark.parametrize("metric", ["jp", "jplog", "euclidean", "minkowski", "cosine", "kdtree"])
 @pytest.mark.parametrize(
     "values",
     [
@@ -389,6 +389,12 @@ def test_numpy_and_sql_macros_agree(sql_catalog, values, metric):
     if metric in ("jp", "jplog"):
         assert kb.sql(f"SELECT name, distance FROM {metric}_rank({args})").rows == sql_rows
     result = recaller.recall_features(values, top=len(sql_rows), metric=metric, features_only=True)
+    if metric == "kdtree":  # the tree orders tied rows its own way: the same distance of every object
+        by_name = dict(sql_rows)
+        assert sorted(m.name for m in result.matches) == sorted(by_name)
+        for match in result.matches:
+            assert match.distance == pytest.approx(by_name[match.name], rel=1e-6, abs=1e-6)
+        return
     assert [m.name for m in result.matches] == [r[0] for r in sql_rows]
     for match, (_, distance) in zip(result.matches, sql_rows, strict=True):
         # the engine holds float32 values (6e-8 relative), SQL the stored doubles

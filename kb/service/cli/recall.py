@@ -250,8 +250,8 @@ def _match_table(matches, result, title: str):
 
 def _verdict(result) -> str:
     """One line: not in the catalog / not a close match / a guess / close match, the confidence and why
-    (:func:`recall.openset.verdict`, the same line as ``--json``'s, the HTTP API's and the web page's)."""
-    from recall.openset import verdict
+    (:func:`recall.verdict.verdict`, the same line as ``--json``'s, the HTTP API's and the web page's)."""
+    from recall.verdict import verdict
 
     return verdict(result).text
 
