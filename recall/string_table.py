@@ -54,7 +54,9 @@ def key_hashes(text: np.ndarray, starts: np.ndarray) -> np.ndarray:
             exponent = lengths[a:b][key] - (np.arange(len(chunk)) - local[:-1][key]) - 1
             weights = np.where(exponent >= 0, powers[np.maximum(exponent, 0)], np.uint64(0))
             sums = np.concatenate(([np.uint64(0)], np.cumsum(chunk * weights, dtype=np.uint64)))
-            out[a:b] = sums[local[1:]] - sums[local[:-1]] + lengths[a:b].astype(np.uint64) * np.uint64(_LENGTH)
+            out[a:b] = (
+                sums[local[1:]] - sums[local[:-1]] + lengths[a:b].astype(np.uint64) * np.uint64(_LENGTH)
+            )
     return out
 
 
@@ -129,6 +131,10 @@ class StringSet(Set):
 
     def __len__(self) -> int:
         return len(self.table)
+
+    @classmethod
+    def _from_iterable(cls, it) -> frozenset:
+        return frozenset(it)  # what set operations (|, &, -) give: a plain frozenset
 
     __hash__ = Set._hash
 
@@ -247,7 +253,9 @@ class GroupColumn(Sequence):
 
     def __eq__(self, other) -> bool:
         if isinstance(other, Sequence) and not isinstance(other, str):
-            return len(self) == len(other) and all(tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
+            return len(self) == len(other) and all(
+                tuple(a) == tuple(b) for a, b in zip(self, other, strict=True)
+            )
         return NotImplemented
 
     __hash__ = None  # like a list
