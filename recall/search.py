@@ -81,10 +81,11 @@ FIRST_POOL = 64
 #: The scan's first bound: the k-th of a sample of SAMPLE_PER_ROW_K * sqrt(n k) rows (n k / sample
 #: rows then pass it, ~sqrt(n k) / SAMPLE_PER_ROW_K: a few dozen to a few hundred).
 SAMPLE_PER_ROW_K = 4.0
-#: Rows of the nearest cells scored to tighten the first bound before choosing a plan (1 024 against
-#: 2 048: 8 % less CPU on described, 14 % on sizes-only descriptions at 1M, 6 % at 100k, in interleaved
-#: A/Bs, synthetic; 512 gained 4 % more, within the noise; the probe's cost figure was fitted at 2 048).
-PROBE_ROWS = 1024
+#: Cells of smallest bound whose rows are scored to tighten the first bound before choosing a plan:
+#: 1 024 rows up to 4M objects (64 a cell; against 2 048: 8 % less CPU on described and 14 % on
+#: sizes-only descriptions at 1M, 6 % at 100k, in interleaved A/Bs, synthetic), more above, where the
+#: cells grow (at 10M 1 024 rows were 7 cells and a jplog description's weak bound cost 51 ms).
+PROBE_CELLS = 16
 #: Rows filtered per step of the window plan (the bound tightens between steps).
 CHUNK = 1 << 14
 MAX_CHUNK = 1 << 17
@@ -271,7 +272,8 @@ class JPIndex(SortedColumns):
         if plan == "scan":
             return "scan", *self._scan(query, items, k)
         lb = self.cells.bounds(query)
-        best_rows, best_scores = self.cells.probe(query, k, best_rows, best_scores, lb, PROBE_ROWS)
+        rows = PROBE_CELLS * self.n // len(lb)
+        best_rows, best_scores = self.cells.probe(query, k, best_rows, best_scores, lb, rows)
         s = float(best_scores[-1])
         sizes = [self._window_size(it, s) for it in items]
         lead = min(range(len(items)), key=lambda i: sizes[i])
