@@ -83,6 +83,13 @@ HOSTILE_SQL = [
     "select current_setting('temp_directory')",
     "select * from duckdb_extensions()",
     "select * from duckdb_secrets()",
+    # settings through the pg_catalog view, and SQL built at run time that no text check can see into
+    "select * from pg_catalog.pg_settings",
+    "select * from pg_settings where setting like '%/%'",
+    "select * from query('select * from duckdb_' || 'databases()')",
+    'select * from "query" (\'select 1\')',
+    "select * from QUERY_TABLE('objects')",
+    "select json_execute_serialized_sql(json_serialize_sql('select 1'))",
 ]
 
 #: The resource bombs of the review: each grew a process past 4 GB or ran past its timeout.
@@ -141,6 +148,30 @@ def test_server_paths_do_not_come_back_from_metadata(seeded_db):
     assert str(seeded_db.parent) not in repr(names)
     with pytest.raises(QueryRefused, match="duckdb_databases"):
         kb.sql("SELECT path FROM duckdb_databases()")
+
+
+def test_no_metadata_view_answers_with_a_server_path(seeded_db):
+    """Every view and table function the sandbox lets through, asked for all its rows: none of them holds
+    the catalog's folder (the pg_settings view did, through temp_directory and allowed paths)."""
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    views = kb.sql(
+        "SELECT schema_name || '.' || view_name FROM duckdb_views() WHERE database_name = 'system'", max_rows=10_000
+    ).rows
+    leaked = []
+    for (view,) in views:
+        try:
+            rows = kb.sql(f"SELECT * FROM {view}", timeout_s=5, max_rows=10_000).rows
+        except QueryRefused:
+            continue
+        if str(seeded_db.parent) in repr(rows):
+            leaked.append(view)
+    assert leaked == []
+
+
+def test_words_that_name_dynamic_sql_are_fine_as_column_names(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    answer = kb.sql("SELECT name AS query, 1 AS query_table FROM objects ORDER BY name LIMIT 1")
+    assert answer.columns == ["query", "query_table"] and len(answer.rows) == 1
 
 
 _BOMB_RUNNER = textwrap.dedent(
