@@ -43,6 +43,7 @@ __all__ = [
     "HIDDEN_FUNCTIONS",
     "CATALOG_READ_CONFIG",
     "DYNAMIC_SQL_FUNCTIONS",
+    "MAX_TIMEOUT_S",
     "SANDBOX_CONFIG",
     "USER_SQL_CONFIG",
     "WORKER_MEMORY_BYTES",
@@ -121,6 +122,9 @@ _HIDDEN_RE = re.compile(r"(?<![a-z0-9_])(" + "|".join(HIDDEN_FUNCTIONS) + r")(?!
 _DYNAMIC_RE = re.compile(
     r"(?<![a-z0-9_])(" + "|".join(DYNAMIC_SQL_FUNCTIONS) + r")\"?\s*\(", re.IGNORECASE
 )
+#: The longest time limit user SQL may ask for (a day; the HTTP service caps it far lower). A longer one is
+#: refused with a reason: past about 10**9 s the operating system's timers cannot represent it.
+MAX_TIMEOUT_S = 86_400.0
 #: A worker's answer may be at most this large (pickled); a bigger one is refused inside the worker.
 MAX_ANSWER_BYTES = 64 * 1024 * 1024
 #: Worker processes that may run at once (more callers wait for a free one, within their time limit).
@@ -428,8 +432,11 @@ def run_user_sql(
     Raises :class:`~kb.errors.QueryRefused`, :class:`~kb.errors.QueryFailed`,
     :class:`~kb.errors.QueryTimeout` (the worker is killed at the deadline) or a database error.
     """
-    if not (timeout_s > 0 and max_rows >= 1):
-        raise QueryFailed(f"timeout_s must be > 0 and max_rows >= 1, got {timeout_s!r} and {max_rows!r}")
+    if not (0 < timeout_s <= MAX_TIMEOUT_S and max_rows >= 1):
+        raise QueryFailed(
+            f"timeout_s must be > 0 and at most {MAX_TIMEOUT_S:g} s and max_rows >= 1, "
+            f"got {timeout_s!r} and {max_rows!r}"
+        )
     request = {"path": str(Path(path).resolve()), "query": query, "params": list(params) if params else None,
                "max_rows": int(max_rows), "timeout_s": float(timeout_s), "busy_timeout": float(busy_timeout)}
     worker = _POOL.acquire(time.monotonic() + timeout_s)

@@ -21,6 +21,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from kb import sandbox
 from kb.catalog import KnowledgeBase
 from kb.errors import QueryFailed, QueryRefused, QueryTimeout
 from kb.features import ObjectRecord
@@ -244,9 +245,11 @@ def test_a_timed_out_query_leaves_no_worker_running(seeded_db):
 
 def test_sql_limits_are_checked_before_running(seeded_db):
     kb = KnowledgeBase.open(seeded_db, read_only=True)
-    for bad in ({"timeout_s": 0}, {"timeout_s": -1}, {"max_rows": 0}):
-        with pytest.raises(QueryFailed):
+    for bad in ({"timeout_s": 0}, {"timeout_s": -1}, {"max_rows": 0}, {"timeout_s": float("nan")},
+                {"timeout_s": sandbox.MAX_TIMEOUT_S * 1.001}, {"timeout_s": 1e308}, {"timeout_s": float("inf")}):
+        with pytest.raises(QueryFailed, match="timeout_s must be"):
             kb.sql("SELECT 1", **bad)
+    assert kb.sql("SELECT 1", timeout_s=sandbox.MAX_TIMEOUT_S).rows == [(1,)]  # the limit itself is allowed
 
 
 # ---------------------------------------------------------------------------------------------- malformed CSVs
