@@ -69,7 +69,8 @@ CONTENTS_DENSITY_G_PER_ML = 1.0
 #: Dimension words (tag DIM, nouns DIMN) -> role. Roles: ``length`` and ``height`` (usually the largest,
 #: a), ``width`` (b),
 #: ``depth`` (b, or c when alone with a width), ``thickness`` (usually the smallest, c), ``diameter``
-#: (two equal dims), ``radius`` (doubled to a diameter), ``across`` (a diameter for a round thing, else
+#: (two equal dims), ``radius`` (doubled to a diameter), ``circumference`` (divided by pi to a diameter),
+#: ``across`` (a diameter for a round thing, else
 #: a width), ``side`` (a cube: all three equal), ``size`` (an unlabelled extent).
 DIMENSION_WORDS: dict[str, str] = {
     "long": "length", "length": "length", "lengthwise": "length", "lengths": "length",
@@ -78,6 +79,8 @@ DIMENSION_WORDS: dict[str, str] = {
     "thick": "thickness", "thickness": "thickness", "deep": "depth", "depth": "depth",
     "diameter": "diameter", "diam": "diameter", "dia": "diameter", "diametre": "diameter",
     "radius": "radius",
+    "circumference": "circumference", "circ": "circumference", "girth": "circumference",
+    "around": "circumference",  # only after a length ("30 cm around"): a hedge elsewhere (recall.tags)
     "side": "side", "sides": "side", "edge": "side", "edges": "side", "on each side": "side",
     "each side": "side", "per side": "side", "a side": "side", "on a side": "side", "each way": "side",
     "on all sides": "side", "all sides": "side", "in every direction": "side",
@@ -104,7 +107,7 @@ UNIT_ONLY_DIMENSION_WORDS: frozenset[str] = frozenset({"square"})
 #: value with its unit left out), before any other word after a number it is the unit inch ("4 in long").
 DIMENSION_NOUNS: frozenset[str] = frozenset(
     {"length", "lengths", "height", "heigth", "width", "breadth", "thickness", "depth", "diameter", "diam",
-     "dia", "diametre", "radius", "side", "sides", "edge", "edges", "size", "in size"}
+     "dia", "diametre", "radius", "circumference", "circ", "girth", "side", "sides", "edge", "edges", "size", "in size"}
 )  # fmt: skip
 
 # ---------------------------------------------------------------------------------------------- hedges

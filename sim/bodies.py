@@ -44,8 +44,9 @@ __all__ = [
 
 #: Part of the hand version stored with every trial (sim/hand.py): bump it when a body changes, so that
 #: stored validations are re-run. 2: composite bodies from the kind (1: one primitive from the shape); 3: floppy
-#: flat objects drape as hinged strips (sim/sheet.py).
-GEOMETRY_VERSION = "3"
+#: flat objects drape as hinged strips (sim/sheet.py); 4: a flat object too narrow to overhang a table edge
+#: under the pads lies with its length across it (sim/grasps.py edge_depth_cm).
+GEOMETRY_VERSION = "4"
 #: Sides within this ratio count as equal (a sphere, a disk, a round cross-section).
 ROUND_RATIO = 0.8
 #: Objects named with one of these words are round in cross-section when two of their sides are about

@@ -33,6 +33,7 @@ from sim.grasps import (
     GRASP_TYPES,
     HAND_MAX_APERTURE_CM,
     GraspPlan,
+    edge_depth_cm,
     edge_grip_in_cm,
     is_flat_grasp,
     side_force_capacity,
@@ -134,7 +135,8 @@ def _context(o: PlannedObject) -> _Context:
             f"grasped width {width:g} cm is over 7 cm, wider than 96 % of human grasp locations (Feix 2014)"
         )
     base_force = required_grip_force(o.mass_g, o.friction, o.fragility)
-    edge_force = edge_grip_force(o.mass_g, o.b_cm, o.fragility) if is_flat_grasp(o.c_cm, o.b_cm) else 0.0
+    flat = is_flat_grasp(o.c_cm, o.b_cm)  # across the table edge: its middle side, or its length (a key)
+    edge_force = edge_grip_force(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), o.fragility) if flat else 0.0
     # A side wrap of a deep object (not a flat one: that is taken at a table edge) holds the weight's moment.
     wrap_force = 0.0 if edge_force else wrap_moment_force(o.mass_g, o.b_cm, o.friction, o.fragility)
     return _Context(o, feasible, tuple(notes), base_force, edge_force, wrap_force)
@@ -152,9 +154,10 @@ def _planned_force(ctx: _Context, program: HandProgram, rationale: list[str]) ->
         rationale.append("squeezable: a softer grip (it deforms to the fingers, more contact area)")
     if ctx.edge_force > force:
         force = ctx.edge_force
+        depth = edge_depth_cm(o.a_cm, o.b_cm)
         rationale.append(
-            f"flat: picked up at its edge, the pads {edge_grip_in_cm(o.b_cm):.3g} cm in and its centre of mass "
-            f"{o.b_cm / 2:.3g} cm in; the squeeze must hold the moment of its weight: {ctx.edge_force:g} N"
+            f"flat: picked up at its edge, the pads {edge_grip_in_cm(depth):.3g} cm in and its centre of mass "
+            f"{depth / 2:.3g} cm in; the squeeze must hold the moment of its weight: {ctx.edge_force:g} N"
         )
     ranked = force
     if program.control == "wrap" and program.approach == "side" and ctx.wrap_force > force:

@@ -17,7 +17,7 @@ from kb.errors import SimulationError
 from kb.features import ObjectRecord
 from sim import hand as H
 from sim.bodies import HOLD_HANDLE as _HOLD_HANDLE
-from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
+from sim.grasps import GRASP_TYPES, GraspPlan, edge_depth_cm, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
 from sim.objects import ObjectModel, add_object, add_table, free_dim, object_model, pose_rotation
 from sim.programs import program_for
 from sim.sheet import add_sheet, is_sheet
@@ -154,8 +154,12 @@ def _is_flat(obj: ObjectModel, plan: GraspPlan) -> bool:
 
 def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     """Flat on the table (grasped thickness up), its longest side along the table edge (world y, where the
-    fingers spread) and the other across it (world x, overhanging)."""
+    fingers spread) and the other across it (world x, overhanging); the other way round when that side is
+    too short to overhang under the pads (sim/grasps.py ``edge_depth_cm``: a key, a ruler)."""
     rest = sorted((d for d in "abc" if d != plan.grasped_dim), key=obj.extent_cm, reverse=True)
+    long_cm, middle_cm = obj.extent_cm(rest[0]), obj.extent_cm(rest[1])
+    if edge_depth_cm(long_cm, middle_cm) == long_cm and long_cm != middle_cm:
+        return {plan.grasped_dim: 2, rest[0]: 0, rest[1]: 1}
     return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
 
 

@@ -106,11 +106,17 @@ def test_a_listed_compound_is_another_object_even_with_catalog_words_in_it():
 
 def test_a_catalog_name_inside_the_described_compound_does_not_name_it():
     res = seed().recall_text("A ceramic egg cup, 5 cm tall.")
-    assert res.not_in_catalog and res.described.noun == "egg cup" and res.confidence <= NOT_IN_CATALOG_CONFIDENCE
+    assert (
+        res.not_in_catalog and res.described.noun == "egg cup" and res.confidence <= NOT_IN_CATALOG_CONFIDENCE
+    )
     res = seed().recall_text("a lemon squeezer, glass, 14 cm across, 300 g")
     assert res.not_in_catalog
     noun = seed().described("an egg cup, 5 cm")
-    assert names_inside(noun, ("egg",)) and not names_inside(noun, ("egg", "plate")) and not names_inside(noun, ())
+    assert (
+        names_inside(noun, ("egg",))
+        and not names_inside(noun, ("egg", "plate"))
+        and not names_inside(noun, ())
+    )
     assert not names_inside(None, ("egg",))
 
 
@@ -175,9 +181,13 @@ def test_the_lexicon_is_a_broad_household_vocabulary_and_synonyms_name_catalog_o
 # --------------------------------------------------------------------------------------- confidence
 def test_an_unknown_named_noun_lowers_confidence():
     for margin, closeness in ((10.0, 0.1), (10.0, 0.0), (6.0, 0.05)):
-        assert confidence_of(margin, closeness, True, "jplog") < confidence_of(margin, closeness, False, "jplog")
+        assert confidence_of(margin, closeness, True, "jplog") < confidence_of(
+            margin, closeness, False, "jplog"
+        )
     for margin, closeness in ((2.0, 0.05), (0.5, 0.2)):  # never higher, also where the margin caps both
-        assert confidence_of(margin, closeness, True, "jplog") <= confidence_of(margin, closeness, False, "jplog")
+        assert confidence_of(margin, closeness, True, "jplog") <= confidence_of(
+            margin, closeness, False, "jplog"
+        )
     known = seed().recall_text("A hammer, steel, 33 cm long, 600 g.")
     unseen = seed().recall_text("A flyswatter, steel, 33 cm long, 600 g.")
     assert unseen.not_in_catalog and unseen.confidence <= NOT_IN_CATALOG_CONFIDENCE < known.confidence
@@ -240,7 +250,10 @@ def test_a_noun_after_a_subject_of_feature_words_is_the_described_noun():
 
 
 def test_a_collective_or_kind_word_names_no_missing_object():
-    for text in ("A piece of clothing, cotton, 70 by 50 cm, 150 g.", "Some cutlery, steel, 20 cm long, 50 g."):
+    for text in (
+        "A piece of clothing, cotton, 70 by 50 cm, 150 g.",
+        "Some cutlery, steel, 20 cm long, 50 g.",
+    ):
         res = seed().recall_text(text)
         assert not res.not_in_catalog and not res.open_set, text
 
