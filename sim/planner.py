@@ -231,9 +231,22 @@ def _plan(
             "assumed_mass_g": round(o.mass_g, 1),
             "planner_version": PLANNER_VERSION,
             "program": program.name,
+            **_round_across(o, hold),
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
+
+
+def _round_across(o: PlannedObject, hold: dict[str, Any] | None) -> dict[str, float]:
+    """``{"round_across_cm": diameter}`` when the grasped side is round (a cylinder lying on its side,
+    grasped across its diameter: a battery, a marker), else {}; sim/diagnosis.py reads it to tell a rod
+    pressed into the table from a slip (grasp-small)."""
+    if hold:
+        return {}
+    body = o.body()
+    if body.form != "cylinder" or "c" not in body.round_dims:
+        return {}
+    return {"round_across_cm": round(o.c_cm, 3)}
 
 
 def _handle_hold(ctx: _Context) -> dict[str, Any] | None:

@@ -83,7 +83,7 @@ def test_held_and_errored_rows():
     assert failure_cause(_row(plan, "held: moved 0.1 cm", outcome="success")) == "held: moved 0.1 cm"
     err = diagnose(_row(plan, "simulation diverged: non-finite qacc", outcome="error"))
     assert err.kind == "error" and "diverged" in err.text
-    assert set(CAUSES) == {"aperture", "mass", "size", "friction", "moment"}
+    assert set(CAUSES) == {"aperture", "mass", "size", "pressed", "friction", "moment"}
 
 
 def test_a_row_without_its_plan_still_gets_a_cause():
@@ -142,3 +142,25 @@ def test_a_plan_the_hand_cannot_open_round_is_a_setup_failure_whatever_the_trial
     fits = best_grasp(REMOTE)
     assert fits.params["fits_aperture"]
     assert not is_setup_failure(_row(fits, SLIPPED)) and is_setup_failure(_row(fits, INSIDE))
+
+
+def _rod(diameter: float) -> dict:
+    return dict(a_cm=5.05, b_cm=diameter, c_cm=diameter, mass_g=23, shape="long", material="metal")
+
+
+def test_a_thin_rod_not_lifted_by_a_pinch_from_above_was_pressed_into_the_table_at_its_boundary():
+    from sim.diagnosis import PAD_TIP_RADIUS_CM
+
+    assert PAD_TIP_RADIUS_CM == 0.765  # the index's distal pad (0.85 cm x 0.9 taper), thinner than the thumb's
+    below, at = 2 * PAD_TIP_RADIUS_CM - 0.01, 2 * PAD_TIP_RADIUS_CM
+    plan = best_grasp(_rod(below))
+    assert plan.approach == "top" and program_for(plan.grasp_type).control != "wrap"
+    assert plan.params["round_across_cm"] == below
+    cause = diagnose(_row(plan, NOT_LIFTED))
+    assert cause.kind == "pressed" and "above its centre line" in cause.text
+    assert diagnose(_row(best_grasp(_rod(at)), NOT_LIFTED)).kind == "friction"  # the pads reach its centre line
+    assert diagnose(_row(plan, SLIPPED)).kind == "friction"  # lifted, then slipped: not pressed down
+    wrap = next(p for p in plan_grasps(_rod(below)) if program_for(p.grasp_type).control == "wrap")
+    assert diagnose(_row(wrap, NOT_LIFTED)).kind != "pressed"
+    flat = best_grasp(dict(a_cm=5.05, b_cm=2.0, c_cm=1.0, mass_g=23, shape="long", material="metal"))
+    assert "round_across_cm" not in flat.params and diagnose(_row(flat, NOT_LIFTED)).kind == "friction"
