@@ -13,6 +13,10 @@ numbers (stored with every result: its ``params`` and grip force, sim/planner.py
 | ``friction`` | not lifted, or slipped past the limit, with a squeeze within the grasp's strength | squeeze times friction did not carry its weight and the push |
 | ``moment`` | turned past the limit with a squeeze within the grasp's strength | the weight's moment about the grip, or a push, turned it out of the pads |
 
+A draping sheet (the plan's ``sheet_held_cm``: floppy, flat at a table edge, sim/sheet.py) is no ``mass``
+cause for the rigid plate's edge moment the planner computes: only its friction bound can be; turned, it
+is a ``moment`` of the hanging part's weight at the held strip's inner edge, with those numbers.
+
 The checks run in that order: the first that applies is the cause. Report and ``grasp validate`` show it
 beside the trial's reason, never instead of it.
 """
@@ -87,7 +91,10 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
         )
     if "inside" in reason:
         return Cause("aperture", f"the hand, opened for a {grasp.replace('_', ' ')}, cannot get round it ({width:g} cm across)")
-    if params.get("force_within_capacity") is False:
+    sheet = _sheet(params, reason, mass, capacity, grasp)
+    if sheet is not None:
+        return sheet
+    if params.get("force_within_capacity") is False and "sheet_held_cm" not in params:
         needed = _num(params.get("needed_force_n"), _num(params.get("required_force_n")))
         return Cause(
             "mass",
@@ -111,6 +118,31 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
         "friction",
         f"a squeeze of {squeeze:.3g} N at friction {mu:g} carries about {2 * mu * squeeze:.3g} N; its weight is "
         f"{weight:.3g} N and the pushes add as much again",
+    )
+
+
+def _sheet(params: Mapping[str, Any], reason: str, mass: float, capacity: float, grasp: str) -> Cause | None:
+    """A draping sheet (the plan's ``sheet_held_cm``, sim/sheet.py): the planner's edge moment is a rigid
+    plate's, which the trial's sheet does not have, so it is no ``mass`` cause; the friction bound is.
+    A turn is the hanging part's pull at the held strip's inner edge, behind the pads."""
+    if "sheet_held_cm" not in params:
+        return None
+    bound = _num(params.get("required_force_n"))
+    if bound > capacity:
+        return Cause("mass", f"holding its {mass:.0f} g needs a squeeze of {bound:g} N against friction, more than the "
+                     f"{capacity:g} N a {grasp.replace('_', ' ')} gives")  # fmt: skip
+    if not reason.startswith("turned"):
+        return None
+    held, grip_in = _num(params.get("sheet_held_cm")), _num(params.get("sheet_grip_in_cm"))
+    hanging = _num(params.get("sheet_hanging_g"))
+    lever = held - grip_in
+    return Cause(
+        "moment",
+        f"a draping sheet: {hanging:.0f} g of it hang from the held strip's inner edge, {lever:.3g} cm behind the "
+        f"pads ({grip_in:.3g} cm in from its edge): {hanging / 1000 * GRAVITY * lever:.3g} N cm, that turned the "
+        f"strip in the pads (the "
+        f"planner's {_num(params.get('needed_force_n')):g} N is a rigid plate's edge moment, which a sheet does "
+        "not have); a person gathers it into the fist, which this fixed-wrist hand at the table edge does not do",
     )
 
 

@@ -164,3 +164,21 @@ def test_a_thin_rod_not_lifted_by_a_pinch_from_above_was_pressed_into_the_table_
     assert diagnose(_row(wrap, NOT_LIFTED)).kind != "pressed"
     flat = best_grasp(dict(a_cm=5.05, b_cm=2.0, c_cm=1.0, mass_g=23, shape="long", material="metal"))
     assert "round_across_cm" not in flat.params and diagnose(_row(flat, NOT_LIFTED)).kind == "friction"
+
+
+TOWEL = dict(a_cm=75, b_cm=40, c_cm=0.5, mass_g=200, shape="thin", material="fabric", rigidity="floppy")
+
+
+def test_a_draping_sheet_is_no_mass_failure_for_a_rigid_plates_edge_moment():
+    plan = best_grasp(TOWEL)
+    p = plan.params
+    assert p["force_within_capacity"] is False and p["needed_force_n"] > 60  # the rigid plate's edge moment
+    assert (p["sheet_held_cm"], p["sheet_grip_in_cm"], p["sheet_hanging_g"]) == (14.0, 6.0, 130.0)  # 40 cm deep
+    cause = diagnose(_row(plan, TURNED))
+    assert cause.kind == "moment" and "130 g" in cause.text and "8 cm behind the pads" in cause.text
+    assert "10.2 N cm" in cause.text  # 0.13 kg x 9.81 m/s^2 x 8 cm
+    assert diagnose(_row(plan, SLIPPED)).kind == "friction"  # the friction bound, 3.7 N, is within 60 N
+    rigid = best_grasp({**TOWEL, "rigidity": "rigid"})  # the same plate, rigid: no sheet, the edge moment is real
+    assert "sheet_held_cm" not in rigid.params and diagnose(_row(rigid, TURNED)).kind == "mass"
+    heavy = best_grasp({**TOWEL, "mass_g": 20000})  # its friction bound beyond the grasp: mass, as for a plate
+    assert "sheet_held_cm" in heavy.params and diagnose(_row(heavy, TURNED)).kind == "mass"
