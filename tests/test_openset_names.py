@@ -173,3 +173,16 @@ def test_a_ceramic_thing_of_mug_size_is_the_mug_not_the_candle():
     assert any(w.startswith("ceramic") for w in hybrid.vague)
     # features only (no names, so no finer material) the candle's 10 cm fit better in log units
     assert seed().recall_text(text, features_only=True, metric="jplog").best.name == "candle"
+
+
+def test_modifiers_before_a_catalog_head_never_make_it_unknown_but_a_noun_does():
+    """A lexicon compound whose words before a catalog head are materials (also multi-word: "cast
+    iron", "stainless steel"), colours or adjectives names a sort of the catalog's objects; a noun
+    before the head ("bottle warmer", "egg cup") another object."""
+    kw = dict(phrases=set(), vocabulary=frozenset(), generic=GENERIC_NOUNS)
+    for subject in (("heavy", "cast", "iron", "pan"), ("cast", "iron", "pan"), ("red", "cast", "iron", "pan")):
+        assert described_noun(subject, heads={"pan"}, **kw).in_catalog, subject
+    assert not described_noun(("cast", "iron", "pan"), heads={"pot"}, **kw).in_catalog
+    assert not described_noun(("bottle", "warmer"), heads={"bottle", "warmer"}, **kw).in_catalog
+    assert not described_noun(("egg", "cup"), heads={"cup"}, **kw).in_catalog
+
