@@ -39,3 +39,18 @@ def test_no_demo_sample_description_is_wrongly_flagged_not_in_the_catalog(demo):
     assert flagged == ["An orange of 7 cm diameter."]  # the paper's orange: no orange in the catalog
     pan = demo.recall_text("a heavy cast iron pan, roughly 26 cm across and a bit over two kilograms.")
     assert not pan.open_set and ("pan" in pan.best.name or "skillet" in pan.best.name)
+
+
+@pytest.mark.parametrize("word", ["wasserkocher", "caffettiera", "théière", "sartén", "cafetera"])
+def test_a_word_of_an_ingested_name_finds_it_even_when_the_lexicon_does_not_know_it(demo, word):
+    res = demo.recall_text(f"a {word}")
+    assert res.matches and word in res.best.name.split()[0], (word, [m.name for m in res.matches[:3]])
+    assert res.unknown_noun is None and not res.not_in_catalog  # accents kept: no "'th' is no catalog noun"
+
+
+def test_an_empty_result_is_never_a_close_match(demo):
+    from recall.verdict import verdict
+
+    res = demo.recall_text("qwerty uiop")
+    assert not res.matches and verdict(res).label != "close match"
+    assert res.to_dict()["verdict"]["label"] == "not a close match"
