@@ -35,6 +35,7 @@ columns; :func:`encode` returns the vector and a mask of the columns that are kn
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
@@ -119,6 +120,17 @@ VECTOR_COLUMNS: tuple[str, ...] = (
     *(f"{feat}={val}" for feat, vals in CATEGORIES.items() for val in vals),
 )
 _VECTOR_INDEX = {col: i for i, col in enumerate(VECTOR_COLUMNS)}
+
+
+#: Characters no name or alias may hold, whatever path it comes in by (CSV, HTTP, Python, ingestion): control
+#: characters, NUL included (the CSV import refuses them, so an export holding one could not be read back).
+_UNWRITABLE_NAME = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+
+
+def _check_name_text(field_name: str, text: str) -> None:
+    bad = _UNWRITABLE_NAME.search(text)
+    if bad:
+        raise InvalidFeature(field_name, text, f"contains the control character {bad.group()!r}")
 
 
 def normalize_name(name: str) -> str:
@@ -271,8 +283,11 @@ class ObjectRecord:
         clean_name = normalize_name(name) if name is not None else ""
         if not clean_name:
             raise InvalidFeature("name", name, "missing name")
+        _check_name_text("name", clean_name)
         values = validate_features(features)
         clean_aliases = tuple(dict.fromkeys(a for a in (normalize_name(x) for x in aliases) if a and a != clean_name))
+        for alias in clean_aliases:
+            _check_name_text("aliases", alias)
         return cls(name=clean_name, aliases=clean_aliases, source=source, extra=dict(extra or {}), **values)
 
     @property

@@ -11,6 +11,7 @@ from typing import Any, Literal
 
 __all__ = [
     "ACTIVE_FINGERS",
+    "sheet_held_cm",
     "FAMILIES",
     "FINGER_MAX_FORCE_N",
     "GRASP_TYPES",
@@ -131,6 +132,13 @@ def edge_grip_in_cm(depth_cm: float) -> float:
     and the pinch's reach allow (the nearer, the smaller the moment of its weight about the grip)."""
     overhang = edge_overhang_cm(depth_cm)
     return max(EDGE_MIN_GRIP_IN_CM, min(depth_cm / 2.0, EDGE_MAX_GRIP_IN_CM, overhang - EDGE_PAD_CLEAR_CM))
+
+
+def sheet_held_cm(depth_cm: float, overhang_cm: float) -> float:
+    """How deep (cm, from its overhanging edge in) the strip of a draping sheet is that the hand holds: to
+    twice the overhang, so its own centre of mass sits over the table edge, or the whole sheet when that is
+    shallower (sim/sheet.py builds it so; sim/diagnosis.py reads it from the plan)."""
+    return min(depth_cm, 2.0 * overhang_cm)
 
 
 def edge_depth_cm(long_cm: float, middle_cm: float) -> float:

@@ -35,7 +35,9 @@ from sim.grasps import (
     GraspPlan,
     edge_depth_cm,
     edge_grip_in_cm,
+    edge_overhang_cm,
     is_flat_grasp,
+    sheet_held_cm,
     side_force_capacity,
 )
 from sim.grip_force import (
@@ -231,9 +233,42 @@ def _plan(
             "assumed_mass_g": round(o.mass_g, 1),
             "planner_version": PLANNER_VERSION,
             "program": program.name,
+            **_round_across(o, hold),
+            **_sheet(ctx, hold),
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
+
+
+def _round_across(o: PlannedObject, hold: dict[str, Any] | None) -> dict[str, float]:
+    """``{"round_across_cm": diameter}`` when the grasped side is round (a cylinder lying on its side,
+    grasped across its diameter: a battery, a marker), else {}; sim/diagnosis.py reads it to tell a rod
+    pressed into the table from a slip (grasp-small)."""
+    if hold:
+        return {}
+    body = o.body()
+    if body.form != "cylinder" or "c" not in body.round_dims:
+        return {}
+    return {"round_across_cm": round(o.c_cm, 3)}
+
+
+def _sheet(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
+    """For a floppy sheet the trial drapes (sim/sheet.py ``is_sheet``: floppy, flat at a table edge, a plain
+    box body): the held strip's depth behind the edge, where the pads press, and the grams that hang from
+    it; sim/diagnosis.py reads them instead of the rigid plate's edge moment (grasp-small)."""
+    o = ctx.o
+    if hold or not ctx.edge_force or o.rigidity != "floppy":
+        return {}
+    body = o.body()
+    if not (len(body.parts) == 1 and body.parts[0].geom == "box"):
+        return {}
+    depth = edge_depth_cm(o.a_cm, o.b_cm)
+    held = sheet_held_cm(depth, edge_overhang_cm(depth))
+    return {
+        "sheet_held_cm": round(held, 3),
+        "sheet_grip_in_cm": round(edge_grip_in_cm(depth), 3),
+        "sheet_hanging_g": round(o.mass_g * (depth - held) / depth, 1),
+    }
 
 
 def _handle_hold(ctx: _Context) -> dict[str, Any] | None:

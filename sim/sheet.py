@@ -19,6 +19,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from sim.grasps import sheet_held_cm
 from sim.hand import HAND_BIT, OBJECT_BIT, TABLE_BIT
 from sim.objects import CM, CONTACT_SOFTNESS, MATERIAL_RGBA, TORSIONAL_PATCH_M, ObjectModel
 
@@ -53,7 +54,7 @@ def sheet_strips(depth_cm: float, overhang_cm: float) -> tuple[float, list[float
     """Widths (cm, across the table edge) of the held strip and of the draping strips behind it, from the
     overhanging edge inwards. The held strip reaches twice the overhang in (its centre of mass over the
     table edge), or the whole sheet when that is shallower."""
-    held = min(depth_cm, 2.0 * overhang_cm)
+    held = sheet_held_cm(depth_cm, overhang_cm)
     rest = depth_cm - held
     n = int(np.ceil(rest / SEGMENT_CM - 1e-9)) if rest > 1e-6 else 0
     return held, [rest / n] * n if n else []

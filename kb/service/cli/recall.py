@@ -201,6 +201,8 @@ def _print_result(result, title: str | None = None) -> None:
     console = Console()
     if title:
         console.print(f"[bold]{escape(title)}[/bold]")
+    for line in _refusals(result):
+        console.print(escape(line), style="yellow")
     if not result.matches:
         if result.not_in_catalog:
             console.print(escape(_verdict(result)))
@@ -219,6 +221,13 @@ def _print_result(result, title: str | None = None) -> None:
     if result.same_kind:
         console.print(_match_table(result.same_kind, result, f"closest of the same kind ({result.same_kind_as})"))
     console.print(escape(_verdict(result)))
+
+
+def _refusals(result) -> list[str]:
+    """One line per stated value the parser refused ("a mug 501 kg": beyond the catalog's limits), so the
+    table never looks as if the value had been used (``--json`` has them in ``parsed.refused``)."""
+    refused = (result.parsed or {}).get("refused") or []
+    return [f"Not used: {r['words']!r}: {r['reason']}; recalled without it." for r in refused]
 
 
 def _match_table(matches, result, title: str):
