@@ -166,6 +166,8 @@ def _number(feature: str, value: Any) -> float | None:
         text = value.strip()
         if not text:
             return None
+        if "_" in text:  # Python's float() reads "1_000" as 1000; no data file means that
+            raise InvalidFeature(feature, value, "not a number (digits, a decimal point, an exponent)")
         try:
             value = float(text)
         except ValueError:

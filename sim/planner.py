@@ -293,14 +293,23 @@ def _handle_hold(ctx: _Context) -> dict[str, Any] | None:
     }
 
 
+def _handle_noun(o: PlannedObject) -> str:
+    """The kind noun that gave the object its long handle (sim/bodies.py HANDLE_NOUNS: a frying pan, a ladle)."""
+    from sim.bodies import handle_style
+
+    style = handle_style(o.name, o.aliases)
+    return style[1] if style else "long-handled object"
+
+
 def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
     """The handle hold as a plan: the friction bound on the handle, not the body's edge or wrap moment
     (the pan hangs under the wrap; the trial's pushes test the moment)."""
     hctx = _Context(ctx.o, True, ctx.notes, ctx.base_force, 0.0, 0.0)
-    where = "at its middle, nearer the pan (it is heavy)" if hold["handle_grip"] == "middle" else "near its end"
+    where = "at its middle, nearer its heavy end (it is heavy)" if hold["handle_grip"] == "middle" else "near its end"
     reason = (
-        f"a pan: held by its handle ({hold['width_cm']:g} cm wide) {where}, in a small-diameter wrap from above, "
-        "as people pick up a frying pan (Feix 2016 type 2; the body is wider than the hand)"
+        f"a {_handle_noun(ctx.o)}: held by its handle ({hold['width_cm']:g} cm wide) {where}, in a small-diameter "
+        "wrap from above, as people pick up a frying pan or a ladle (Feix 2016 type 2; its heavy end, the pan or "
+        "the bowl, hangs beyond the grip)"
     )
     plan = _plan(hctx, 0, HANDLE_GRASP, reason, program_for(HANDLE_GRASP), hold)
     capacity = side_force_capacity(HANDLE_GRASP)
@@ -310,7 +319,7 @@ def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
     # bound does not count, are held by squeezing the handle as hard as the wrap can (measured: a 1.2 kg pan
     # held at its friction bound, 47.8 N, turned 17 deg in the sideways push; at the wrap's 60 N it holds).
     line = (
-        f"handle: the pan's weight acts beyond the grip, so the handle is squeezed at the wrap's full "
+        f"handle: its heavy end's weight acts beyond the grip, so the handle is squeezed at the wrap's full "
         f"{capacity:g} N (its friction bound: {plan.grip_force_n:g} N)"
     )
     return dataclasses.replace(plan, grip_force_n=capacity, rationale=(*plan.rationale, line))

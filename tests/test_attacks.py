@@ -264,6 +264,7 @@ MALFORMED_CSV = [
     (_HEADER + "bowl," + "1" * 131_073 + ",8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "-", "over 131,072"),
     (_HEADER + _GOOD + "bowl,nan,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
     (_HEADER + _GOOD + "bowl,NaN,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
+    (_HEADER + _GOOD + "bowl,10,8,8,1_000,prism,smooth,fragile,glass,rigid\n", 3, "mass_g", "not a number"),
     (_HEADER + "bowl,10,8,8,inf,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
     (_HEADER + "bowl,10,8,8,-Infinity,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
     (_HEADER.strip() + ",mass_g\n" + _GOOD.strip() + ",5\n", 1, "mass_g", "more than once"),
