@@ -9,7 +9,9 @@ temporary ``PYTHONPYCACHEPREFIX``, after one warm-up run), as an installed packa
 The one-shot recall reads a fresh ``objrecall init --seed`` catalog (169 objects). The build catalogs are
 synthetic (data written here): DuckDB files of N objects with names "adjective noun number" over 20
 nouns, every 10th with an alias; "cold" builds the index (and stores it), "stored" reloads it. Memory
-per object: what the built recaller holds (tracemalloc, in a separate run) and the stored file's size.
+per object: what the built recaller holds (tracemalloc, in a separate run), broken down by part (the
+arrays' sizes), then what the first recall adds (the default metric's query structures, by the module
+that builds them), and the stored file's size.
 
     python benchmarks/startup_bench.py [--sizes 100000,1000000] [--runs 5] [--save]
 """
@@ -45,10 +47,63 @@ print("RESULT", json.dumps({"cpu": cpu, "wall": wall}))
 MEMORY = """
 import json, sys, tracemalloc
 import numpy, duckdb, recall.engine, recall.parser, pyarrow, pyarrow.compute
+sys.path.insert(0, sys.argv[2])
+from startup_bench import DESCRIPTION, held_parts, query_parts
+r = recall.engine.Recaller.from_db(sys.argv[1])  # once untraced: the lexicons and caches of any first call
+r.recall_text(DESCRIPTION)
+del r
 tracemalloc.start()
 r = recall.engine.Recaller.from_db(sys.argv[1])
-print("RESULT", json.dumps({"bytes": tracemalloc.get_traced_memory()[0]}))
+held = tracemalloc.get_traced_memory()[0]
+before = tracemalloc.take_snapshot()
+r.recall_text(DESCRIPTION)  # the default metric's query structures, built on first use
+queried = tracemalloc.get_traced_memory()[0]
+print("RESULT", json.dumps({"bytes": held, "queried": queried, **held_parts(r),
+                            **query_parts(tracemalloc.take_snapshot().compare_to(before, "filename"))}))
 """
+#: What the first recall builds, by the module that builds it (the default metric's query structures).
+QUERY_MODULES = {"snapshot.py": "log-scaled columns (jplog)", "columns.py": "sorted columns",
+                 "cells.py": "cells (columns permuted, bounds)", "search.py": "row records (columns packed)",
+                 "combinations.py": "category combinations"}  # fmt: skip
+
+
+def held_parts(recaller) -> dict[str, int]:
+    """Bytes held by a recaller just built, by part (``part:`` keys; the arrays' own sizes, the Python
+    objects' ``sys.getsizeof``)."""
+    snap, names = recaller.snapshot, recaller.names
+    if hasattr(snap.aliases, "nbytes"):  # read back from the index: arrays
+        aliases = snap.aliases.nbytes
+    else:
+        aliases = sys.getsizeof(snap.aliases) + sum(sys.getsizeof(a) + sum(sys.getsizeof(x) for x in a)
+                                                     for a in snap.aliases if a)  # fmt: skip
+    if hasattr(snap.names, "nbytes"):
+        name_bytes = snap.names.nbytes
+    else:
+        name_bytes = sys.getsizeof(snap.names) + sum(sys.getsizeof(x) for x in snap.names)
+    heads = names.heads
+    head_bytes = heads.starts.nbytes + heads.rows.nbytes + names.head_materials.masks.nbytes
+    vocabulary = getattr(names.vocabulary, "table", None)
+    return {
+        "part:feature columns (4 float32, 5 int8)": snap.nbytes,
+        "part:names (UTF-8 text, int32 starts)": name_bytes,
+        "part:aliases (UTF-8 text, int32 starts per alias and per row)": aliases,
+        "part:name index phrases (string table, CSR rows)": getattr(names.phrases, "nbytes", 0),
+        "part:name index vocabulary (string table)": vocabulary.nbytes if vocabulary is not None else 0,
+        "part:name index head nouns (CSR rows, uint8 material masks)": head_bytes,
+        "part:submaterial flags (bool)": recaller._submaterials._is_other.nbytes,
+    }
+
+
+def query_parts(diff) -> dict[str, int]:
+    """Bytes the first recall added, by the module that allocated them (``query:`` keys)."""
+    out: dict[str, int] = {}
+    for stat in diff:
+        name = Path(stat.traceback[0].filename).name
+        label = QUERY_MODULES.get(name, "other (lexicons, caches, the answer)")
+        out[f"query:{label}"] = out.get(f"query:{label}", 0) + stat.size_diff
+    return out
+
+
 PLAIN_READ = """
 import json, sys, time
 t, w = time.process_time(), time.perf_counter()
@@ -86,13 +141,13 @@ def timed(cmd: list[str], env: dict[str, str], runs: int) -> tuple[float, float]
     return best_wall, best_cpu
 
 
-def reported(code: str, db: Path, env: dict[str, str], runs: int, before=None) -> dict[str, float]:
+def reported(code: str, db: Path, env: dict[str, str], runs: int, before=None, args=()) -> dict[str, float]:
     """The fastest of ``runs`` runs of ``code`` (which prints its own JSON), ``before()`` before each."""
     best: dict[str, float] = {}
     for _ in range(runs):
         if before is not None:
             before()
-        done = subprocess.run([sys.executable, "-c", code, str(db)], env=env, check=True, capture_output=True,
+        done = subprocess.run([sys.executable, "-c", code, str(db), *args], env=env, check=True, capture_output=True,
                               text=True, cwd=db.parent)  # fmt: skip
         line = [x for x in done.stdout.splitlines() if "RESULT " in x][-1]  # after any progress bar
         for key, value in json.loads(line.rpartition("RESULT ")[2]).items():
@@ -160,17 +215,35 @@ def builds(env: dict[str, str], work: Path, sizes: list[int], runs: int) -> dict
         cold = reported(BUILD, db, env, max(1, min(runs, 2)), before=lambda f=file: f.unlink(missing_ok=True))
         stored = reported(BUILD, db, env, runs)
         size = file.stat().st_size if file.exists() else 0
-        memory = reported(MEMORY, db, env, 1)["bytes"]
+        parts = reported(MEMORY, db, env, 1, args=[str(ROOT / "benchmarks")])
+        memory = parts["bytes"]
         out[n] = {"plain_cpu": plain["cpu"], "cold_cpu": cold["cpu"], "stored_cpu": stored["cpu"],
                   "cold_wall": cold["wall"], "stored_wall": stored["wall"], "memory_per_object": memory / n,
-                  "file_per_object": size / n}  # fmt: skip
+                  "queried_per_object": parts["queried"] / n, "file_per_object": size / n,
+                  "parts_per_object": {k: v / n for k, v in parts.items() if ":" in k}}  # fmt: skip
         print(f"{n:>10,} objects, CPU {plain['cpu']:13.2f} {cold['cpu']:8.2f} {stored['cpu']:9.2f} "
               f"{cold['cpu'] / plain['cpu']:10.1f}x {stored['cpu'] / plain['cpu']:12.1f}x {memory / n:13.0f} "
               f"{size / n:11.0f}")  # fmt: skip
         print(f"{'':>10}          wall {plain['wall']:13.2f} {cold['wall']:8.2f} {stored['wall']:9.2f}")
+        print_parts(out[n])
         db.unlink()
         file.unlink(missing_ok=True)
     return out
+
+
+def print_parts(built: dict) -> None:
+    """The memory per object by part: held once built, then added by the first recall."""
+    parts = built["parts_per_object"]
+    held = sum(v for k, v in parts.items() if k.startswith("part:"))
+    print(f"{'':>10}  B/object held once built: {built['memory_per_object']:.1f} (tracemalloc), of which")
+    for key, value in parts.items():
+        if key.startswith("part:"):
+            print(f"{'':>14}{value:8.1f}  {key[5:]}")
+    print(f"{'':>14}{built['memory_per_object'] - held:8.1f}  the rest (Python containers, fixed costs / N)")
+    print(f"{'':>10}  B/object after the first recall (default metric): {built['queried_per_object']:.1f}, added:")
+    for key, value in parts.items():
+        if key.startswith("query:"):
+            print(f"{'':>14}{value:8.1f}  {key[6:]}")
 
 
 def main() -> None:
@@ -208,9 +281,15 @@ def _save(cmds: dict, built: dict, load: float, runs: int) -> None:
              f"one-shot `objrecall recall` {rec_wall:.2f} s wall / {rec_cpu:.2f} s CPU "
              f"({rec_cpu / cmds['import numpy, duckdb'][1]:.1f}x `import numpy, duckdb`)"]  # fmt: skip
     for n, b in built.items():
+        p = b["parts_per_object"]
+        names = sum(v for k, v in p.items() if k.startswith("part:name") or k.startswith("part:aliases"))
+        columns = p["part:feature columns (4 float32, 5 int8)"] + sum(v for k, v in p.items()
+                                                                       if k.startswith("query:") and "other" not in k)  # fmt: skip
         parts.append(f"Recaller at {n:,} (synthetic): cold {b['cold_cpu']:.1f} s, from the stored index "
                      f"{b['stored_cpu']:.2f} s CPU ({b['stored_cpu'] / b['plain_cpu']:.1f}x a plain DuckDB read), "
-                     f"{b['memory_per_object']:.0f} B/object held")  # fmt: skip
+                     f"{b['memory_per_object']:.0f} B/object held once built (names, aliases and name index "
+                     f"{names:.0f}), {b['queried_per_object']:.0f} after the first recall (the default metric's "
+                     f"columns and their index {columns:.0f})")  # fmt: skip
     data = {"commands": {k: list(v) for k, v in cmds.items()}, "builds": {str(k): v for k, v in built.items()},
             "load_average": load, "runs": runs}  # fmt: skip
     save_result("startup_bench", benchmark="start-up: CLI and Recaller build, fresh subprocesses, min of "

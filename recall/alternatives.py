@@ -55,6 +55,17 @@ class Alternatives:
     allowed: dict[str, tuple[frozenset[str], frozenset[str]]]
     words: tuple[str, ...]
 
+    def variants(self, query: FeatureQuery) -> tuple[FeatureQuery, ...]:
+        """``query`` with each combination of the allowed classes stated. The soft score of a row is the
+        JP distance of the variant of its own class (plus ln 2 for a shape's second class), and never more
+        than that of any variant, so the rows ranking first under the soft score are among the union of
+        each variant's first rows: the engine searches those (pruned) instead of scanning the catalog."""
+        rest = tuple((f, v) for f, v in query.categorical if f not in self.allowed)
+        combos: list[tuple[tuple[str, str], ...]] = [()]
+        for feature, (full, half) in self.allowed.items():
+            combos = [(*c, (feature, v)) for c in combos for v in sorted(full | half)]
+        return tuple(FeatureQuery(query.numeric, (*rest, *c)) for c in combos)
+
     def terms(self, cat_cols: Sequence[np.ndarray]) -> dict[str, np.ndarray]:
         """Each feature's soft term per catalog row, nats (the category codes of ``cat_cols``, -1 unknown)."""
         out = {}
@@ -107,12 +118,13 @@ def with_alternatives(
         return query, soft
     cats = tuple((f, v) for f, v in query.categorical if f not in alt.allowed)
     query = dataclasses.replace(query, categorical=cats)
+    variants = alt.variants(query)
     terms = alt.terms(cat_cols)
     penalty = np.sum(list(terms.values()), axis=0)
     # relative errors as recall.metrics.relative_errors counts categories: 0 / 0.5 / 1
     errors = tuple((f, t / MISMATCH_TERM) for f, t in terms.items())
     if soft is None:
-        return query, SoftEvidence(alt.words, penalty, errors=errors)
+        return query, SoftEvidence(alt.words, penalty, errors=errors, scan=False, variants=variants)
     return query, dataclasses.replace(
         soft, words=(*soft.words, *alt.words), penalty=soft.penalty + penalty, errors=(*soft.errors, *errors)
     )

@@ -110,6 +110,9 @@ def _category(segment: list[Token], i: int, pos: int, reading: Reading) -> tuple
         if _in_part_phrase(segment, i, True):
             return None  # "with a long stem", "a long handle": a part is long
         return "shape", "long", 2
+    if _ball_compound(tok.low, nxt) and tag not in CATEGORY_TAGS:
+        # "a superball", "a softball": a ball, as for the dimensions (rank 0 in a part phrase)
+        return "shape", "radial", 0 if _in_part_phrase(segment, i, True) else 2
     if tag in CATEGORY_TAGS:
         feature = CATEGORY_TAGS[tag]
         if feature == "shape":
@@ -126,6 +129,15 @@ def _category(segment: list[Token], i: int, pos: int, reading: Reading) -> tuple
         if nxt in ("fragility", "fragile", "strength"):
             return "fragility", "medium", 1
     return None
+
+
+def _ball_compound(word: str, nxt: str) -> bool:
+    """A word ending in "ball" ("softball", "superball") that is not a compound head's modifier
+    ("baseball cap"): a ball, as the dimension rules read it."""
+    return (
+        word.isalpha() and word.endswith(lx.BALL_SUFFIX) and len(word) > len(lx.BALL_SUFFIX)
+        and nxt not in lx.BALL_COMPOUND_HEADS
+    )  # fmt: skip
 
 
 def _shape(segment: list[Token], i: int, nxt: str) -> tuple[str, int] | None:

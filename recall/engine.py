@@ -281,7 +281,7 @@ class Recaller:
                 matches=[], confidence=0.0, open_set=not_in_catalog, not_in_catalog=not_in_catalog,
                 described=noun, **base,
             )  # fmt: skip
-        rows, dist = self._candidates(query, named, top, metric, soft is not None)
+        rows, dist = self._candidates(query, named, top, metric, soft)
         score, parts = _ranking_scores(rows, dist, names, soft, metric)
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
@@ -338,15 +338,20 @@ class Recaller:
         return foreign_modifier(subject, words)
 
     def _candidates(
-        self, query: FeatureQuery, named: list[int], top: int, metric: str, every_row: bool
+        self, query: FeatureQuery, named: list[int], top: int, metric: str, soft: SoftEvidence | None
     ) -> tuple[np.ndarray, np.ndarray]:
         """Rows that can rank in the first ``top`` and their distances: the pruned top-k plus the named
-        rows; every row when soft evidence can reorder them (vague words: one scan)."""
+        rows; every row when soft evidence can reorder them (vague words: one scan); for category
+        alternatives alone the union of each variant's pruned top-k (``SoftEvidence.variants``)."""
         snap = self.snapshot
-        if every_row:
+        if soft is not None and (soft.scan or metric not in JP_METRICS):
             rows = np.arange(len(snap), dtype=np.int64)
             return rows, self._distances_of(query, rows, metric) if len(query) else np.zeros(len(rows))
         want = min(len(snap), max(top + 1, COMPETITOR_POOL) + len(named))
+        if soft is not None:
+            found = [top_k(snap, v, want, metric=metric)[0] for v in soft.variants]
+            rows = np.unique(np.concatenate([*found, np.asarray(named, dtype=np.int64)]))
+            return rows, self._distances_of(query, rows, metric) if len(query) else np.zeros(len(rows))
         rows, dist = top_k(snap, query, want, metric=metric, kdtree_cache=self._kdtrees)
         extra = np.setdiff1d(np.asarray(named, dtype=np.int64), rows)
         if len(extra):

@@ -252,7 +252,7 @@ RIGIDITY_WORDS: dict[str, str] = {
 TEXTURE_WORDS: dict[str, str] = {
     "smooth": "smooth", "glossy": "smooth", "polished": "smooth", "shiny": "smooth", "slick": "smooth",
     "sleek": "smooth", "silky": "smooth", "slippery": "smooth", "glazed": "smooth", "satin": "smooth",
-    "rough": "rough", "coarse": "rough", "fuzzy": "rough", "furry": "rough", "hairy": "rough",
+    "rough": "rough", "coarse": "rough", "porous": "rough", "fuzzy": "rough", "furry": "rough", "hairy": "rough",
     "bumpy": "rough", "grainy": "rough", "gritty": "rough", "scratchy": "rough", "textured": "rough",
     "unfinished": "rough", "unpolished": "rough", "raw": "rough", "splintery": "rough", "felted": "rough",
     "grippy": "grippy", "rubbery": "grippy", "tacky": "grippy", "sticky": "grippy", "non-slip": "grippy",

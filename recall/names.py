@@ -30,7 +30,13 @@ GENERIC_NOUNS = frozenset(
      "cube", "cuboid", "cylinder", "sphere", "disc", "disk", "rod", "slab", "sheet", "block", "lump", "wedge",
      "prism", "orb", "globe", "stick", "tube", "ring", "nugget",
      # what is left of or taken from a thing: a piece of it ("a wooden dowel offcut")
-     "offcut", "remnant", "fragment", "shard", "sample", "specimen", "leftover"}
+     "offcut", "remnant", "fragment", "shard", "sample", "specimen", "leftover",
+     # collective and kind words: what sort of thing, not which ("a piece of clothing", "some cutlery")
+     "cutlery", "silverware", "flatware", "crockery", "tableware", "dinnerware", "kitchenware", "cookware",
+     "houseware", "stationery", "clothing", "clothes", "garment", "apparel", "footwear", "headwear",
+     "electronics", "hardware", "gear", "kit", "supplies", "supply", "produce", "food", "snack", "drink",
+     "beverage", "grocery", "groceries", "toiletry", "toiletries", "cosmetic", "packaging", "merchandise",
+     "goods", "gift", "present", "souvenir", "decoration", "furniture", "essential", "necessity"}
 )  # fmt: skip
 #: Trailing words of a catalog name that number or label variants ("wood block 2", "cup no. 3", "ball b").
 _VARIANT_WORDS = frozenset({"no", "nr", "num", "number", "version", "variant", "ver", "v"})

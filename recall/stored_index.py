@@ -57,7 +57,7 @@ __all__ = [
 ]
 
 #: The file layout's version (the code version covers what the tables mean).
-FORMAT = 1
+FORMAT = 2
 #: Catalogs with at least this many objects keep their index in a file (reading it back is faster than
 #: building from the first object on: 169 objects, 8 ms instead of 30).
 STORED_FROM = 1
@@ -68,7 +68,7 @@ SETTLED_S = 3.0
 _SEP = "\x00"
 #: The modules whose code decides what the stored index holds.
 _SOURCES = ("recall/names.py", "recall/stored_index.py", "recall/snapshot.py", "recall/lexicon.py",
-            "kb/kinds.py", "kb/features.py")  # fmt: skip
+            "recall/string_table.py", "kb/kinds.py", "kb/features.py")  # fmt: skip
 _ROOT = Path(__file__).resolve().parent.parent
 MATERIALS = tuple(CATEGORIES["material"])
 
@@ -131,9 +131,10 @@ def load_index(db: str | Path, *, store: bool | None = None) -> RecallIndex:
         return stored
     tables = build_tables(snapshot)
     wanted = store if store is not None else len(snapshot) >= STORED_FROM
-    if wanted and write_index(file, RecallIndex(snapshot, tables), fingerprint, code):
+    written = write_index(file, RecallIndex(snapshot, tables), fingerprint, code) if wanted else None
+    if written is not None:
         _record_state(file, state, checked_at, fingerprint, code)
-        return RecallIndex(snapshot, tables, "built")
+        return written
     return RecallIndex(snapshot, tables, "built, not stored")
 
 
@@ -237,12 +238,23 @@ def _csr(mapping, key_text) -> tuple[list[str], np.ndarray, np.ndarray]:
     return [key_text(k) for k in keys], starts, np.concatenate(rows) if rows else np.zeros(0, np.int32)
 
 
+def _index_array(starts) -> np.ndarray:
+    """CSR starts as int32 when they fit (4 B per key instead of 8)."""
+    starts = np.asarray(starts, np.int64)
+    return starts.astype(np.int32) if len(starts) and starts[-1] < 2**31 else starts
+
+
 def _table_arrays(tables) -> dict[str, np.ndarray]:
     """The name tables as arrays: CSR phrases and heads (with the materials mask of each (head, row))."""
     from recall.names import RowsByKey
+    from recall.string_table import KeyRows, StringTable
 
     out: dict[str, np.ndarray] = {}
-    if isinstance(tables.phrases, RowsByKey):  # built column-wise: already CSR
+    if isinstance(tables.phrases, KeyRows):  # read back from a file (stored again as it is)
+        phrase_keys, pstarts, prows = list(tables.phrases.keys), tables.phrases.starts, tables.phrases.rows
+        head_keys, hstarts, hrows = list(tables.heads.ids), tables.heads.starts, tables.heads.rows
+        masks = tables.head_materials.masks
+    elif isinstance(tables.phrases, RowsByKey):  # built column-wise: already CSR
         phrase_keys, pstarts, prows = list(tables.phrases.ids), tables.phrases.starts, tables.phrases.rows
         head_keys, hstarts, hrows = list(tables.heads.ids), tables.heads.starts, tables.heads.rows
         masks = tables.head_materials.masks
@@ -255,17 +267,19 @@ def _table_arrays(tables) -> dict[str, np.ndarray]:
             for at in range(int(hstarts[k]), int(hstarts[k + 1])):
                 stated = tables.head_materials.get((key, int(hrows[at])))
                 masks[at] = sum(bit[m] for m in stated) if stated else 0
-    out.update(phrase_keys=_blob(phrase_keys), phrase_starts=np.asarray(pstarts, np.int64),
+    mask_type = np.uint8 if len(MATERIALS) <= 8 else np.uint16 if len(MATERIALS) <= 16 else np.int64
+    out.update(**StringTable.of(phrase_keys).arrays("phrase"), phrase_starts=_index_array(pstarts),
                phrase_rows=np.asarray(prows, np.int32), head_keys=_blob(head_keys),
                head_starts=np.asarray(hstarts, np.int64), head_rows=np.asarray(hrows, np.int32),
-               head_masks=np.asarray(masks, np.int64), generic_keys=_blob([" ".join(k) for k in tables.generic]),
+               head_masks=np.asarray(masks, mask_type), generic_keys=_blob([" ".join(k) for k in tables.generic]),
                generic_materials=_blob(list(tables.generic.values())),
-               vocabulary=_blob(sorted(tables.vocabulary)))  # fmt: skip
+               **StringTable.of(sorted(tables.vocabulary)).arrays("vocabulary"))  # fmt: skip
     return out
 
 
-def write_index(file: Path, index: RecallIndex, fingerprint: list[int], code: str) -> bool:
-    """Write ``index`` to ``file`` atomically; False (and nothing written) when it cannot be."""
+def write_index(file: Path, index: RecallIndex, fingerprint: list[int], code: str) -> RecallIndex | None:
+    """Write ``index`` to ``file`` atomically; returns it as read back from the arrays written (the
+    compact tables of a stored index), or None (and nothing written) when it cannot be written."""
     snap = index.snapshot
     try:
         flat = [a for row in snap.aliases for a in row]
@@ -278,12 +292,14 @@ def write_index(file: Path, index: RecallIndex, fingerprint: list[int], code: st
             **_table_arrays(index.tables),
         }
     except ValueError:  # a separator inside a name: not storable
-        return False
+        return None
     meta = {"format": FORMAT, "code": code, "catalog": fingerprint, "n": len(snap), "aliases": len(flat),
             "longest": int(index.tables.longest), "generic": len(index.tables.generic),
             "vocabulary": len(index.tables.vocabulary)}  # fmt: skip
     arrays["meta"] = np.frombuffer(json.dumps(meta).encode(), dtype=np.uint8)
-    return _replace(file, lambda out: np.savez(out, **arrays))
+    if not _replace(file, lambda out: np.savez(out, **arrays)):
+        return None
+    return _from_arrays(arrays, meta, origin="built")
 
 
 def _replace(file: Path, write) -> bool:
@@ -328,35 +344,50 @@ def read_index(file: Path, fingerprint: list[int], code: str) -> RecallIndex | N
         return None  # missing, damaged or another layout: rebuilt
 
 
-def _from_arrays(data: dict[str, np.ndarray], meta: dict) -> RecallIndex:
-    from recall.names import RowsByKey, _HeadMaterials, _RowsByMaterial
+def _from_arrays(data: dict[str, np.ndarray], meta: dict, origin: str = "stored") -> RecallIndex:
+    from recall.names import RowsByKey, _HeadMaterials
     from recall.snapshot import CatalogSnapshot
+    from recall.string_table import GroupColumn, KeyRows, StringColumn, StringSet, StringTable
 
     n = int(meta["n"])
-    names = _strings(data["names"], n)
-    flat = _strings(data["alias_text"], int(meta["aliases"]))
-    starts = data["alias_starts"]
-    aliases: list[tuple[str, ...]] = [()] * n
-    for i in np.flatnonzero(np.diff(starts)).tolist():  # the rows with aliases only
-        aliases[i] = tuple(flat[int(starts[i]) : int(starts[i + 1])])
+    names = StringColumn(data["names"], n)
+    aliases = GroupColumn(StringColumn(data["alias_text"], int(meta["aliases"])), data["alias_starts"])
+    if len(aliases) != n:
+        raise ValueError("alias rows")
     num, cat = data["num"], data["cat"]
     snap = CatalogSnapshot.from_columns(names, aliases, list(num), list(cat),
                                         version=("fingerprint", *meta["catalog"]))  # fmt: skip
     pstarts, hstarts = data["phrase_starts"], data["head_starts"]
-    phrases = RowsByKey(_strings(data["phrase_keys"], len(pstarts) - 1), pstarts, data["phrase_rows"], tuples=True)
+    phrases = KeyRows(StringTable.from_arrays(data, "phrase"), pstarts, data["phrase_rows"], tuples=True)
     heads = RowsByKey(_strings(data["head_keys"], len(hstarts) - 1), hstarts, data["head_rows"])
     gkeys = _strings(data["generic_keys"], int(meta["generic"]))
     generic = dict(zip((tuple(k.split(" ")) for k in gkeys), _strings(data["generic_materials"], len(gkeys)),
                        strict=True))  # fmt: skip
     codes = cat[CATEGORICAL_FEATURES.index("material")] if n else np.zeros(0, np.int8)
-    by_code = np.array([*MATERIALS, None], dtype=object)  # code -1 (unknown): the last, None
+    vocabulary = StringSet(StringTable.from_arrays(data, "vocabulary"))
+    if len(vocabulary) != int(meta["vocabulary"]):
+        raise ValueError("vocabulary count")
     tables = SimpleNamespace(
         phrases=phrases,
         generic=generic,
-        by_material=_RowsByMaterial(by_code[codes.astype(np.int64)].tolist()),
+        by_material=RowsByMaterialCode(codes),
         heads=heads,
         head_materials=_HeadMaterials(heads, data["head_masks"], list(MATERIALS)),
-        vocabulary=frozenset(_strings(data["vocabulary"], int(meta["vocabulary"]))),
+        vocabulary=vocabulary,
         longest=int(meta["longest"]),
     )
-    return RecallIndex(snap, tables, "stored")
+    return RecallIndex(snap, tables, origin)
+
+
+class RowsByMaterialCode:
+    """material -> the set of rows of that material, from the snapshot's int8 material codes (1 B per
+    row, shared with the snapshot; what ``recall.names._RowsByMaterial`` holds as a Python list)."""
+
+    def __init__(self, codes: np.ndarray):
+        self.codes = codes
+
+    def get(self, material, default=None):
+        if material not in MATERIALS:
+            return default
+        rows = set(np.flatnonzero(self.codes == MATERIALS.index(material)).tolist())
+        return rows or default

@@ -67,8 +67,8 @@ def _phrases(text: str):
     """The noun phrases of the first sentence, one per chunk (see :func:`subject_phrase`), in order."""
     low = text.lower().replace("\u2019", "'")
     low = re.sub(r"\b(it|that|there|what|he|she)'s\b", r"\1 is", low).replace("'s", "").replace("'", "")
-    sentence = re.split(r"[.!?;:\n]", low, maxsplit=1)[0]
-    for chunk in re.split(r"[,()\[\]\d\"/&+*=-]", sentence):
+    sentence = re.split(r"[.!?;\n]", low, maxsplit=1)[0]  # a colon ends a chunk: "..., 8 cm tall: a salt shaker"
+    for chunk in re.split(r"[,:()\[\]\d\"/&+*=-]", sentence):
         phrase: list[str] = []
         previous = ""
         words = _WORD.findall(chunk)
@@ -82,6 +82,8 @@ def _phrases(text: str):
                 break  # "a kitchen timer *shaped* like a tomato", "a tin *filled* with buttons"
             elif previous in _PRONOUNS:  # "i found this ...": the word after a pronoun is its verb
                 pass
+            elif not phrase and previous == "of" and word in _material_words():
+                pass  # "made of glass, ...": a material, not the subject
             elif word not in _PHRASE_SKIP:
                 phrase.append(word)
             previous = word
@@ -127,6 +129,13 @@ def _compound_verb(word: str, following: list[str]) -> bool:
         return False
     nxt = following[0]
     return nxt not in _PHRASE_ENDS and nxt not in _PHRASE_SKIP and nxt not in _amount_words()
+
+
+@functools.cache
+def _material_words() -> frozenset[str]:
+    from recall.lexicon import MATERIAL_WORDS
+
+    return frozenset(w for w in MATERIAL_WORDS if " " not in w)
 
 
 @functools.cache

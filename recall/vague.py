@@ -93,6 +93,11 @@ class SoftEvidence:
     #: Relative errors (0 match, 0.5 half, 1 mismatch) per row of stated categories scored here instead
     #: of by the metric (:mod:`recall.alternatives`): they count in the closeness as stated features.
     errors: tuple[tuple[str, np.ndarray], ...] = ()
+    #: Whether the ranking must score every row (vague words can reorder the whole catalog). False for
+    #: category alternatives only (:mod:`recall.alternatives`): then the union of the pruned top-k of
+    #: each of ``variants`` (the query with each allowed class stated) holds the answer.
+    scan: bool = True
+    variants: tuple = ()
 
     def errors_of(self, row: int) -> dict[str, float]:
         """The relative errors of ``row`` for the categories scored here (see ``errors``)."""
@@ -142,7 +147,12 @@ def soft_evidence(
         part[~known] = VAGUE_WEIGHT / 2
         penalty += part
         unit = "cm" if feature == "a_cm" else "g"
-        words.append(f"{word} -> {feature} {'<=' if side < 0 else '>='} {limit:.3g} {unit}")
+        bound = f"{'<=' if side < 0 else '>='} {limit:.3g} {unit}"
+        if feature == "mass_g" and side < 0 and SIZE_RELATIVE_MASS:
+            bound = (
+                f"in the lightest {round(100 * q)} % of objects of its size (<= {limit:.3g} {unit} overall)"
+            )
+        words.append(f"{word} -> {feature} {bound}")
         limits.append((feature, limit, side))
     return SoftEvidence(tuple(words), penalty, tuple(limits)) if words else None
 

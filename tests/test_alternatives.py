@@ -123,6 +123,10 @@ def test_wire_and_foil_are_metal():
     assert parse("a foil tray").values()["material"] == "metal"
 
 
+def test_porous_is_rough():
+    assert parse("soft and porous, 4 by 3 by 1.5 inches").values()["texture"] == "rough"
+
+
 # ------------------------------------------------------------------ light words, relative to the size
 def test_light_words_compare_a_row_with_the_objects_of_its_size():
     from recall.vague import MIN_OF_SIZE, SIZE_FACTOR, VERY_LIGHT_Q, soft_evidence
@@ -159,3 +163,49 @@ def test_heavy_words_stay_on_the_whole_catalog():
     m = np.concatenate([np.arange(1.0, 21.0), np.arange(100.0, 2100.0, 100.0)])
     ev = soft_evidence("a very heavy thing", {}, None, [a, a, a, m])
     assert np.all(ev.penalty[:20] > 0)  # no small object is heavy for the catalog
+
+
+# ------------------------------------------------------------ pruned search equals the full scan
+def _random_catalog(n: int, seed: int) -> Recaller:
+    from kb.features import CATEGORIES
+
+    rng = np.random.default_rng(seed)
+    recs = []
+    for i in range(n):
+        dims = sorted(np.exp(rng.normal(2.0, 0.8, 3)).round(1) + 0.1, reverse=True)
+        recs.append(
+            ObjectRecord(
+                name=f"zq{i}",
+                a_cm=float(dims[0]), b_cm=float(dims[1]), c_cm=float(dims[2]),
+                mass_g=float(np.exp(rng.normal(4.5, 1.2)).round(1)) if rng.random() > 0.03 else None,
+                shape=str(rng.choice(CATEGORIES["shape"])) if rng.random() > 0.05 else None,
+                material=str(rng.choice(CATEGORIES["material"])) if rng.random() > 0.05 else None,
+            )
+        )  # fmt: skip
+    return Recaller.from_records(recs)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "a metal block, 6 cm long, 300 g",
+        "a round plastic thing about 4 inches across",
+        "plastic and metal, 15 cm long, 8 cm wide, 200 g, a flat one",
+        "a wooden cylinder 20 cm long",
+        "glass or ceramic, 12 cm tall, 9 oz",
+    ],
+)
+def test_alternatives_search_the_union_of_the_variants_and_equal_a_full_scan(text):
+    r = _random_catalog(6000, 7)
+    res = r.recall_text(text, top=10)
+    parsed = parse(text)
+    query = FeatureQuery.from_parsed(parsed)
+    stripped, soft = with_alternatives(query, None, alternatives(query, parsed), r.snapshot.cat_cols)
+    assert soft is not None and not soft.scan and len(soft.variants) >= 2
+    rows = np.arange(len(r.snapshot), dtype=np.int64)
+    score = r._distances_of(stripped, rows, "jplog") + soft.penalty
+    best = np.argsort(score, kind="stable")[:10]
+    assert [m.score for m in res.matches] == pytest.approx(score[best].tolist())
+    assert {m.name for m in res.matches} <= {
+        r.snapshot.names[i] for i in np.flatnonzero(score <= score[best[-1]])
+    }

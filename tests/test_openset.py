@@ -136,7 +136,7 @@ def test_soft_words_and_their_conditions():
     num = _num(np.arange(1.0, 11.0), np.arange(10.0, 110.0, 10.0))
     assert soft_evidence("a big box", {}, None, num).words[0].startswith("big -> a_cm >=")
     assert soft_evidence("it weighs almost nothing", {}, None, num).words[0].startswith(
-        "weighs almost nothing -> mass_g <="
+        "weighs almost nothing -> mass_g in the lightest"
     )
     assert soft_evidence("heavy", {}, "heavy", num).penalty[0] > 0  # the parser's hint
     assert soft_evidence("heavy", {"mass_g": 50.0}, "heavy", num) is None  # a stated mass wins

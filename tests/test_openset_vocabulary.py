@@ -227,3 +227,17 @@ def test_a_noun_after_a_subject_of_feature_words_is_the_described_noun():
     assert noun_phrase("A plush dinosaur toy, 35 cm, a gift") == ("plush", "dinosaur", "toy")  # a noun first
     res = seed().recall_text("Plastic, 27 cm across, 175 g, a frisbee.")
     assert res.not_in_catalog and res.described.noun == "frisbee"
+
+
+def test_a_collective_or_kind_word_names_no_missing_object():
+    for text in ("A piece of clothing, cotton, 70 by 50 cm, 150 g.", "Some cutlery, steel, 20 cm long, 50 g."):
+        res = seed().recall_text(text)
+        assert not res.not_in_catalog and not res.open_set, text
+
+
+def test_made_of_a_material_is_no_subject_and_a_colon_ends_a_chunk():
+    from recall.subject import noun_phrase
+
+    assert noun_phrase("Made of glass, 8 cm tall: a salt shaker.") == ("salt", "shaker")
+    assert subject_phrase("Teapot: ceramic, 900 g") == ("teapot",)
+    assert subject_phrase("A bowl made of glass, 12 cm") == ("bowl",)

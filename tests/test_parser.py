@@ -759,3 +759,17 @@ def test_a_compared_objects_mass_alone_states_no_mass() -> None:
     parsed = parse("a bowl, much lighter than my 2 kg dumbbell, 15 cm across")
     assert "mass_g" not in parsed.values()
     assert parsed.values()["a_cm"] == approx(15)
+
+
+@pytest.mark.parametrize(
+    ("text", "shape"),
+    [
+        ("A superball, rubber, 3 cm across", "radial"),
+        ("a softball, 9.7 cm", "radial"),
+        ("a basketball", "radial"),
+        ("a baseball cap, cotton", "compact"),  # the cap's shape: the ball word only names what it is for
+        ("a cotton baseball jersey", None),
+    ],
+)
+def test_a_ball_compound_is_a_ball_shape(text: str, shape: str | None) -> None:
+    assert parse(text).values().get("shape") == shape
