@@ -35,6 +35,7 @@ columns; :func:`encode` returns the vector and a mask of the columns that are kn
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
@@ -121,6 +122,17 @@ VECTOR_COLUMNS: tuple[str, ...] = (
 _VECTOR_INDEX = {col: i for i, col in enumerate(VECTOR_COLUMNS)}
 
 
+#: Characters no name or alias may hold, whatever path it comes in by (CSV, HTTP, Python, ingestion): control
+#: characters, NUL included (the CSV import refuses them, so an export holding one could not be read back).
+_UNWRITABLE_NAME = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+
+
+def _check_name_text(field_name: str, text: str) -> None:
+    bad = _UNWRITABLE_NAME.search(text)
+    if bad:
+        raise InvalidFeature(field_name, text, f"contains the control character {bad.group()!r}")
+
+
 def normalize_name(name: str) -> str:
     """Catalog key of an object name: lower case, single spaces, trimmed."""
     return " ".join(str(name).lower().split())
@@ -154,6 +166,8 @@ def _number(feature: str, value: Any) -> float | None:
         text = value.strip()
         if not text:
             return None
+        if "_" in text:  # Python's float() reads "1_000" as 1000; no data file means that
+            raise InvalidFeature(feature, value, "not a number (digits, a decimal point, an exponent)")
         try:
             value = float(text)
         except ValueError:
@@ -271,8 +285,11 @@ class ObjectRecord:
         clean_name = normalize_name(name) if name is not None else ""
         if not clean_name:
             raise InvalidFeature("name", name, "missing name")
+        _check_name_text("name", clean_name)
         values = validate_features(features)
         clean_aliases = tuple(dict.fromkeys(a for a in (normalize_name(x) for x in aliases) if a and a != clean_name))
+        for alias in clean_aliases:
+            _check_name_text("aliases", alias)
         return cls(name=clean_name, aliases=clean_aliases, source=source, extra=dict(extra or {}), **values)
 
     @property

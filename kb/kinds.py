@@ -130,7 +130,8 @@ def nouns() -> dict[tuple[str, ...], Noun]:
                 raise ObjrecallError(f"kind_nouns.csv: noun {row['noun']!r} has unknown kind {row['kind']!r}")
             noun = Noun(words, row["kind"], row["lang"], row["english"] or row["noun"])
             out.setdefault(words, noun)
-            out.setdefault(tuple(_fold(w) for w in words), noun)
+            if not row["noun"].isascii():  # an ASCII word is its own folded form
+                out.setdefault(tuple(_fold(w) for w in words), noun)
     return out
 
 

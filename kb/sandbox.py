@@ -42,6 +42,8 @@ __all__ = [
     "ALLOWED_STATEMENTS",
     "HIDDEN_FUNCTIONS",
     "CATALOG_READ_CONFIG",
+    "DYNAMIC_SQL_FUNCTIONS",
+    "MAX_TIMEOUT_S",
     "SANDBOX_CONFIG",
     "USER_SQL_CONFIG",
     "WORKER_MEMORY_BYTES",
@@ -111,9 +113,18 @@ ALLOWED_STATEMENTS = frozenset({"SELECT", "EXPLAIN"})
 HIDDEN_FUNCTIONS: tuple[str, ...] = (
     "duckdb_databases", "duckdb_settings", "current_setting", "duckdb_extensions", "duckdb_temporary_files",
     "duckdb_secrets", "which_secret", "duckdb_logs", "duckdb_log_contexts", "duckdb_external_file_cache",
-    "duckdb_memory", "pragma_[a-z_]+",
+    "duckdb_memory", "pragma_[a-z_]+", "pg_settings",
 )
+#: Functions refused when called because they run SQL built from a string at run time, which no check of
+#: the query's text can see into (``query('select * from duckdb_' || 'settings()')``).
+DYNAMIC_SQL_FUNCTIONS: tuple[str, ...] = ("query", "query_table", "json_execute_serialized_sql")
 _HIDDEN_RE = re.compile(r"(?<![a-z0-9_])(" + "|".join(HIDDEN_FUNCTIONS) + r")(?![a-z0-9_])", re.IGNORECASE)
+_DYNAMIC_RE = re.compile(
+    r"(?<![a-z0-9_])(" + "|".join(DYNAMIC_SQL_FUNCTIONS) + r")\"?\s*\(", re.IGNORECASE
+)
+#: The longest time limit user SQL may ask for (a day; the HTTP service caps it far lower). A longer one is
+#: refused with a reason: past about 10**9 s the operating system's timers cannot represent it.
+MAX_TIMEOUT_S = 86_400.0
 #: A worker's answer may be at most this large (pickled); a bigger one is refused inside the worker.
 MAX_ANSWER_BYTES = 64 * 1024 * 1024
 #: Worker processes that may run at once (more callers wait for a free one, within their time limit).
@@ -205,6 +216,11 @@ def _execute(con, request: dict[str, Any]) -> SqlAnswer:
     hidden = _HIDDEN_RE.search(query)
     if hidden:
         raise QueryRefused(f"refused: {hidden.group(1)} reveals server settings and is not available")
+    dynamic = _DYNAMIC_RE.search(query)
+    if dynamic:
+        raise QueryRefused(
+            f"refused: {dynamic.group(1)}() runs SQL built at run time, which cannot be checked; write the query itself"
+        )
     timer = threading.Timer(request["timeout_s"], con.interrupt)
     timer.start()
     try:
@@ -416,8 +432,11 @@ def run_user_sql(
     Raises :class:`~kb.errors.QueryRefused`, :class:`~kb.errors.QueryFailed`,
     :class:`~kb.errors.QueryTimeout` (the worker is killed at the deadline) or a database error.
     """
-    if not (timeout_s > 0 and max_rows >= 1):
-        raise QueryFailed(f"timeout_s must be > 0 and max_rows >= 1, got {timeout_s!r} and {max_rows!r}")
+    if not (0 < timeout_s <= MAX_TIMEOUT_S and max_rows >= 1):
+        raise QueryFailed(
+            f"timeout_s must be > 0 and at most {MAX_TIMEOUT_S:g} s and max_rows >= 1, "
+            f"got {timeout_s!r} and {max_rows!r}"
+        )
     request = {"path": str(Path(path).resolve()), "query": query, "params": list(params) if params else None,
                "max_rows": int(max_rows), "timeout_s": float(timeout_s), "busy_timeout": float(busy_timeout)}
     worker = _POOL.acquire(time.monotonic() + timeout_s)

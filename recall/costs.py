@@ -8,7 +8,9 @@ stated features.
 * **scan**: :data:`SCAN_NS` per row for each stated number, for the stated categories together (one
   gather over the category combinations) and for the selection; the first of each pair up to
   :data:`CACHE_ROWS` rows, the second above (the columns outgrow the cache);
-* **window**: :data:`WINDOW_NS` per row-feature of its lead window (scattered reads; likewise by size);
+* **window**: :data:`WINDOW_NS` per row-feature of its lead window (scattered reads; likewise by size;
+  the fit gave 6.5 above the cache, 8.0 was faster in an interleaved A/B at 1M: 5 % on described
+  descriptions, 14 % on sizes only, the window's time varying more than its rows);
 * **probe** (the cells' bounds, then the rows of the nearest cells scored): :data:`PROBE_NS` + m ×
   (:data:`PROBE_FEATURE_NS` + :data:`BOUND_CELL_NS` per cell);
 * **cells** after the probe: :data:`CELLS_FIXED_NS` + :data:`CELL_NS` per cell (their order) + m ×
@@ -24,11 +26,17 @@ from dataclasses import dataclass
 __all__ = ["PlanCosts", "after_probe", "before_probe"]
 
 SCAN_NS = {"numeric": (0.8, 1.0), "categories": (1.0, 2.25), "row": (0.9, 0.6)}
-WINDOW_NS = (4.0, 6.5)
+WINDOW_NS = (4.0, 8.0)
 CACHE_ROWS = 1 << 18
 PROBE_NS, PROBE_FEATURE_NS, BOUND_CELL_NS = 80_000.0, 11_000.0, 1.8
-CELLS_FIXED_NS, CELL_NS, CELLS_FEATURE_NS, CELLS_NS = 40_000.0, 20.0, 15_000.0, (5.0, 2.5)
+CELLS_FIXED_NS, CELL_NS, CELLS_FEATURE_NS, CELLS_NS = 40_000.0, 20.0, 15_000.0, (3.5, 2.5)
 PLAN_FIXED_NS = 50_000.0
+#: The scan's estimate is within ~10 % of its time; the others' vary 2-4x with the bound (in the cache
+#: their p99 made the engine's p99 at 100k 0.9-1.0x the plain float32 scan's under load), so they run
+#: only when estimated below this fraction of the scan (up to / above CACHE_ROWS rows; interleaved A/B
+#: on 200 described descriptions, synthetic: 0.5 against 1.0 at 100k, 28 % less CPU in all and p99 0.78
+#: against 1.44 ms; 0.7 against 1.0 at 1M, 5 % less).
+SCAN_TRUST = (0.5, 0.7)
 #: Above CACHE_ROWS rows, when the cell plan's estimate exceeds the scan's by at most this factor, the
 #: cell plan is tried first: it gives up for the scan once it has read a quarter of the rows the scan's
 #: time would pay for and the rows it has read and has left within the bound are still more (at most
@@ -58,6 +66,11 @@ class PlanCosts:
         per_row = SCAN_NS["numeric"][big] * self.numbers + SCAN_NS["row"][big]
         return self.rows * (per_row + (SCAN_NS["categories"][big] if self.categories else 0.0))
 
+    @property
+    def trusted_scan(self) -> float:
+        """The scan's estimate as the comparisons see it (:data:`SCAN_TRUST`)."""
+        return self.scan * SCAN_TRUST[self.big]
+
     def window(self, rows_read: float) -> float:
         return PLAN_FIXED_NS + WINDOW_NS[self.big] * rows_read * self.features
 
@@ -82,9 +95,10 @@ def before_probe(costs: PlanCosts, window_rows: int) -> str | None:
     """The plan to run before probing the cells, given the lead window's rows at the first bound:
     "window" when it costs at most the probe and the scan, "scan" when the scan costs at most the probe
     and the cell plan's fixed part (then no plan after the probe can be cheaper), else None (probe)."""
-    if costs.window(window_rows) <= min(costs.probe, costs.scan):
+    scan = costs.trusted_scan
+    if costs.window(window_rows) <= min(costs.probe, scan):
         return "window"
-    if costs.scan <= costs.probe + costs.cells_fixed:
+    if scan <= costs.probe + costs.cells_fixed:
         return "scan"
     return None
 
@@ -95,12 +109,16 @@ def after_probe(
     """(plan, trial) after the probe: the cheapest of window, cells, scan and, when the bound is 0
     (``zero_rows`` not None: the rows the zero plan reads), zero; the scan at a bound of 0 is the zero
     plan (the k lowest rows at 0). ``trial``: the cell plan is tried before the scan (:data:`CELLS_TRIAL`)."""
-    cost = {"window": costs.window(window_rows), "cells": costs.cell_search(cell_rows), "scan": costs.scan}
+    cost = {
+        "window": costs.window(window_rows),
+        "cells": costs.cell_search(cell_rows),
+        "scan": costs.trusted_scan,
+    }
     if zero_rows is not None:
         cost["zero"] = costs.window(min(zero_rows, costs.rows))
     plan = min(cost, key=cost.__getitem__)
     if plan == "scan" and zero_rows is not None:
         return "zero", False
-    if plan == "scan" and costs.big and cost["cells"] <= CELLS_TRIAL * cost["scan"]:
+    if plan == "scan" and costs.big and cost["cells"] <= CELLS_TRIAL * costs.scan:
         return "cells", True
     return plan, False

@@ -8,6 +8,7 @@ tuples, diameters, sides, unlabelled lengths) to ``a_cm``, ``b_cm``, ``c_cm`` by
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
@@ -172,8 +173,13 @@ def _add_relations(reading: Reading) -> None:
         reading.dims.append(DimStatement(rel.role, [derived], rel.start, rel.end))
 
 
+#: Roles stated as something other than the diameter they give: a radius is half of it, a circumference
+#: ("30 cm around", "a girth of 12 inches") pi times it.
+_DIAMETER_SCALE = {"radius": 2.0, "circumference": 1.0 / math.pi}
+
+
 def _by_role(reading: Reading, cues: _Cues) -> dict[str, Stated]:
-    """The first statement of each role in cm: a radius doubled to a diameter, "across" a diameter of a
+    """The first statement of each role in cm: a radius doubled to a diameter, a circumference over pi, "across" a diameter of a
     round thing (or beside a stated width), the width of a round thing its diameter, and a length
     dropped when an overall extent is stated (it is a part's)."""
     by_role: dict[str, Stated] = {}
@@ -181,13 +187,13 @@ def _by_role(reading: Reading, cues: _Cues) -> dict[str, Stated]:
     squat = _squat(reading)
     for stmt in reading.dims:
         role = stmt.role
-        if role == "radius":
+        if role in ("radius", "circumference"):
             role = "diameter"
         elif role == "across":
             role = "diameter" if cues.round or stated_width or squat else "width"
         if role in by_role:
             continue
-        dim = _to_cm(stmt.quantities[0], reading, stmt, 2.0 if stmt.role == "radius" else 1.0)
+        dim = _to_cm(stmt.quantities[0], reading, stmt, _DIAMETER_SCALE.get(stmt.role, 1.0))
         if dim is not None:
             by_role[role] = dim
     three = bool(by_role.keys() & {"length", "height", "overall"}) and bool(
@@ -210,7 +216,7 @@ def _squat(reading: Reading) -> bool:
     development sets: every such description is of a round or square-footed thing (RECALL.md)."""
     roles = {stmt.role: stmt for stmt in reversed(reading.dims)}  # the first of each role
     across = roles.get("across")
-    if across is None or roles.keys() & {"length", "overall", "width", "diameter", "radius"}:
+    if across is None or roles.keys() & {"length", "overall", "width", "diameter", "radius", "circumference"}:
         return False
     wide = _cm_value(across.quantities[0], reading)
     lows = [_cm_value(roles[role].quantities[0], reading) for role in _SQUAT_ROLES & roles.keys()]

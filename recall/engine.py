@@ -13,7 +13,6 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
-import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -45,20 +44,17 @@ from recall.openset import (
     OPEN_SET_UNKNOWN_NOUN_THRESHOLD,
     DescribedNoun,
     KindIndex,
-    compound_head,
-    described_noun,
-    foreign_head,
+    describe,
     foreign_modifier,
     is_open_set,
     material_agrees,
     names_inside,
     synonym_rows,
-    unseen_noun,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
 from recall.snapshot import CatalogSnapshot, load_snapshot
-from recall.subject import noun_phrase, said_in_plural, subject_head, subject_phrase
+from recall.subject import noun_phrase, subject_head, subject_phrase
 from recall.submaterials import SubmaterialIndex, with_submaterial
 from recall.vague import SoftEvidence, soft_evidence
 
@@ -229,22 +225,8 @@ class Recaller:
         return self._submaterials.penalty(ev.words or "")
 
     def described(self, text: str) -> DescribedNoun | None:
-        """The lexicon noun the description's subject names, and whether the catalog has it."""
-        idx = self.names
-        subject = noun_phrase(text)
-        after_of: tuple[str, ...] = ()
-        if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
-            m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
-            after_of = subject_phrase(m.group(1)) if m else ()
-        noun = described_noun(
-            subject, idx.phrases, idx.heads, idx.vocabulary, GENERIC_NOUNS, after_of, self.kinds
-        )
-        if noun is not None or any(w in idx.vocabulary for w in after_of):
-            return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
-        head = idx.unknown_noun(text) or compound_head(subject, idx.vocabulary)
-        if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
-            subject, head = after_of, foreign_head(after_of, idx.vocabulary)
-        return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))
+        """The noun the description names, and whether the catalog has it (:func:`recall.openset.describe`)."""
+        return describe(text, self.names, self.kinds)
 
     # -- the ranking
     def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:
@@ -307,8 +289,9 @@ class Recaller:
         open_set = not_in_catalog or is_open_set(closeness, trusted, unknown or modifier)
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
-            margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog
-        )
+            margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
+            soft_only=len(query) == 0 and not named,
+        )  # fmt: skip
         same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
         return RecallResult(
             matches=matches[:top],

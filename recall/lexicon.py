@@ -69,7 +69,8 @@ CONTENTS_DENSITY_G_PER_ML = 1.0
 #: Dimension words (tag DIM, nouns DIMN) -> role. Roles: ``length`` and ``height`` (usually the largest,
 #: a), ``width`` (b),
 #: ``depth`` (b, or c when alone with a width), ``thickness`` (usually the smallest, c), ``diameter``
-#: (two equal dims), ``radius`` (doubled to a diameter), ``across`` (a diameter for a round thing, else
+#: (two equal dims), ``radius`` (doubled to a diameter), ``circumference`` (divided by pi to a diameter),
+#: ``across`` (a diameter for a round thing, else
 #: a width), ``side`` (a cube: all three equal), ``size`` (an unlabelled extent).
 DIMENSION_WORDS: dict[str, str] = {
     "long": "length", "length": "length", "lengthwise": "length", "lengths": "length",
@@ -78,6 +79,8 @@ DIMENSION_WORDS: dict[str, str] = {
     "thick": "thickness", "thickness": "thickness", "deep": "depth", "depth": "depth",
     "diameter": "diameter", "diam": "diameter", "dia": "diameter", "diametre": "diameter",
     "radius": "radius",
+    "circumference": "circumference", "circ": "circumference", "girth": "circumference",
+    "around": "circumference",  # only after a length ("30 cm around"): a hedge elsewhere (recall.tags)
     "side": "side", "sides": "side", "edge": "side", "edges": "side", "on each side": "side",
     "each side": "side", "per side": "side", "a side": "side", "on a side": "side", "each way": "side",
     "on all sides": "side", "all sides": "side", "in every direction": "side",
@@ -104,7 +107,7 @@ UNIT_ONLY_DIMENSION_WORDS: frozenset[str] = frozenset({"square"})
 #: value with its unit left out), before any other word after a number it is the unit inch ("4 in long").
 DIMENSION_NOUNS: frozenset[str] = frozenset(
     {"length", "lengths", "height", "heigth", "width", "breadth", "thickness", "depth", "diameter", "diam",
-     "dia", "diametre", "radius", "side", "sides", "edge", "edges", "size", "in size"}
+     "dia", "diametre", "radius", "circumference", "circ", "girth", "side", "sides", "edge", "edges", "size", "in size"}
 )  # fmt: skip
 
 # ---------------------------------------------------------------------------------------------- hedges
@@ -188,6 +191,7 @@ SHAPE_WORDS: dict[str, tuple[str, int]] = {
     "straw": ("long", 2), "skinny": ("long", 2), "slender": ("long", 3), "bar": ("long", 1), "spoon": ("long", 2), "fork": ("long", 2), "knife": ("long", 2),
     "brush": ("long", 1), "screwdriver": ("long", 2), "wand": ("long", 2), "baton": ("long", 2),
     "marker": ("long", 2), "remote": ("long", 1), "ruler": ("long", 2), "chopstick": ("long", 2),
+    "curved": ("long", 1),
     "round": ("radial", 2), "ball": ("radial", 3), "sphere": ("radial", 3), "spherical": ("radial", 3),
     "globe": ("radial", 2), "orb": ("radial", 2), "ball-shaped": ("radial", 3), "circular": ("radial", 2),
     "disc": ("compact", 2), "disk": ("compact", 2), "disc-shaped": ("compact", 3),
@@ -252,7 +256,8 @@ RIGIDITY_WORDS: dict[str, str] = {
 TEXTURE_WORDS: dict[str, str] = {
     "smooth": "smooth", "glossy": "smooth", "polished": "smooth", "shiny": "smooth", "slick": "smooth",
     "sleek": "smooth", "silky": "smooth", "slippery": "smooth", "glazed": "smooth", "satin": "smooth",
-    "rough": "rough", "coarse": "rough", "porous": "rough", "fuzzy": "rough", "furry": "rough", "hairy": "rough",
+    "rough": "rough", "coarse": "rough", "porous": "rough", "prickly": "rough", "spiky": "rough",
+    "scaly": "rough", "thorny": "rough", "fuzzy": "rough", "furry": "rough", "hairy": "rough",
     "bumpy": "rough", "grainy": "rough", "gritty": "rough", "scratchy": "rough", "textured": "rough",
     "unfinished": "rough", "unpolished": "rough", "raw": "rough", "splintery": "rough", "felted": "rough",
     "grippy": "grippy", "rubbery": "grippy", "tacky": "grippy", "sticky": "grippy", "non-slip": "grippy",

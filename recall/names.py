@@ -51,12 +51,31 @@ MIN_SUFFIX = 4
 COLUMNWISE_FROM = 20_000
 
 
+def _unit_words() -> frozenset[str]:
+    """Unit words that end a store's name after its size ("skillet 26 cm", "bottle 750 ml", "tablet 10
+    inch"): the symbols and English words of the one unit table, less those that are household nouns too
+    ("measuring cup", "bigfoot")."""
+    from kb.measures.units import aliases_of
+
+    words = {w for kind in ("length", "mass", "volume") for w in aliases_of(kind, frozenset({"", "en"}))}
+    return frozenset(w for w in words if w.isalpha() and w not in {"cup", "cups", "foot", "feet"})
+
+
+_UNITS = _unit_words()
+
+
+def is_variant_label(word: str) -> bool:
+    """A trailing word of a name that labels a variant or states its size, not the noun: a number or a word
+    with digits ("2", "10x20", "7l"), one letter, "no"/"version", a unit ("cm" in "plate 27 cm")."""
+    return len(word) == 1 or word in _VARIANT_WORDS or any(ch.isdigit() for ch in word) or word in _UNITS
+
+
 def name_core(name: str) -> tuple[str, ...]:
     """The words of a catalog name without what tells variants apart: parentheses ("tennis ball (small)")
-    and trailing numbers or labels ("wood block 2", "cup no. 3", "box b"), so that its head noun is the
+    and trailing numbers, sizes or labels ("wood block 2", "cup no. 3", "box b", "plate 27 cm"), so that its head noun is the
     noun ("block", not "2") and the text "a wood block" names every numbered wood block."""
     words = words_of(re.sub(r"\([^)]*\)|\[[^\]]*\]", " ", name)) or words_of(name)
-    while len(words) > 1 and (words[-1].isdigit() or len(words[-1]) == 1 or words[-1] in _VARIANT_WORDS):
+    while len(words) > 1 and is_variant_label(words[-1]):
         words.pop()
     return tuple(words)
 
@@ -310,7 +329,7 @@ class _Vocabulary:
             values = [test(w) for w in words_only] + [number] * n_num
             return np.array(values or [number], dtype=dtype)
 
-        self.label = per_word(lambda w: len(w) == 1 or w in _VARIANT_WORDS or w.isdigit(), True, bool)
+        self.label = per_word(is_variant_label, True, bool)
         self.material_bit = per_word(lambda w: bit.get(w, 0), 0, np.int64)
         self.allowed = per_word(lambda w: w in GENERIC_NOUNS or w in MATERIAL_WORDS or w == "of", False, bool)
         self.of = per_word(lambda w: w == "of", False, bool)

@@ -19,13 +19,14 @@ from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_
 from recall.subject import feature_words, is_adjective, is_participle
 
 __all__ = [
+    "KIND_SCAN_LIMIT",
     "OPEN_SET_NAMED_THRESHOLD",
     "OPEN_SET_THRESHOLD",
     "OPEN_SET_UNKNOWN_NOUN_THRESHOLD",
     "DescribedNoun",
     "KindIndex",
-    "Verdict",
     "compound_head",
+    "describe",
     "foreign_head",
     "described_noun",
     "foreign_modifier",
@@ -34,7 +35,6 @@ __all__ = [
     "is_open_set",
     "synonym_rows",
     "unseen_noun",
-    "verdict",
 ]
 
 #: Open set: the best match's closeness (mean relative error over the stated features, see
@@ -45,6 +45,11 @@ OPEN_SET_NAMED_THRESHOLD = 0.45
 #: ... and above this when the subject of the description is a noun the catalog does not know ("an
 #: orange", "a watermelon"): an unknown noun alone is not enough (synonyms), with a loose match it is.
 OPEN_SET_UNKNOWN_NOUN_THRESHOLD = 0.15
+
+
+#: Catalogs larger than this are not scanned for their kinds just to tell a kind name's hypernym
+#: (:meth:`KindIndex.has_kind`).
+KIND_SCAN_LIMIT = 20_000
 
 
 @dataclass(frozen=True)
@@ -87,7 +92,11 @@ class KindIndex:
         return self._rows
 
     def has_kind(self, kind: str) -> bool:
-        """Whether some catalog object is of ``kind`` or of a kind below it."""
+        """Whether some catalog object is of ``kind`` or of a kind below it. On a catalog of more than
+        :data:`KIND_SCAN_LIMIT` objects, whose kinds are not yet worked out, assumed so (working out every
+        row's kind costs ~30 s at a million rows; a large catalog has most kinds)."""
+        if self._rows is None and len(self._names) > KIND_SCAN_LIMIT:
+            return True
         return bool(self._rows_by_kind().get(kind))
 
     def rows_of_kind(self, kind: str) -> tuple[str | None, list[int]]:
@@ -340,47 +349,34 @@ def material_agrees(subject: Sequence[str], material: str | None) -> bool:
     return material is None or not stated or material in stated
 
 
-# --------------------------------------------------------------------------------------------- verdict
-@dataclass(frozen=True)
-class Verdict:
-    """What a recall says about its first match, in one line, the same in the CLI, ``--json``, the HTTP
-    API and the web page: ``label`` is one of "not in the catalog", "not a close match", "a guess" and
-    "close match"; ``text`` the line, with the confidence to two decimals and why."""
+def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
+    """The noun a description names and whether the catalog has it (``names``: the catalog's
+    :class:`recall.name_index.NameIndex`): the lexicon noun of its subject phrase
+    (:func:`recall.subject.noun_phrase`, or the phrase after "of" when the subject is a measure of
+    something: "a bar of soap"; :func:`described_noun`), else an unseen noun (:func:`unseen_noun`: the
+    subject's unknown head, an unknown head after a catalog noun, or after "a pair of"), a word one typing
+    slip from a catalog or lexicon word read as that word (:mod:`recall.typos`)."""
+    import re
 
-    label: str
-    text: str
+    from recall.names import GENERIC_NOUNS
+    from recall.subject import noun_phrase, said_in_plural, subject_phrase
+    from recall.typos import corrected
 
-    def to_dict(self) -> dict[str, str]:
-        return {"label": self.label, "text": self.text}
-
-
-#: Competitors (the ranking's effective number of candidates) from which a result is "a guess".
-GUESS_COMPETITORS = 3.0
-
-
-def verdict(result) -> Verdict:
-    """The verdict of a :class:`recall.results.RecallResult` (see :class:`Verdict`)."""
-    if result.not_in_catalog and result.described is not None:
-        noun = result.described
-        near = ", ".join(m.name for m in result.matches[:3]) or "nothing (no feature stated)"
-        kind = ", ".join(m.name for m in result.same_kind) or "none"
-        return Verdict(
-            "not in the catalog",
-            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (kind: {noun.kind}) in the catalog; physically "
-            f"closest: {near}; closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}",
-        )
-    if result.open_set:
-        label, said = "not a close match", "NOT a close match (open set): nothing in the catalog is near"
-    elif result.competitors >= GUESS_COMPETITORS:
-        label, said = "a guess", "a guess: many objects fit the description equally"
-    else:
-        label, said = "close match", "close match"
-    why = []
-    if result.closeness is not None:
-        why.append(f"mean relative error of the best match {result.closeness:.2f}")
-    if result.unknown_noun:
-        why.append(f"'{result.unknown_noun}' is no catalog noun")
-    if result.competitors >= 1.5:
-        why.append(f"about {round(result.competitors)} candidates as good")  # a soft count
-    reasons = f" ({'; '.join(why)})" if why else ""
-    return Verdict(label, f"confidence {result.confidence:.2f}; {said}{reasons}")
+    subject = noun_phrase(text)
+    after_of: tuple[str, ...] = ()
+    if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
+        m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
+        after_of = subject_phrase(m.group(1)) if m else ()
+    args = (names.phrases, names.heads, names.vocabulary, GENERIC_NOUNS, after_of, kinds_of)
+    noun = described_noun(subject, *args)
+    if noun is not None or any(w in names.vocabulary for w in after_of):
+        return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
+    head = names.unknown_noun(text) or compound_head(subject, names.vocabulary)
+    if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
+        subject, head = after_of, foreign_head(after_of, names.vocabulary)
+    if head is not None and subject and subject[-1] == head:
+        fixed = corrected(head, names.heads)
+        noun = described_noun((*subject[:-1], fixed), *args) if fixed is not None else None
+        if noun is not None:  # "a screwdiver": the catalog's screwdriver, or a lexicon noun, misspelt
+            return noun
+    return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))

@@ -193,7 +193,7 @@ class QuantityReader:
         if len(quants) < 2:
             return
         weak = lx.WEAK_DIMENSION_WORDS | lx.UNIT_ONLY_DIMENSION_WORDS
-        if not is_list and len(quants) == 2 and set(roles) in ({"diameter", None}, {"radius", None}):
+        if not is_list and len(quants) == 2 and set(roles) in ({"diameter", None}, {"radius", None}, {"circumference", None}):
             roles = [r or "length" for r in roles]  # "7 cm dia x 12 cm": the other extent of a cylinder
         if not is_list and all(r is not None and r != "size" for r in roles):
             for q, role, (a, b) in zip(quants, roles, spans, strict=True):
@@ -334,7 +334,7 @@ def _inherit_units(quants: list[Quantity]) -> None:
             q.unit = after or before
 
 
-_NOUN_ROLES = frozenset({*lx.LINEAR_ROLES, "diameter", "radius"})
+_NOUN_ROLES = frozenset({*lx.LINEAR_ROLES, "diameter", "radius", "circumference"})
 
 
 def _noun_took_other_unit(node: Any) -> bool:

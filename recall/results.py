@@ -6,7 +6,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from recall.name_index import NameEvidence
-from recall.openset import DescribedNoun, verdict
+from recall.openset import DescribedNoun
+from recall.verdict import verdict
 
 __all__ = ["Match", "RecallResult"]
 

@@ -15,8 +15,10 @@ masks, with the same distances to 1e-6: the engine holds float32 values, SQL the
 * ``<metric>_distance(a_cm, b_cm, c_cm, mass_g, shape, texture, fragility, material, rigidity, qa :=
   ..., qb := ..., qc := ..., qmass := ..., qshape := ..., qtexture := ..., qfragility := ...,
   qmaterial := ..., qrigidity := ...)`` for ``jp``, ``jplog``, ``euclidean``, ``minkowski`` (p = 4)
-  and ``cosine``; query parameters default to NULL (not stated). (``kdtree`` is Euclidean through a
-  tree with median imputation: no macro.)
+  and ``cosine``; query parameters default to NULL (not stated). ``kdtree_distance``: the k-d tree's
+  distance, Euclidean with an unknown numeric value imputed as the median of the known values of its
+  column over the catalog (``kd_term(v, q, fill)``), categories one-hot as ``euclidean``; the tree only
+  finds the nearest rows faster, so the macro ranks alike (ties aside: the tree orders them its own way).
 * ``jp_rank(qa := ..., ...)`` and ``jplog_rank(...)``: table macros, every object with its distance,
   nearest first (ties by name, as the engine's row order is the catalog's name order).
 
@@ -115,6 +117,10 @@ CREATE OR REPLACE MACRO cos_dot_cat(v, q) AS
 CREATE OR REPLACE MACRO cos_known_cat(v, q) AS
     CASE WHEN q IS NULL OR v IS NULL THEN 0.0 ELSE 1.0 END;
 CREATE OR REPLACE MACRO cos_stated(q) AS CASE WHEN q IS NULL THEN 0.0 ELSE 1.0 END;
+
+-- the k-d tree's squared numeric difference: an unknown value imputed as its column's median (fill)
+CREATE OR REPLACE MACRO kd_term(v, q, fill) AS
+    CASE WHEN q IS NULL THEN 0.0 ELSE (coalesce(v, fill) - q) ** 2 END;
 """
     + _distance("jp", f"{_sum('jp_term({v}, {q})')} + {_cat_sum('jp_cat_term')}")
     + _distance("jplog", f"{_sum('jplog_term({v}, {q})')} + {_cat_sum('jp_cat_term')}")
@@ -133,14 +139,20 @@ CREATE OR REPLACE MACRO cos_stated(q) AS CASE WHEN q IS NULL THEN 0.0 ELSE 1.0 E
                  * sqrt({_sum('coalesce({q}, 0.0) ** 2')} + {' + '.join(f'cos_stated({q})' for _, q in _CATEGORICAL)}))
          END""",
     )
+    + _distance(
+        "kdtree",
+        "sqrt("
+        + " + ".join(f"kd_term({v}, {q}, (SELECT coalesce(median({v}), 0.0) FROM objects))" for v, q in _NUMERIC)
+        + f" + {_cat_sum('onehot_sq')})",
+    )
     + _rank("jp")
     + _rank("jplog")
 )
 
 MACRO_NAMES: tuple[str, ...] = (
     "jp_term", "jp_range_term", "jp_cat_term", "jplog_term", "jplog_range_term", "onehot_sq", "num_diff",
-    "cos_x", "cos_dot_cat", "cos_known_cat", "cos_stated", "jp_distance", "jplog_distance",
-    "euclidean_distance", "minkowski_distance", "cosine_distance", "jp_rank", "jplog_rank",
+    "cos_x", "cos_dot_cat", "cos_known_cat", "cos_stated", "kd_term", "jp_distance", "jplog_distance",
+    "euclidean_distance", "minkowski_distance", "cosine_distance", "kdtree_distance", "jp_rank", "jplog_rank",
 )  # fmt: skip
 
 

@@ -36,25 +36,31 @@ def key_hash(raw: bytes) -> int:
 
 
 def key_hashes(text: np.ndarray, starts: np.ndarray) -> np.ndarray:
-    """:func:`key_hash` of every key of ``text`` (uint8; key k is ``text[starts[k] : starts[k+1] - 1]``)."""
+    """:func:`key_hash` of every key of ``text`` (uint8; key k is ``text[starts[k] : starts[k+1] - 1]``).
+
+    P is odd, so invertible modulo 2^64: with S the running sum of (byte + 1) * P^-j over the bytes of a
+    chunk, a key's polynomial over [lo, hi) is (S[hi] - S[lo]) * P^(hi-1), three passes over the bytes."""
     n = len(starts) - 1
-    lengths = (np.diff(starts) - 1).astype(np.int64)
     out = np.zeros(n, dtype=np.uint64)
     if n == 0:
         return out
-    powers = np.array([pow(_P, k, 1 << 64) for k in range(int(lengths.max(initial=0)) + 1)], dtype=np.uint64)
+    lengths = (np.diff(starts) - 1).astype(np.int64)
     bounds = np.unique(np.searchsorted(starts[:-1], np.arange(0, int(starts[-1]) + _CHUNK, _CHUNK)))
     bounds = np.unique(np.concatenate((bounds[bounds < n], [n])))
+    span = int(np.max(starts[bounds[1:]] - starts[bounds[:-1]]))
     with np.errstate(over="ignore"):
+        powers = np.cumprod(np.full(span + 1, _P, dtype=np.uint64))
+        powers = np.concatenate(([np.uint64(1)], powers[:-1]))  # P^0 .. P^span, modulo 2^64
+        inverse = np.cumprod(np.full(span + 1, pow(_P, -1, 1 << 64), dtype=np.uint64))
+        inverse = np.concatenate(([np.uint64(1)], inverse[:-1]))
         for a, b in zip(bounds[:-1], bounds[1:], strict=True):
             first = int(starts[a])
             chunk = text[first : int(starts[b])].astype(np.uint64) + np.uint64(1)
-            local = (starts[a : b + 1] - first).astype(np.int64)
-            key = np.repeat(np.arange(b - a), np.diff(local))  # the key of every byte (its separator too)
-            exponent = lengths[a:b][key] - (np.arange(len(chunk)) - local[:-1][key]) - 1
-            weights = np.where(exponent >= 0, powers[np.maximum(exponent, 0)], np.uint64(0))
-            sums = np.concatenate(([np.uint64(0)], np.cumsum(chunk * weights, dtype=np.uint64)))
-            out[a:b] = sums[local[1:]] - sums[local[:-1]] + lengths[a:b].astype(np.uint64) * np.uint64(_LENGTH)
+            sums = np.concatenate(([np.uint64(0)], np.cumsum(chunk * inverse[: len(chunk)], dtype=np.uint64)))
+            lo = (starts[a:b] - first).astype(np.int64)
+            hi = lo + lengths[a:b]
+            out[a:b] = (sums[hi] - sums[lo]) * powers[np.maximum(hi - 1, 0)]
+            out[a:b] += lengths[a:b].astype(np.uint64) * np.uint64(_LENGTH)
     return out
 
 
@@ -129,6 +135,10 @@ class StringSet(Set):
 
     def __len__(self) -> int:
         return len(self.table)
+
+    @classmethod
+    def _from_iterable(cls, it) -> frozenset:
+        return frozenset(it)  # what set operations (|, &, -) give: a plain frozenset
 
     __hash__ = Set._hash
 
@@ -247,7 +257,9 @@ class GroupColumn(Sequence):
 
     def __eq__(self, other) -> bool:
         if isinstance(other, Sequence) and not isinstance(other, str):
-            return len(self) == len(other) and all(tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
+            return len(self) == len(other) and all(
+                tuple(a) == tuple(b) for a, b in zip(self, other, strict=True)
+            )
         return NotImplemented
 
     __hash__ = None  # like a list

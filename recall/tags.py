@@ -283,12 +283,20 @@ def _word_tag(
         and lx.DIMENSION_WORDS.get(tok.low) in lx.LINEAR_ROLES
     ):
         return "DIMN"  # "it is long about 32 cm", "thick maybe 1.5 cm": the word before its value
+    if tok.low == "around" and prev is not None and prev.tag == "ULEN" and not _value_follows(tokens, i):
+        return "DIM"  # "30 cm around": a circumference; "around 30 cm" stays a hedge
     if tag == "MH" and tok.low == "light" and nxt is not None and nxt.low in lx.COLOUR_WORDS:
         return "W"
     if tag == "FRC" and tok.low in lx.ORDINAL_FRACTIONS:
         if not (prev_num or (prev is not None and prev.tag in ("A", "AND"))):
             return "W"  # "the top quarter", "third" or "fifth" as an ordinal
     return tag
+
+
+def _value_follows(tokens: list[Token], i: int) -> bool:
+    """Whether a number (or "a", as in "a pound") follows token ``i``: then "around" hedges that value."""
+    nxt = tokens[i + 1] if i + 1 < len(tokens) else None
+    return nxt is not None and (nxt.tag in NUMBER_TAGS or nxt.tag == "A")
 
 
 _BY_WORDS = frozenset({"x", "×", "by", "*"})

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from kb.features import FEATURES, NUMERIC_FEATURES, ObjectRecord, sort_dims
-from recall.openset import verdict
+from recall.verdict import verdict
 
 __all__ = ["grasp_target"]
 

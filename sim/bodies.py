@@ -9,8 +9,8 @@ sim/world.py poses the body on the table. The mapping (sim/PHYSICS.md, "Object g
   press): an upright cylinder plus a loop handle (two struts and a grip bar, boxes) on one side; teapots
   and kettles also get a spout (a capsule) on the other. Open vessels (cups, jugs) show a dark opening on
   top (a visual disk without mass or contacts).
-* **Pans** (frying pan, skillet, saucepan, wok): a thin base disk, a wall ring of boxes and a long handle
-  along ``a`` at the rim's height.
+* **Pans** (frying pan, skillet, saucepan, wok) **and ladles** (a bowl on a long handle): a thin base disk,
+  a wall ring of boxes and a long handle along ``a`` at the rim's height.
 * **Round objects** (cans, bottles, jars, cups, glasses, plates, bowls, coins, rolls, candles, ...; and any
   prism or long object whose two smaller sides are within 20 %): a cylinder along the odd dimension
   (along ``a`` when ``b`` ~ ``c``: a bottle, a pen; along ``c`` when ``a`` ~ ``b`` and the shape is not
@@ -43,8 +43,11 @@ __all__ = [
 ]
 
 #: Part of the hand version stored with every trial (sim/hand.py): bump it when a body changes, so that
-#: stored validations are re-run. 2: composite bodies from the kind (1: one primitive from the shape).
-GEOMETRY_VERSION = "2"
+#: stored validations are re-run. 2: composite bodies from the kind (1: one primitive from the shape); 3: floppy
+#: flat objects drape as hinged strips (sim/sheet.py); 4: a flat object too narrow to overhang a table edge
+#: under the pads lies with its length across it (sim/grasps.py edge_depth_cm); 5: a ladle is a bowl on a long
+#: handle (HANDLE_NOUNS), not a uniform box.
+GEOMETRY_VERSION = "5"
 #: Sides within this ratio count as equal (a sphere, a disk, a round cross-section).
 ROUND_RATIO = 0.8
 #: Objects named with one of these words are round in cross-section when two of their sides are about
@@ -74,6 +77,7 @@ HANDLE_NOUNS: dict[str, str] = {
     "skillet": "long",
     "saucepan": "long",
     "wok": "long",
+    "ladle": "long",  # a bowl on a long handle: built as a small pan, its mass by volume at the bowl end
 }
 #: ``GraspPlan.params["hold"]`` for a grasp of the object's handle rather than its body (sim/world.py places
 #: the hand on it; the planner asks for it for a pan, sim/planner.py).

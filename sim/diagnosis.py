@@ -9,8 +9,13 @@ numbers (stored with every result: its ``params`` and grip force, sim/planner.py
 | ``aperture`` | the plan is infeasible (every side wider than the hand's span), its grasp needs a wider opening than the span (``fits_aperture`` false: width plus the planner's margin), or the hand, opened for this grasp, starts inside the object | the hand cannot open round it: a setup problem, counted apart from grasp failures in the report |
 | ``mass`` | the squeeze its weight needs (against friction, or against the moment of its weight at a table edge) is more than this grasp can give | too heavy for this grasp: a stronger grasp, or two hands |
 | ``size`` | the digits closed without touching it | too small or thin for the pads |
+| ``pressed`` | a pinch from above did not lift a rod lying on the table (``round_across_cm`` in the plan) thinner than twice the fingertip pad's radius (:data:`PAD_TIP_RADIUS_CM`) | the pads, stopped by the table, meet it above its centre line: each pad's push has a downward part that presses it into the table instead of squeezing it up |
 | ``friction`` | not lifted, or slipped past the limit, with a squeeze within the grasp's strength | squeeze times friction did not carry its weight and the push |
 | ``moment`` | turned past the limit with a squeeze within the grasp's strength | the weight's moment about the grip, or a push, turned it out of the pads |
+
+A draping sheet (the plan's ``sheet_held_cm``: floppy, flat at a table edge, sim/sheet.py) is no ``mass``
+cause for the rigid plate's edge moment the planner computes: only its friction bound can be; turned, it
+is a ``moment`` of the hanging part's weight at the held strip's inner edge, with those numbers.
 
 The checks run in that order: the first that applies is the cause. Report and ``grasp validate`` show it
 beside the trial's reason, never instead of it.
@@ -22,13 +27,23 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from sim.grasps import HAND_MAX_APERTURE_CM, side_force_capacity
+from sim.grasps import GRASP_TYPES, HAND_MAX_APERTURE_CM, side_force_capacity
 from sim.grip_force import GRAVITY
+from sim.hand_model import FINGER_BY_NAME, THUMB, TIP_TAPER
+from sim.programs import program_for
 from sim.task import row_details
 
-__all__ = ["CAUSES", "Cause", "diagnose", "failure_cause", "is_setup_failure"]
+__all__ = ["CAUSES", "PAD_TIP_RADIUS_CM", "Cause", "diagnose", "failure_cause", "is_setup_failure"]
 
-CAUSES = ("aperture", "mass", "size", "friction", "moment")
+CAUSES = ("aperture", "mass", "size", "pressed", "friction", "moment")
+#: A measured squeeze under this fraction of the planned one is named in a ``moment`` cause: the turn may
+#: be the hand's shortfall (a wide wrap's fingers press less than planned: the ladle's box 55 %, the
+#: baseball cap 74 %), not the plan's force.
+SHORT_SQUEEZE_FRACTION = 0.9
+#: The smallest fingertip pad radius (cm) of the digits every pinch uses (thumb and index: the distal
+#: capsule's radius, sim/hand_model.py). A pad resting on the table has its centre this high; a rod lying
+#: there whose radius is smaller is touched above its centre line.
+PAD_TIP_RADIUS_CM = round(min(THUMB.radius_cm, FINGER_BY_NAME["index"].radius_cm) * TIP_TAPER, 3)
 
 
 @dataclass(frozen=True)
@@ -80,7 +95,10 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
         )
     if "inside" in reason:
         return Cause("aperture", f"the hand, opened for a {grasp.replace('_', ' ')}, cannot get round it ({width:g} cm across)")
-    if params.get("force_within_capacity") is False:
+    sheet = _sheet(params, reason, mass, capacity, grasp)
+    if sheet is not None:
+        return sheet
+    if params.get("force_within_capacity") is False and "sheet_held_cm" not in params:
         needed = _num(params.get("needed_force_n"), _num(params.get("required_force_n")))
         return Cause(
             "mass",
@@ -89,18 +107,69 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
         )
     if "no contact" in reason:
         return Cause("size", f"the digits closed past it ({width:g} cm across): too small or thin for the pads")
+    pressed = _pressed(plan, params, reason)
+    if pressed is not None:
+        return pressed
     squeeze = _num(row.get("grip_force_n")) or _num(plan.get("grip_force_n"))
     weight = mass / 1000.0 * GRAVITY
     if reason.startswith("turned"):
+        planned = _num(plan.get("grip_force_n"))
+        short = (
+            f"; the hand gave {squeeze:.3g} N of the {planned:g} N planned"
+            if planned and _num(row.get("grip_force_n")) and squeeze < SHORT_SQUEEZE_FRACTION * planned
+            else ""
+        )
         return Cause(
             "moment",
             f"its weight's moment about the grip or a push turned it out of the pads (squeeze {squeeze:.3g} N, "
-            f"friction {mu:g}, within the grasp's {capacity:g} N)",
+            f"friction {mu:g}, within the grasp's {capacity:g} N{short})",
         )
     return Cause(
         "friction",
         f"a squeeze of {squeeze:.3g} N at friction {mu:g} carries about {2 * mu * squeeze:.3g} N; its weight is "
         f"{weight:.3g} N and the pushes add as much again",
+    )
+
+
+def _sheet(params: Mapping[str, Any], reason: str, mass: float, capacity: float, grasp: str) -> Cause | None:
+    """A draping sheet (the plan's ``sheet_held_cm``, sim/sheet.py): the planner's edge moment is a rigid
+    plate's, which the trial's sheet does not have, so it is no ``mass`` cause; the friction bound is.
+    A turn is the hanging part's pull at the held strip's inner edge, behind the pads."""
+    if "sheet_held_cm" not in params:
+        return None
+    bound = _num(params.get("required_force_n"))
+    if bound > capacity:
+        return Cause("mass", f"holding its {mass:.0f} g needs a squeeze of {bound:g} N against friction, more than the "
+                     f"{capacity:g} N a {grasp.replace('_', ' ')} gives")  # fmt: skip
+    if not reason.startswith("turned"):
+        return None
+    held, grip_in = _num(params.get("sheet_held_cm")), _num(params.get("sheet_grip_in_cm"))
+    hanging = _num(params.get("sheet_hanging_g"))
+    lever = held - grip_in
+    return Cause(
+        "moment",
+        f"a draping sheet: {hanging:.0f} g of it hang from the held strip's inner edge, {lever:.3g} cm behind the "
+        f"pads ({grip_in:.3g} cm in from its edge): {hanging / 1000 * GRAVITY * lever:.3g} N cm, that turned the "
+        f"strip in the pads (the "
+        f"planner's {_num(params.get('needed_force_n')):g} N is a rigid plate's edge moment, which a sheet does "
+        "not have); a person gathers it into the fist, which this fixed-wrist hand at the table edge does not do",
+    )
+
+
+def _pressed(plan: Mapping[str, Any], params: Mapping[str, Any], reason: str) -> Cause | None:
+    """A pinch from above that did not lift a rod lying on the table, thinner than two pad radii."""
+    diameter = _num(params.get("round_across_cm"))
+    grasp = str(plan.get("grasp_type") or "")
+    pinch = bool(grasp) and grasp in GRASP_TYPES and program_for(grasp).control != "wrap"
+    if not (reason.startswith("not lifted") and pinch and plan.get("approach") == "top" and diameter):
+        return None
+    if diameter / 2.0 >= PAD_TIP_RADIUS_CM:
+        return None
+    return Cause(
+        "pressed",
+        f"lying on the table, its {diameter:g} cm round side is thinner than two fingertip pads' radius "
+        f"({2 * PAD_TIP_RADIUS_CM:g} cm): the pads, stopped by the table, meet it above its centre line and "
+        "press it into the table instead of squeezing it up (a person rolls it or slides a nail under it)",
     )
 
 

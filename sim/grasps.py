@@ -11,6 +11,7 @@ from typing import Any, Literal
 
 __all__ = [
     "ACTIVE_FINGERS",
+    "sheet_held_cm",
     "FAMILIES",
     "FINGER_MAX_FORCE_N",
     "GRASP_TYPES",
@@ -21,6 +22,7 @@ __all__ = [
     "side_force_capacity",
     "EDGE_MAX_GRIP_IN_CM",
     "FLAT_RATIO",
+    "edge_depth_cm",
     "edge_grip_in_cm",
     "edge_overhang_cm",
     "is_flat_grasp",
@@ -111,6 +113,8 @@ EDGE_OVERHANG_FRACTION = 0.45
 EDGE_MAX_GRIP_IN_CM = 6.0
 #: The finger pads stay this far short of the table edge under the overhang (a pad radius plus a gap).
 EDGE_PAD_CLEAR_CM = 0.9
+#: The pads press at least this far in from the edge (a pad's contact patch is about 5 mm across).
+EDGE_MIN_GRIP_IN_CM = 0.3
 
 
 def is_flat_grasp(grasped_cm: float, next_larger_cm: float) -> bool:
@@ -127,7 +131,24 @@ def edge_grip_in_cm(depth_cm: float) -> float:
     """How far in from a flat object's edge the pads press: as near its centre of mass as the overhang
     and the pinch's reach allow (the nearer, the smaller the moment of its weight about the grip)."""
     overhang = edge_overhang_cm(depth_cm)
-    return max(0.3, min(depth_cm / 2.0, EDGE_MAX_GRIP_IN_CM, overhang - EDGE_PAD_CLEAR_CM))
+    return max(EDGE_MIN_GRIP_IN_CM, min(depth_cm / 2.0, EDGE_MAX_GRIP_IN_CM, overhang - EDGE_PAD_CLEAR_CM))
+
+
+def sheet_held_cm(depth_cm: float, overhang_cm: float) -> float:
+    """How deep (cm, from its overhanging edge in) the strip of a draping sheet is that the hand holds: to
+    twice the overhang, so its own centre of mass sits over the table edge, or the whole sheet when that is
+    shallower (sim/sheet.py builds it so; sim/diagnosis.py reads it from the plan)."""
+    return min(depth_cm, 2.0 * overhang_cm)
+
+
+def edge_depth_cm(long_cm: float, middle_cm: float) -> float:
+    """The side of a flat object that lies across the table edge (the rest along it): its middle side, so
+    that the fingers spread along its length, unless laid so it would overhang too little for the pads to
+    reach in under it (the overhang short of the pads' clearance plus :data:`EDGE_MIN_GRIP_IN_CM`); then its
+    length, as a person slides a key or a ruler out over the edge by its length and pinches the end."""
+    if edge_overhang_cm(middle_cm) - EDGE_PAD_CLEAR_CM < EDGE_MIN_GRIP_IN_CM:
+        return long_cm
+    return middle_cm
 
 
 @dataclass(frozen=True)

@@ -33,8 +33,11 @@ from sim.grasps import (
     GRASP_TYPES,
     HAND_MAX_APERTURE_CM,
     GraspPlan,
+    edge_depth_cm,
     edge_grip_in_cm,
+    edge_overhang_cm,
     is_flat_grasp,
+    sheet_held_cm,
     side_force_capacity,
 )
 from sim.grip_force import (
@@ -134,7 +137,8 @@ def _context(o: PlannedObject) -> _Context:
             f"grasped width {width:g} cm is over 7 cm, wider than 96 % of human grasp locations (Feix 2014)"
         )
     base_force = required_grip_force(o.mass_g, o.friction, o.fragility)
-    edge_force = edge_grip_force(o.mass_g, o.b_cm, o.fragility) if is_flat_grasp(o.c_cm, o.b_cm) else 0.0
+    flat = is_flat_grasp(o.c_cm, o.b_cm)  # across the table edge: its middle side, or its length (a key)
+    edge_force = edge_grip_force(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), o.fragility) if flat else 0.0
     # A side wrap of a deep object (not a flat one: that is taken at a table edge) holds the weight's moment.
     wrap_force = 0.0 if edge_force else wrap_moment_force(o.mass_g, o.b_cm, o.friction, o.fragility)
     return _Context(o, feasible, tuple(notes), base_force, edge_force, wrap_force)
@@ -152,9 +156,10 @@ def _planned_force(ctx: _Context, program: HandProgram, rationale: list[str]) ->
         rationale.append("squeezable: a softer grip (it deforms to the fingers, more contact area)")
     if ctx.edge_force > force:
         force = ctx.edge_force
+        depth = edge_depth_cm(o.a_cm, o.b_cm)
         rationale.append(
-            f"flat: picked up at its edge, the pads {edge_grip_in_cm(o.b_cm):.3g} cm in and its centre of mass "
-            f"{o.b_cm / 2:.3g} cm in; the squeeze must hold the moment of its weight: {ctx.edge_force:g} N"
+            f"flat: picked up at its edge, the pads {edge_grip_in_cm(depth):.3g} cm in and its centre of mass "
+            f"{depth / 2:.3g} cm in; the squeeze must hold the moment of its weight: {ctx.edge_force:g} N"
         )
     ranked = force
     if program.control == "wrap" and program.approach == "side" and ctx.wrap_force > force:
@@ -228,9 +233,42 @@ def _plan(
             "assumed_mass_g": round(o.mass_g, 1),
             "planner_version": PLANNER_VERSION,
             "program": program.name,
+            **_round_across(o, hold),
+            **_sheet(ctx, hold),
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
+
+
+def _round_across(o: PlannedObject, hold: dict[str, Any] | None) -> dict[str, float]:
+    """``{"round_across_cm": diameter}`` when the grasped side is round (a cylinder lying on its side,
+    grasped across its diameter: a battery, a marker), else {}; sim/diagnosis.py reads it to tell a rod
+    pressed into the table from a slip (grasp-small)."""
+    if hold:
+        return {}
+    body = o.body()
+    if body.form != "cylinder" or "c" not in body.round_dims:
+        return {}
+    return {"round_across_cm": round(o.c_cm, 3)}
+
+
+def _sheet(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
+    """For a floppy sheet the trial drapes (sim/sheet.py ``is_sheet``: floppy, flat at a table edge, a plain
+    box body): the held strip's depth behind the edge, where the pads press, and the grams that hang from
+    it; sim/diagnosis.py reads them instead of the rigid plate's edge moment (grasp-small)."""
+    o = ctx.o
+    if hold or not ctx.edge_force or o.rigidity != "floppy":
+        return {}
+    body = o.body()
+    if not (len(body.parts) == 1 and body.parts[0].geom == "box"):
+        return {}
+    depth = edge_depth_cm(o.a_cm, o.b_cm)
+    held = sheet_held_cm(depth, edge_overhang_cm(depth))
+    return {
+        "sheet_held_cm": round(held, 3),
+        "sheet_grip_in_cm": round(edge_grip_in_cm(depth), 3),
+        "sheet_hanging_g": round(o.mass_g * (depth - held) / depth, 1),
+    }
 
 
 def _handle_hold(ctx: _Context) -> dict[str, Any] | None:
@@ -255,14 +293,23 @@ def _handle_hold(ctx: _Context) -> dict[str, Any] | None:
     }
 
 
+def _handle_noun(o: PlannedObject) -> str:
+    """The kind noun that gave the object its long handle (sim/bodies.py HANDLE_NOUNS: a frying pan, a ladle)."""
+    from sim.bodies import handle_style
+
+    style = handle_style(o.name, o.aliases)
+    return style[1] if style else "long-handled object"
+
+
 def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
     """The handle hold as a plan: the friction bound on the handle, not the body's edge or wrap moment
     (the pan hangs under the wrap; the trial's pushes test the moment)."""
     hctx = _Context(ctx.o, True, ctx.notes, ctx.base_force, 0.0, 0.0)
-    where = "at its middle, nearer the pan (it is heavy)" if hold["handle_grip"] == "middle" else "near its end"
+    where = "at its middle, nearer its heavy end (it is heavy)" if hold["handle_grip"] == "middle" else "near its end"
     reason = (
-        f"a pan: held by its handle ({hold['width_cm']:g} cm wide) {where}, in a small-diameter wrap from above, "
-        "as people pick up a frying pan (Feix 2016 type 2; the body is wider than the hand)"
+        f"a {_handle_noun(ctx.o)}: held by its handle ({hold['width_cm']:g} cm wide) {where}, in a small-diameter "
+        "wrap from above, as people pick up a frying pan or a ladle (Feix 2016 type 2; its heavy end, the pan or "
+        "the bowl, hangs beyond the grip)"
     )
     plan = _plan(hctx, 0, HANDLE_GRASP, reason, program_for(HANDLE_GRASP), hold)
     capacity = side_force_capacity(HANDLE_GRASP)
@@ -272,7 +319,7 @@ def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
     # bound does not count, are held by squeezing the handle as hard as the wrap can (measured: a 1.2 kg pan
     # held at its friction bound, 47.8 N, turned 17 deg in the sideways push; at the wrap's 60 N it holds).
     line = (
-        f"handle: the pan's weight acts beyond the grip, so the handle is squeezed at the wrap's full "
+        f"handle: its heavy end's weight acts beyond the grip, so the handle is squeezed at the wrap's full "
         f"{capacity:g} N (its friction bound: {plan.grip_force_n:g} N)"
     )
     return dataclasses.replace(plan, grip_force_n=capacity, rationale=(*plan.rationale, line))

@@ -17,9 +17,10 @@ from kb.errors import SimulationError
 from kb.features import ObjectRecord
 from sim import hand as H
 from sim.bodies import HOLD_HANDLE as _HOLD_HANDLE
-from sim.grasps import GRASP_TYPES, GraspPlan, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
+from sim.grasps import GRASP_TYPES, GraspPlan, edge_depth_cm, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
 from sim.objects import ObjectModel, add_object, add_table, free_dim, object_model, pose_rotation
 from sim.programs import program_for
+from sim.sheet import add_sheet, is_sheet
 
 __all__ = ["APPROACH_M", "PENETRATION_TOL_M", "TrialWorld", "build_world"]
 
@@ -153,8 +154,12 @@ def _is_flat(obj: ObjectModel, plan: GraspPlan) -> bool:
 
 def _edge_placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:
     """Flat on the table (grasped thickness up), its longest side along the table edge (world y, where the
-    fingers spread) and the other across it (world x, overhanging)."""
+    fingers spread) and the other across it (world x, overhanging); the other way round when that side is
+    too short to overhang under the pads (sim/grasps.py ``edge_depth_cm``: a key, a ruler)."""
     rest = sorted((d for d in "abc" if d != plan.grasped_dim), key=obj.extent_cm, reverse=True)
+    long_cm, middle_cm = obj.extent_cm(rest[0]), obj.extent_cm(rest[1])
+    if edge_depth_cm(long_cm, middle_cm) == long_cm and long_cm != middle_cm:
+        return {plan.grasped_dim: 2, rest[0]: 0, rest[1]: 1}
     return {plan.grasped_dim: 2, rest[0]: 1, rest[1]: 0}
 
 
@@ -269,7 +274,10 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     H.configure_options(spec)
     _add_scenery(spec)
     add_table(spec, (grip_centre[0] + depth / 2.0 - overhang) * H.CM if flat else None)
-    add_object(spec, model_obj, axes, obj_pos, signs)
+    if is_sheet(model_obj, flat):  # floppy: a chain of strips that droops behind the held one (sim/sheet.py)
+        add_sheet(spec, model_obj, ext, obj_pos, overhang)
+    else:
+        add_object(spec, model_obj, axes, obj_pos, signs)
     H.add_hand(spec, approach=approach, mount_m=palm_pos, torque_limits=targets.closing_limits)
     try:
         model = spec.compile()
@@ -297,6 +305,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
 def _trial_world(model, obj: ObjectModel, plan: GraspPlan, targets, approach: str, approach_dir) -> TrialWorld:
     """The compiled model with fresh data and the indices a trial reads."""
     object_body = model.body("object").id
+    scenery = np.zeros(model.nbody, dtype=bool)  # the world (the table) and a sheet's draping strips
+    scenery[0] = True
+    scenery[[b for b in range(model.nbody) if model.body(b).name.startswith("sheet_")]] = True
     return TrialWorld(
         model=model,
         data=mujoco.MjData(model),
@@ -306,8 +317,8 @@ def _trial_world(model, obj: ObjectModel, plan: GraspPlan, targets, approach: st
         approach_dir=approach_dir,
         object_body=object_body,
         palm_body=model.body("palm").id,
-        # Hand geoms: every geom on a body other than the world (the table) and the object.
-        is_hand=(model.geom_bodyid != 0) & (model.geom_bodyid != object_body),
+        # Hand geoms: every geom on a body other than the world (the table), the object and a sheet's strips.
+        is_hand=~scenery[model.geom_bodyid] & (model.geom_bodyid != object_body),
         object_geom=model.geom("object_geom").id,
         is_object=model.geom_bodyid == object_body,
         wrist_act=np.array([model.actuator(n).id for n in H.WRIST_ACTUATOR_NAMES]),

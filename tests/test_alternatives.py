@@ -123,8 +123,9 @@ def test_wire_and_foil_are_metal():
     assert parse("a foil tray").values()["material"] == "metal"
 
 
-def test_porous_is_rough():
-    assert parse("soft and porous, 4 by 3 by 1.5 inches").values()["texture"] == "rough"
+@pytest.mark.parametrize("word", ["porous", "prickly", "spiky", "scaly", "thorny"])
+def test_surface_words_that_are_rough(word):
+    assert parse(f"soft and {word}, 4 by 3 by 1.5 inches").values()["texture"] == "rough"
 
 
 # ------------------------------------------------------------------ light words, relative to the size
@@ -209,3 +210,8 @@ def test_alternatives_search_the_union_of_the_variants_and_equal_a_full_scan(tex
     assert {m.name for m in res.matches} <= {
         r.snapshot.names[i] for i in np.flatnonzero(score <= score[best[-1]])
     }
+
+
+def test_curved_is_a_vague_long_shape_that_a_geometric_word_beats():
+    assert parse("curved and soft, about 7.5 inches long").values()["shape"] == "long"
+    assert parse("a curved cylindrical thing").values()["shape"] == "prism"  # priority 3 wins

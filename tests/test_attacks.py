@@ -21,6 +21,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from kb import sandbox
 from kb.catalog import KnowledgeBase
 from kb.errors import QueryFailed, QueryRefused, QueryTimeout
 from kb.features import ObjectRecord
@@ -83,6 +84,13 @@ HOSTILE_SQL = [
     "select current_setting('temp_directory')",
     "select * from duckdb_extensions()",
     "select * from duckdb_secrets()",
+    # settings through the pg_catalog view, and SQL built at run time that no text check can see into
+    "select * from pg_catalog.pg_settings",
+    "select * from pg_settings where setting like '%/%'",
+    "select * from query('select * from duckdb_' || 'databases()')",
+    'select * from "query" (\'select 1\')',
+    "select * from QUERY_TABLE('objects')",
+    "select json_execute_serialized_sql(json_serialize_sql('select 1'))",
 ]
 
 #: The resource bombs of the review: each grew a process past 4 GB or ran past its timeout.
@@ -141,6 +149,30 @@ def test_server_paths_do_not_come_back_from_metadata(seeded_db):
     assert str(seeded_db.parent) not in repr(names)
     with pytest.raises(QueryRefused, match="duckdb_databases"):
         kb.sql("SELECT path FROM duckdb_databases()")
+
+
+def test_no_metadata_view_answers_with_a_server_path(seeded_db):
+    """Every view and table function the sandbox lets through, asked for all its rows: none of them holds
+    the catalog's folder (the pg_settings view did, through temp_directory and allowed paths)."""
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    views = kb.sql(
+        "SELECT schema_name || '.' || view_name FROM duckdb_views() WHERE database_name = 'system'", max_rows=10_000
+    ).rows
+    leaked = []
+    for (view,) in views:
+        try:
+            rows = kb.sql(f"SELECT * FROM {view}", timeout_s=5, max_rows=10_000).rows
+        except QueryRefused:
+            continue
+        if str(seeded_db.parent) in repr(rows):
+            leaked.append(view)
+    assert leaked == []
+
+
+def test_words_that_name_dynamic_sql_are_fine_as_column_names(seeded_db):
+    kb = KnowledgeBase.open(seeded_db, read_only=True)
+    answer = kb.sql("SELECT name AS query, 1 AS query_table FROM objects ORDER BY name LIMIT 1")
+    assert answer.columns == ["query", "query_table"] and len(answer.rows) == 1
 
 
 _BOMB_RUNNER = textwrap.dedent(
@@ -213,9 +245,11 @@ def test_a_timed_out_query_leaves_no_worker_running(seeded_db):
 
 def test_sql_limits_are_checked_before_running(seeded_db):
     kb = KnowledgeBase.open(seeded_db, read_only=True)
-    for bad in ({"timeout_s": 0}, {"timeout_s": -1}, {"max_rows": 0}):
-        with pytest.raises(QueryFailed):
+    for bad in ({"timeout_s": 0}, {"timeout_s": -1}, {"max_rows": 0}, {"timeout_s": float("nan")},
+                {"timeout_s": sandbox.MAX_TIMEOUT_S * 1.001}, {"timeout_s": 1e308}, {"timeout_s": float("inf")}):
+        with pytest.raises(QueryFailed, match="timeout_s must be"):
             kb.sql("SELECT 1", **bad)
+    assert kb.sql("SELECT 1", timeout_s=sandbox.MAX_TIMEOUT_S).rows == [(1,)]  # the limit itself is allowed
 
 
 # ---------------------------------------------------------------------------------------------- malformed CSVs
@@ -230,6 +264,7 @@ MALFORMED_CSV = [
     (_HEADER + "bowl," + "1" * 131_073 + ",8,8,300,prism,smooth,fragile,glass,rigid\n", 2, "-", "over 131,072"),
     (_HEADER + _GOOD + "bowl,nan,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
     (_HEADER + _GOOD + "bowl,NaN,8,8,300,prism,smooth,fragile,glass,rigid\n", 3, "a_cm", "not a number"),
+    (_HEADER + _GOOD + "bowl,10,8,8,1_000,prism,smooth,fragile,glass,rigid\n", 3, "mass_g", "not a number"),
     (_HEADER + "bowl,10,8,8,inf,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
     (_HEADER + "bowl,10,8,8,-Infinity,prism,smooth,fragile,glass,rigid\n", 2, "mass_g", "finite"),
     (_HEADER.strip() + ",mass_g\n" + _GOOD.strip() + ",5\n", 1, "mass_g", "more than once"),

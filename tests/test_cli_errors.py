@@ -103,3 +103,19 @@ def test_refused_sql_is_one_line_exit_1(seeded_db):
         result = runner.invoke(app, ["sql", query, "--db", str(seeded_db)])
         _assert_one_line_error(result, query)
         assert "refused" in result.stderr or "one statement" in result.stderr
+
+
+def test_a_folder_as_the_catalog_is_one_line_for_every_command(tmp_path, monkeypatch):
+    """``--db .``, ``--db ""`` (the current folder) or a folder in $OBJRECALL_DB: one line naming the folder,
+    for commands that read the catalog through different paths (the recall index beside it raised a
+    ValueError for ``.`` and ``/``)."""
+    monkeypatch.chdir(tmp_path)
+    for db in (".", "", str(tmp_path)):
+        for args in (["recall", "a red mug"], ["sql", "select 1"], ["catalog", "list"], ["grasp", "plan", "a mug"]):
+            result = runner.invoke(app, [*args, "--db", db])
+            _assert_one_line_error(result, [*args, db])
+            assert "is a folder, not a catalog file" in result.stderr, (args, db, result.stderr)
+    monkeypatch.setenv("OBJRECALL_DB", str(tmp_path))
+    result = runner.invoke(app, ["catalog", "list"])
+    _assert_one_line_error(result, "env")
+    assert "is a folder" in result.stderr

@@ -83,7 +83,7 @@ def test_held_and_errored_rows():
     assert failure_cause(_row(plan, "held: moved 0.1 cm", outcome="success")) == "held: moved 0.1 cm"
     err = diagnose(_row(plan, "simulation diverged: non-finite qacc", outcome="error"))
     assert err.kind == "error" and "diverged" in err.text
-    assert set(CAUSES) == {"aperture", "mass", "size", "friction", "moment"}
+    assert set(CAUSES) == {"aperture", "mass", "size", "pressed", "friction", "moment"}
 
 
 def test_a_row_without_its_plan_still_gets_a_cause():
@@ -142,3 +142,52 @@ def test_a_plan_the_hand_cannot_open_round_is_a_setup_failure_whatever_the_trial
     fits = best_grasp(REMOTE)
     assert fits.params["fits_aperture"]
     assert not is_setup_failure(_row(fits, SLIPPED)) and is_setup_failure(_row(fits, INSIDE))
+
+
+def _rod(diameter: float) -> dict:
+    return dict(a_cm=5.05, b_cm=diameter, c_cm=diameter, mass_g=23, shape="long", material="metal")
+
+
+def test_a_thin_rod_not_lifted_by_a_pinch_from_above_was_pressed_into_the_table_at_its_boundary():
+    from sim.diagnosis import PAD_TIP_RADIUS_CM
+
+    assert PAD_TIP_RADIUS_CM == 0.765  # the index's distal pad (0.85 cm x 0.9 taper), thinner than the thumb's
+    below, at = 2 * PAD_TIP_RADIUS_CM - 0.01, 2 * PAD_TIP_RADIUS_CM
+    plan = best_grasp(_rod(below))
+    assert plan.approach == "top" and program_for(plan.grasp_type).control != "wrap"
+    assert plan.params["round_across_cm"] == below
+    cause = diagnose(_row(plan, NOT_LIFTED))
+    assert cause.kind == "pressed" and "above its centre line" in cause.text
+    assert diagnose(_row(best_grasp(_rod(at)), NOT_LIFTED)).kind == "friction"  # the pads reach its centre line
+    assert diagnose(_row(plan, SLIPPED)).kind == "friction"  # lifted, then slipped: not pressed down
+    wrap = next(p for p in plan_grasps(_rod(below)) if program_for(p.grasp_type).control == "wrap")
+    assert diagnose(_row(wrap, NOT_LIFTED)).kind != "pressed"
+    flat = best_grasp(dict(a_cm=5.05, b_cm=2.0, c_cm=1.0, mass_g=23, shape="long", material="metal"))
+    assert "round_across_cm" not in flat.params and diagnose(_row(flat, NOT_LIFTED)).kind == "friction"
+
+
+TOWEL = dict(a_cm=75, b_cm=40, c_cm=0.5, mass_g=200, shape="thin", material="fabric", rigidity="floppy")
+
+
+def test_a_draping_sheet_is_no_mass_failure_for_a_rigid_plates_edge_moment():
+    plan = best_grasp(TOWEL)
+    p = plan.params
+    assert p["force_within_capacity"] is False and p["needed_force_n"] > 60  # the rigid plate's edge moment
+    assert (p["sheet_held_cm"], p["sheet_grip_in_cm"], p["sheet_hanging_g"]) == (14.0, 6.0, 130.0)  # 40 cm deep
+    cause = diagnose(_row(plan, TURNED))
+    assert cause.kind == "moment" and "130 g" in cause.text and "8 cm behind the pads" in cause.text
+    assert "10.2 N cm" in cause.text  # 0.13 kg x 9.81 m/s^2 x 8 cm
+    assert diagnose(_row(plan, SLIPPED)).kind == "friction"  # the friction bound, 3.7 N, is within 60 N
+    rigid = best_grasp({**TOWEL, "rigidity": "rigid"})  # the same plate, rigid: no sheet, the edge moment is real
+    assert "sheet_held_cm" not in rigid.params and diagnose(_row(rigid, TURNED)).kind == "mass"
+    heavy = best_grasp({**TOWEL, "mass_g": 20000})  # its friction bound beyond the grasp: mass, as for a plate
+    assert "sheet_held_cm" in heavy.params and diagnose(_row(heavy, TURNED)).kind == "mass"
+
+
+def test_a_turn_names_a_measured_squeeze_short_of_the_plan_at_its_boundary():
+    plan = best_grasp(REMOTE)
+    planned = plan.grip_force_n
+    short = diagnose(_row(plan, TURNED, grip=round(0.89 * planned, 3))).text
+    assert f"of the {planned:g} N planned" in short
+    assert "planned" not in diagnose(_row(plan, TURNED, grip=0.9 * planned)).text
+    assert "planned" not in diagnose(_row(plan, TURNED)).text  # no measurement: nothing to compare

@@ -51,7 +51,8 @@ WORDS = st.sampled_from(
     ["ball", "balls", "tennis", "cup", "cups", "of", "water", "bottle", "wood", "wooden", "piece", "block",
      "2", "10", "b", "no", "v", "glass", "knives", "dice", "teaspoon", "spoon", "steel", "(small)", "[xl]",
      "box", "boxes", "it's", "rubik\u2019s", "caf\u00e9", "\u00c9cole", "x-ray", "ring", "  ", "", "thing",
-     "ies", "berries", "glasses", "bus", "a", "metal", "plastic", "of of"]
+     "ies", "berries", "glasses", "bus", "a", "metal", "plastic", "of of", "cm", "26", "750ml", "1,7", "l",
+     "inch", "measuring"]
 )  # fmt: skip
 PHRASES = st.lists(WORDS, min_size=0, max_size=5).map(" ".join)
 
@@ -68,3 +69,22 @@ def test_random_names_give_the_same_tables(rows):
     names = [f"{name} #{i}" if i % 3 else name for i, (name, _, _) in enumerate(rows)]
     assert_same(names, [tuple(a) for _, a, _ in rows], [m for _, _, m in rows])
 
+
+
+def test_a_size_at_the_end_of_a_store_name_is_no_head_noun():
+    """Store names end in their size ("skillet 26 cm", "bottle 750 ml", "kettle 1.7l"): the unit is no noun
+    (a blind test's "cm" recalled three such objects by name), and "measuring cup" keeps its noun."""
+    from recall.names import name_core
+
+    assert name_core("cast iron skillet 26 cm") == ("cast", "iron", "skillet")
+    assert name_core("water bottle 750 ml") == ("water", "bottle")
+    assert name_core("kettle 1.7l") == ("kettle",)
+    assert name_core("tablet 10 inch") == ("tablet",)
+    assert name_core("measuring cup") == ("measuring", "cup") and name_core("9v battery") == ("9v", "battery")
+    names = ["cast iron skillet 26 cm", "porcelain dinner plate 27 cm", "water bottle 750 ml", "measuring cup"]
+    index = NameIndex(names, [()] * 4, [None] * 4)
+    for text in ("cm", "something in cm", "ml", "26 cm"):
+        found = index.find(text)
+        assert not found.exact and not found.head, (text, found)
+    assert set(index.find("a skillet").head) == {0} and set(index.find("a bottle").head) == {2}
+    assert set(index.find("a cup").head) == {3}

@@ -81,6 +81,16 @@ def test_kind_index_has_kind_counts_kinds_below():
     assert not kinds.has_kind("jar") and not kinds.has_kind("bottle")
 
 
+def test_a_large_catalog_is_not_scanned_for_its_kinds_to_tell_a_hypernym():
+    from recall.openset import KIND_SCAN_LIMIT
+
+    names = ["apple"] * (KIND_SCAN_LIMIT + 1)
+    kinds = KindIndex(names, [()] * len(names))
+    assert kinds.has_kind("jar") and kinds._rows is None  # assumed, nothing worked out
+    small = KindIndex(names[:KIND_SCAN_LIMIT], [()] * KIND_SCAN_LIMIT)
+    assert not small.has_kind("jar") and small._rows is not None
+
+
 # ------------------------------------------------------------------------------------------ compounds
 def test_a_listed_compound_is_another_object_even_with_catalog_words_in_it():
     for subject in (("egg", "cup"), ("toilet", "brush"), ("watering", "can"), ("garlic", "bulb")):
@@ -96,11 +106,17 @@ def test_a_listed_compound_is_another_object_even_with_catalog_words_in_it():
 
 def test_a_catalog_name_inside_the_described_compound_does_not_name_it():
     res = seed().recall_text("A ceramic egg cup, 5 cm tall.")
-    assert res.not_in_catalog and res.described.noun == "egg cup" and res.confidence <= NOT_IN_CATALOG_CONFIDENCE
+    assert (
+        res.not_in_catalog and res.described.noun == "egg cup" and res.confidence <= NOT_IN_CATALOG_CONFIDENCE
+    )
     res = seed().recall_text("a lemon squeezer, glass, 14 cm across, 300 g")
     assert res.not_in_catalog
     noun = seed().described("an egg cup, 5 cm")
-    assert names_inside(noun, ("egg",)) and not names_inside(noun, ("egg", "plate")) and not names_inside(noun, ())
+    assert (
+        names_inside(noun, ("egg",))
+        and not names_inside(noun, ("egg", "plate"))
+        and not names_inside(noun, ())
+    )
     assert not names_inside(None, ("egg",))
 
 
@@ -165,9 +181,13 @@ def test_the_lexicon_is_a_broad_household_vocabulary_and_synonyms_name_catalog_o
 # --------------------------------------------------------------------------------------- confidence
 def test_an_unknown_named_noun_lowers_confidence():
     for margin, closeness in ((10.0, 0.1), (10.0, 0.0), (6.0, 0.05)):
-        assert confidence_of(margin, closeness, True, "jplog") < confidence_of(margin, closeness, False, "jplog")
+        assert confidence_of(margin, closeness, True, "jplog") < confidence_of(
+            margin, closeness, False, "jplog"
+        )
     for margin, closeness in ((2.0, 0.05), (0.5, 0.2)):  # never higher, also where the margin caps both
-        assert confidence_of(margin, closeness, True, "jplog") <= confidence_of(margin, closeness, False, "jplog")
+        assert confidence_of(margin, closeness, True, "jplog") <= confidence_of(
+            margin, closeness, False, "jplog"
+        )
     known = seed().recall_text("A hammer, steel, 33 cm long, 600 g.")
     unseen = seed().recall_text("A flyswatter, steel, 33 cm long, 600 g.")
     assert unseen.not_in_catalog and unseen.confidence <= NOT_IN_CATALOG_CONFIDENCE < known.confidence
@@ -189,7 +209,7 @@ def test_a_y_after_a_vowel_is_no_adjective_ending():
 
 # ------------------------------------------------------------------------------------------ verdict
 def test_one_verdict_line_for_every_face():
-    from recall.openset import verdict
+    from recall.verdict import verdict
 
     cases = {
         "An orange of 7 cm diameter.": "not in the catalog",
@@ -230,7 +250,10 @@ def test_a_noun_after_a_subject_of_feature_words_is_the_described_noun():
 
 
 def test_a_collective_or_kind_word_names_no_missing_object():
-    for text in ("A piece of clothing, cotton, 70 by 50 cm, 150 g.", "Some cutlery, steel, 20 cm long, 50 g."):
+    for text in (
+        "A piece of clothing, cotton, 70 by 50 cm, 150 g.",
+        "Some cutlery, steel, 20 cm long, 50 g.",
+    ):
         res = seed().recall_text(text)
         assert not res.not_in_catalog and not res.open_set, text
 
@@ -241,3 +264,21 @@ def test_made_of_a_material_is_no_subject_and_a_colon_ends_a_chunk():
     assert noun_phrase("Made of glass, 8 cm tall: a salt shaker.") == ("salt", "shaker")
     assert subject_phrase("Teapot: ceramic, 900 g") == ("teapot",)
     assert subject_phrase("A bowl made of glass, 12 cm") == ("bowl",)
+
+
+# ------------------------------------------------------------------------------------------- typos
+def test_a_typing_slip_in_a_catalog_or_lexicon_noun_is_read_as_that_noun():
+    from recall.typos import MIN_LENGTH, corrected, edits
+
+    heads = seed().names.heads
+    assert "screwdriver" in edits("screwdiver") and "screwdiver" not in edits("screwdiver")
+    assert corrected("screwdiver", heads) == "screwdriver" and corrected("stappler", heads) == "stapler"
+    assert corrected("nutcraker", heads) == "nutcracker"  # a lexicon noun
+    assert corrected("flyswatter", heads) is None  # nothing one edit away
+    assert corrected("jugg", heads) is None and MIN_LENGTH == 6  # too short to correct
+    res = seed().recall_text("A screwdiver, 20 cm long, 80 g.")
+    assert not res.not_in_catalog and res.described.noun == "screwdriver"
+    res = seed().recall_text("A nutcraker, metal, 15 cm long, 150 g.")
+    assert res.not_in_catalog and res.described.noun == "nutcracker"
+    # a correction that names no noun (a participle of a catalog name: "sliced") is no correction
+    assert seed().recall_text("A bagel slicer, plastic, 25 cm long, 300 g.").not_in_catalog

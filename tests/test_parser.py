@@ -115,6 +115,13 @@ DIMENSION_CASES = [
     ("a cube about three centimeters wide", (3, 3, 3)),
     ("a ball 6.5 cm in diameter", (6.5, 6.5, 6.5)),
     ("a ball with a radius of 3 cm", (6, 6, 6)),
+    # a circumference is pi diameters (values rounded to 4 places as the parser gives them): "around" after a length states it, before a number it hedges
+    ("a ball about 30 cm around, 400 g", (9.5493,) * 3),
+    ("a ball around 30 cm, 400 g", (30, 30, 30)),
+    ("a jar 9 inches around and 5 inches tall", (12.7, 7.2766, 7.2766)),
+    ("a tube with a circumference of 12 cm, 20 cm long", (20, 3.8197, 3.8197)),
+    ("a ball 7 inches in circumference", (5.6595,) * 3),
+    ("a box 10 cm around 50 g", (10, None, None)),  # "around 50 g": a hedge on the mass
     ("a can 12 cm tall and 6.6 cm in diameter", (12, 6.6, 6.6)),
     ("a wooden disc 7 cm across and 2 cm thick", (7, 7, 2)),
     ("a round dish about 27 cm across and 2.5 cm tall", (27, 27, 2.5)),

@@ -454,3 +454,21 @@ def test_fitting_the_hand_comes_before_squeezing_enough():
     flags = [(p.grasp_type, p.params["fits_aperture"], p.params["force_within_capacity"]) for p in plans]
     assert flags[0] == ("precision_sphere", True, False)
     assert ("power_sphere", False, True) in flags[1:]
+
+
+def test_a_ladle_is_a_bowl_on_a_long_handle_held_by_the_handle_like_a_pan():
+    from sim.bodies import HOLD_HANDLE
+
+    ladle = dict(name="soup ladle", a_cm=32, b_cm=9, c_cm=7, mass_g=160, shape="long", material="metal")
+    plans = plan_grasps(ladle)
+    assert plans[0].params["hold"] == HOLD_HANDLE and plans[0].params["handle_grip"] == "end"  # 160 g: light
+    assert plans[0].approach == "top" and "a ladle: held by its handle" in plans[0].rationale[0]
+    body = plan_grasps(dict(ladle, name="ladle"))[0]
+    assert body.params["hold"] == HOLD_HANDLE
+    from sim.bodies import body_for
+
+    built = body_for((32, 9, 7), "long", 0.16, name="soup ladle")
+    handle = sum(p.mass_kg for p in built.parts if p.name == "handle_grip")
+    assert built.form == "pan" and built.handle.length_cm == 23 and handle < 0.16 - handle  # the bowl end is heavier
+    spoon = plan_grasps(dict(ladle, name="serving spoon"))[0]  # no long-handle kind: its box, as before
+    assert "hold" not in spoon.params

@@ -159,3 +159,20 @@ def test_the_table_prints_a_zero_name_part_unsigned_and_counts_candidates_in_who
     guess = run("recall", "something small and round", "--db", seeded)
     text = " ".join(guess.stdout.split())
     assert re.search(r"about \d+ candidates as good", text), text  # a soft count, said as a whole number
+
+
+@pytest.mark.parametrize(
+    ("text", "words"), [("a mug 501 kg", "'501 kg'"), ("a mug -5 cm, 300 g", "'-5 cm'"), ("a pen 1e308 cm", "1e308")]
+)
+def test_the_table_says_which_stated_value_was_not_used(seeded, text, words):
+    """A refused value (beyond the catalog's limits, negative) is said above the table, so a recall
+    without it never looks like one with it (a blind test saw "a mug 501 kg" answered at 0.79 silently)."""
+    res = run("recall", text, "--db", seeded)
+    assert res.exit_code == 0, res.output
+    flat = " ".join(res.stdout.split())
+    assert "Not used: " in flat and words in flat and "recalled without it" in flat, flat
+
+
+def test_the_table_says_nothing_was_refused_when_nothing_was(seeded):
+    res = run("recall", "a red mug 9 cm tall, 300 g", "--db", seeded)
+    assert res.exit_code == 0 and "Not used" not in res.stdout

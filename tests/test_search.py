@@ -258,15 +258,16 @@ def test_scan_products_are_the_factors_products_within_the_filter_slack():
 
 def test_cost_rules_at_their_boundaries():
     """before_probe / after_probe compare the estimates with <= at each boundary (no timing here)."""
-    from recall.costs import CACHE_ROWS, CELLS_TRIAL, PlanCosts, after_probe, before_probe
+    from recall.costs import CACHE_ROWS, CELLS_TRIAL, SCAN_TRUST, PlanCosts, after_probe, before_probe
 
     c = PlanCosts(rows=1_000_000, cells=15_625, numbers=3, features=5, categories=True)
     assert c.big and c.scan == 1_000_000 * (1.0 * 3 + 0.6 + 2.25)
+    assert c.trusted_scan == c.scan * SCAN_TRUST[1]
     per_row = c.window(1) - c.window(0)
-    at = (min(c.probe, c.scan) - c.window(0)) / per_row  # the window's rows costing the probe
+    at = (min(c.probe, c.trusted_scan) - c.window(0)) / per_row  # the window's rows costing the probe
     assert before_probe(c, int(at)) == "window" and before_probe(c, int(at) + 1) is None
     small = PlanCosts(rows=40_000, cells=625, numbers=1, features=2, categories=True)
-    assert small.scan <= small.probe + small.cells_fixed  # no probe can pay on a small catalog
+    assert small.trusted_scan <= small.probe + small.cells_fixed  # no probe can pay on a small catalog
     assert before_probe(small, 10**9) == "scan"
     # after the probe: the cheapest; cells within CELLS_TRIAL of the scan are tried (big catalogs only)
     scan_rows = c.give_up_rows
@@ -280,6 +281,12 @@ def test_cost_rules_at_their_boundaries():
     assert after_probe(c, 0, 10**9, None) == ("window", False)
     mid = PlanCosts(rows=CACHE_ROWS, cells=4096, numbers=3, features=5, categories=True)
     assert not mid.big and after_probe(mid, 10**9, 10**9, None) == ("scan", False)  # no trial in cache
+    # in the cache the others run only below SCAN_TRUST of the scan's estimate
+    per_row = mid.cell_search(1) - mid.cell_search(0)
+    at = (SCAN_TRUST[0] * mid.scan - mid.cells_fixed) / per_row
+    assert mid.cell_search(int(at)) <= SCAN_TRUST[0] * mid.scan < mid.cell_search(int(at) + 1)
+    assert after_probe(mid, 10**9, int(at), None) == ("cells", False)
+    assert after_probe(mid, 10**9, int(at) + 1, None) == ("scan", False)
     assert scan_rows * (c.cell_search(1) - c.cell_search(0)) == pytest.approx(c.scan)
 
 
@@ -360,7 +367,7 @@ def sql_catalog(tmp_path_factory):
     return kb, Recaller.from_db(tmp / "catalog.duckdb")
 
 
-@pytest.mark.parametrize("metric", ["jp", "jplog", "euclidean", "minkowski", "cosine"])
+@pytest.mark.parametrize("metric", ["jp", "jplog", "euclidean", "minkowski", "cosine", "kdtree"])
 @pytest.mark.parametrize(
     "values",
     [
@@ -382,6 +389,12 @@ def test_numpy_and_sql_macros_agree(sql_catalog, values, metric):
     if metric in ("jp", "jplog"):
         assert kb.sql(f"SELECT name, distance FROM {metric}_rank({args})").rows == sql_rows
     result = recaller.recall_features(values, top=len(sql_rows), metric=metric, features_only=True)
+    if metric == "kdtree":  # the tree orders tied rows its own way: the same distance of every object
+        by_name = dict(sql_rows)
+        assert sorted(m.name for m in result.matches) == sorted(by_name)
+        for match in result.matches:
+            assert match.distance == pytest.approx(by_name[match.name], rel=1e-6, abs=1e-6)
+        return
     assert [m.name for m in result.matches] == [r[0] for r in sql_rows]
     for match, (_, distance) in zip(result.matches, sql_rows, strict=True):
         # the engine holds float32 values (6e-8 relative), SQL the stored doubles

@@ -46,16 +46,21 @@ def test_set_and_rows_behave_as_a_frozenset_and_a_dict_of_sets():
     words = StringSet(StringTable.of(["mug", "cup", "ball"]))
     assert words == frozenset({"mug", "cup", "ball"}) and frozenset({"mug", "cup", "ball"}) == words
     assert "mug" in words and "pan" not in words and ("mug",) not in words and len(words) == 3
+    assert words | {"pan"} == {"mug", "cup", "ball", "pan"} and words - {"cup"} == {"mug", "ball"}
     phrases = KeyRows(StringTable.of(["tea cup", "mug"]), np.array([0, 2, 3]), np.array([4, 9, 1], np.int32),
                       tuples=True)  # fmt: skip
     assert ("tea", "cup") in phrases and "tea cup" in phrases and ("tea",) not in phrases
-    assert phrases[("tea", "cup")] == {4, 9} and phrases.get(("mug",)) == {1} and phrases.get(("pan",), ()) == ()
+    assert (
+        phrases[("tea", "cup")] == {4, 9} and phrases.get(("mug",)) == {1} and phrases.get(("pan",), ()) == ()
+    )
     assert set(phrases) == {("tea", "cup"), ("mug",)} and len(phrases) == 2
     with pytest.raises(KeyError):
         phrases.span(("pan",))
 
 
-@pytest.mark.parametrize("strings", [[], ["only"], ["", "mug", ""], ["tasse à thé", "red mug 12", "x" * 3000]])
+@pytest.mark.parametrize(
+    "strings", [[], ["only"], ["", "mug", ""], ["tasse à thé", "red mug 12", "x" * 3000]]
+)
 def test_a_string_column_is_the_list_it_holds(strings):
     from recall.stored_index import _blob
     from recall.string_table import StringColumn

@@ -18,7 +18,7 @@ from typing import Annotated, Any
 import typer
 from typer.core import TyperGroup
 
-from kb.errors import ObjrecallError
+from kb.errors import DatabaseError, ObjrecallError
 from kb.jsonable import to_jsonable
 
 __all__ = ["DbOption", "JsonOption", "ObjrecallGroup", "default_db_path", "emit", "emit_lines", "resolve_db"]
@@ -43,7 +43,12 @@ JsonOption = Annotated[bool, typer.Option("--json", help="Machine output: JSON (
 
 
 def resolve_db(db: Path | None) -> Path:
-    return Path(db) if db is not None else default_db_path()
+    """The catalog file ``--db`` names, else the default; an empty path or a folder is refused here, for every
+    command alike (a folder is never a catalog; an empty ``--db ""`` is the current folder)."""
+    path = Path(db) if db is not None else default_db_path()
+    if path.is_dir():
+        raise DatabaseError(f"{path}: is a folder, not a catalog file (give a file path, e.g. {path / 'catalog.duckdb'})")
+    return path
 
 
 def emit(data: Any) -> None:

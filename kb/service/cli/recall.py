@@ -201,6 +201,8 @@ def _print_result(result, title: str | None = None) -> None:
     console = Console()
     if title:
         console.print(f"[bold]{escape(title)}[/bold]")
+    for line in _refusals(result):
+        console.print(escape(line), style="yellow")
     if not result.matches:
         if result.not_in_catalog:
             console.print(escape(_verdict(result)))
@@ -219,6 +221,13 @@ def _print_result(result, title: str | None = None) -> None:
     if result.same_kind:
         console.print(_match_table(result.same_kind, result, f"closest of the same kind ({result.same_kind_as})"))
     console.print(escape(_verdict(result)))
+
+
+def _refusals(result) -> list[str]:
+    """One line per stated value the parser refused ("a mug 501 kg": beyond the catalog's limits), so the
+    table never looks as if the value had been used (``--json`` has them in ``parsed.refused``)."""
+    refused = (result.parsed or {}).get("refused") or []
+    return [f"Not used: {r['words']!r}: {r['reason']}; recalled without it." for r in refused]
 
 
 def _match_table(matches, result, title: str):
@@ -250,8 +259,8 @@ def _match_table(matches, result, title: str):
 
 def _verdict(result) -> str:
     """One line: not in the catalog / not a close match / a guess / close match, the confidence and why
-    (:func:`recall.openset.verdict`, the same line as ``--json``'s, the HTTP API's and the web page's)."""
-    from recall.openset import verdict
+    (:func:`recall.verdict.verdict`, the same line as ``--json``'s, the HTTP API's and the web page's)."""
+    from recall.verdict import verdict
 
     return verdict(result).text
 
@@ -281,7 +290,27 @@ def _scoreboard_command(blind: bool, json_out: bool) -> None:
                 row.name, m.mode, str(row.n), f"{100 * m.top1:.1f}", f"{100 * m.top3:.1f}", detected,
                 f"{m.false_flags} ({_pct(m.false_flags, row.n)})", f"{m.brier:.3f}", f"{m.ece:.3f}", versus,
             )  # fmt: skip
-    Console(width=140).print(table)
+    console = Console(width=140)
+    console.print(table)
+    _print_reliability(console, rows)
+
+
+def _print_reliability(console, rows) -> None:
+    """The reliability plot of each mode, pooled over the sets the confidence was fitted on and over the
+    others (the held-out split; ``recall.scoreboard.CONFIDENCE_FIT_SETS``)."""
+    from recall.calibration import pooled
+    from recall.scoreboard import CONFIDENCE_FIT_SETS
+
+    for mode in dict.fromkeys(m.mode for r in rows for m in r.modes):
+        for split, fitted in (("fitted on", True), ("held out", False)):
+            cals = [m.calibration for r in rows for m in r.modes
+                    if m.mode == mode and m.calibration and (r.name in CONFIDENCE_FIT_SETS) == fitted]  # fmt: skip
+            if cals:
+                cal = pooled(cals)
+                console.print(f"Reliability, {mode}, sets the confidence was {split}: Brier {cal.brier:.3f}, "
+                              f"ECE {cal.ece:.3f} over {cal.n} results", highlight=False)  # fmt: skip
+                for line in cal.plot():
+                    console.print(f"  {line}", highlight=False)
 
 
 def _pct(k: int, n: int) -> str:

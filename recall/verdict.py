@@ -1,0 +1,53 @@
+"""What a recall says about its first match, in one line (:func:`verdict`): the same words in the CLI,
+``--json``, the HTTP API, the web page and ``grasp plan``."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["GUESS_COMPETITORS", "Verdict", "verdict"]
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """What a recall says about its first match, in one line, the same in the CLI, ``--json``, the HTTP
+    API and the web page: ``label`` is one of "not in the catalog", "not a close match", "a guess" and
+    "close match"; ``text`` the line, with the confidence to two decimals and why."""
+
+    label: str
+    text: str
+
+    def to_dict(self) -> dict[str, str]:
+        return {"label": self.label, "text": self.text}
+
+
+#: Competitors (the ranking's effective number of candidates) from which a result is "a guess".
+GUESS_COMPETITORS = 3.0
+
+
+def verdict(result) -> Verdict:
+    """The verdict of a :class:`recall.results.RecallResult` (see :class:`Verdict`)."""
+    if result.not_in_catalog and result.described is not None:
+        noun = result.described
+        near = ", ".join(m.name for m in result.matches[:3]) or "nothing (no feature stated)"
+        kind = ", ".join(m.name for m in result.same_kind) or "none"
+        return Verdict(
+            "not in the catalog",
+            f"NOT IN THE CATALOG (open set): no {noun.noun!r} (kind: {noun.kind}) in the catalog; physically "
+            f"closest: {near}; closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}",
+        )
+    if result.open_set:
+        label, said = "not a close match", "NOT a close match (open set): nothing in the catalog is near"
+    elif result.competitors >= GUESS_COMPETITORS:
+        label, said = "a guess", "a guess: many objects fit the description equally"
+    else:
+        label, said = "close match", "close match"
+    why = []
+    if result.closeness is not None:
+        why.append(f"mean relative error of the best match {result.closeness:.2f}")
+    if result.unknown_noun:
+        why.append(f"'{result.unknown_noun}' is no catalog noun")
+    if result.competitors >= 1.5:
+        why.append(f"about {round(result.competitors)} candidates as good")  # a soft count
+    reasons = f" ({'; '.join(why)})" if why else ""
+    return Verdict(label, f"confidence {result.confidence:.2f}; {said}{reasons}")

@@ -1,0 +1,93 @@
+"""Floppy sheets as hinged strips that droop (sim/sheet.py), built by the trial's world (sim/world.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from kb.features import ObjectRecord
+from sim.objects import object_model
+from sim.planner import plan_grasps
+from sim.sheet import SEGMENT_CM, is_sheet, sheet_strips
+from sim.trial import build_world, run_trial
+
+
+def _sheet(rigidity: str = "floppy", **features) -> ObjectRecord:
+    base = dict(a_cm=29.7, b_cm=21, c_cm=0.01, mass_g=5, shape="thin", texture="smooth", material="paper")
+    base.update(features)
+    return ObjectRecord.create("sheet", rigidity=rigidity, fragility="medium", **base)
+
+
+def _plan(obj: ObjectRecord, grasp_type: str):
+    return next(p for p in plan_grasps(obj) if p.grasp_type == grasp_type)
+
+
+def test_held_strip_reaches_twice_the_overhang_and_the_rest_drapes_in_strips():
+    held, strips = sheet_strips(21.0, 7.0)
+    assert held == 14.0
+    assert len(strips) == 2 and sum(strips) == pytest.approx(7.0)
+    # At the boundary: exactly twice the overhang deep is one rigid strip; a little deeper adds one.
+    assert sheet_strips(14.0, 7.0) == (14.0, [])
+    held, strips = sheet_strips(14.5, 7.0)
+    assert held == 14.0 and strips == [pytest.approx(0.5)]
+    # No strip wider than SEGMENT_CM; a shallow sheet is all held.
+    held, strips = sheet_strips(69.0, 7.0)
+    assert max(strips) <= SEGMENT_CM and sum(strips) == pytest.approx(55.0)
+    assert sheet_strips(8.0, 3.6) == (7.2, [pytest.approx(0.8)])
+    assert sheet_strips(6.0, 3.6) == (6.0, [])
+
+
+def test_only_floppy_objects_laid_flat_are_sheets():
+    assert is_sheet(object_model(_sheet()), flat=True)
+    assert not is_sheet(object_model(_sheet()), flat=False)
+    assert not is_sheet(object_model(_sheet("rigid")), flat=True)
+
+
+def test_sheet_world_has_hinged_strips_of_the_catalog_mass_that_are_not_hand():
+    obj = _sheet()
+    world = build_world(obj, _plan(obj, "thumb_2_finger"))
+    m = world.model
+    strips = [b for b in range(m.nbody) if m.body(b).name.startswith("sheet_")]
+    assert len(strips) == 2
+    assert all(m.jnt_type[m.body_jntadr[b]] == 3 for b in strips)  # mjJNT_HINGE
+    assert all(m.jnt_stiffness[m.body_jntadr[b]] > 0 for b in strips)
+    total = m.body_mass[world.object_body] + sum(m.body_mass[b] for b in strips)
+    assert total == pytest.approx(0.005)
+    strip_geoms = np.isin(m.geom_bodyid, strips)
+    assert not world.is_hand[strip_geoms].any() and not world.is_object[strip_geoms].any()
+    rigid = _sheet("rigid")
+    plain = build_world(rigid, _plan(rigid, "thumb_2_finger")).model
+    assert not [b for b in range(plain.nbody) if plain.body(b).name.startswith("sheet_")]
+
+
+def _droop_after_hold(obj: ObjectRecord) -> float:
+    """The sheet's bend (rad, summed over its hinges; negative: the far part hangs down) after the hold."""
+    world = build_world(obj, _plan(obj, "thumb_2_finger"))
+    flat_z = world.data.xpos[world.object_body][2]
+    result = run_trial(obj, world.plan, world=world, stop_after="hold")
+    assert result.lifted
+    assert world.data.xpos[world.object_body][2] - flat_z > 0.05  # the held strip rose with the hand
+    m = world.model
+    hinges = [m.jnt_qposadr[m.joint(f"sheet_hinge_{k}").id] for k in range(2)]
+    return float(sum(world.data.qpos[hinges]))
+
+
+def test_lifted_sheet_droops_behind_the_held_strip_and_cloth_more_than_paper():
+    paper = _droop_after_hold(_sheet())
+    cloth = _droop_after_hold(_sheet(material="fabric", texture="medium"))
+    assert paper < -0.1  # held by one strip, the rest bends down under its weight
+    assert cloth < paper - 0.2  # six times less stiff: it hangs further
+
+
+def test_a4_sheet_held_as_a_sheet_turns_out_as_one_floppy_plate(monkeypatch):
+    """The same pinch on the same features: the draping sheet holds; built as one soft plate (the model
+    before sim/sheet.py) it turns out of the pads during the lift, the class of failure the sheet removes."""
+    import sim.world
+
+    obj = _sheet()
+    plan = _plan(obj, "thumb_2_finger")
+    as_sheet = run_trial(obj, plan)
+    monkeypatch.setattr(sim.world, "is_sheet", lambda model, flat: False)
+    as_plate = run_trial(obj, plan)
+    assert as_sheet.success, as_sheet.reason
+    assert not as_plate.success and "turned" in as_plate.reason
