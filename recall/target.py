@@ -34,7 +34,7 @@ def grasp_target(result: Any, get_object: Callable[[str], ObjectRecord]) -> tupl
     }
     if not result.open_set:
         info["planned_for"] = best.name
-        info["why"] = f"planned for {best.name}: recalled with confidence {result.confidence:.2f} (close match)"
+        info["why"] = f"planned for {best.name}: recalled with {info['verdict']['text']}"
         return get_object(best.name), info
     hint = get_object(result.same_kind[0].name if result.same_kind else best.name)
     stated = dict(result.query["values"])

@@ -282,3 +282,37 @@ def test_a_typing_slip_in_a_catalog_or_lexicon_noun_is_read_as_that_noun():
     assert res.not_in_catalog and res.described.noun == "nutcracker"
     # a correction that names no noun (a participle of a catalog name: "sliced") is no correction
     assert seed().recall_text("A bagel slicer, plastic, 25 cm long, 300 g.").not_in_catalog
+
+
+def test_the_verdict_label_agrees_with_the_confidence():
+    from recall.verdict import GUESS_CONFIDENCE, verdict
+
+    texts = ("a tennis ball", "something small and round", "a coffee mug", "a small red toy", "a plastic bottle cap",
+             "a fuzzy yellow tennis ball, about 6.5 cm across, 58 g", "a heavy steel tool about a foot long")
+    for text in texts:
+        res = seed().recall_text(text)
+        label = verdict(res).label
+        if label in ("close match", "a guess"):
+            assert (label == "close match") == (res.confidence >= GUESS_CONFIDENCE), (text, res.confidence, label)
+    assert verdict(seed().recall_text("a tennis ball")).label == "close match"  # 0.89 is no guess
+
+
+def test_grasp_target_says_the_recalls_own_verdict():
+    from recall.target import grasp_target
+    from recall.verdict import verdict
+
+    res = seed().recall_text("something small and round")
+    _record, info = grasp_target(res, lambda name: seed_record(name))
+    assert verdict(res).text in info["why"] and "(close match)" not in info["why"]
+
+
+def seed_record(name: str):
+    import csv
+
+    from kb.features import ObjectRecord
+
+    path = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"
+    with path.open(encoding="utf-8") as f:
+        row = next(r for r in csv.DictReader(f) if r["name"] == name)
+    values = {k: v for k, v in row.items() if k in ("a_cm", "b_cm", "c_cm", "mass_g") and v}
+    return ObjectRecord.create(name, **{k: float(v) for k, v in values.items()})
