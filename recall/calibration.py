@@ -25,6 +25,7 @@ __all__ = [
     "confidence_inputs",
     "expected_calibration_error",
     "fit_confidence",
+    "pooled",
 ]
 
 
@@ -105,12 +106,32 @@ def calibration(confidence: Sequence[float], right: Sequence[bool], bins: int = 
     return Calibration(n, brier_score(c, y), float(ece), tuple(out))
 
 
+def pooled(calibrations: Sequence[Calibration]) -> Calibration:
+    """The calibration of the union of the points of ``calibrations`` (all with the same bins): bin
+    counts added, means weighted by them, Brier weighted by the point counts, ECE of the merged bins."""
+    if not calibrations:
+        return calibration([], [])
+    n = sum(c.n for c in calibrations)
+    bins = []
+    for parts in zip(*(c.bins for c in calibrations), strict=True):
+        k = sum(b.n for b in parts)
+        mean_c = sum(b.n * b.mean_confidence for b in parts) / k if k else 0.0
+        acc = sum(b.n * b.accuracy for b in parts) / k if k else 0.0
+        bins.append(ReliabilityBin(parts[0].low, parts[0].high, k, mean_c, acc))
+    brier = sum(c.n * c.brier for c in calibrations) / n if n else 0.0
+    ece = sum(b.n / n * abs(b.accuracy - b.mean_confidence) for b in bins) if n else 0.0
+    return Calibration(n, float(brier), float(ece), tuple(bins))
+
+
 # ---------------------------------------------------------------------- fitting the confidence model
 def confidence_inputs(result) -> list[float]:
-    """The confidence model's inputs of a result: margin (capped), closeness, unknown noun (0/1)."""
-    from recall.confidence import MAX_MARGIN
+    """The confidence model's inputs of a result: margin (capped; the baselines' rescaled to nats),
+    closeness, unknown noun (0/1), ln competitors."""
+    from recall.confidence import JP_METRICS, MAX_MARGIN
 
     margin = result.matches[1].score - result.matches[0].score if len(result.matches) > 1 else MAX_MARGIN
+    if result.metric not in JP_METRICS:
+        margin = math.log1p(max(margin, 0.0))
     return [
         min(max(margin, 0.0), MAX_MARGIN),
         result.closeness or 0.0,
@@ -119,22 +140,34 @@ def confidence_inputs(result) -> list[float]:
     ]
 
 
-def fit_confidence(cases, open_set=()) -> tuple[tuple[float, ...], int]:
-    """Logistic fit of P(first match right) on :func:`confidence_inputs`, over the features-only and the
-    hybrid results of the development set (``cases``: :class:`recall.evaluation.Case` s) and the results of the open set (never right). Returns the
-    coefficients (a, b, c, d, e) of ``recall.confidence.CONFIDENCE_COEF`` and the number of points.
-    Results reported not in the catalog are left out: their confidence is capped by rule."""
-    from sklearn.linear_model import LogisticRegression
+def fit_confidence(points) -> tuple[object, int]:
+    """The :class:`recall.confidence.ConfidenceModel` minimising the log loss of the *final* confidence
+    (with its caps: σ(k · margin), the open-set cap) over ``points``, (result, right) pairs of one mode
+    (results reported not in the catalog are left out: their confidence is a rule). Signs constrained:
+    margin weight >= 0, closeness and ln-competitors weights <= 0, tie slope k in [1, 5]; the unknown
+    noun's weight is the rule ``UNKNOWN_NOUN_WEIGHT``, not fitted. Returns the model and the number of
+    points."""
+    from scipy.optimize import minimize
 
-    x, y = [], []
-    for case in cases:
-        for res in (case.features_only, case.hybrid):
-            if res.matches and not res.not_in_catalog:  # those are capped by rule, not by the model
-                x.append(confidence_inputs(res))
-                y.append(int(res.matches[0].name == case.object))
-    for res in open_set:
-        if res.matches and not res.not_in_catalog:
-            x.append(confidence_inputs(res))
-            y.append(0)
-    model = LogisticRegression(C=10.0).fit(np.array(x), np.array(y))
-    return (float(model.intercept_[0]), *(float(c) for c in model.coef_[0])), len(x)
+    from recall.confidence import OPEN_SET_CONFIDENCE_CAP, UNKNOWN_NOUN_WEIGHT, ConfidenceModel
+
+    kept = [(r, y) for r, y in points if r.matches and not r.not_in_catalog]
+    x = np.array([confidence_inputs(r) for r, _ in kept])
+    flagged = np.array([r.open_set for r, _ in kept])
+    y = np.array([float(y) for _, y in kept])
+
+    def loss(w: np.ndarray) -> float:
+        z = w[0] + w[1] * x[:, 0] + w[2] * x[:, 1] + UNKNOWN_NOUN_WEIGHT * x[:, 2] + w[3] * x[:, 3]
+        p = np.minimum(_logistic(z), _logistic(w[4] * x[:, 0]))
+        p = np.clip(np.where(flagged, np.minimum(p, OPEN_SET_CONFIDENCE_CAP), p), 1e-6, 1 - 1e-6)
+        return float(-np.mean(y * np.log(p) + (1 - y) * np.log(1 - p)) + 0.01 * np.sum(w[1:4] ** 2) / len(y))
+
+    bounds = [(None, None), (0.0, None), (None, 0.0), (None, 0.0), (1.0, 5.0)]
+    starts = ((3.69, 0.39, -10.54, -1.61, 1.0), (2.0, 0.5, -3.0, -1.0, 1.5), (1.0, 1.0, -5.0, -0.5, 2.0))
+    fits = [minimize(loss, np.array(s), bounds=bounds, method="Powell") for s in starts]
+    best = min(fits, key=lambda f: f.fun)
+    return ConfidenceModel(*(round(float(v), 2) for v in best.x)), len(kept)
+
+
+def _logistic(z: np.ndarray) -> np.ndarray:
+    return 1.0 / (1.0 + np.exp(-np.clip(z, -50.0, 50.0)))

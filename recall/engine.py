@@ -289,8 +289,9 @@ class Recaller:
         open_set = not_in_catalog or is_open_set(closeness, trusted, unknown or modifier)
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
-            margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog
-        )
+            margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
+            soft_only=len(query) == 0 and not named,
+        )  # fmt: skip
         same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
         return RecallResult(
             matches=matches[:top],

@@ -340,11 +340,7 @@ def _main() -> None:  # pragma: no cover - a calibration script
             )
         name_index.NAME_WEIGHT, name_index.HEAD_WEIGHT = NAME_WEIGHT, HEAD_WEIGHT
         recaller = Recaller.from_csv(args.catalog)
-        opens = [r for fo in (False, True) for r in open_set_results(recaller, OPEN_SET, fo)]
-        from recall.calibration import fit_confidence
-
-        coef, k = fit_confidence(report.cases, opens)
-        print("confidence (a, b, c, d):", ", ".join(f"{c:.2f}" for c in coef), f"over {k} results")
+        print("confidence models: python -m recall.scoreboard --fit-confidence")
         right = sorted(
             c.hybrid.closeness
             for c in report.cases

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from kb.kinds import singular, words_of
-from recall.names import GENERIC_NOUNS, MIN_SUFFIX
+from recall.names import GENERIC_NOUNS, MIN_SUFFIX, name_words, rows_with_word
 from recall.subject import adjective_feature_words, feature_words, is_participle, subject_phrase
 
 __all__ = ["HEAD_WEIGHT", "NAME_WEIGHT", "NameEvidence", "NameIndex"]
@@ -143,6 +143,8 @@ class NameIndex:
         head: dict[int, float] = {}
         phrases = self._whole_names(words, exact, head)
         heads = self._head_nouns(words, material, head)
+        if not phrases and not heads:
+            heads = self._name_words(list(subject_phrase(text)[-1:]), head)  # the subject's head only
         return NameEvidence(
             exact,
             head,
@@ -179,6 +181,20 @@ class NameIndex:
                         exact[row] = max(exact.get(row, 0.0), math.log(n / len(rows)))
                     phrases.append(" ".join(gram))
         return phrases
+
+    def _name_words(self, words: list[str], head: dict[int, float]) -> list[str]:
+        """When no whole name or head noun is found: record in ``head`` the rows whose names have the
+        subject's head noun (``words``) when only a catalog name knows it ("a wasserkocher", "a sartén":
+        :func:`recall.names.name_words`); returns the words found."""
+        n = max(self.size, 1)
+        found: list[str] = []
+        for word in name_words(words, self.vocabulary):
+            rows = rows_with_word(self.phrases, word)
+            for row in rows:
+                head[row] = max(head.get(row, 0.0), math.log(n / len(rows)))
+            if rows:
+                found.append(word)
+        return found
 
     def _head_nouns(self, words: list[str], material: str | None, head: dict[int, float]) -> list[str]:
         """Record in ``head`` the rows a head noun in ``words`` names (not those whose names all state

@@ -13,6 +13,7 @@ rows, ``get``). A test checks them against the name-by-name rules on real and ra
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Sequence
 from types import SimpleNamespace
@@ -394,3 +395,36 @@ def _variant_labels(core: np.ndarray, cpar: np.ndarray, label: np.ndarray) -> np
     index = np.arange(len(core))
     after = cum[ends[cpar]] - cum[index + 1]  # words of its phrase after it that are no label
     return lab & (after == 0) & (index - starts[cpar] >= 1)
+
+
+def name_words(words: Sequence[str], vocabulary) -> list[str]:
+    """The words of a description that only a catalog name knows: in ``vocabulary`` (the words of the
+    catalog's names and aliases) but no word of the parser's lexicon (function, feature, unit, number
+    words), no generic noun, of three letters or more ("wasserkocher", "sartén", "caffettiera": a
+    store's own name of its object, which the lexicon need not know)."""
+    from recall.subject import feature_words
+
+    known = _tagged_words()
+    return [
+        w
+        for w in dict.fromkeys(words)
+        if w in vocabulary and len(w) >= 3 and not w.isdigit()
+        and w not in known and w not in feature_words() and w not in GENERIC_NOUNS
+    ]  # fmt: skip
+
+
+@functools.cache
+def _tagged_words() -> frozenset[str]:
+    from recall.lexicon import tag_model
+
+    return frozenset(tag_model())
+
+
+def rows_with_word(phrases, word: str) -> set[int]:
+    """The rows of the names and aliases (``phrases``: word tuples -> rows) that have ``word`` (a scan of
+    the phrases: only for a word no whole name or head noun matched)."""
+    rows: set[int] = set()
+    for phrase in phrases:
+        if word in phrase:
+            rows |= phrases[phrase]
+    return rows

@@ -182,7 +182,17 @@ def _names_catalog_object(words: tuple[str, ...], phrases, heads) -> bool:
         return True
     if words[-1] not in heads:
         return False
-    return all(w in _material_words() or w in COLOURS for w in words[:-1])
+    return all(_modifier(w) for w in words[:-1])
+
+
+def _modifier(word: str) -> bool:
+    """Whether a word before a catalog head noun only qualifies it: a material (also a word of a
+    multi-word one: "*cast* iron", "*stainless* steel") or colour, or a feature word or adjective that is
+    no lexicon noun ("heavy", "non-stick", "pre-seasoned"). A noun ("*egg* cup", "*bottle* warmer") makes
+    a compound: another object."""
+    if word in _material_words() or word in COLOURS:
+        return True
+    return noun_in([word]) is None and not noun_like(word)
 
 
 #: Words that hold the place of an object without naming one ("something", "a whatsit"): never an

@@ -16,9 +16,10 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from recall.calibration import Calibration
 from recall.evaluation import FLAG_MODES, evaluate
 
-__all__ = ["BLIND_SETS", "DEVELOPMENT_SETS", "DescriptionSet", "ModeScore", "SetScore", "scoreboard"]
+__all__ = ["BLIND_SETS", "CONFIDENCE_FIT_SETS", "DEVELOPMENT_SETS", "DescriptionSet", "ModeScore", "SetScore", "scoreboard"]
 
 _REPO = Path(__file__).resolve().parents[1]
 
@@ -58,6 +59,10 @@ DEVELOPMENT_SETS: tuple[DescriptionSet, ...] = (
         "tests/data/blind_openset3/open_set_descriptions.csv",
     ),  # fmt: skip
 )
+#: The description sets the confidence models are fitted on (``python -m recall.scoreboard
+#: --fit-confidence``); the others are the held-out split their Brier score and ECE are reported on
+#: (RECALL.md, "Confidence refit per mode").
+CONFIDENCE_FIT_SETS = ("dev", "catalog2", "sparse_dev", "blind_openset")
 BLIND_SETS: tuple[DescriptionSet, ...] = (
     DescriptionSet(
         "blind2_sparse", _SEED, "tests/data/blind_openset2/sparse_descriptions.csv",
@@ -78,6 +83,9 @@ class ModeScore:
     detected: int | None
     brier: float
     ece: float
+    #: The Brier score, ECE and reliability bins behind ``brier`` and ``ece`` (pooled over sets by
+    #: ``recall.calibration.pooled`` for the reliability plot of ``evaluate --all``).
+    calibration: Calibration | None = None
 
 
 @dataclass
@@ -104,7 +112,7 @@ def score_set(spec: DescriptionSet, repo: Path = _REPO) -> SetScore:
         detected = report.open_set.get(mode) if report.open_set_n else None
         out.modes.append(
             ModeScore(mode, score.top1 / max(score.n, 1), score.top3 / max(score.n, 1),
-                      report.false_flags.get(mode, 0), detected, cal.brier, cal.ece)
+                      report.false_flags.get(mode, 0), detected, cal.brier, cal.ece, cal)
         )  # fmt: skip
     out.features_only_top1 = {s.metric: s.top1 / max(s.n, 1) for s in report.scores if s.features_only}
     return out
@@ -114,3 +122,31 @@ def scoreboard(sets: tuple[DescriptionSet, ...] = DEVELOPMENT_SETS, repo: Path =
     """:func:`score_set` of each set whose files are present (a set missing from a checkout is skipped)."""
     present = [s for s in sets if (repo / s.descriptions).is_file() and (repo / s.catalog).is_file()]
     return [score_set(s, repo) for s in present]
+
+
+def fit_confidence_models() -> None:  # pragma: no cover - a calibration script
+    """Fit ``recall.confidence``'s two models on :data:`CONFIDENCE_FIT_SETS` and print them."""
+    from recall.calibration import fit_confidence
+    from recall.engine import Recaller
+    from recall.evaluation import open_set_results
+
+    points: dict[bool, list] = {True: [], False: []}
+    for spec in (s for s in DEVELOPMENT_SETS if s.name in CONFIDENCE_FIT_SETS):
+        rep = evaluate(_REPO / spec.catalog, _REPO / spec.descriptions, keep_cases=True)
+        for case in rep.cases:
+            for fo, res in ((True, case.features_only), (False, case.hybrid)):
+                points[fo].append((res, bool(res.matches) and res.matches[0].name == case.object))
+        if spec.open_set:
+            recaller = Recaller.from_csv(_REPO / spec.catalog)
+            for (metric, fo), _mode in FLAG_MODES.items():
+                points[fo] += [(r, False) for r in open_set_results(recaller, _REPO / spec.open_set, fo, metric)]
+    for fo in (True, False):
+        model, k = fit_confidence(points[fo])
+        print(f"confidence, {'features only' if fo else 'hybrid'}: {model} over {k} results")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    import sys
+
+    if "--fit-confidence" in sys.argv[1:]:
+        fit_confidence_models()

@@ -25,7 +25,7 @@ __all__ = [
     "subject_phrase",
 ]
 
-_WORD = re.compile(r"[a-z0-9]+")
+_WORD = re.compile(r"[^\W_]+")
 
 #: Words that end the subject noun phrase: function words, pronouns and the commonest verbs of a
 #: description ("a fuzzy ball *with* ...", "an orange *of* 7 cm", "a cork *from* a bottle").

@@ -287,10 +287,25 @@ def _word_tag(
         return "DIM"  # "30 cm around": a circumference; "around 30 cm" stays a hedge
     if tag == "MH" and tok.low == "light" and nxt is not None and nxt.low in lx.COLOUR_WORDS:
         return "W"
+    if tag == "SHP" and nxt is not None and _colour_before_noun(tok, nxt):
+        return "W"  # "an orange mug", "an apple green mug": a colour, no shape (nor fruit)
     if tag == "FRC" and tok.low in lx.ORDINAL_FRACTIONS:
         if not (prev_num or (prev is not None and prev.tag in ("A", "AND"))):
             return "W"  # "the top quarter", "third" or "fifth" as an ordinal
     return tag
+
+
+def _colour_before_noun(tok: Token, nxt: Token) -> bool:
+    """Whether a shape word is a colour here: a colour word ("orange") before a noun (a shape noun or a
+    kinds-lexicon noun: "an orange *mug*"), or any shape word before a colour word ("*apple* green",
+    "*lemon* yellow"). "An orange of 7 cm", "an orange, 200 g", "an orange that weighs..." stay the fruit."""
+    from kb.kinds import noun_in
+
+    if nxt.low in lx.COLOUR_WORDS and nxt.low.isalpha():
+        return True
+    if tok.low not in lx.COLOUR_WORDS:
+        return False
+    return nxt.tag == "SHP" or (nxt.tag == "W" and nxt.low.isalpha() and noun_in([nxt.low]) is not None)
 
 
 def _value_follows(tokens: list[Token], i: int) -> bool:

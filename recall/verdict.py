@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["GUESS_COMPETITORS", "Verdict", "verdict"]
+__all__ = ["GUESS_COMPETITORS", "GUESS_CONFIDENCE", "Verdict", "verdict"]
 
 
 @dataclass(frozen=True)
@@ -21,8 +21,11 @@ class Verdict:
         return {"label": self.label, "text": self.text}
 
 
-#: Competitors (the ranking's effective number of candidates) from which a result is "a guess".
+#: Competitors (the ranking's effective number of candidates) from which "a guess" says why: many fit.
 GUESS_COMPETITORS = 3.0
+#: Below this confidence a result is "a guess", at or above it a "close match": the label agrees with
+#: the confidence (a 0.89 is no guess, a 0.04 no close match, however many candidates are as good).
+GUESS_CONFIDENCE = 0.5
 
 
 def verdict(result) -> Verdict:
@@ -36,10 +39,13 @@ def verdict(result) -> Verdict:
             f"NOT IN THE CATALOG (open set): no {noun.noun!r} (kind: {noun.kind}) in the catalog; physically "
             f"closest: {near}; closest {result.same_kind_as or noun.kind}: {kind}; confidence {result.confidence:.2f}",
         )
+    if not result.matches:
+        return Verdict("not a close match", f"confidence {result.confidence:.2f}; nothing recalled")
     if result.open_set:
         label, said = "not a close match", "NOT a close match (open set): nothing in the catalog is near"
-    elif result.competitors >= GUESS_COMPETITORS:
-        label, said = "a guess", "a guess: many objects fit the description equally"
+    elif result.confidence < GUESS_CONFIDENCE:
+        many = result.competitors >= GUESS_COMPETITORS
+        label, said = "a guess", "a guess: many objects fit the description equally" if many else "a guess"
     else:
         label, said = "close match", "close match"
     why = []

@@ -53,10 +53,14 @@ class ChoiceSummary:
         return asdict(self)
 
     def describe(self) -> str:
+        """One line; ``differs`` counts the objects where nothing holds too, so they are said apart (with
+        ``--top 1`` and no hold, "differs for 1" read as if another grasp had held)."""
+        none_holds = self.objects - self.validated
+        other = self.differs - none_holds
         return (
             f"first choice holds for {self.first_holds} of {self.objects} objects; a validated grasp "
-            f"(best-ranked that holds) for {self.validated}; the validated choice differs from the first "
-            f"for {self.differs}"
+            f"(best-ranked that holds) for {self.validated}; the validated choice is another candidate "
+            f"for {other}, and no candidate holds for {none_holds}"
         )
 
 

@@ -36,6 +36,10 @@ from sim.task import row_details
 __all__ = ["CAUSES", "PAD_TIP_RADIUS_CM", "Cause", "diagnose", "failure_cause", "is_setup_failure"]
 
 CAUSES = ("aperture", "mass", "size", "pressed", "friction", "moment")
+#: A measured squeeze under this fraction of the planned one is named in a ``moment`` cause: the turn may
+#: be the hand's shortfall (a wide wrap's fingers press less than planned: the ladle's box 55 %, the
+#: baseball cap 74 %), not the plan's force.
+SHORT_SQUEEZE_FRACTION = 0.9
 #: The smallest fingertip pad radius (cm) of the digits every pinch uses (thumb and index: the distal
 #: capsule's radius, sim/hand_model.py). A pad resting on the table has its centre this high; a rod lying
 #: there whose radius is smaller is touched above its centre line.
@@ -109,10 +113,16 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
     squeeze = _num(row.get("grip_force_n")) or _num(plan.get("grip_force_n"))
     weight = mass / 1000.0 * GRAVITY
     if reason.startswith("turned"):
+        planned = _num(plan.get("grip_force_n"))
+        short = (
+            f"; the hand gave {squeeze:.3g} N of the {planned:g} N planned"
+            if planned and _num(row.get("grip_force_n")) and squeeze < SHORT_SQUEEZE_FRACTION * planned
+            else ""
+        )
         return Cause(
             "moment",
             f"its weight's moment about the grip or a push turned it out of the pads (squeeze {squeeze:.3g} N, "
-            f"friction {mu:g}, within the grasp's {capacity:g} N)",
+            f"friction {mu:g}, within the grasp's {capacity:g} N{short})",
         )
     return Cause(
         "friction",

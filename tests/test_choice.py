@@ -24,7 +24,7 @@ def test_validated_choice_is_the_best_ranked_candidate_that_holds():
     assert (cup.first, cup.validated, cup.differs) == ("heavy_wrap_large_diameter", "heavy_wrap_large_diameter", False)
     s = summarize_choices([remote, cup])
     assert (s.objects, s.first_holds, s.validated, s.differs) == (2, 1, 2, 1)
-    assert "differs from the first for 1" in s.describe()
+    assert "another candidate for 1, and no candidate holds for 0" in s.describe()
 
 
 def test_no_candidate_holds_keeps_every_reason_and_counts_as_differing():
@@ -33,6 +33,9 @@ def test_no_candidate_holds_keeps_every_reason_and_counts_as_differing():
     (c,) = choose(rows)
     assert c.validated is None and c.validated_rank is None and c.differs
     assert c.reasons == (("power_sphere", "hand starts inside"), ("precision_sphere", "not lifted"))
+    # said apart in the summary line: nothing held is not "another grasp held" (grasp validate --top 1)
+    line = summarize_choices([c]).describe()
+    assert "another candidate for 0, and no candidate holds for 1" in line
 
 
 def test_a_candidate_holds_only_if_every_seed_held_and_errors_never_hold():

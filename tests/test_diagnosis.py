@@ -182,3 +182,12 @@ def test_a_draping_sheet_is_no_mass_failure_for_a_rigid_plates_edge_moment():
     assert "sheet_held_cm" not in rigid.params and diagnose(_row(rigid, TURNED)).kind == "mass"
     heavy = best_grasp({**TOWEL, "mass_g": 20000})  # its friction bound beyond the grasp: mass, as for a plate
     assert "sheet_held_cm" in heavy.params and diagnose(_row(heavy, TURNED)).kind == "mass"
+
+
+def test_a_turn_names_a_measured_squeeze_short_of_the_plan_at_its_boundary():
+    plan = best_grasp(REMOTE)
+    planned = plan.grip_force_n
+    short = diagnose(_row(plan, TURNED, grip=round(0.89 * planned, 3))).text
+    assert f"of the {planned:g} N planned" in short
+    assert "planned" not in diagnose(_row(plan, TURNED, grip=0.9 * planned)).text
+    assert "planned" not in diagnose(_row(plan, TURNED)).text  # no measurement: nothing to compare

@@ -173,3 +173,41 @@ def test_a_ceramic_thing_of_mug_size_is_the_mug_not_the_candle():
     assert any(w.startswith("ceramic") for w in hybrid.vague)
     # features only (no names, so no finer material) the candle's 10 cm fit better in log units
     assert seed().recall_text(text, features_only=True, metric="jplog").best.name == "candle"
+
+
+def test_modifiers_before_a_catalog_head_never_make_it_unknown_but_a_noun_does():
+    """A lexicon compound whose words before a catalog head are materials (also multi-word: "cast
+    iron", "stainless steel"), colours or adjectives names a sort of the catalog's objects; a noun
+    before the head ("bottle warmer", "egg cup") another object."""
+    kw = dict(phrases=set(), vocabulary=frozenset(), generic=GENERIC_NOUNS)
+    for subject in (("heavy", "cast", "iron", "pan"), ("cast", "iron", "pan"), ("red", "cast", "iron", "pan")):
+        assert described_noun(subject, heads={"pan"}, **kw).in_catalog, subject
+    assert not described_noun(("cast", "iron", "pan"), heads={"pot"}, **kw).in_catalog
+    assert not described_noun(("bottle", "warmer"), heads={"bottle", "warmer"}, **kw).in_catalog
+    assert not described_noun(("egg", "cup"), heads={"cup"}, **kw).in_catalog
+
+
+
+@pytest.mark.parametrize(
+    ("text", "shape"),
+    [
+        ("an orange mug", "prism"),  # a colour before a noun: no shape, no fruit (the mug's shape)
+        ("an apple green mug", "prism"),  # a shape word before a colour word: a colour
+        ("an orange ball", "radial"),  # the ball's shape, not the orange's
+        ("an orange of 7 cm diameter", "radial"),  # the fruit (the issue's example)
+        ("an orange, 200 g", "radial"),
+        ("an orange that weighs 200 g", "radial"),
+    ],
+)
+def test_a_colour_word_before_a_noun_is_a_colour_not_a_shape(text, shape):
+    from recall.parser import parse
+
+    parsed = parse(text)
+    assert parsed.values().get("shape") == shape, (text, parsed.values())
+
+
+def test_an_orange_mug_is_the_coffee_mug_and_an_orange_is_still_no_mug():
+    for text in ("an orange mug", "an apple green mug"):
+        res = seed().recall_text(text)
+        assert res.best.name == "coffee mug" and not res.open_set and res.confidence > 0.5, text
+    assert seed().recall_text("An orange of 7 cm diameter.").not_in_catalog

@@ -282,3 +282,68 @@ def test_a_typing_slip_in_a_catalog_or_lexicon_noun_is_read_as_that_noun():
     assert res.not_in_catalog and res.described.noun == "nutcracker"
     # a correction that names no noun (a participle of a catalog name: "sliced") is no correction
     assert seed().recall_text("A bagel slicer, plastic, 25 cm long, 300 g.").not_in_catalog
+
+
+def test_the_verdict_label_agrees_with_the_confidence():
+    from recall.verdict import GUESS_CONFIDENCE, verdict
+
+    texts = ("a tennis ball", "something small and round", "a coffee mug", "a small red toy", "a plastic bottle cap",
+             "a fuzzy yellow tennis ball, about 6.5 cm across, 58 g", "a heavy steel tool about a foot long")
+    for text in texts:
+        res = seed().recall_text(text)
+        label = verdict(res).label
+        if label in ("close match", "a guess"):
+            assert (label == "close match") == (res.confidence >= GUESS_CONFIDENCE), (text, res.confidence, label)
+    assert verdict(seed().recall_text("a tennis ball")).label == "close match"  # 0.89 is no guess
+
+
+def test_grasp_target_says_the_recalls_own_verdict():
+    from recall.target import grasp_target
+    from recall.verdict import verdict
+
+    res = seed().recall_text("something small and round")
+    _record, info = grasp_target(res, lambda name: seed_record(name))
+    assert verdict(res).text in info["why"] and "(close match)" not in info["why"]
+
+
+def seed_record(name: str):
+    import csv
+
+    from kb.features import ObjectRecord
+
+    path = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"
+    with path.open(encoding="utf-8") as f:
+        row = next(r for r in csv.DictReader(f) if r["name"] == name)
+    values = {k: v for k, v in row.items() if k in ("a_cm", "b_cm", "c_cm", "mass_g") and v}
+    return ObjectRecord.create(name, **{k: float(v) for k, v in values.items()})
+
+
+# ------------------------------------------------------------------ grasp target: stated sides kept
+@pytest.mark.parametrize(
+    ("stated", "hint", "expected"),
+    [
+        ({"a_cm": 1.0}, (15.0, 4.2, 1.5), (1.0, 1.0, 1.0)),  # "a spoon 1 cm long": a stays 1, b, c <= a
+        ({"b_cm": 40.0, "c_cm": 40.0}, (27.0, 27.0, 27.0), (40.0, 40.0, 40.0)),  # "a bottle 40 cm wide"
+        ({"a_cm": 15.0}, (15.0, 4.2, 1.5), (15.0, 4.2, 1.5)),  # boundary: the hint's side equal to a stated
+        ({"a_cm": 4.2}, (15.0, 4.2, 1.5), (4.2, 4.2, 1.5)),  # ... b equal to the stated a: kept
+        ({"c_cm": 2.0}, (15.0, 4.2, 1.5), (15.0, 4.2, 2.0)),  # a stated c keeps its place
+        ({"b_cm": 5.0}, (15.0, 4.2, 1.5), (15.0, 5.0, 1.5)),
+        ({}, (1.5, 15.0, 4.2), (15.0, 4.2, 1.5)),  # nothing stated: the hint's sides, sorted
+    ],
+)
+def test_grasp_target_keeps_stated_sides_and_clamps_filled_ones(stated, hint, expected):
+    from types import SimpleNamespace
+
+    from kb.features import ObjectRecord
+    from recall.target import grasp_target
+
+    hint_object = ObjectRecord.create("spoon", a_cm=hint[0], b_cm=hint[1], c_cm=hint[2], mass_g=50.0)
+    best = SimpleNamespace(name="spoon", distance=3.0)
+    result = SimpleNamespace(
+        best=best, matches=[best], confidence=0.1, open_set=True, not_in_catalog=False, described=None,
+        same_kind=[], query={"values": dict(stated)}, closeness=0.5, unknown_noun=None, competitors=1.0,
+    )  # fmt: skip
+    record, info = grasp_target(result, lambda name: hint_object)
+    assert (record.a_cm, record.b_cm, record.c_cm) == expected
+    assert record.a_cm >= record.b_cm >= record.c_cm
+    assert all(getattr(record, f) == v for f, v in stated.items())  # place and value

@@ -62,3 +62,18 @@ def test_evaluate_needs_files_or_all():
 
     result = CliRunner().invoke(app, ["evaluate"])
     assert result.exit_code != 0 and "--all" in result.output
+
+
+def test_evaluate_all_prints_a_reliability_plot_per_mode_and_split(small_repo):
+    from rich.console import Console
+
+    from kb.service.cli.recall import _print_reliability
+
+    rows = scoreboard(repo=small_repo)  # "dev", a set the confidence is fitted on
+    console = Console(record=True, width=140)
+    _print_reliability(console, rows)
+    text = console.export_text()
+    for mode in ("jp", "jplog+names"):
+        assert f"Reliability, {mode}, sets the confidence was fitted on:" in text
+    assert "held out" not in text  # no held-out set in this repository
+    assert text.count("confidence    n   mean  accuracy") == 2

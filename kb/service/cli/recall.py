@@ -290,7 +290,27 @@ def _scoreboard_command(blind: bool, json_out: bool) -> None:
                 row.name, m.mode, str(row.n), f"{100 * m.top1:.1f}", f"{100 * m.top3:.1f}", detected,
                 f"{m.false_flags} ({_pct(m.false_flags, row.n)})", f"{m.brier:.3f}", f"{m.ece:.3f}", versus,
             )  # fmt: skip
-    Console(width=140).print(table)
+    console = Console(width=140)
+    console.print(table)
+    _print_reliability(console, rows)
+
+
+def _print_reliability(console, rows) -> None:
+    """The reliability plot of each mode, pooled over the sets the confidence was fitted on and over the
+    others (the held-out split; ``recall.scoreboard.CONFIDENCE_FIT_SETS``)."""
+    from recall.calibration import pooled
+    from recall.scoreboard import CONFIDENCE_FIT_SETS
+
+    for mode in dict.fromkeys(m.mode for r in rows for m in r.modes):
+        for split, fitted in (("fitted on", True), ("held out", False)):
+            cals = [m.calibration for r in rows for m in r.modes
+                    if m.mode == mode and m.calibration and (r.name in CONFIDENCE_FIT_SETS) == fitted]  # fmt: skip
+            if cals:
+                cal = pooled(cals)
+                console.print(f"Reliability, {mode}, sets the confidence was {split}: Brier {cal.brier:.3f}, "
+                              f"ECE {cal.ece:.3f} over {cal.n} results", highlight=False)  # fmt: skip
+                for line in cal.plot():
+                    console.print(f"  {line}", highlight=False)
 
 
 def _pct(k: int, n: int) -> str:
