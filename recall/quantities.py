@@ -192,6 +192,9 @@ class QuantityReader:
             return
         if len(quants) < 2:
             return
+        if len(quants) > 3:  # "3 x 2 x 1 x 7 cm": no object has four extents; which three were meant is a guess
+            reading.refuse(quants[0].start, quants[-1].end, f"{len(quants)} extents in one size: an object has three")
+            return
         weak = lx.WEAK_DIMENSION_WORDS | lx.UNIT_ONLY_DIMENSION_WORDS
         if not is_list and len(quants) == 2 and set(roles) in ({"diameter", None}, {"radius", None}, {"circumference", None}):
             roles = [r or "length" for r in roles]  # "7 cm dia x 12 cm": the other extent of a cylinder

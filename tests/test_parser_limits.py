@@ -29,6 +29,22 @@ def _refused(text: str) -> list[tuple[str, str]]:
     return [(r.words, r.reason) for r in parse(text).refused]
 
 
+# ----------------------------------------------------------------------------------------- four extents
+@pytest.mark.parametrize("text", ["3 x 2 x 1 x 7 cm", "a board 30 x 20 x 2 x 2 cm, 500 g", "1 x 2 x 3 x 4 x 5 in"])
+def test_a_size_of_four_or_more_extents_is_refused_not_cut_to_three(text: str) -> None:
+    """Which three of four extents were meant is a guess: the size is refused with its reason (the 7 of
+    "3 x 2 x 1 x 7 cm" was silently dropped), and the other values stay."""
+    numbers = _numbers(text)
+    assert not {"a_cm", "b_cm", "c_cm"} & set(numbers)
+    (words, reason), = _refused(text)
+    assert reason.endswith("extents in one size: an object has three") and " x " in words
+    assert numbers.get("mass_g") == (500 if "500 g" in text else None)
+
+
+def test_three_extents_are_still_a_size() -> None:
+    assert _numbers("a box 3 x 2 x 1 cm") == {"a_cm": 3, "b_cm": 2, "c_cm": 1} and _refused("3 x 2 x 1 cm") == []
+
+
 # ------------------------------------------------------------------------------------------------ signs
 @pytest.mark.parametrize(
     ("text", "words"),
