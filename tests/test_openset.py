@@ -3,25 +3,17 @@ evidence, the score columns, and the calibration measures."""
 
 from __future__ import annotations
 
-import functools
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from recallers import seed
 
 from recall.calibration import brier_score, calibration, expected_calibration_error
-from recall.engine import NOT_IN_CATALOG_CONFIDENCE, Recaller
+from recall.engine import NOT_IN_CATALOG_CONFIDENCE
 from recall.vague import VAGUE_WEIGHT, soft_evidence
-
-SEED_CSV = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"
-
-
-@functools.cache
-def seed() -> Recaller:
-    return Recaller.from_csv(SEED_CSV)
 
 
 # ---------------------------------------------------------------------------------- not in the catalog

@@ -4,13 +4,10 @@ salad plate"), a material its names contradict ("a wooden spoon"), a generic nou
 
 from __future__ import annotations
 
-import functools
-from pathlib import Path
-
 import numpy as np
 import pytest
+from recallers import catalog2, seed
 
-from recall.engine import Recaller
 from recall.names import GENERIC_NOUNS
 from recall.openset import (
     OPEN_SET_NAMED_THRESHOLD,
@@ -21,19 +18,6 @@ from recall.openset import (
     material_agrees,
 )
 from recall.subject import subject_phrase
-
-REPO = Path(__file__).resolve().parents[1]
-
-
-@functools.cache
-def seed() -> Recaller:
-    return Recaller.from_csv(REPO / "kb" / "data" / "seed_catalog.csv")
-
-
-@functools.cache
-def catalog2() -> Recaller:
-    return Recaller.from_csv(REPO / "tests" / "data" / "catalog2" / "catalog.csv")
-
 
 PLATE_WORDS = frozenset({"dinner", "plate", "ceramic"})
 
@@ -185,7 +169,6 @@ def test_modifiers_before_a_catalog_head_never_make_it_unknown_but_a_noun_does()
     assert not described_noun(("cast", "iron", "pan"), heads={"pot"}, **kw).in_catalog
     assert not described_noun(("bottle", "warmer"), heads={"bottle", "warmer"}, **kw).in_catalog
     assert not described_noun(("egg", "cup"), heads={"cup"}, **kw).in_catalog
-
 
 
 @pytest.mark.parametrize(

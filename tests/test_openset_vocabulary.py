@@ -5,10 +5,10 @@ vocabulary")."""
 
 from __future__ import annotations
 
-import functools
 from pathlib import Path
 
 import pytest
+from recallers import catalog2, seed
 
 from kb.kinds import nouns, words_of
 from recall.confidence import confidence_of
@@ -16,18 +16,6 @@ from recall.engine import NOT_IN_CATALOG_CONFIDENCE, Recaller
 from recall.names import GENERIC_NOUNS
 from recall.openset import KindIndex, compound_head, described_noun, names_inside, synonym_rows
 from recall.subject import feature_words, is_adjective, said_in_plural, subject_phrase
-
-REPO = Path(__file__).resolve().parents[1]
-
-
-@functools.cache
-def seed() -> Recaller:
-    return Recaller.from_csv(REPO / "kb" / "data" / "seed_catalog.csv")
-
-
-@functools.cache
-def catalog2() -> Recaller:
-    return Recaller.from_csv(REPO / "tests" / "data" / "catalog2" / "catalog.csv")
 
 
 def _described(recaller: Recaller, subject: tuple[str, ...]):

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import functools
 import math
 from pathlib import Path
 
@@ -10,6 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from recallers import seed
 
 from kb.errors import RecallError
 from kb.features import ObjectRecord
@@ -31,11 +31,6 @@ PAPER = {
     "mini rubix cube": "A mini rubix cube of about three centimeters wide. It is made of plastic and has smooth "
     "texture.",
 }
-
-
-@functools.cache
-def seed() -> Recaller:
-    return Recaller.from_csv(SEED_CSV)
 
 
 @pytest.mark.parametrize("obj", sorted(PAPER))

@@ -4,22 +4,13 @@ Each condition of the rule is pinned on its own."""
 
 from __future__ import annotations
 
-import functools
-from pathlib import Path
-
 from hypothesis import given
 from hypothesis import strategies as st
+from recallers import seed
 
 from kb.kinds import ROOT
-from recall.engine import NOT_IN_CATALOG_CONFIDENCE, Recaller
+from recall.engine import NOT_IN_CATALOG_CONFIDENCE
 from recall.openset import NOTE_WORDS, PART_NOUNS, PLACEHOLDERS, SHAPE_NOUNS, unseen_noun
-
-SEED_CSV = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"
-
-
-@functools.cache
-def seed() -> Recaller:
-    return Recaller.from_csv(SEED_CSV)
 
 
 # --------------------------------------------------------------------------------------- the rule alone
