@@ -11,6 +11,13 @@ cell, a name spanning lines or holding control characters (what an unbalanced qu
 :mod:`kb.features` refuses. Refused as a whole file: an unbalanced quote running to the end, a cell over
 :data:`MAX_CELL_CHARS` characters, a column named twice in the header, a missing column, a file that cannot
 be read or is not UTF-8.
+
+Spreadsheet safety: a text cell that a spreadsheet would run as a formula (one starting with ``=``, ``+``,
+``-``, ``@``, a tab or a carriage return) is written with a ``'`` in front (:func:`spreadsheet_cell`), and the
+reader takes that ``'`` off again (:func:`read_spreadsheet_cell`), so export -> import gives back the exact
+name. A plain number (``-5``, ``+1.5e3``) is left as it is: a spreadsheet reads it as a number, not a formula.
+Every CSV this project writes (the catalog export here, the grasp report's ``results.csv``) escapes its cells
+with :func:`spreadsheet_cell`.
 """
 
 from __future__ import annotations
@@ -26,7 +33,15 @@ from kb.errors import CatalogImportError, InvalidFeature
 from kb.features import CSV_COLUMNS, FEATURES, ObjectRecord, normalize_name
 from kb.files import read_input_file
 
-__all__ = ["CsvReadResult", "SkippedRow", "read_catalog_csv", "write_catalog_csv", "parse_catalog_csv"]
+__all__ = [
+    "CsvReadResult",
+    "SkippedRow",
+    "parse_catalog_csv",
+    "read_catalog_csv",
+    "read_spreadsheet_cell",
+    "spreadsheet_cell",
+    "write_catalog_csv",
+]
 
 ALIAS_SEPARATOR = ";"
 OPTIONAL_COLUMNS = ("aliases", "source")
@@ -37,6 +52,34 @@ MAX_CSV_BYTES = 1024 * 1024 * 1024
 #: The longest object name accepted from a CSV (a longer one is a broken row, not an object).
 MAX_NAME_CHARS = 200
 _CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+#: First characters that make a spreadsheet (Excel, LibreOffice, Google Sheets) read a cell as a formula.
+FORMULA_STARTS = frozenset("=+-@\t\r")
+#: What escapes a formula-like cell (the spreadsheets' own "this is text" mark).
+TEXT_MARK = "'"
+_PLAIN_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
+
+
+def _formula_like(text: str) -> bool:
+    """Whether ``text`` needs the text mark: it starts like a formula (and is not a plain number), or it is
+    itself marks in front of such a text (so that ``'=x`` written as ``''=x`` reads back as ``'=x``)."""
+    stripped = text.lstrip(TEXT_MARK)
+    if not stripped or stripped[0] not in FORMULA_STARTS:
+        return False
+    return stripped != text or _PLAIN_NUMBER.fullmatch(stripped) is None
+
+
+def spreadsheet_cell(text: str) -> str:
+    """``text`` as a CSV cell a spreadsheet cannot run as a formula: a ``'`` in front when it starts with
+    ``=``, ``+``, ``-``, ``@``, tab or CR (plain numbers excepted). :func:`read_spreadsheet_cell` undoes it."""
+    return TEXT_MARK + text if _formula_like(text) else text
+
+
+def read_spreadsheet_cell(cell: str) -> str:
+    """The text :func:`spreadsheet_cell` wrote as ``cell`` (any other cell is returned unchanged, so a
+    hand-written ``'n sync`` keeps its quote)."""
+    if cell.startswith(TEXT_MARK) and _formula_like(cell[1:]):
+        return cell[1:]
+    return cell
 
 
 @dataclass(frozen=True)
@@ -156,6 +199,7 @@ def _shape_problem(rownum: int, cells: list[str], header: list[str]) -> SkippedR
 
 
 def _row_to_record(row: dict[str, str | None]) -> ObjectRecord:
+    row = {k: read_spreadsheet_cell(v) if isinstance(v, str) else v for k, v in row.items()}
     features = {f: (row.get(f) or "").strip() or None for f in FEATURES}
     aliases = [a.strip() for a in (row.get("aliases") or "").split(ALIAS_SEPARATOR) if a.strip()]
     source = (row.get("source") or "").strip() or None
@@ -179,11 +223,12 @@ def write_catalog_csv(records: Iterable[ObjectRecord], path: str | Path | None =
     writer = csv.writer(buf, lineterminator="\n")
     writer.writerow([*CSV_COLUMNS, *OPTIONAL_COLUMNS])
     for rec in records:
-        writer.writerow(
+        cells = (
             [normalize_name(rec.name)]
             + [_cell(getattr(rec, f)) for f in FEATURES]
             + [ALIAS_SEPARATOR.join(rec.aliases), rec.source or ""]
         )
+        writer.writerow([spreadsheet_cell(c) for c in cells])
     text = buf.getvalue()
     if path is not None:
         Path(path).write_text(text, encoding="utf-8")

@@ -31,7 +31,7 @@ BE      a linking word between a dimension noun and its value: is, are, measures
 MAT/SHP/RIG/TEX/FRA  category words (material, shape, rigidity, texture, fragility)
 MH      a mass hint word (light, heavy)
 FILL    a container-contents word (filled, full, contains)
-NEG     a negation (not, non, isn't, never)
+NEG     a negation (not, non, isn't, doesn't, never, without): of a category word or of a value
 SEP     sentence punctuation; CM a comma or parenthesis
 W       any other word
 ======= ==========================================================================
@@ -301,8 +301,18 @@ WEAK_FILL_WORDS: frozenset[str] = frozenset({"with", "holding"})
 CAPACITY_WORDS: frozenset[str] = frozenset({"capacity", "holds", "empty", "can hold", "could hold"})
 
 NEGATIONS: frozenset[str] = frozenset(
-    {"not", "non", "isn't", "isnt", "aren't", "wasn't", "never", "no", "without", "nor", "neither", "hardly"}
-)
+    {"not", "non", "isn't", "isnt", "aren't", "wasn't", "weren't", "doesn't", "don't", "didn't", "never", "no",
+     "without", "nor", "neither", "hardly"}
+)  # fmt: skip
+#: The negations that also negate a value right after them ("not 10 cm", "isn't over 500 g", "without the
+#: 2 cm lid"); "hardly 10 cm" is barely 10 cm, a value still stated.
+VALUE_NEGATIONS: frozenset[str] = NEGATIONS - {"hardly"}
+#: Words that may stand between a value negation and its value ("does not weigh 300 g", "is not really
+#: 10 cm"); tokens tagged BE ("is", "the", ":") may too. At most two of them.
+NEGATION_GAP_WORDS: frozenset[str] = frozenset({"weigh", "weighs", "really", "actually"})
+#: A word between a negation and its value that turns the negation into a bound or a hedge: "not quite
+#: 10 cm" is a little under 10 (about, like "nearly"), "not even 10 cm" is at most 10.
+NEGATED_HEDGE_WORDS: dict[str, str] = {"quite": "about", "even": "at_most"}
 
 # ------------------------------------------------------------------------------------ other small words
 FUNCTION_WORDS: dict[str, str] = {

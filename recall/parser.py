@@ -33,8 +33,9 @@ from typing import Any
 
 from kb.errors import DescriptionError
 from kb.features import FEATURES
+from recall import lexicon as lx
 from recall.categories import read_categories, resolve_categories
-from recall.chunks import GRAMMAR, MAX_SEGMENT_TOKENS, Chunker
+from recall.chunks import GRAMMAR, MAX_SEGMENT_TOKENS, Chunker, size
 from recall.dimensions import read_relations, resolve_dims
 from recall.mass import resolve_mass
 from recall.quantities import QuantityReader
@@ -88,7 +89,7 @@ class FeatureEvidence:
 
 @dataclass(frozen=True)
 class RefusedQuantity:
-    """A stated value the parser does not use, and why: negative ("-10 kg"), zero, beyond the catalog's
+    """A stated value the parser does not use, and why: negated ("not 10 cm"), negative ("-10 kg"), zero, beyond the catalog's
     limits ("1e308 cm", "10**100 g"; 5 m and 500 kg are accepted), too small to state, or a second unit
     not smaller than one of the first ("5 ft 12 in")."""
 
@@ -162,8 +163,10 @@ class DescriptionParser:
         pos = 0
         for segment in self.chunker.segments(tokens):
             tree = self.chunker.chunk(segment)
+            tree, requalified = _negate(tree, segment, pos, reading)
             children.extend(tree)
             self.reader.read(tree, segment, pos, reading)
+            _requalify(reading, requalified)
             read_categories(segment, pos, reading)
             pos += len(segment)
         read_relations(tokens, reading)
@@ -175,6 +178,76 @@ class DescriptionParser:
         return ParsedDescription(
             text=text, features=features, mass_hint=hint, tree=Tree("S", children), refused=refused
         )
+
+
+#: Chunks that state a value (a negation before one of them negates the value).
+_VALUE_CHUNKS = frozenset({"QUANT", "MULTI", "DIM", "RANGE"})
+#: What a negated bound or exact hedge becomes: "not over 10 cm" is at most 10, "not under" at least,
+#: "not exactly 10 cm" about 10.
+_NEGATED_HEDGE_TAGS = {"HL": "at_most", "HU": "at_least", "HX": "about"}
+_NEGATED_REASON = "negated: the description says it is not this value"
+
+
+def _negation(segment: list[Any], k: int) -> str | None:
+    """How the value chunk starting at token ``k`` is negated: None when it is not, "" by a plain
+    negation right before it ("not 10 cm", "does not weigh 300 g", "isn't really 10 cm", "not filled with
+    500 ml": at most two BE, FILL or :data:`~recall.lexicon.NEGATION_GAP_WORDS` words between), or the qualifier of a
+    :data:`~recall.lexicon.NEGATED_HEDGE_WORDS` word between ("not quite 10 cm": about)."""
+    hedge = ""
+    for gap, j in enumerate(range(k - 1, max(-1, k - 4), -1)):
+        tok = segment[j]
+        if tok.tag == "NEG":
+            return hedge if tok.low in lx.VALUE_NEGATIONS else None
+        if gap == 0 and tok.low in lx.NEGATED_HEDGE_WORDS:
+            hedge = lx.NEGATED_HEDGE_WORDS[tok.low]
+        elif gap == 2 or not (tok.tag in ("BE", "FILL") or tok.low in lx.NEGATION_GAP_WORDS):
+            return None
+    return None
+
+
+def _negate(tree: Tree, segment: list[Any], pos: int, reading: Reading) -> tuple[Tree, dict[tuple[int, int], str]]:
+    """The sentence's chunk tree with each negated value chunk taken apart into its words (the value is not
+    stated: listed in ``reading.refused``), and the spans of the negated chunks whose value is kept with
+    another qualifier ("not more than 10 cm" at most, "not exactly 10 cm" about, "not quite 10 cm" about)."""
+    kept: list[Any] = []
+    requalified: dict[tuple[int, int], str] = {}
+    k = 0
+    for child in tree:
+        if not isinstance(child, Tree):
+            kept.append(child)
+            k += 1
+            continue
+        n = size(child)
+        how = _negation(segment, k) if child.label() in _VALUE_CHUNKS else None
+        toks = segment[k : k + n]
+        hedges = [t.tag for t in toks if t.tag in ("HA", "HL", "HU", "HX")]
+        if how is None:
+            kept.append(child)
+        elif how or (hedges and hedges[0] in _NEGATED_HEDGE_TAGS):
+            kept.append(child)
+            requalified[(toks[0].start, toks[-1].end)] = how or _NEGATED_HEDGE_TAGS[hedges[0]]
+        else:
+            kept.extend(child.leaves())
+            reading.refuse(toks[0].start, toks[-1].end, _NEGATED_REASON)
+            if any(t.tag in ("DIM", "DIMN") for t in toks):
+                reading.in_dim_chunk.update(range(pos + k, pos + k + n))  # "not 10 cm long": no long shape
+        k += n
+    return (Tree(tree.label(), kept) if len(kept) != len(tree) else tree), requalified
+
+
+def _requalify(reading: Reading, spans: dict[tuple[int, int], str]) -> None:
+    """Give each quantity read inside one of ``spans`` that span's qualifier (a range stays a range)."""
+    if not spans:
+        return
+    quantities = [q for stmt in (*reading.dims, *reading.multis, *reading.sizes) for q in stmt.quantities]
+    quantities += [q for q, _contents in reading.masses] + reading.other_masses + reading.contents
+    for q in quantities:
+        qualifier = next((v for (a, b), v in spans.items() if a <= q.start and q.end <= b), None)
+        if qualifier is None or q.qualifier == "range":
+            continue
+        q.qualifier = qualifier
+        q.low = q.value if qualifier == "at_least" else None
+        q.high = q.value if qualifier == "at_most" else None
 
 
 def _resolve(reading: Reading, text: str) -> tuple[dict[str, FeatureEvidence], str | None]:

@@ -150,7 +150,9 @@ class GraspTargets:
     side_force_n: float
 
 
-def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTargets:
+def grasp_targets(
+    plan: GraspPlan, width_cm: float | None = None, *, align_pads: bool = False
+) -> GraspTargets:
     """Pre-shape and closing targets for ``plan``, for an object ``width_cm`` wide along the opposition axis.
 
     ``width_cm`` defaults to the plan's aperture less the planner's margin. Closing is force-limited
@@ -162,7 +164,8 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     the squeeze is capped by the weaker side's strength (:data:`FINGER_MAX_FORCE_N` per finger,
     :data:`THUMB_MAX_FORCE_N`). While closing, a floor of :data:`CLOSING_FORCE_FLOOR_N` keeps light
     grips from closing too slowly (speed is torque over damping). Unused fingers stay straight and, in
-    precision grasps, above the object.
+    precision grasps, above the object. ``align_pads``: a pinch's used fingers each get the PIP-per-MCP
+    ratio that puts their pads at the thumb's height (off a table edge; sim/world.py asks for it).
     """
     if plan.grasp_type not in GRASP_TYPES:
         raise ValueError(f"unknown grasp type {plan.grasp_type!r}")
@@ -172,8 +175,12 @@ def grasp_targets(plan: GraspPlan, width_cm: float | None = None) -> GraspTarget
     fingers = program.fingers
     side = min(max(plan.grip_force_n, 0.1), THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(fingers))
     limits, closing, squeezing = _force_limits(program, side)
-    posture = _wrap_posture if program.control == "wrap" else _pinch_posture
-    open_q, close_q, touch_q, center, contact_z, reach = posture(program, aperture, width)
+    if program.control == "wrap":
+        open_q, close_q, touch_q, center, contact_z, reach = _wrap_posture(program, aperture, width)
+    else:
+        open_q, close_q, touch_q, center, contact_z, reach = _pinch_posture(
+            program, aperture, width, align_pads
+        )
     open_q["thumb_rot"] = close_q["thumb_rot"] = _thumb_rotation(program, reach)
     return GraspTargets(
         open=np.array([open_q[n] for n in ACTUATOR_NAMES]),
@@ -230,7 +237,7 @@ def _wrap_posture(program, aperture: float, width: float):
     return open_q, close_q, {}, center, -PALM_HALF_CM[2], reach
 
 
-def _pinch_posture(program, aperture: float, width: float):
+def _pinch_posture(program, aperture: float, width: float, align_pads: bool = False):
     """A pinch's (open, close, touch, centre y, contact z, thumb reach): the pads press on opposite sides
     at one height (else the squeeze is a couple that turns the object), so the pinch centre is where, for
     this width, the thumb tip and the finger tips touch the object at the same depth below the palm. Tip
@@ -263,16 +270,30 @@ def _pinch_posture(program, aperture: float, width: float):
     finger_contacts = []
     for f in fingers:
         r_f = FINGER_BY_NAME[f].radius_cm * TIP_TAPER
-        q_open = finger_pinch_mcp(f, center + half_open + r_f, ratio)
-        q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM, ratio)
-        q_touch = finger_pinch_mcp(f, center + width / 2.0 + r_f, ratio)
-        open_q[f"{f}_mcp"], open_q[f"{f}_pip"] = q_open, pip_of(q_open)
-        close_q[f"{f}_mcp"], close_q[f"{f}_pip"] = q_close, pip_of(q_close)
-        touch_q[f"{f}_mcp"], touch_q[f"{f}_pip"] = q_touch, pip_of(q_touch)
-        finger_contacts.append(finger_tip(f, q_touch, pip_of(q_touch))[1])
+        y_touch = center + width / 2.0 + r_f
+        f_ratio = _aligned_ratio(f, y_touch, thumb_contact, ratio) if align_pads else ratio
+        q_open = finger_pinch_mcp(f, center + half_open + r_f, f_ratio)
+        q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM, f_ratio)
+        q_touch = finger_pinch_mcp(f, y_touch, f_ratio)
+        for q_map, q in ((open_q, q_open), (close_q, q_close), (touch_q, q_touch)):
+            q_map[f"{f}_mcp"], q_map[f"{f}_pip"] = q, min(pip_max, f_ratio * q)
+        finger_contacts.append(finger_tip(f, q_touch, min(pip_max, f_ratio * q_touch))[1])
     contact_z = 0.5 * (thumb_contact + float(np.mean(finger_contacts)))
     # The thumb's rotation is about the palm's y axis: its lateral reach is the tip's depth below the CMC.
     return open_q, close_q, touch_q, center, contact_z, max(2.0, THUMB.base_cm[2] - thumb_contact)
+
+
+def _aligned_ratio(finger: str, y_cm: float, z_cm: float, ratio: float) -> float:
+    """The PIP-per-MCP ratio that puts ``finger``'s tip at (``y_cm``, ``z_cm``), searched between half and
+    twice the program's ``ratio`` (at most 1.6) and clamped to that range: the fingers differ in length, so
+    at one ratio their tips reach a pinch's far side at different heights (sim/PHYSICS.md, pads aligned)."""
+    pip_max = math.radians(RANGE_DEG["pip"][1])
+
+    def z_of(r: float) -> float:
+        q = finger_pinch_mcp(finger, y_cm, r)
+        return -finger_tip(finger, q, min(pip_max, r * q))[1]
+
+    return _solve(z_of, -z_cm, 0.5 * ratio, min(1.6, 2.0 * ratio))
 
 
 def _thumb_rotation(program, reach: float) -> float:

@@ -31,7 +31,7 @@ from sim.grasps import GRASP_TYPES
 
 __all__ = ["PROGRAMS", "PROGRAMS_VERSION", "HandProgram", "merged_types", "program_for"]
 
-PROGRAMS_VERSION = "2"  # 2: the precision-circular program on three fingers
+PROGRAMS_VERSION = "3"  # 3: pinch pads aligned at the thumb's height off the table edge; 2: precision circular on three fingers
 
 ALL4 = ("index", "middle", "ring", "little")
 

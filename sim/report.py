@@ -28,6 +28,7 @@ from pathlib import Path
 from string import Template
 from typing import Any
 
+from kb.csvio import spreadsheet_cell
 from kb.jsonable import to_jsonable
 from sim.diagnosis import failure_cause, is_setup_failure
 from sim.task import row_details
@@ -191,11 +192,9 @@ def _gallery(rows: list[dict[str, Any]], out_dir: Path, choices: list[Any]) -> s
 
 
 def _csv_cell(value: Any) -> Any:
-    """A CSV cell; text that a spreadsheet would run as a formula (=, +, -, @) is prefixed with '."""
+    """A CSV cell; text that a spreadsheet would run as a formula is escaped (:func:`kb.csvio.spreadsheet_cell`)."""
     value = to_jsonable(value)
-    if isinstance(value, str) and value[:1] in ("=", "+", "-", "@", "\t", "\r"):
-        return "'" + value
-    return value
+    return spreadsheet_cell(value) if isinstance(value, str) else value
 
 
 def write_report(

@@ -248,7 +248,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     lay = _layout(model_obj, plan)
     approach, axes, signs, flat = lay.approach, lay.axes, lay.signs, lay.flat
     ext, grip_centre, grip_ext, width = lay.ext, lay.grip_centre, lay.grip_ext, lay.width
-    targets = H.grasp_targets(plan, width)
+    targets = H.grasp_targets(plan, width, align_pads=not flat)
     program = program_for(plan.grasp_type)
     wrap = program.control == "wrap"
 

@@ -125,3 +125,34 @@ def test_planar_kinematics_match_the_mujoco_model():
 def test_unknown_approach_is_refused():
     with pytest.raises(ValueError, match="approach"):
         H.hand_spec("below")
+
+
+def _touch_heights(targets: H.GraspTargets) -> dict[str, float]:
+    q = dict(zip(H.ACTUATOR_NAMES, targets.touch, strict=True))
+    out = {f: H.finger_tip(f, q[f"{f}_mcp"], q[f"{f}_pip"])[1] for f in targets.fingers}
+    out["thumb"] = H.thumb_tip(q["thumb_flex"])[1]
+    return out
+
+
+@pytest.mark.parametrize("grasp_type", ["thumb_2_finger", "thumb_3_finger", "tripod"])
+def test_aligned_pinch_pads_meet_a_thin_rod_at_the_thumbs_height(grasp_type):
+    """The index is 1 cm shorter than the middle finger: at one synergy its pad met a 1.45 cm AA battery
+    0.4 cm above the middle's, above the rod's centre line, and pressed it into the table. Aligned, every
+    used finger's pad touches at the thumb's height; the synergy then differs per finger."""
+    plain = _touch_heights(H.grasp_targets(_plan(grasp_type, aperture=3.45), width_cm=1.45))
+    aligned_t = H.grasp_targets(_plan(grasp_type, aperture=3.45), width_cm=1.45, align_pads=True)
+    aligned = _touch_heights(aligned_t)
+    assert plain["index"] - plain["middle"] > 0.5  # the misalignment this fixes
+    for f in aligned_t.fingers:
+        assert aligned[f] == pytest.approx(aligned["thumb"], abs=0.01)
+    q = dict(zip(H.ACTUATOR_NAMES, aligned_t.touch, strict=True))
+    assert q["index_pip"] / q["index_mcp"] < q["middle_pip"] / q["middle_mcp"]  # the shorter finger flatter
+
+
+def test_alignment_keeps_the_programs_synergy_where_it_is_off_and_for_one_finger():
+    plan = _plan("thumb_index_finger", aperture=3.45)
+    aligned = H.grasp_targets(plan, 1.45, align_pads=True)
+    assert np.allclose(H.grasp_targets(plan, 1.45).touch, aligned.touch, atol=1e-3)
+    q = dict(zip(H.ACTUATOR_NAMES, H.grasp_targets(_plan("thumb_2_finger", 3.45), 1.45).touch, strict=True))
+    assert q["index_pip"] / q["index_mcp"] == pytest.approx(0.8)
+    assert q["middle_pip"] / q["middle_mcp"] == pytest.approx(0.8)

@@ -83,6 +83,7 @@ def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
 def _lenient_rows(path: Path) -> Iterator[tuple[int, dict[str, str]]]:
     """(line number, row) of a catalog CSV, with header words mapped to feature names (:data:`HEADER_ALIASES`)
     and cells stripped; the first non-blank cell wins when two columns map to one feature."""
+    from kb.csvio import read_spreadsheet_cell
     from kb.features import FEATURES
 
     with Path(path).open(newline="", encoding="utf-8-sig") as fh:
@@ -98,7 +99,7 @@ def _lenient_rows(path: Path) -> Iterator[tuple[int, dict[str, str]]]:
                     continue
                 key = keys.get(k.strip().lower(), k.strip().lower())
                 if key not in row or not row[key]:
-                    row[key] = (v or "").strip()
+                    row[key] = read_spreadsheet_cell((v or "").strip())
             yield lineno, row
 
 
