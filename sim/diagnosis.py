@@ -8,8 +8,8 @@ numbers (stored with every result: its ``params`` and grip force, sim/planner.py
 |---|---|---|
 | ``aperture`` | the plan is infeasible (every side wider than the hand's span), its grasp needs a wider opening than the span (``fits_aperture`` false: width plus the planner's margin), or the hand, opened for this grasp, starts inside the object | the hand cannot open round it: a setup problem, counted apart from grasp failures in the report |
 | ``mass`` | the squeeze its weight needs (against friction, or against the moment of its weight at a table edge) is more than this grasp can give | too heavy for this grasp: a stronger grasp, or two hands |
-| ``size`` | the digits closed without touching it | too small or thin for the pads |
-| ``pressed`` | a pinch from above did not lift a rod lying on the table (``round_across_cm`` in the plan) thinner than twice the fingertip pad's radius (:data:`PAD_TIP_RADIUS_CM`) | the pads, stopped by the table, meet it above its centre line: each pad's push has a downward part that presses it into the table instead of squeezing it up |
+| ``size`` | the digits closed without touching it | too small or thin for the pads; at a table edge, pads that press nearer its rim than their radius (the plan's ``edge_grip_in_cm``: a coin, a paper clip, whose centre of mass lets them overhang only about 1 cm) pushed it out of the pinch |
+| ``pressed`` | a pinch from above did not lift a rod lying on the table (``round_across_cm`` in the plan) thinner than twice the fingertip pad's radius (:data:`PAD_TIP_RADIUS_CM`) | pads that meet it a millimetre or two above its centre line (the hand passes through the table, so nothing stops them lower; the fingers' pads are aligned at the thumb's height since programs version 3, and the AA battery's thumb-3 finger still touched 1-2 mm high) push it down into the table instead of squeezing it up |
 | ``friction`` | not lifted, or slipped past the limit, with a squeeze within the grasp's strength | squeeze times friction did not carry its weight and the push |
 | ``moment`` | turned past the limit with a squeeze within the grasp's strength | the weight's moment about the grip, or a push, turned it out of the pads |
 
@@ -27,7 +27,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from sim.grasps import GRASP_TYPES, HAND_MAX_APERTURE_CM, side_force_capacity
+from sim.grasps import EDGE_PAD_CLEAR_CM, GRASP_TYPES, HAND_MAX_APERTURE_CM, side_force_capacity
 from sim.grip_force import GRAVITY
 from sim.hand_model import FINGER_BY_NAME, THUMB, TIP_TAPER
 from sim.programs import program_for
@@ -106,7 +106,9 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
             f"{grasp.replace('_', ' ')} gives",
         )
     if "no contact" in reason:
-        return Cause("size", f"the digits closed past it ({width:g} cm across): too small or thin for the pads")
+        return _edge_size(params, width) or Cause(
+            "size", f"the digits closed past it ({width:g} cm across): too small or thin for the pads"
+        )
     pressed = _pressed(plan, params, reason)
     if pressed is not None:
         return pressed
@@ -128,6 +130,26 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
         "friction",
         f"a squeeze of {squeeze:.3g} N at friction {mu:g} carries about {2 * mu * squeeze:.3g} N; its weight is "
         f"{weight:.3g} N and the pushes add as much again",
+    )
+
+
+def _edge_size(params: Mapping[str, Any], width: float) -> Cause | None:
+    """A flat object at a table edge whose pads could reach in from its rim less than their own radius (the
+    plan's ``edge_*`` params, sim/planner.py): its centre of mass must stay on the table, so a coin overhangs
+    about 1 cm and the pads, kept clear of the table's edge, press within a few millimetres of its rim."""
+    grip_in = _num(params.get("edge_grip_in_cm"), -1.0)
+    if not 0.0 <= grip_in < PAD_TIP_RADIUS_CM:
+        return None
+    depth, overhang = _num(params.get("edge_depth_cm")), _num(params.get("edge_overhang_cm"))
+    return Cause(
+        "size",
+        f"at the table edge its centre of mass lets it overhang only {overhang:.3g} cm of its {depth:g} cm, "
+        f"so the pads, kept {EDGE_PAD_CLEAR_CM:g} cm off the table's edge, press {grip_in:.3g} cm in from its "
+        "rim, "
+        f"less than their own {PAD_TIP_RADIUS_CM:g} cm radius: closing that near the rim of a {width:g} cm "
+        "thin plate, they pushed it out of the pinch. A person slides it out over the edge under a fingertip "
+        "first, or lifts it by its rim with the nails; this hand has no nails, and its fixed wrist and the "
+        "trial's one approach do not slide it",
     )
 
 
@@ -168,8 +190,9 @@ def _pressed(plan: Mapping[str, Any], params: Mapping[str, Any], reason: str) ->
     return Cause(
         "pressed",
         f"lying on the table, its {diameter:g} cm round side is thinner than two fingertip pads' radius "
-        f"({2 * PAD_TIP_RADIUS_CM:g} cm): the pads, stopped by the table, meet it above its centre line and "
-        "press it into the table instead of squeezing it up (a person rolls it or slides a nail under it)",
+        f"({2 * PAD_TIP_RADIUS_CM:g} cm): on so small a curve, pads that meet it even a millimetre or two "
+        "above its centre line push it down into the table instead of squeezing it up (a person rolls it or "
+        "slides a nail under it)",
     )
 
 

@@ -235,6 +235,7 @@ def _plan(
             "program": program.name,
             **_round_across(o, hold),
             **_sheet(ctx, hold),
+            **_edge(ctx, hold),
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
@@ -268,6 +269,21 @@ def _sheet(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
         "sheet_held_cm": round(held, 3),
         "sheet_grip_in_cm": round(edge_grip_in_cm(depth), 3),
         "sheet_hanging_g": round(o.mass_g * (depth - held) / depth, 1),
+    }
+
+
+def _edge(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
+    """For a flat object picked up at a table edge (rule 3): the depth that lies across the edge, how far it
+    overhangs and how far in from its rim the pads press (sim/grasps.py, the trial's geometry);
+    sim/diagnosis.py reads them to say why a pinch there closed without holding a coin (grasp-odd)."""
+    o = ctx.o
+    if hold or not ctx.edge_force:
+        return {}
+    depth = edge_depth_cm(o.a_cm, o.b_cm)
+    return {
+        "edge_depth_cm": round(depth, 3),
+        "edge_overhang_cm": round(edge_overhang_cm(depth), 3),
+        "edge_grip_in_cm": round(edge_grip_in_cm(depth), 3),
     }
 
 

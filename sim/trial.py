@@ -32,7 +32,7 @@ import numpy as np
 from kb.errors import PhysicsError
 from kb.features import ObjectRecord
 from sim import hand as H
-from sim.grasps import GraspPlan
+from sim.grasps import HAND_MAX_APERTURE_CM, GraspPlan
 from sim.programs import program_for
 from sim.runner import (
     LIFT_M,
@@ -144,13 +144,12 @@ def run_trial(
     try:
         depth = runner.start_penetration_m()
         if depth > PENETRATION_TOL_M:
-            return finish(
-                "failure", f"hand starts inside the object ({depth * 1000:.1f} mm deep at the grasp pose)"
-            )
+            return finish("failure", _inside_reason(plan, depth))
         runner.approach()
+        before = world.data.xpos[world.object_body].copy()
         runner.close()
         if not world.hand_contacts()[0].size:
-            return finish("failure", "no contact after closing: the digits missed the object")
+            return finish("failure", _no_contact_reason(world, before))
         rose = runner.lift()
         result.lifted = rose >= LIFTED_FRACTION * LIFT_M / H.CM
         if not result.lifted:
@@ -173,6 +172,40 @@ def run_trial(
         f"held: moved {runner.slip:.2f} cm and turned {runner.turn:.1f} deg relative to the palm "
         f"under pushes of its weight ({world.obj.weight_n:.2f} N)",
     )
+
+
+def _inside_reason(plan: GraspPlan, depth_m: float) -> str:
+    """The hand starts inside the object; when the plan says the hand cannot open round it (every side wider
+    than its span, or this grasp's opening), the reason says so: an aperture problem, not a posture's."""
+    reason = f"hand starts inside the object ({depth_m * 1000:.1f} mm deep at the grasp pose)"
+    p = plan.params
+    width = p.get("width_cm")
+    if p.get("feasible") is False:
+        return (
+            f"{reason}: its smallest side ({width:g} cm) is wider than the hand's "
+            f"{HAND_MAX_APERTURE_CM:g} cm span, it needs two hands"
+        )
+    if p.get("fits_aperture") is False:
+        opening = p.get("opening_needed_cm")
+        span = HAND_MAX_APERTURE_CM
+        return f"{reason}: this grasp needs a {opening:g} cm opening round {width:g} cm; the hand opens {span:g}"
+    return reason
+
+
+#: An object that moved this far (cm) while the digits closed without holding it was pushed away by them.
+PUSHED_AWAY_CM = 0.5
+
+
+def _no_contact_reason(world: TrialWorld, before: np.ndarray) -> str:
+    """Why no digit touches the object after closing: they closed past it, or they pushed it away (out of
+    the pinch, and off the table when it fell below the table top)."""
+    after = world.data.xpos[world.object_body]
+    moved = float(np.linalg.norm(after - before)) / H.CM
+    if moved < PUSHED_AWAY_CM:
+        return "no contact after closing: the digits missed the object"
+    if after[2] < 0.0:  # below the table top: it fell off the table's edge
+        return "no contact after closing: the digits pushed the object out of the grasp and off the table"
+    return f"no contact after closing: the digits pushed the object {moved:.1f} cm out of the grasp"
 
 
 def _slip_reason(runner: Runner, phase: str) -> str:

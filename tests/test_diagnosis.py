@@ -191,3 +191,25 @@ def test_a_turn_names_a_measured_squeeze_short_of_the_plan_at_its_boundary():
     assert f"of the {planned:g} N planned" in short
     assert "planned" not in diagnose(_row(plan, TURNED, grip=0.9 * planned)).text
     assert "planned" not in diagnose(_row(plan, TURNED)).text  # no measurement: nothing to compare
+
+
+COIN = dict(a_cm=2.325, b_cm=2.325, c_cm=0.233, mass_g=7.5, shape="thin", material="metal")
+
+
+def test_a_coin_at_the_table_edge_is_pushed_out_by_pads_nearer_its_rim_than_their_radius():
+    """The pads press edge_grip_in_cm in from the rim (sim/grasps.py); under their radius, a pinch that
+    closed without holding is said to have pushed it out, with the numbers; from the radius on it is not."""
+    from sim.diagnosis import PAD_TIP_RADIUS_CM
+
+    plan = best_grasp(COIN)
+    p = plan.params
+    assert (p["edge_depth_cm"], p["edge_overhang_cm"], p["edge_grip_in_cm"]) == (2.325, 1.046, 0.3)
+    cause = diagnose(_row(plan, NO_CONTACT))
+    assert cause.kind == "size"
+    assert "overhang only 1.05 cm" in cause.text and "0.3 cm in from its rim" in cause.text
+    assert "nails" in cause.text
+    below = GraspPlan(**{**plan.to_dict(), "params": {**p, "edge_grip_in_cm": PAD_TIP_RADIUS_CM - 0.001}})
+    at = GraspPlan(**{**plan.to_dict(), "params": {**p, "edge_grip_in_cm": PAD_TIP_RADIUS_CM}})
+    assert "rim" in diagnose(_row(below, NO_CONTACT)).text
+    assert diagnose(_row(at, NO_CONTACT)).text.startswith("the digits closed past it")
+    assert "edge_grip_in_cm" not in best_grasp(REMOTE).params  # not flat: no table edge

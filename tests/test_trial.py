@@ -275,3 +275,33 @@ def test_render_camera_aims_at_the_hands_contacts_on_the_object():
     assert np.allclose(centre, np.mean(touching, axis=0))
     # the pinch is at the book's edge, far from its centre: the camera does not aim at the centre
     assert np.linalg.norm(centre[:2] - world.data.xpos[world.object_body][:2]) > 0.05
+
+
+def test_no_contact_says_whether_the_digits_missed_or_pushed_the_object_away():
+    """A euro coin at the table edge (data written here): the pads pushed it out of the pinch and it fell; a
+    3 mm bead in the table's middle is pushed 1 cm aside; an object that did not move was missed."""
+    from sim.planner import best_grasp
+    from sim.trial import _no_contact_reason
+
+    coin = ObjectRecord.create(name="one euro coin", a_cm=2.325, b_cm=2.325, c_cm=0.233, mass_g=7.5,
+                               shape="thin", material="metal", texture="medium", rigidity="rigid")  # fmt: skip
+    r = run_trial(coin, best_grasp(coin), seed=0)
+    assert r.reason == "no contact after closing: the digits pushed the object out of the grasp and off the table"
+    tiny = ObjectRecord.create(name="bead", a_cm=0.3, b_cm=0.3, c_cm=0.3, mass_g=0.1, shape="compact")
+    plan = _plan("thumb_index_finger", aperture=2.0, force=1.5)
+    r = run_trial(tiny, plan, seed=0)
+    assert r.reason == "no contact after closing: the digits pushed the object 1.0 cm out of the grasp"
+    world = build_world(tiny, plan, seed=0)
+    still = world.data.xpos[world.object_body].copy()
+    assert _no_contact_reason(world, still) == "no contact after closing: the digits missed the object"
+
+
+def test_a_ball_wider_than_the_hand_starts_inside_because_it_needs_two_hands():
+    from sim.planner import best_grasp
+
+    ball = ObjectRecord.create(name="basketball", a_cm=24.3, b_cm=24.3, c_cm=24.3, mass_g=600, shape="radial",
+                               material="rubber", texture="grippy", rigidity="squeezable")  # fmt: skip
+    r = run_trial(ball, best_grasp(ball), seed=0)
+    assert r.reason.startswith("hand starts inside the object") and r.reason.endswith(
+        "its smallest side (24.3 cm) is wider than the hand's 12 cm span, it needs two hands"
+    )
