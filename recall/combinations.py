@@ -60,7 +60,7 @@ class CombinationIndex:
         combinations (:meth:`top_k`, a fixed cost of about SCAN_ROWS rows' pass)."""
         table = self._levels_of(query)
         level = table.take(self.group[:FIRST_ROWS])
-        zeros = np.flatnonzero(level == 0)
+        zeros = (level == 0).nonzero()[0]
         if len(zeros) >= k:
             return "zero", zeros[:k].astype(np.int64), np.zeros(k)
         if len(self.group) > SCAN_ROWS:
@@ -90,7 +90,7 @@ class CombinationIndex:
         rows = level.argsort(kind="stable")[:k]
         at = level[rows]
         if not single[: int(at[-1]) + 1].all():  # a level of two distances: score the rows up to it
-            rows = np.flatnonzero(level <= at[-1])
+            rows = (level <= at[-1]).nonzero()[0]
             return select_top_k(rows, jp_scores(None, self.cat_cols, query, rows), k)
         return rows.astype(np.int64), distance[at]
 
@@ -108,7 +108,7 @@ class CombinationIndex:
         order = np.argsort(score, kind="stable")
         total = np.cumsum(stops[order] - starts[order])
         kth = score[order[min(int(np.searchsorted(total, k)), len(order) - 1)]]
-        groups = np.flatnonzero(score <= kth)
+        groups = (score <= kth).nonzero()[0]
         # every row of the groups below the k-th distance, the first k rows of each group at it
         take = np.where(score[groups] < kth, stops[groups] - starts[groups], np.minimum(stops[groups] - starts[groups], k))
         first = starts[groups]

@@ -216,7 +216,6 @@ class JPIndex(SortedColumns):
             return "empty", np.empty(0, dtype=np.int64), np.empty(0)
         if len(query) == 0:
             return "empty", np.arange(k, dtype=np.int64), np.zeros(k)
-        items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
         if not query.numeric:
             if force == "categories":
                 return "categories", *self.combinations.top_k(query, k)
@@ -224,19 +223,22 @@ class JPIndex(SortedColumns):
                 return "scan", *self.combinations.scan(query, k)
             if force is None:
                 return self.combinations.search(query, k)
-        small = self.n <= SCAN_BELOW or self.n * len(items) <= SCAN_WORK
-        if force == "column" or (force is None and len(items) == 1 and self.n > COLUMN_FROM):
-            found = self.one_column(self.num_cols, self.cat_cols, query, k)
+        if force == "column" or (force is None and len(query) == 1):
+            wide = force == "column" or self.n > COLUMN_FROM  # else only k rows in the interval (at 0)
+            found = self.one_column(self.num_cols, self.cat_cols, query, k, general=wide)
             if found is not None:
                 return "column", *found
-            (cond,) = query.numeric
-            exact = float(np.float32(cond.low)) == cond.low and float(np.float32(cond.high)) == cond.high
-            if force is None and exact and self._window_size(items[0], 0.0) >= k:
-                return "zero", *self._zero_ties(query, items, k)  # at least k rows in the interval: at 0
             if force == "column":
                 raise ValueError("the column plan found more rows near the value, or ties, than it reads")
+            if wide:
+                (cond,) = query.numeric
+                exact = float(np.float32(cond.low)) == cond.low and float(np.float32(cond.high)) == cond.high
+                if exact and self._window_size(("num", cond), 0.0) >= k:
+                    return "zero", *self._zero_ties(query, [("num", cond)], k)  # k rows in the interval: at 0
         if force == "brute" or (force is None and self.n <= BRUTE_BELOW):
             return "brute", *select_top_k(None, jp_scores(None, self.cat_cols, query, wide=self.wide), k)
+        items = [("num", c) for c in query.numeric] + [("cat", c) for c in query.categorical]
+        small = self.n <= SCAN_BELOW or self.n * len(items) <= SCAN_WORK
         if force == "scan" or (force is None and small):
             return "scan", *self._scan(query, items, k)
         pool = np.unique(np.concatenate([self._nearest(it, FIRST_POOL) for it in items] + [np.arange(k)]))
@@ -306,10 +308,10 @@ class JPIndex(SortedColumns):
         slack = np.float32(1.0 + FILTER_SLACK)
         step = max(1, int(self.n / max(4 * k, SAMPLE_PER_ROW_K * math.sqrt(self.n * k))))
         sample = prod[::step]
-        rows = np.flatnonzero(prod <= np.partition(sample, k - 1)[k - 1] * slack) if step > 1 else None
+        rows = (prod <= np.partition(sample, k - 1)[k - 1] * slack).nonzero()[0] if step > 1 else None
         if rows is None or len(rows) > 4 * k:
             within = prod if rows is None else prod[rows]
-            keep = np.flatnonzero(within <= np.partition(within, k - 1)[k - 1] * slack)
+            keep = (within <= np.partition(within, k - 1)[k - 1] * slack).nonzero()[0]
             rows = keep if rows is None else rows[keep]
         num, cat = self._block(rows)  # one gather of the packed rows, not one per column
         return rows, jp_scores(num, cat, query)

@@ -17,13 +17,23 @@ from collections.abc import Iterator, Sequence, Set
 
 import numpy as np
 
-__all__ = ["GroupColumn", "KeyRows", "StringColumn", "StringSet", "StringTable", "key_hash", "key_hashes"]
+__all__ = [
+    "GroupColumn",
+    "KeyRows",
+    "StringColumn",
+    "StringSet",
+    "StringTable",
+    "WordKeys",
+    "key_hash",
+    "key_hashes",
+]
 
 _P = 0x100000001B3  # the 64-bit FNV prime
 _LENGTH = 0x9E3779B97F4A7C15  # mixes in the length
 _MASK = (1 << 64) - 1
 #: Joins the keys in the text (never inside a key: the caller refuses such keys).
 SEP = 0
+_SPACE = ord(" ")
 _CHUNK = 1 << 22  # bytes hashed at once (bounds the temporary arrays to ~100 MB)
 
 
@@ -267,3 +277,39 @@ class GroupColumn(Sequence):
     @property
     def nbytes(self) -> int:
         return int(self.strings.nbytes + self.starts.nbytes)
+
+
+class WordKeys:
+    """word -> the keys holding it, for keys that are words joined by spaces (the name index's phrases):
+    every word of every key hashed at once (:func:`key_hashes`, the words cut at the spaces and
+    separators), sorted by hash. A lookup finds the word's hash by binary search and compares the bytes
+    of every word of that hash, so it is exact. 16 B per word of a key (hash, key, start, length)."""
+
+    def __init__(self, text: np.ndarray):
+        """``text``: the keys' UTF-8 bytes, each followed by :data:`SEP` (:attr:`StringTable.text`)."""
+        ends = ((text == SEP) | (text == _SPACE)).nonzero()[0]
+        starts = np.concatenate(([0], ends + 1))
+        last = text[ends] == SEP  # the key's last word
+        key = np.cumsum(last) - last
+        hashes = key_hashes(text, starts)
+        order = np.argsort(hashes, kind="stable")
+        self.text, self.hashes = text, hashes[order]
+        self.keys = key[order].astype(np.int32)
+        self.starts = starts[:-1][order].astype(np.int64 if len(text) >= 2**31 else np.int32)
+        self.lengths = np.diff(starts)[order].astype(np.int32) - 1
+
+    def keys_of(self, word: str) -> np.ndarray:
+        """The keys (ascending, with repeats when a key holds the word twice) that hold ``word``."""
+        raw = word.encode("utf-8")
+        h = np.uint64(key_hash(raw))
+        lo, hi = int(np.searchsorted(self.hashes, h)), int(np.searchsorted(self.hashes, h, "right"))
+        keys, starts = self.keys[lo:hi], self.starts[lo:hi]
+        same = self.lengths[lo:hi] == len(raw)
+        if len(raw):
+            at = starts[:, None].astype(np.int64) + np.arange(len(raw))
+            same &= (self.text[at] == np.frombuffer(raw, dtype=np.uint8)).all(axis=1)
+        return keys[same]
+
+    @property
+    def nbytes(self) -> int:
+        return int(self.hashes.nbytes + self.keys.nbytes + self.starts.nbytes + self.lengths.nbytes)

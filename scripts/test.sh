@@ -7,4 +7,5 @@ OBJRECALL_EXTRAS=test,ray bash scripts/setup.sh
 export MUJOCO_GL="${MUJOCO_GL:-egl}"
 NLTK_DATA="$(mktemp -d)"
 export NLTK_DATA
-exec .venv/bin/python -m pytest -q "$@"
+trap 'rm -rf "$NLTK_DATA"' EXIT  # the empty folder goes with the run
+.venv/bin/python -m pytest -q "$@"

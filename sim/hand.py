@@ -151,7 +151,11 @@ class GraspTargets:
 
 
 def grasp_targets(
-    plan: GraspPlan, width_cm: float | None = None, *, align_pads: bool = False
+    plan: GraspPlan,
+    width_cm: float | None = None,
+    *,
+    align_pads: bool = False,
+    overshoot_cm: float = PRECISION_OVERSHOOT_CM,
 ) -> GraspTargets:
     """Pre-shape and closing targets for ``plan``, for an object ``width_cm`` wide along the opposition axis.
 
@@ -179,7 +183,7 @@ def grasp_targets(
         open_q, close_q, touch_q, center, contact_z, reach = _wrap_posture(program, aperture, width)
     else:
         open_q, close_q, touch_q, center, contact_z, reach = _pinch_posture(
-            program, aperture, width, align_pads
+            program, aperture, width, align_pads, overshoot_cm
         )
     open_q["thumb_rot"] = close_q["thumb_rot"] = _thumb_rotation(program, reach)
     return GraspTargets(
@@ -237,7 +241,13 @@ def _wrap_posture(program, aperture: float, width: float):
     return open_q, close_q, {}, center, -PALM_HALF_CM[2], reach
 
 
-def _pinch_posture(program, aperture: float, width: float, align_pads: bool = False):
+def _pinch_posture(
+    program,
+    aperture: float,
+    width: float,
+    align_pads: bool = False,
+    overshoot: float = PRECISION_OVERSHOOT_CM,
+):
     """A pinch's (open, close, touch, centre y, contact z, thumb reach): the pads press on opposite sides
     at one height (else the squeeze is a couple that turns the object), so the pinch centre is where, for
     this width, the thumb tip and the finger tips touch the object at the same depth below the palm. Tip
@@ -264,7 +274,7 @@ def _pinch_posture(program, aperture: float, width: float, align_pads: bool = Fa
     close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
     touch_q: dict[str, float] = {}
     open_q["thumb_flex"] = thumb_flex_for(center - half_open - r_t)
-    close_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t + PRECISION_OVERSHOOT_CM)
+    close_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t + overshoot)
     touch_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t)
     thumb_contact = thumb_tip(touch_q["thumb_flex"])[1]
     finger_contacts = []
@@ -273,7 +283,7 @@ def _pinch_posture(program, aperture: float, width: float, align_pads: bool = Fa
         y_touch = center + width / 2.0 + r_f
         f_ratio = _aligned_ratio(f, y_touch, thumb_contact, ratio) if align_pads else ratio
         q_open = finger_pinch_mcp(f, center + half_open + r_f, f_ratio)
-        q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM, f_ratio)
+        q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - overshoot, f_ratio)
         q_touch = finger_pinch_mcp(f, y_touch, f_ratio)
         for q_map, q in ((open_q, q_open), (close_q, q_close), (touch_q, q_touch)):
             q_map[f"{f}_mcp"], q_map[f"{f}_pip"] = q, min(pip_max, f_ratio * q)

@@ -269,8 +269,10 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     lay = _layout(model_obj, plan)
     approach, axes, signs, flat = lay.approach, lay.axes, lay.signs, lay.flat
     ext, grip_centre, grip_ext, width = lay.ext, lay.grip_centre, lay.grip_ext, lay.width
-    targets = H.grasp_targets(plan, width, align_pads=not flat)
     program = program_for(plan.grasp_type)
+    targets = H.grasp_targets(
+        plan, width, align_pads=not flat, overshoot_cm=_overshoot_cm(program, model_obj)
+    )
     wrap = program.control == "wrap"
 
     depth = grip_ext[2] if approach == "top" else grip_ext[0]  # the grasped body's extent along the approach
@@ -321,6 +323,21 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     data.ctrl[world.digit_act] = open_q
     data.ctrl[world.wrist_act] = noise
     return world
+
+
+#: How far past a floppy object's surface a lateral pinch closes (cm; other pinches: sim/hand.py
+#: ``PRECISION_OVERSHOOT_CM``, 1 cm). A soft contact takes up the 1 cm (a cloth's 10 mm impedance ramp and
+#: 0.03 s time constant): the straight fingers stopped on the cloth's face, pressing at a third of their
+#: limit, and the held strip turned out (16-22 deg) under its hanging weight. Closing 2 cm past, the thumb
+#: and the index and middle fingers gather the cloth's edge along the fingers (sim/PHYSICS.md, floppy sheets).
+LATERAL_GATHER_OVERSHOOT_CM = 2.0
+
+
+def _overshoot_cm(program, obj: ObjectModel) -> float:
+    """How far past the object's surface the pinch's closing targets lie (sim/hand.py grasp_targets)."""
+    if program.name == "lateral_pinch" and obj.rigidity == "floppy":
+        return LATERAL_GATHER_OVERSHOOT_CM
+    return H.PRECISION_OVERSHOOT_CM
 
 
 def _trial_world(model, obj: ObjectModel, plan: GraspPlan, targets, approach: str, approach_dir) -> TrialWorld:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 import sys
 import tempfile
 from pathlib import Path
@@ -16,6 +17,11 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 REPO = Path(__file__).resolve().parents[1]
 SEED_CSV = REPO / "kb" / "data" / "seed_catalog.csv"
 SHARED_PAGES = Path(os.environ.get("OBJRECALL_STOREFRONT_PAGES", REPO.parent / "shared" / "storefront-pages"))
+
+
+def pytest_unconfigure(config) -> None:
+    """Remove the empty NLTK_DATA folder made for this run (every other test file lives in tmp_path)."""
+    shutil.rmtree(_EMPTY_NLTK, ignore_errors=True)
 
 
 @pytest.fixture

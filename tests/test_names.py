@@ -28,6 +28,21 @@ def assert_same(names, aliases, materials):
     assert cols.head_materials.get(("no such head", 0)) is None
     assert all(cols.by_material.get(m) == rows for m, rows in rules.by_material.items())
     assert cols.vocabulary == rules.vocabulary and cols.longest == rules.longest
+    assert_same_word_rows(cols.phrases, rules.phrases)
+
+
+def assert_same_word_rows(phrases, by_rules):
+    """rows_with_word over CSR phrases (built column-wise, and as read back from a stored index: its
+    word -> phrases index) equals the scan of the rules' dict of phrases, for every word and others."""
+    from recall.names import rows_with_word
+    from recall.string_table import KeyRows, StringTable
+
+    stored = KeyRows(StringTable.of(list(phrases.ids)), phrases.starts, phrases.rows, tuples=True)
+    words = {w for p in by_rules for w in p} | {"", "zz", "bal", "balls ball", "caf", "\u00e9"}
+    for word in sorted(words):
+        expected = rows_with_word(by_rules, word)
+        assert rows_with_word(phrases, word) == expected, word
+        assert rows_with_word(stored, word) == expected, word
 
 
 def test_small_catalogs_are_built_by_the_rules_large_ones_column_wise():

@@ -204,16 +204,61 @@ def test_small_catalogs_and_little_work_are_scanned():
         np.testing.assert_array_equal(dist, bdist)
 
 
-def test_one_number_is_read_off_its_column_above_column_from():
+def test_one_number_is_read_off_its_column_at_every_size():
+    """One number is read off its sorted column: up to LIST_BELOW (= COLUMN_FROM) objects from Python
+    lists when at most LISTED_INSIDE rows are in its interval (else brute), above from the arrays."""
+    from recall.columns import LIST_BELOW, LISTED_INSIDE
     from recall.search import COLUMN_FROM
 
+    assert LIST_BELOW == COLUMN_FROM
     snap = catalog()
-    q = FeatureQuery.from_values({"mass_g": 120})
+    masses = snap.num_cols[NUMERIC_FEATURES.index("mass_g")][:COLUMN_FROM]
+    values, counts = np.unique(masses[~np.isnan(masses)], return_counts=True)
+    held = float(values[np.argmax(counts)])  # the most common mass: at least 5 rows, at 0
+    assert counts.max() >= 5
+    absent = float(np.float32((values[10] + values[11]) / 2))  # no row holds it
+    from recall.metrics import NumericCondition
+
+    ordered = np.sort(masses[~np.isnan(masses)])
+
+    def inside(m):  # an interval (ends not float32: not known to be at 0) holding the m heaviest rows
+        lo, hi = float(ordered[-m]) * (1 - 1e-12), float(ordered[-1]) * (1 + 1e-12)
+        return FeatureQuery((NumericCondition("mass_g", (lo + hi) / 2, lo, hi, "range"),))
+
+    assert ordered[-LISTED_INSIDE - 2] < ordered[-LISTED_INSIDE - 1] < ordered[-LISTED_INSIDE]  # no ties there
     for n in (COLUMN_FROM, COLUMN_FROM + 1):
         small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
-        plan, rows, dist = index_for(small).plan_and_search(q, 5)
-        assert plan == ("brute" if n == COLUMN_FROM else "column")  # COLUMN_FROM <= BRUTE_BELOW
-        brows, bdist = brute_force_top_k(small, q, 5)
+        cases = [(FeatureQuery.from_values({"mass_g": v}), "column") for v in (held, absent)]
+        cases += [(inside(LISTED_INSIDE), "column"), (inside(LISTED_INSIDE + 1), "brute")]
+        for q, plan_up_to in cases:
+            plan, rows, dist = index_for(small).plan_and_search(q, 5)
+            if n == COLUMN_FROM:
+                assert plan == plan_up_to
+            else:
+                assert plan in ("column", "zero")
+            brows, bdist = brute_force_top_k(small, q, 5)
+            np.testing.assert_array_equal(rows, brows)
+            np.testing.assert_array_equal(dist, bdist)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    n=st.sampled_from([1024, 1025]),  # LIST_BELOW and one more: bisect on lists, searchsorted on arrays
+    feature=st.sampled_from(NUMERIC_FEATURES),
+    pick=st.integers(0, 10**6),
+    qualifier=st.sampled_from(["about", "at_least", "at_most"]),
+    k=st.sampled_from([1, 5, 20]),
+)
+def test_one_number_below_and_above_list_below_equals_brute_force(n, feature, pick, qualifier, k):
+    snap = catalog()
+    small = CatalogSnapshot(snap.names[:n], snap.aliases[:n], snap.num[:n], snap.cat[:n])
+    col = small.num_cols[NUMERIC_FEATURES.index(feature)]
+    known = col[~np.isnan(col)]
+    value = float(known[pick % len(known)]) * (1.0 if pick % 3 else 1.37)  # held values and others
+    q = FeatureQuery.from_values({feature: value}, {feature: qualifier})
+    for force in (None, "brute"):
+        plan, rows, dist = index_for(small).plan_and_search(q, k, force=force)
+        brows, bdist = brute_force_top_k(small, q, k)
         np.testing.assert_array_equal(rows, brows)
         np.testing.assert_array_equal(dist, bdist)
 
@@ -460,3 +505,45 @@ def test_a_query_in_log_units_equals_its_conditions_in_log_units(query):
     assert query.log_scaled() == one_by_one
     for a, b in zip(query.log_scaled().numeric, one_by_one.numeric, strict=True):
         assert (a.value, a.low, a.high, a.unknown) == (b.value, b.low, b.high, b.unknown)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    scores=st.lists(
+        st.sampled_from([0.0, 0.5, 0.5 + 2**-52, 1.0, 1.0, 2.0, math.log1p(3.0)]), min_size=1, max_size=60
+    ),
+    k=st.integers(1, 12),
+    given_rows=st.booleans(),
+)
+def test_select_top_k_orders_by_distance_then_row(scores, k, given_rows):
+    """Against a full sort by (distance, row): with rows given (shuffled) or None (0..n-1, the stable
+    sort's path), many ties included."""
+    scores = np.asarray(scores)
+    rows = np.random.default_rng(len(scores)).permutation(len(scores)) + 100 if given_rows else None
+    from recall.ranking import select_top_k
+
+    got_rows, got = select_top_k(rows, scores, k)
+    all_rows = np.arange(len(scores)) if rows is None else rows
+    order = np.lexsort((all_rows, scores))[:k]
+    np.testing.assert_array_equal(got_rows, all_rows[order])
+    np.testing.assert_array_equal(got, scores[order])
+    assert got_rows.dtype == np.int64
+
+
+def test_one_number_whose_unknown_rows_cost_nothing_ranks_them_at_zero_too():
+    """A condition charging unknown values 0 puts them at distance 0 beside the rows holding the value:
+    the k lowest rows of both win (the column plan used to return the rows in the interval only)."""
+    from recall.metrics import NumericCondition
+
+    for n in (1000, 40_000):  # the lists' plan and the arrays'
+        full = catalog()
+        snap = full if n == len(full) else CatalogSnapshot(full.names[:n], full.aliases[:n], full.num[:n], full.cat[:n])
+        col = snap.num_cols[NUMERIC_FEATURES.index("mass_g")]
+        values, counts = np.unique(col[~np.isnan(col)], return_counts=True)
+        v = float(values[np.argmax(counts)])
+        q = FeatureQuery((NumericCondition("mass_g", v, v, v, "about", 0.0),))
+        plan, rows, dist = index_for(snap).plan_and_search(q, 5)
+        brows, bdist = brute_force_top_k(snap, q, 5)
+        assert np.isnan(col[brows]).any()  # the case: unknown rows among the answer
+        np.testing.assert_array_equal(rows, brows)
+        np.testing.assert_array_equal(dist, bdist)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import shutil
 import tempfile
+import uuid
 from pathlib import Path
 
 import pytest
@@ -23,24 +24,24 @@ TOKEN = "fuzz-token"
 MAX_EXAMPLES = int(os.environ.get("OBJRECALL_FUZZ_EXAMPLES", "20"))
 
 
-def _catalog() -> Path:
-    from kb.catalog import KnowledgeBase
-    from kb.service.bootstrap import seed_catalog_path
-
-    path = Path(tempfile.mkdtemp(prefix="objrecall-fuzz-")) / "catalog.duckdb"
-    KnowledgeBase.open(path).import_csv(seed_catalog_path())
-    return path
-
-
-_DB = _catalog()
+#: The throw-away catalog: only a name at import (the schema below needs the app then, and a module collected
+#: but not run must leave nothing behind); :func:`_catalog` makes it for the run and removes it afterwards.
+_DB = Path(tempfile.gettempdir()) / f"objrecall-fuzz-{uuid.uuid4().hex}" / "catalog.duckdb"
 app = create_app(_DB, token=TOKEN, request_timeout=20.0, allowed_hosts=["testserver"])  # the ASGI client's Host
 schema = schemathesis.openapi.from_asgi("/openapi.json", app)
 
 
 @pytest.fixture(scope="module", autouse=True)
-def _cleanup():
-    yield
-    shutil.rmtree(_DB.parent, ignore_errors=True)
+def _catalog():
+    from kb.catalog import KnowledgeBase
+    from kb.service.bootstrap import seed_catalog_path
+
+    _DB.parent.mkdir()
+    try:
+        KnowledgeBase.open(_DB).import_csv(seed_catalog_path())
+        yield
+    finally:
+        shutil.rmtree(_DB.parent, ignore_errors=True)
 
 
 @schema.parametrize()

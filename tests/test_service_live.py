@@ -84,7 +84,9 @@ def live(tmp_path_factory, store):
     env["OBJRECALL_API_TOKEN"] = TOKEN
     env.pop("OBJRECALL_API_TOKEN_FILE", None)
     with serve_subprocess(
-        db, env=env, extra_args=["--sources", str(sources), "--log-level", "warning"]
+        db,
+        env=env,
+        extra_args=["--sources", str(sources), "--log-level", "warning", "--ingest-log-dir", str(root / "logs")],
     ) as base:
         yield base, db
 

@@ -12,6 +12,7 @@ from kb.service.cli.common import DbOption, resolve_db
 from kb.service.http.settings import (
     DEFAULT_HEADER_TIMEOUT_S,
     ENV_ALLOWED_HOSTS,
+    ENV_INGEST_LOG_DIR,
     ENV_SOURCES,
     allowed_hosts_from,
 )
@@ -46,6 +47,14 @@ def serve(
         typer.Option("--header-timeout", min=0.1, help="Close a connection whose request has not fully "
                      "arrived within this many seconds."),
     ] = DEFAULT_HEADER_TIMEOUT_S,
+    ingest_log_dir: Annotated[
+        Path | None,
+        typer.Option(
+            "--ingest-log-dir",
+            help=f"Folder for the logs of ingestion jobs started over HTTP, kept (env {ENV_INGEST_LOG_DIR}). "
+            "Default: a temporary folder removed when the server stops.",
+        ),
+    ] = None,
 ) -> None:
     """Serve the catalog over HTTP: the JSON API (OpenAPI at /docs) and the web page at /.
 
@@ -61,7 +70,10 @@ def serve(
     hosts = list(allowed_hosts_from(allowed_host))
     if not allowed_host and host not in ("0.0.0.0", "::", ""):
         hosts.append(host)  # the address it listens on is a name it is reached by
-    app = create_app(path, sources=sources, request_timeout=request_timeout, warm=True, allowed_hosts=hosts)
+    app = create_app(
+        path, sources=sources, request_timeout=request_timeout, warm=True, allowed_hosts=hosts,
+        ingest_log_dir=ingest_log_dir,
+    )  # fmt: skip
     if app.settings.token is None:
         sys.stderr.write("objrecall serve: no API token configured; writes are disabled\n")
     uvicorn.run(app, host=host, port=port, log_level=log_level, access_log=log_level == "debug",

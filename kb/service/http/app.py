@@ -27,7 +27,6 @@ their bodies in ``models.py``, what they share in ``state.py``.
 """
 
 import os
-import tempfile
 import threading
 from contextlib import asynccontextmanager
 from pathlib import Path
@@ -35,6 +34,7 @@ from pathlib import Path
 from kb.service.http.jobs import IngestionJobs, objrecall_command
 from kb.service.http.limits import LimitsWrapped
 from kb.service.http.settings import (
+    ENV_INGEST_LOG_DIR,
     ENV_SOURCES,
     ServiceSettings,
     allowed_hosts_from,
@@ -60,12 +60,15 @@ def create_app(
     ingest_command: list[str] | None = None,
     warm: bool = False,
     allowed_hosts: list[str] | tuple[str, ...] | None = None,
+    ingest_log_dir: str | Path | None = None,
 ) -> LimitsWrapped:
     """The FastAPI application serving the catalog at ``db_path``.
 
     ``token`` enables writes (None: read from the environment, see :func:`load_token`; "" disables them).
     ``sources`` is the sources file ``POST /ingestion/runs`` ingests (default ``$OBJRECALL_SOURCES``).
     ``ingest_command`` replaces the command prefix that runs ``objrecall`` (tests, containers).
+    ``ingest_log_dir`` is where the ingestion jobs' logs go, kept (default ``$OBJRECALL_INGEST_LOG_DIR``, else
+    a temporary folder removed when the service shuts down; :mod:`kb.service.http.jobs`).
     ``allowed_hosts`` lists the Host header names answered (default ``$OBJRECALL_ALLOWED_HOSTS``, else
     loopback only; ``["*"]`` answers any). ``warm`` builds the description parser and the recall snapshot in a background thread at start-up
     (the first parse builds the grammar, which takes seconds), so the first requests are not slow.
@@ -90,7 +93,9 @@ def create_app(
         ingest_command=list(ingest_command) if ingest_command else objrecall_command(),
         allowed_hosts=allowed_hosts_from(allowed_hosts),
     )
-    state = ServiceState(settings, IngestionJobs(Path(tempfile.gettempdir()) / f"objrecall-ingest-logs-{os.getpid()}"))
+    if ingest_log_dir is None and os.environ.get(ENV_INGEST_LOG_DIR):
+        ingest_log_dir = os.environ[ENV_INGEST_LOG_DIR]
+    state = ServiceState(settings, IngestionJobs(Path(ingest_log_dir) if ingest_log_dir else None))
     # /docs and /redoc with Swagger UI / ReDoc served by this server (fastapi-offline), not from a CDN
     app = FastAPIOffline(
         lifespan=_lifespan(state, warm),
@@ -113,10 +118,9 @@ def _lifespan(state: ServiceState, warm: bool):
         if warm:
             threading.Thread(target=state.warm_up, name="objrecall-warm-up", daemon=True).start()
         yield
-        # stop a running ingestion child with the server: its one write transaction rolls back if open
-        job = state.jobs.running()
-        if job is not None and job.process is not None:
-            job.process.terminate()
+        # stop a running ingestion child with the server (its one write transaction rolls back if open)
+        # and remove the temporary log folder
+        state.jobs.close()
 
     return lifespan
 

@@ -1,5 +1,11 @@
 """Ingestion jobs the service starts (``POST /ingestion/runs``): one ``objrecall ingest`` child process at a
-time, its log kept for status queries."""
+time, its log kept for status queries.
+
+Where the logs go: a folder the service is given (``objrecall serve --ingest-log-dir``,
+``$OBJRECALL_INGEST_LOG_DIR``), kept after the service stops; or, by default, a private temporary folder
+(``objrecall-ingest-logs-*``) made when the first job starts and removed when the service shuts down
+(:meth:`IngestionJobs.close`, or when the jobs object is collected or the interpreter exits).
+"""
 
 from __future__ import annotations
 
@@ -7,7 +13,9 @@ import secrets
 import shutil
 import subprocess
 import sys
+import tempfile
 import threading
+import weakref
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
@@ -63,10 +71,34 @@ class IngestionJob:
 class IngestionJobs:
     """At most one ingestion child process at a time; finished jobs are kept for status queries."""
 
-    def __init__(self, log_dir: Path):
+    def __init__(self, log_dir: Path | None = None):
+        """``log_dir``: where the logs go, kept; None: a temporary folder removed by :meth:`close`."""
         self.log_dir = log_dir
         self.jobs: dict[str, IngestionJob] = {}
         self._lock = threading.Lock()
+        self._cleanup: weakref.finalize | None = None
+
+    def _logs(self) -> Path:
+        """The log folder, made on first use (a private temporary one when none was given)."""
+        if self.log_dir is None:
+            self.log_dir = Path(tempfile.mkdtemp(prefix="objrecall-ingest-logs-"))
+            self._cleanup = weakref.finalize(self, shutil.rmtree, self.log_dir, True)
+        self.log_dir.mkdir(parents=True, exist_ok=True)
+        return self.log_dir
+
+    def close(self, timeout: float = 10.0) -> None:
+        """Stop a running job (its one write transaction rolls back if open), and remove the temporary log
+        folder, if this object made one (a folder given to it is kept)."""
+        job = self.running()
+        if job is not None and job.process is not None:
+            job.process.terminate()
+            try:
+                job.process.wait(timeout)
+            except subprocess.TimeoutExpired:
+                job.process.kill()
+                job.process.wait()
+        if self._cleanup is not None:
+            self._cleanup()
 
     def running(self) -> IngestionJob | None:
         return next((j for j in self.jobs.values() if j.returncode is None), None)
@@ -79,8 +111,7 @@ class IngestionJobs:
                     f"ingestion job {busy.id} is still running; try again when it has finished"
                 )
             job_id = secrets.token_hex(6)
-            self.log_dir.mkdir(parents=True, exist_ok=True)
-            log_path = self.log_dir / f"ingest-{job_id}.log"
+            log_path = self._logs() / f"ingest-{job_id}.log"
             job = IngestionJob(id=job_id, command=command, started_at=_now(), log_path=log_path)
             with log_path.open("wb") as log:
                 job.process = subprocess.Popen(

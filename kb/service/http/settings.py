@@ -30,6 +30,7 @@ __all__ = [
     "DEFAULT_HEADER_TIMEOUT_S",
     "DEFAULT_PAGE",
     "ENV_ALLOWED_HOSTS",
+    "ENV_INGEST_LOG_DIR",
     "ENV_SOURCES",
     "ENV_TOKEN",
     "ENV_TOKEN_FILE",
@@ -51,6 +52,8 @@ ENV_TOKEN = "OBJRECALL_API_TOKEN"
 ENV_TOKEN_FILE = "OBJRECALL_API_TOKEN_FILE"
 ENV_SOURCES = "OBJRECALL_SOURCES"
 ENV_ALLOWED_HOSTS = "OBJRECALL_ALLOWED_HOSTS"
+#: Where the ingestion jobs started by the service write their logs (kept); unset: a temporary folder.
+ENV_INGEST_LOG_DIR = "OBJRECALL_INGEST_LOG_DIR"
 #: ``objrecall serve`` closes a connection whose request has not fully arrived within this (seconds).
 DEFAULT_HEADER_TIMEOUT_S = 10.0
 #: Host header values served by default: loopback only, so a page on another site that rebinds its DNS
