@@ -17,6 +17,7 @@ from kb.errors import SimulationError
 from kb.features import ObjectRecord
 from sim import hand as H
 from sim.bodies import HOLD_HANDLE as _HOLD_HANDLE
+from sim.bodies import HOLD_PART
 from sim.grasps import GRASP_TYPES, GraspPlan, edge_depth_cm, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
 from sim.objects import ObjectModel, add_object, add_table, free_dim, object_model, pose_rotation
 from sim.programs import program_for
@@ -197,6 +198,8 @@ def _extents(obj: ObjectModel, axes: dict[str, int]) -> np.ndarray:
 def _layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
     if plan.params.get("hold") == HOLD_HANDLE:
         return _handle_layout(obj, plan)
+    if plan.params.get("hold") == HOLD_PART:
+        return _part_layout(obj, plan)
     flat = _is_flat(obj, plan)
     approach = "edge" if flat else plan.approach
     upright = None if flat else _upright_placement(obj, plan)
@@ -235,6 +238,24 @@ def _handle_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
         centre[0] = max(centre[0], end - HANDLE_END_MARGIN_CM)
     ext = _extents(obj, axes)
     return _Layout(plan.approach, axes, signs, False, ext, centre, grip_ext, float(grip_ext[1]))
+
+
+def _part_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    """The object standing as it is used (``c`` up, ``a`` along +x, towards the hand), pinched across the
+    thickness of one flat named part (``params["part"]``, sim/bodies.py ``HOLD_PART``: a cap's brim) that
+    reaches out over a table edge, like any flat object (thumb on top, fingers under the overhang)."""
+    body = obj.body
+    name = plan.params.get("part")
+    part = next((p for p in body.parts if p.name == name), None) if body is not None else None
+    if part is None or body.up != "c":
+        raise SimulationError(f"{obj.name!r} has no part {name!r} to hold (sim/bodies.py builds none for it)")
+    axes: dict[str, int] = {"a": 0, "b": 1, "c": 2}
+    centre = pose_rotation(axes, {}, free_dim(obj)) @ np.asarray(part.pos_cm)
+    grip_ext = np.array([part.extent_cm(d) for d in "abc"])
+    plate = part.geom == "box" and is_flat_grasp(grip_ext[2], min(grip_ext[0], grip_ext[1]))
+    if plan.grasped_dim != "c" or not plate:
+        raise SimulationError(f"the {name} of {obj.name!r} is not a flat part pinched across its thickness")
+    return _Layout("edge", axes, {}, True, _extents(obj, axes), centre, grip_ext, float(grip_ext[2]))
 
 
 def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:

@@ -116,3 +116,20 @@ def test_report_csv_marks_text_but_not_numbers(tmp_path):
     assert read_spreadsheet_cell(line["object_name"]) == FORMULA_LIKE_NAMES[0]
     assert line["reason"] == "'-slipped"
     assert line["slip_cm"] == "-0.25" and line["rotation_deg"] == "-3.5"
+
+
+def test_every_csv_writer_in_the_project_escapes_its_cells():
+    """A module that writes CSV (csv.writer / DictWriter, pandas or polars writers) marks its cells with
+    spreadsheet_cell; a new writer without it fails here."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    writers = ("csv.writer(", "csv.DictWriter(", ".to_csv(", ".write_csv(")
+    found = {}
+    for package in ("kb", "scrapers", "recall", "sim", "benchmarks", "scripts"):
+        for path in (root / package).rglob("*.py"):
+            text = path.read_text(encoding="utf-8")
+            if any(w in text for w in writers):
+                found[path.relative_to(root).as_posix()] = "spreadsheet_cell" in text
+    assert {"kb/csvio.py", "sim/report.py"} <= set(found)  # the two writers there are today
+    assert [p for p, escaped in found.items() if not escaped] == []
