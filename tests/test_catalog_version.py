@@ -43,7 +43,11 @@ def test_a_value_changed_without_a_new_updated_at_moves_the_version(seeded_db: P
     before = kb.catalog_version()
     _write(seeded_db, f"UPDATE objects SET {CHANGES[column]} {TARGET}")
     after = kb.catalog_version()
-    assert (after.objects, after.max_id, after.updated_at) == (before.objects, before.max_id, before.updated_at)
+    assert (after.objects, after.max_id, after.updated_at) == (
+        before.objects,
+        before.max_id,
+        before.updated_at,
+    )
     assert after != before and after.values_hash != before.values_hash
 
 
