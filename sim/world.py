@@ -279,7 +279,8 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the object's
     # centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
     overhang = edge_overhang_cm(depth) if flat else 0.0
-    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat)
+    lead = float(plan.params.get(H.FINGER_LEAD_PARAM, 0.0)) if flat else 0.0
+    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat, lead)
     center_h = center_cm * H.CM
 
     obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
@@ -389,7 +390,9 @@ def _add_scenery(spec: mujoco.MjSpec) -> None:
     )
 
 
-def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: bool) -> tuple[np.ndarray, float]:
+def _object_in_hand_cm(
+    program, targets: H.GraspTargets, depth: float, flat: bool, lead: float = 0.0
+) -> tuple[np.ndarray, float]:
     """Where the object's centre sits in the hand frame (cm) at the grasp pose, and how far below its near
     face the pads meet it (pinches; 0 for wraps). ``depth``: its extent along the approach axis."""
     palm_face = -H.PALM_HALF_CM[2]
@@ -400,6 +403,8 @@ def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: boo
     # that far, else 3 cm below its near face; flat objects as near their centre of mass as the pads
     # reach under the overhang.
     grip_depth = edge_grip_in_cm(depth) if flat else min(depth / 2.0, 3.0)
+    if lead:  # an edge lever hold: the finger pads at the usual depth, the thumb ``lead`` nearer the edge
+        grip_depth = max(lead / 2.0, grip_depth - lead / 2.0)
     z_c = min(
         targets.contact_z_cm - depth / 2.0 + grip_depth,
         palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,
