@@ -36,7 +36,9 @@ def _build(db: Path, objects: int) -> None:
             "1 + i % 5, 100 + i % 900, 'prism', 'smooth', 'sturdy', 'plastic', 'rigid', 'synthetic', now(), "
             f"now() FROM range({objects}) t(i)"
         )
-        con.execute("INSERT INTO object_aliases (alias, object_id) SELECT 'alias ' || id, id FROM objects WHERE id % 10 = 0")
+        con.execute(
+            "INSERT INTO object_aliases (alias, object_id) SELECT 'alias ' || id, id FROM objects WHERE id % 10 = 0"
+        )
 
 
 def _median_cpu(func, repeat: int) -> float:

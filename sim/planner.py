@@ -30,11 +30,13 @@ from typing import Any
 from kb.features import ObjectRecord
 from sim.grasp_rules import HEAVY_MASS_G, candidates
 from sim.grasps import (
+    FINGER_LEAD_PARAM,
     GRASP_TYPES,
     HAND_MAX_APERTURE_CM,
     GraspPlan,
     edge_depth_cm,
     edge_grip_in_cm,
+    edge_lever_lead_cm,
     edge_overhang_cm,
     is_flat_grasp,
     sheet_held_cm,
@@ -72,7 +74,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "11"  # 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
+PLANNER_VERSION = "12"  # 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -239,6 +241,7 @@ def _plan(
             **_round_across(o, hold),
             **_sheet(ctx, hold),
             **_edge(ctx, hold),
+            **_lever(ctx, program, hold, force_ok, force),
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
@@ -288,6 +291,19 @@ def _edge(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
         "edge_overhang_cm": round(edge_overhang_cm(depth), 3),
         "edge_grip_in_cm": round(edge_grip_in_cm(depth), 3),
     }
+
+
+def _lever(
+    ctx: _Context, program: HandProgram, hold: dict[str, Any] | None, force_ok: bool, squeeze: float
+) -> dict[str, float]:
+    """An edge lever hold (rule 3): a pinch of a rigid flat object whose moment at the table edge needs more
+    than the pinch can squeeze (the pads at one depth carry it only by their patches, ``2 F r``) puts the
+    finger pads under it deeper than the thumb on top, by the lead whose couple ``F L`` carries that moment
+    at the planned squeeze (sim/grasps.py ``edge_lever_lead_cm``; sim/hand.py extends the fingers)."""
+    o = ctx.o
+    if hold or force_ok or not ctx.edge_force or program.control != "pinch" or o.rigidity == "floppy":
+        return {}
+    return {FINGER_LEAD_PARAM: edge_lever_lead_cm(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), squeeze)}
 
 
 def _handle_hold(ctx: _Context) -> dict[str, Any] | None:

@@ -287,7 +287,8 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
         approach == "top" and model_obj.kind == "cylinder" and model_obj.axis_dim is not None
         and axes.get(model_obj.axis_dim) != 2 and plan.params.get("hold") is None
     )  # fmt: skip
-    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat, rod=lying)
+    lead = float(plan.params.get(H.FINGER_LEAD_PARAM, 0.0)) if flat else 0.0
+    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat, lead, rod=lying)
     center_h = center_cm * H.CM
 
     obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
@@ -398,7 +399,7 @@ def _add_scenery(spec: mujoco.MjSpec) -> None:
 
 
 def _object_in_hand_cm(
-    program, targets: H.GraspTargets, depth: float, flat: bool, rod: bool = False
+    program, targets: H.GraspTargets, depth: float, flat: bool, lead: float = 0.0, rod: bool = False
 ) -> tuple[np.ndarray, float]:
     """Where the object's centre sits in the hand frame (cm) at the grasp pose, and how far below its near
     face the pads meet it (pinches; 0 for wraps). ``depth``: its extent along the approach axis."""
@@ -410,6 +411,8 @@ def _object_in_hand_cm(
     # that far, else 3 cm below its near face; flat objects as near their centre of mass as the pads
     # reach under the overhang.
     grip_depth = edge_grip_in_cm(depth) if flat else min(depth / 2.0, 3.0)
+    if lead:  # an edge lever hold: the finger pads at the usual depth, the thumb ``lead`` nearer the edge
+        grip_depth = max(lead / 2.0, grip_depth - lead / 2.0)
     if rod and depth / 2.0 <= 3.0:  # below a lying rod's centre line, as far as the pads clear the table
         grip_depth += max(0.0, min(ROD_BELOW_FRACTION * depth / 2.0, depth / 2.0 - ROD_PAD_CLEAR_CM))
     z_c = min(

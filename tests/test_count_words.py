@@ -42,7 +42,11 @@ def test_words_that_are_no_count_of_two_or_more_give_no_set(word: str):
 
 def test_english_counts_are_the_number_words_from_two_up():
     assert COUNT_WORDS["en"] == {w: v for w, v in NUMBER_WORDS.items() if v >= 2 and w != "couple"}
-    assert COUNT_WORDS["en"]["twelve"] == 12 and COUNT_WORDS["en"]["dozen"] == 12 and "one" not in COUNT_WORDS["en"]
+    assert (
+        COUNT_WORDS["en"]["twelve"] == 12
+        and COUNT_WORDS["en"]["dozen"] == 12
+        and "one" not in COUNT_WORDS["en"]
+    )
 
 
 def test_one_merged_table_without_conflicts_is_what_the_set_reader_uses():

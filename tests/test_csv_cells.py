@@ -84,7 +84,9 @@ def test_catalog_export_marks_formula_like_cells_and_import_round_trips(tmp_path
 def test_negative_number_cell_is_still_refused_as_a_number(tmp_path):
     kb = KnowledgeBase.open(tmp_path / "a.duckdb")
     f = tmp_path / "neg.csv"
-    f.write_text("name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\nmug,-5,8,8,300,,,,,\n")
+    f.write_text(
+        "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\nmug,-5,8,8,300,,,,,\n"
+    )
     report = kb.import_csv(f, skip_invalid=True)
     (skipped,) = report.skipped
     assert skipped.row == 2 and skipped.column in ("a_cm", "dimensions")
@@ -92,10 +94,16 @@ def test_negative_number_cell_is_still_refused_as_a_number(tmp_path):
 
 def test_grasp_plan_reads_an_exported_catalog_with_the_exact_names(tmp_path):
     kb = KnowledgeBase.open(tmp_path / "a.duckdb")
-    kb.upsert([ObjectRecord.create(FORMULA_LIKE_NAMES[0], a_cm=12, b_cm=3, c_cm=2, mass_g=40)], source="t", adapter="csv")
+    kb.upsert(
+        [ObjectRecord.create(FORMULA_LIKE_NAMES[0], a_cm=12, b_cm=3, c_cm=2, mass_g=40)],
+        source="t",
+        adapter="csv",
+    )
     out = tmp_path / "export.csv"
     kb.export_csv(out)
-    result = CliRunner().invoke(app, ["grasp", "plan", "--catalog", str(out), "--json"], catch_exceptions=False)
+    result = CliRunner().invoke(
+        app, ["grasp", "plan", "--catalog", str(out), "--json"], catch_exceptions=False
+    )
     assert result.exit_code == 0, result.output
     (line,) = (json.loads(x) for x in result.output.splitlines())
     assert line["name"] == FORMULA_LIKE_NAMES[0]
