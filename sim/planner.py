@@ -215,6 +215,13 @@ def _plan(
             f"aperture: needs a {opening:g} cm opening round {width:g} cm, more than the hand's "
             f"{HAND_MAX_APERTURE_CM:g} cm: ranked down"
         )
+    lever = _lever(ctx, program, hold, force_ok, force)
+    if lever:
+        rationale.append(
+            f"lever: the finger pads {lever[FINGER_LEAD_PARAM]:g} cm deeper under it than the thumb on top, so "
+            f"the squeeze's couple carries the moment of its weight at the edge (fingers extended, Feix 2016's "
+            f"parallel extension)"
+        )
     return GraspPlan(
         grasp_type=grasp_type,
         family=GRASP_TYPES[grasp_type],
@@ -241,7 +248,7 @@ def _plan(
             **_round_across(o, hold),
             **_sheet(ctx, hold),
             **_edge(ctx, hold),
-            **_lever(ctx, program, hold, force_ok, force),
+            **lever,
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
