@@ -171,7 +171,7 @@ def test_floppy_things_and_stuffed_fabric_drape_other_squeezables_do_not():
 def test_a_pillow_wrapped_at_its_edge_holds_as_a_draping_bag_and_slips_as_a_rigid_slab(monkeypatch):
     """Seed 0: the pillow's medium wrap (its first choice) holds once the rest of it bends down behind the
     held strip; as one rigid 65 x 45 x 12 cm box it slips past 5 cm in the sideways push (the failure
-    before programs version 6). Its hinges are the stuffed bag's stiffness, not a cloth's."""
+    before programs version 7). Its hinges are the stuffed bag's stiffness, not a cloth's."""
     import sim.world
     from sim.sheet import STUFFED_BENDING_STIFFNESS_NM
 
