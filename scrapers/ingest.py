@@ -156,12 +156,14 @@ def _validate(record: ProductRecord) -> tuple[ObjectRecord, list[dict[str, float
     name = normalize_name(record.name or "")
     if not name:
         raise _Rejected("no_name", "the page names no product")
-    absurd = [reason for reason in record.refused.values() if "absurd" in reason]
-    if absurd:
-        # Every value the page states for one of the product's features is impossible (a mug 40 m tall):
-        # none of its numbers can be trusted. An absurd candidate that lost to a valid value (a misread
-        # alternative, another block's number) is only an --explain row and a warning.
-        raise _Rejected("absurd_value", absurd[0])
+    impossible = [
+        reason for reason in record.refused.values() if "absurd" in reason or "not positive" in reason
+    ]
+    if impossible:
+        # Every value the page states for one of the product's features is impossible (a mug 40 m tall, a
+        # plate weighing -600 g): none of its numbers can be trusted. An impossible candidate that lost to a
+        # valid value (a misread alternative, another block's number) is only an --explain row and a warning.
+        raise _Rejected("absurd_value" if "absurd" in impossible[0] else "invalid_value", impossible[0])
     dims = tuple(record.dims_cm or ())
     if not dims and record.mass_g is None:
         raise _Rejected("no_measurements", "no product dimensions or mass")

@@ -85,9 +85,9 @@ def quantity(value: Any, kind: str) -> tuple[float | None, str]:
         if isinstance(number, bool) or not isinstance(number, (int, float)):
             return None, raw
         factor = convert(str(unit)) if unit else None
-        if factor is None or number <= 0:
+        if factor is None or number == 0:
             return None, raw
-        return round(float(number) * factor, 6), raw
+        return round(float(number) * factor, 6), raw  # a negative number stays negative, to be refused
     if isinstance(value, str):
         return parse(value, None, None), value
     if isinstance(value, (int, float)) and not isinstance(value, bool):
