@@ -41,6 +41,7 @@ from kb.sandbox import (
     run_user_sql,
 )
 from kb.upserts import ARROW_TYPES, OBJECT_COLUMNS, ImportReport, bulk_execute, features_hash, upsert_records
+from kb.versions import CatalogVersion, catalog_version
 
 __all__ = [
     "ALLOWED_STATEMENTS",
@@ -226,18 +227,12 @@ class KnowledgeBase:
             cols = [d[0] for d in cur.description]
             return [dict(zip(cols, r, strict=True)) for r in cur.fetchall()]
 
-    def catalog_version(self) -> tuple[int, int, str, int, int]:
-        """(object count, largest id, latest update, alias count, XOR of a 64-bit hash of every alias row):
-        changes whenever the catalog's objects change, and when an alias is added, removed or moved to
-        another object without any other change (aliases carry no update time)."""
+    def catalog_version(self) -> CatalogVersion:
+        """(object count, largest id, latest update, alias count, alias checksum, value checksum): changes
+        whenever an object, one of its values or an alias changes, whether or not ``updated_at`` moved
+        (:mod:`kb.versions`)."""
         with self.connect() as con:
-            n, max_id, latest = con.execute(
-                "SELECT count(*), coalesce(max(id), 0), coalesce(CAST(max(updated_at) AS VARCHAR), '') FROM objects"
-            ).fetchone()
-            aliases, mixed = con.execute(
-                "SELECT count(*), coalesce(bit_xor(hash(alias, object_id)), 0) FROM object_aliases"
-            ).fetchone()
-        return int(n), int(max_id), str(latest), int(aliases), int(mixed)
+            return catalog_version(con)
 
     def summary(self) -> dict[str, Any]:
         """Counts for a quick look: objects, per category value, observations, runs, grasp trials."""

@@ -22,13 +22,13 @@ def version(state: State) -> dict[str, Any]:
     from sim.planner import PLANNER_VERSION
 
     kb = state.knowledge_base()
-    count, max_id, updated, aliases, _ = kb.catalog_version()
+    v = kb.catalog_version()
     with kb.connect() as con:
         row = con.execute("SELECT max(version_num) FROM alembic_version").fetchone()
     return {
         "objrecall": package_version(),
         "schema_revision": row[0] if row else None,
-        "catalog": {"objects": count, "max_id": max_id, "updated_at": updated, "aliases": aliases},
+        "catalog": {"objects": v.objects, "max_id": v.max_id, "updated_at": v.updated_at, "aliases": v.aliases},
         "planner_version": PLANNER_VERSION,
         "writes_enabled": state.settings.token is not None,
     }
