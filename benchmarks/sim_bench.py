@@ -157,14 +157,15 @@ def bench_trials(quick: bool = False, *, limit: int | None = None) -> dict[str, 
 #: Before issue 14 (planner 5, hand ar10like-5; seed catalog, seed 0; sim/PHYSICS.md): the first choice held
 #: for 127 of 169, a candidate of the top 3 for 141; about 0.10 CPU s per trial.
 BEFORE = {"objects": 169, "first_holds": 127, "validated": 141, "differs": None, "trials_per_cpu_s": 10.0}
-#: At the start of the fourth session (planner 8, hand ar10like-6.2-g2; the saved row of 2026-12-01 20:51 UTC,
-#: load 1.6). The third session started at 122 / 140 / 47 differing / 8.0 trials per CPU second.
+#: At the start of the fifth session (planner 10, hand ar10like-6.2-g5, the draping sheets; the saved row of
+#: 2026-12-02 00:35 UTC, load 4.4). The fourth started at 132 / 145 / 37 differing / 7.93 trials per CPU
+#: second (load 1.6), the third at 122 / 140 / 47 / 8.0.
 SESSION_START = {
     "objects": 169,
-    "first_holds": 132,
-    "validated": 145,
-    "differs": 37,
-    "trials_per_cpu_s": 7.93,
+    "first_holds": 139,
+    "validated": 154,
+    "differs": 30,
+    "trials_per_cpu_s": 11.9,
 }
 
 

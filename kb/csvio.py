@@ -70,7 +70,8 @@ def _formula_like(text: str) -> bool:
 
 def spreadsheet_cell(text: str) -> str:
     """``text`` as a CSV cell a spreadsheet cannot run as a formula: a ``'`` in front when it starts with
-    ``=``, ``+``, ``-``, ``@``, tab or CR (plain numbers excepted). :func:`read_spreadsheet_cell` undoes it."""
+    ``=``, ``+``, ``-``, ``@``, tab or CR (plain numbers excepted). :func:`read_spreadsheet_cell` undoes
+    it."""
     return TEXT_MARK + text if _formula_like(text) else text
 
 

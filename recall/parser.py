@@ -89,9 +89,9 @@ class FeatureEvidence:
 
 @dataclass(frozen=True)
 class RefusedQuantity:
-    """A stated value the parser does not use, and why: negated ("not 10 cm"), negative ("-10 kg"), zero, beyond the catalog's
-    limits ("1e308 cm", "10**100 g"; 5 m and 500 kg are accepted), too small to state, or a second unit
-    not smaller than one of the first ("5 ft 12 in")."""
+    """A stated value the parser does not use, and why: negated ("not 10 cm"), negative ("-10 kg"), zero,
+    beyond the catalog's limits ("1e308 cm", "10**100 g"; 5 m and 500 kg are accepted), too small to
+    state, or a second unit not smaller than one of the first ("5 ft 12 in")."""
 
     words: str
     start: int
@@ -190,9 +190,10 @@ _NEGATED_REASON = "negated: the description says it is not this value"
 
 def _negation(segment: list[Any], k: int) -> str | None:
     """How the value chunk starting at token ``k`` is negated: None when it is not, "" by a plain
-    negation right before it ("not 10 cm", "does not weigh 300 g", "isn't really 10 cm", "not filled with
-    500 ml": at most two BE, FILL or :data:`~recall.lexicon.NEGATION_GAP_WORDS` words between), or the qualifier of a
-    :data:`~recall.lexicon.NEGATED_HEDGE_WORDS` word between ("not quite 10 cm": about)."""
+    negation right before it ("not 10 cm", "does not weigh 300 g", "isn't really 10 cm", "not filled
+    with 500 ml": at most two BE, FILL or :data:`~recall.lexicon.NEGATION_GAP_WORDS` words between), or
+    the qualifier of a :data:`~recall.lexicon.NEGATED_HEDGE_WORDS` word between ("not quite 10 cm":
+    about)."""
     hedge = ""
     for gap, j in enumerate(range(k - 1, max(-1, k - 4), -1)):
         tok = segment[j]
@@ -205,7 +206,9 @@ def _negation(segment: list[Any], k: int) -> str | None:
     return None
 
 
-def _negate(tree: Tree, segment: list[Any], pos: int, reading: Reading) -> tuple[Tree, dict[tuple[int, int], str]]:
+def _negate(
+    tree: Tree, segment: list[Any], pos: int, reading: Reading
+) -> tuple[Tree, dict[tuple[int, int], str]]:
     """The sentence's chunk tree with each negated value chunk taken apart into its words (the value is not
     stated: listed in ``reading.refused``), and the spans of the negated chunks whose value is kept with
     another qualifier ("not more than 10 cm" at most, "not exactly 10 cm" about, "not quite 10 cm" about)."""

@@ -12,16 +12,15 @@ from __future__ import annotations
 
 import re
 
+from kb.measures.words import count_words
+
 __all__ = ["MAX_SET", "per_item", "set_size"]
 
 #: Counts above this are not a set of household objects (a "500 pcs" box of screws is sold by the box).
 MAX_SET = 1000
-_NUMBER_WORDS = {
-    "two": 2, "three": 3, "four": 4, "five": 5, "six": 6, "eight": 8, "ten": 10, "twelve": 12,
-    "zwei": 2, "drei": 3, "vier": 4, "sechs": 6, "deux": 2, "trois": 3, "quatre": 4, "six_": 6,
-    "dos": 2, "tres": 3, "cuatro": 4, "seis": 6, "due": 2, "quattro": 4, "sei": 6,
-}  # fmt: skip
-_N = r"(\d{1,4}|" + "|".join(w for w in _NUMBER_WORDS if not w.endswith("_")) + ")"
+#: Count words in the store languages (:data:`kb.measures.words.COUNT_WORDS`, shared with the number reader).
+_COUNT_WORDS = count_words()
+_N = r"(\d{1,4}|" + "|".join(sorted(_COUNT_WORDS, key=lambda w: (-len(w), w))) + ")"
 #: Ways stores write a set in a product name (en, de, fr, es, it, pt, nl, tr, ja, zh).
 _SET_PATTERNS = [
     re.compile(p, re.IGNORECASE)
@@ -57,7 +56,7 @@ def set_size(name: str | None) -> tuple[int, str] | None:
     for pattern in _SET_PATTERNS:
         for m in pattern.finditer(text):
             raw = m.group(1).lower()
-            count = int(raw) if raw.isdigit() else _NUMBER_WORDS.get(raw)
+            count = int(raw) if raw.isdigit() else _COUNT_WORDS.get(raw)
             if count and 2 <= count <= MAX_SET:
                 return count, m.group(0).strip()
     m = _PAIR.search(text)

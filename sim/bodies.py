@@ -11,6 +11,8 @@ sim/world.py poses the body on the table. The mapping (sim/PHYSICS.md, "Object g
   top (a visual disk without mass or contacts).
 * **Pans** (frying pan, skillet, saucepan, wok) **and ladles** (a bowl on a long handle): a thin base disk,
   a wall ring of boxes and a long handle along ``a`` at the rim's height.
+* **Peaked caps** (baseball cap, ball cap, peaked cap: :data:`PEAKED_NOUNS`): a crown of three stacked
+  cylinders narrowing to the top, and a brim (a thin box) at its base reaching out along ``a``.
 * **Round objects** (cans, bottles, jars, cups, glasses, plates, bowls, coins, rolls, candles, ...; and any
   prism or long object whose two smaller sides are within 20 %): a cylinder along the odd dimension
   (along ``a`` when ``b`` ~ ``c``: a bottle, a pen; along ``c`` when ``a`` ~ ``b`` and the shape is not
@@ -40,14 +42,15 @@ __all__ = [
     "ROUND_RATIO",
     "body_for",
     "handle_style",
+    "peaked",
 ]
 
 #: Part of the hand version stored with every trial (sim/hand.py): bump it when a body changes, so that
 #: stored validations are re-run. 2: composite bodies from the kind (1: one primitive from the shape); 3: floppy
 #: flat objects drape as hinged strips (sim/sheet.py); 4: a flat object too narrow to overhang a table edge
 #: under the pads lies with its length across it (sim/grasps.py edge_depth_cm); 5: a ladle is a bowl on a long
-#: handle (HANDLE_NOUNS), not a uniform box.
-GEOMETRY_VERSION = "5"
+#: handle (HANDLE_NOUNS), not a uniform box; 6: a peaked cap is a crown on a brim (PEAKED_NOUNS).
+GEOMETRY_VERSION = "6"
 #: Sides within this ratio count as equal (a sphere, a disk, a round cross-section).
 ROUND_RATIO = 0.8
 #: Objects named with one of these words are round in cross-section when two of their sides are about
@@ -79,6 +82,14 @@ HANDLE_NOUNS: dict[str, str] = {
     "wok": "long",
     "ladle": "long",  # a bowl on a long handle: built as a small pan, its mass by volume at the bowl end
 }
+#: English head nouns of peaked caps: a crown (a stepped dome of three cylinders) on a brim (a thin plate)
+#: reaching out along ``a`` (:func:`_peaked_cap`).
+PEAKED_NOUNS = frozenset({"baseball cap"})
+#: The crown's tiers: (fraction of the height, fraction of the crown's radius), bottom to top.
+CAP_TIERS = ((5 / 12, 1.0), (4 / 12, 0.8), (3 / 12, 0.5))
+#: ``GraspPlan.params["hold"]`` for a grasp of one named part of a composite body (``params["part"]``:
+#: a cap's ``crown_top`` from above, its ``brim`` pinched at a table edge; sim/world.py places the hand).
+HOLD_PART = "part"
 #: ``GraspPlan.params["hold"]`` for a grasp of the object's handle rather than its body (sim/world.py places
 #: the hand on it; the planner asks for it for a pan, sim/planner.py).
 HOLD_HANDLE = "handle"
@@ -321,6 +332,39 @@ def _pan(sizes: dict[str, float]) -> Body:
                 assumptions=notes)  # fmt: skip
 
 
+def peaked(name: str | None, aliases: tuple[str, ...] = ()) -> bool:
+    """Is the object a peaked cap (its name's head noun, else its first alias's, in :data:`PEAKED_NOUNS`)?"""
+    for phrase in (name or "", *aliases[:1]):
+        noun = noun_in(words_of(phrase))
+        if noun is not None:
+            return noun.english in PEAKED_NOUNS or noun.text in PEAKED_NOUNS
+    return False
+
+
+def _peaked_cap(sizes: dict[str, float]) -> Body:
+    """A cap resting on its crown as it lies on a table: the crown round across ``b`` (its diameter), ``c``
+    up, three stacked cylinders narrowing to the top (a stepped dome, :data:`CAP_TIERS`); the brim a thin
+    plate at the crown's base reaching out along ``+a`` by ``a - b``, 0.9 of the crown's width."""
+    a, b, c = sizes["a"], sizes["b"], sizes["c"]
+    notes: list[str] = []
+    brim_len = a - b
+    if brim_len < 0.25 * b:  # the stated sizes leave no brim: one of 0.4 of the crown added outside
+        brim_len = 0.4 * b
+        notes.append(f"brim added outside the stated sizes: {brim_len:.1f} cm")
+    crown_r = b / 2.0
+    centre = -a / 2.0 + crown_r if a - b >= 0.25 * b else 0.0
+    parts, z = [], -c / 2.0
+    for k, (h_frac, r_frac) in enumerate(CAP_TIERS):
+        h = h_frac * c
+        name = "crown_top" if k == len(CAP_TIERS) - 1 else f"crown_{k}"
+        parts.append(Part(name, "cylinder", (r_frac * crown_r, h / 2.0, 0.0), _vec(a=centre, c=z + h / 2.0), _unit("c")))
+        z += h
+    thick = _clamp(0.02 * b, 0.3, 0.5)
+    half = _vec(a=brim_len / 2.0, b=0.45 * b, c=thick / 2.0)
+    parts.append(Part("brim", "box", half, _vec(a=centre + crown_r + brim_len / 2.0, c=-c / 2.0 + thick / 2.0)))
+    return Body("cap", tuple(parts), up="c", assumptions=tuple(notes))
+
+
 def body_for(
     sizes_cm: tuple[float, float, float],
     shape: str,
@@ -333,7 +377,9 @@ def body_for(
     resolved ones), catalog ``shape`` and total ``mass_kg``; its name and aliases give its kind."""
     sizes = dict(zip(_DIMS, (float(s) for s in sizes_cm), strict=True))
     style = handle_style(name, aliases)
-    if style is not None and style[0] == "long":
+    if peaked(name, aliases):
+        body = _peaked_cap(sizes)
+    elif style is not None and style[0] == "long":
         body = _pan(sizes)
     elif style is not None and style[0] in ("loop", "spout"):
         body = _vessel(sizes, *style)

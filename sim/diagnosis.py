@@ -23,6 +23,7 @@ beside the trial's reason, never instead of it.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -114,6 +115,16 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
         return pressed
     squeeze = _num(row.get("grip_force_n")) or _num(plan.get("grip_force_n"))
     weight = mass / 1000.0 * GRAVITY
+    lever = _num(params.get("brim_lever_cm"))
+    if lever and reason.startswith(("slipped", "turned")):  # the crown swung down about the pinch
+        return Cause(
+            "moment",
+            f"held by its brim, its crown's weight acts {lever:g} cm beyond the pads ({weight * lever:.3g} N cm, "
+            "doubled by the downward push); the pads' couple did not hold it and the crown swung down about the "
+            f"pinch (so far out, a turn of {math.degrees(5.0 / lever):.0f} deg moves the cap's centre the 5 cm slip "
+            "limit: a slip here is that swing); a "
+            "person lets a cap hang from its brim, which the trial's 15 deg limit does not allow",
+        )
     if reason.startswith("turned"):
         planned = _num(plan.get("grip_force_n"))
         short = (

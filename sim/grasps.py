@@ -13,6 +13,7 @@ __all__ = [
     "ACTIVE_FINGERS",
     "sheet_held_cm",
     "FAMILIES",
+    "FINGER_LEAD_PARAM",
     "FINGER_MAX_FORCE_N",
     "GRASP_TYPES",
     "THUMB_MAX_FORCE_N",
@@ -24,6 +25,7 @@ __all__ = [
     "FLAT_RATIO",
     "edge_depth_cm",
     "edge_grip_in_cm",
+    "edge_lever_lead_cm",
     "edge_overhang_cm",
     "is_flat_grasp",
 ]
@@ -132,6 +134,26 @@ def edge_grip_in_cm(depth_cm: float) -> float:
     and the pinch's reach allow (the nearer, the smaller the moment of its weight about the grip)."""
     overhang = edge_overhang_cm(depth_cm)
     return max(EDGE_MIN_GRIP_IN_CM, min(depth_cm / 2.0, EDGE_MAX_GRIP_IN_CM, overhang - EDGE_PAD_CLEAR_CM))
+
+
+#: ``GraspPlan.params`` key of an edge lever hold (sim/planner.py): how much deeper (cm, along the approach)
+#: the finger pads meet a flat object's underside than the thumb meets its top (absent: at one depth).
+FINGER_LEAD_PARAM = "finger_lead_cm"
+#: An edge lever hold (sim/PLANNER.md rule 3): the finger pads meet a heavy flat object's underside this
+#: much deeper (cm) than the thumb meets its top, at least ...
+EDGE_LEVER_MIN_LEAD_CM = 0.5
+#: ... and at most: the thumb, hanging from the palm's wrist end, reaches a top nearer the palm only at its
+#: flexion stop (sim/PHYSICS.md), so about 2.4 cm is the largest lead with which it still presses.
+EDGE_LEVER_MAX_LEAD_CM = 2.4
+
+
+def edge_lever_lead_cm(mass_g: float, depth_cm: float, squeeze_n: float) -> float:
+    """The finger lead (cm) of an edge lever hold: the thumb pressing the top with ``squeeze_n`` that much
+    nearer the edge than the finger pads (at ``edge_grip_in_cm``) carries the moment of the weight, whose
+    centre of mass lies ``depth_cm / 2`` in, about the pads' line (F L = m g d), within the bounds above."""
+    lever_cm = max(0.0, depth_cm / 2.0 - edge_grip_in_cm(depth_cm))
+    lead = mass_g / 1000.0 * 9.81 * lever_cm / max(squeeze_n, 1e-9)
+    return round(min(EDGE_LEVER_MAX_LEAD_CM, max(EDGE_LEVER_MIN_LEAD_CM, lead)), 3)
 
 
 def sheet_held_cm(depth_cm: float, overhang_cm: float) -> float:

@@ -11,12 +11,12 @@ result.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from sim.bodies import GEOMETRY_VERSION
-from sim.grasps import FINGER_MAX_FORCE_N, GRASP_TYPES, THUMB_MAX_FORCE_N, GraspPlan
+from sim.grasps import FINGER_LEAD_PARAM, FINGER_MAX_FORCE_N, GRASP_TYPES, THUMB_MAX_FORCE_N, GraspPlan
 from sim.hand_model import (
     ACTUATOR_NAMES,
     APPROACH_QUAT,
@@ -57,6 +57,7 @@ __all__ = [
     "DIGITS",
     "FINGERS",
     "FINGER_BY_NAME",
+    "FINGER_LEAD_PARAM",
     "FINGER_MAX_FORCE_N",
     "HAND_BIT",
     "HAND_VERSION",
@@ -95,6 +96,9 @@ PIP_PER_MCP = 0.8
 #: at their force limit, near enough that an object slipping out leaves them closed in the air instead
 #: of sweeping it along (a thumb swinging on far past contact rolls the object up and out) or caging it.
 PRECISION_OVERSHOOT_CM = 1.0
+#: The fingers of an edge lever hold are nearly extended under the object (PIP 0.3 of MCP, the program's
+#: 0.8 curls them): Feix 2016's parallel extension, fingers straight under a plate, the thumb on top.
+EDGE_LEVER_PIP_PER_MCP = 0.3
 
 
 def _solve(fn, target: float, lo: float, hi: float) -> float:
@@ -151,7 +155,11 @@ class GraspTargets:
 
 
 def grasp_targets(
-    plan: GraspPlan, width_cm: float | None = None, *, align_pads: bool = False
+    plan: GraspPlan,
+    width_cm: float | None = None,
+    *,
+    align_pads: bool = False,
+    overshoot_cm: float = PRECISION_OVERSHOOT_CM,
 ) -> GraspTargets:
     """Pre-shape and closing targets for ``plan``, for an object ``width_cm`` wide along the opposition axis.
 
@@ -178,8 +186,11 @@ def grasp_targets(
     if program.control == "wrap":
         open_q, close_q, touch_q, center, contact_z, reach = _wrap_posture(program, aperture, width)
     else:
+        lead = float(plan.params.get(FINGER_LEAD_PARAM, 0.0))
+        if lead:
+            program = replace(program, pip_per_mcp=EDGE_LEVER_PIP_PER_MCP)
         open_q, close_q, touch_q, center, contact_z, reach = _pinch_posture(
-            program, aperture, width, align_pads
+            program, aperture, width, align_pads, overshoot_cm, lead
         )
     open_q["thumb_rot"] = close_q["thumb_rot"] = _thumb_rotation(program, reach)
     return GraspTargets(
@@ -237,11 +248,19 @@ def _wrap_posture(program, aperture: float, width: float):
     return open_q, close_q, {}, center, -PALM_HALF_CM[2], reach
 
 
-def _pinch_posture(program, aperture: float, width: float, align_pads: bool = False):
+def _pinch_posture(
+    program,
+    aperture: float,
+    width: float,
+    align_pads: bool = False,
+    overshoot: float = PRECISION_OVERSHOOT_CM,
+    lead: float = 0.0,
+):
     """A pinch's (open, close, touch, centre y, contact z, thumb reach): the pads press on opposite sides
     at one height (else the squeeze is a couple that turns the object), so the pinch centre is where, for
-    this width, the thumb tip and the finger tips touch the object at the same depth below the palm. Tip
-    positions are capsule axis ends: the pads' surfaces lie one radius closer to the object."""
+    this width, the thumb tip and the finger tips touch the object at the same depth below the palm (an edge
+    lever hold: the finger tips ``lead`` cm deeper). Tip positions are capsule axis ends: the pads'
+    surfaces lie one radius closer to the object."""
     fingers, ratio = program.fingers, program.pip_per_mcp
     pip_max = math.radians(RANGE_DEG["pip"][1])
 
@@ -259,12 +278,12 @@ def _pinch_posture(program, aperture: float, width: float, align_pads: bool = Fa
             zs.append(finger_tip(f, q, pip_of(q))[1])
         return thumb_z - float(np.mean(zs))
 
-    center = _solve(height_gap, 0.0, -2.0, 8.0)
+    center = _solve(height_gap, lead, -2.0, 8.0)  # the fingers ``lead`` cm deeper than the thumb
     open_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
     close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
     touch_q: dict[str, float] = {}
     open_q["thumb_flex"] = thumb_flex_for(center - half_open - r_t)
-    close_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t + PRECISION_OVERSHOOT_CM)
+    close_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t + overshoot)
     touch_q["thumb_flex"] = thumb_flex_for(center - width / 2.0 - r_t)
     thumb_contact = thumb_tip(touch_q["thumb_flex"])[1]
     finger_contacts = []
@@ -273,7 +292,7 @@ def _pinch_posture(program, aperture: float, width: float, align_pads: bool = Fa
         y_touch = center + width / 2.0 + r_f
         f_ratio = _aligned_ratio(f, y_touch, thumb_contact, ratio) if align_pads else ratio
         q_open = finger_pinch_mcp(f, center + half_open + r_f, f_ratio)
-        q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - PRECISION_OVERSHOOT_CM, f_ratio)
+        q_close = finger_pinch_mcp(f, center + width / 2.0 + r_f - overshoot, f_ratio)
         q_touch = finger_pinch_mcp(f, y_touch, f_ratio)
         for q_map, q in ((open_q, q_open), (close_q, q_close), (touch_q, q_touch)):
             q_map[f"{f}_mcp"], q_map[f"{f}_pip"] = q, min(pip_max, f_ratio * q)

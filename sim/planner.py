@@ -30,11 +30,13 @@ from typing import Any
 from kb.features import ObjectRecord
 from sim.grasp_rules import HEAVY_MASS_G, candidates
 from sim.grasps import (
+    FINGER_LEAD_PARAM,
     GRASP_TYPES,
     HAND_MAX_APERTURE_CM,
     GraspPlan,
     edge_depth_cm,
     edge_grip_in_cm,
+    edge_lever_lead_cm,
     edge_overhang_cm,
     is_flat_grasp,
     sheet_held_cm,
@@ -72,7 +74,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "10"  # 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
+PLANNER_VERSION = "12"  # 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -92,6 +94,9 @@ HANDLE_GRASP = "heavy_wrap_small_diameter"
 #: A pan at least this heavy is held at the middle of its handle, nearer its centre of mass (people choke up
 #: on a heavy pan); a lighter one near the handle's end (sim/world.py ``HANDLE_END_MARGIN_CM``).
 HANDLE_MIDDLE_MIN_MASS_G = HEAVY_MASS_G
+#: A peaked cap is picked up by its brim: thumb on top, four fingers under it (Feix 2016 type 6, prismatic
+#: 4 finger; the brim is 17 cm wide), the strongest pinch (60 N) against its crown's moment.
+BRIM_GRASP = "thumb_4_finger"
 
 
 def opening_needed(grasp_type: str, width_cm: float) -> float:
@@ -236,6 +241,7 @@ def _plan(
             **_round_across(o, hold),
             **_sheet(ctx, hold),
             **_edge(ctx, hold),
+            **_lever(ctx, program, hold, force_ok, force),
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
@@ -285,6 +291,19 @@ def _edge(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
         "edge_overhang_cm": round(edge_overhang_cm(depth), 3),
         "edge_grip_in_cm": round(edge_grip_in_cm(depth), 3),
     }
+
+
+def _lever(
+    ctx: _Context, program: HandProgram, hold: dict[str, Any] | None, force_ok: bool, squeeze: float
+) -> dict[str, float]:
+    """An edge lever hold (rule 3): a pinch of a rigid flat object whose moment at the table edge needs more
+    than the pinch can squeeze (the pads at one depth carry it only by their patches, ``2 F r``) puts the
+    finger pads under it deeper than the thumb on top, by the lead whose couple ``F L`` carries that moment
+    at the planned squeeze (sim/grasps.py ``edge_lever_lead_cm``; sim/hand.py extends the fingers)."""
+    o = ctx.o
+    if hold or force_ok or not ctx.edge_force or program.control != "pinch" or o.rigidity == "floppy":
+        return {}
+    return {FINGER_LEAD_PARAM: edge_lever_lead_cm(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), squeeze)}
 
 
 def _handle_hold(ctx: _Context) -> dict[str, Any] | None:
@@ -341,6 +360,44 @@ def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
     return dataclasses.replace(plan, grip_force_n=capacity, rationale=(*plan.rationale, line))
 
 
+def _brim_plan(ctx: _Context) -> GraspPlan | None:
+    """A peaked cap (sim/bodies.py ``peaked``) is picked up by its brim, a thin plate: thumb on top, four
+    fingers under it, at a table edge like any flat object (rule 3). The crown hangs beyond the pads, so the
+    squeeze must hold its weight's moment about them: ``F = SF m g d / (2 r)``, ``d`` from the pads to the
+    body's centre of mass (the edge bound's lever ``r``, sim/grip_force.py)."""
+    from sim.bodies import HOLD_PART
+
+    o = ctx.o
+    if o.body().form != "cap":
+        return None
+    body = o.body()
+    brim = next(p for p in body.parts if p.name == "brim")
+    length = brim.extent_cm("a")
+    grip_a = brim.pos_cm[0] + length / 2.0 - edge_grip_in_cm(length)
+    com_a = sum(p.mass_kg * p.pos_cm[0] for p in body.parts) / sum(p.mass_kg for p in body.parts)
+    lever = max(0.0, grip_a - com_a)
+    sf = SAFETY_FACTOR.get(o.fragility, SAFETY_FACTOR["medium"])
+    moment = round(max(MIN_GRIP_FORCE_N, sf * o.mass_g / 1000.0 * GRAVITY * lever / (2 * EDGE_PAD_LEVER_CM)), 2)
+    hold = {"hold": HOLD_PART, "part": "brim", "width_cm": round(brim.extent_cm("c"), 3), "grasped_dim": "c",
+            "approach": "top", "brim_lever_cm": round(lever, 2)}  # fmt: skip
+    reason = (
+        f"a peaked cap: pinched by its brim ({hold['width_cm']:g} cm thin plate), thumb on top and four fingers "
+        "under it, as people pick a cap up by the peak"
+    )
+    plan = _plan(_Context(o, True, o.assumptions, ctx.base_force, 0.0, 0.0), 0, BRIM_GRASP, reason,
+                 program_for(BRIM_GRASP), hold)  # fmt: skip
+    if moment <= plan.grip_force_n:
+        return plan
+    capacity = side_force_capacity(BRIM_GRASP)
+    line = (
+        f"brim: its crown's weight acts {lever:.3g} cm beyond the pads (its centre of mass); the squeeze must "
+        f"hold that moment: {moment:g} N (F = SF m g d / (2 r), r = {EDGE_PAD_LEVER_CM:g} cm)"
+    )
+    params = {**plan.params, "needed_force_n": moment, "force_within_capacity": moment <= capacity}
+    return dataclasses.replace(plan, grip_force_n=min(moment, capacity), rationale=(*plan.rationale, line),
+                               params=params)  # fmt: skip
+
+
 def _rank_key(p: GraspPlan) -> tuple[bool, bool, float]:
     """Candidates the hand can open round first, then those it can squeeze enough, then by score."""
     return (not p.params["fits_aperture"], not p.params["force_within_capacity"], -p.score)
@@ -355,7 +412,8 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
     """
     ctx = _context(resolve_features(obj))
     hold = _handle_hold(ctx)
-    plans: list[GraspPlan] = [_handle_plan(ctx, hold)] if hold else []
+    brim = _brim_plan(ctx)
+    plans: list[GraspPlan] = [_handle_plan(ctx, hold)] if hold else [brim] if brim else []
     # Hand programs already listed (the handle hold's too): a merged type is simulated once, and results,
     # grouped by grasp type, never mix a handle hold with a grasp of the body.
     seen: set[str] = {program_for(p.grasp_type).name for p in plans}

@@ -31,7 +31,10 @@ from sim.grasps import GRASP_TYPES
 
 __all__ = ["PROGRAMS", "PROGRAMS_VERSION", "HandProgram", "merged_types", "program_for"]
 
-PROGRAMS_VERSION = "3"  # 3: pinch pads aligned at the thumb's height off the table edge; 2: precision circular on three fingers
+# 5: an edge lever hold's fingers lead the thumb, extended (sim/hand.py); 4: a floppy object's lateral pinch
+# closes 2 cm past it (sim/world.py); 3: pinch pads aligned at the thumb's height off the table edge;
+# 2: precision circular on three fingers
+PROGRAMS_VERSION = "5"
 
 ALL4 = ("index", "middle", "ring", "little")
 

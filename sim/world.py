@@ -17,6 +17,7 @@ from kb.errors import SimulationError
 from kb.features import ObjectRecord
 from sim import hand as H
 from sim.bodies import HOLD_HANDLE as _HOLD_HANDLE
+from sim.bodies import HOLD_PART
 from sim.grasps import GRASP_TYPES, GraspPlan, edge_depth_cm, edge_grip_in_cm, edge_overhang_cm, is_flat_grasp
 from sim.objects import ObjectModel, add_object, add_table, free_dim, object_model, pose_rotation
 from sim.programs import program_for
@@ -197,6 +198,8 @@ def _extents(obj: ObjectModel, axes: dict[str, int]) -> np.ndarray:
 def _layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
     if plan.params.get("hold") == HOLD_HANDLE:
         return _handle_layout(obj, plan)
+    if plan.params.get("hold") == HOLD_PART:
+        return _part_layout(obj, plan)
     flat = _is_flat(obj, plan)
     approach = "edge" if flat else plan.approach
     upright = None if flat else _upright_placement(obj, plan)
@@ -237,6 +240,24 @@ def _handle_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
     return _Layout(plan.approach, axes, signs, False, ext, centre, grip_ext, float(grip_ext[1]))
 
 
+def _part_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
+    """The object standing as it is used (``c`` up, ``a`` along +x, towards the hand), pinched across the
+    thickness of one flat named part (``params["part"]``, sim/bodies.py ``HOLD_PART``: a cap's brim) that
+    reaches out over a table edge, like any flat object (thumb on top, fingers under the overhang)."""
+    body = obj.body
+    name = plan.params.get("part")
+    part = next((p for p in body.parts if p.name == name), None) if body is not None else None
+    if part is None or body.up != "c":
+        raise SimulationError(f"{obj.name!r} has no part {name!r} to hold (sim/bodies.py builds none for it)")
+    axes: dict[str, int] = {"a": 0, "b": 1, "c": 2}
+    centre = pose_rotation(axes, {}, free_dim(obj)) @ np.asarray(part.pos_cm)
+    grip_ext = np.array([part.extent_cm(d) for d in "abc"])
+    plate = part.geom == "box" and is_flat_grasp(grip_ext[2], min(grip_ext[0], grip_ext[1]))
+    if plan.grasped_dim != "c" or not plate:
+        raise SimulationError(f"the {name} of {obj.name!r} is not a flat part pinched across its thickness")
+    return _Layout("edge", axes, {}, True, _extents(obj, axes), centre, grip_ext, float(grip_ext[2]))
+
+
 def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
     """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
     if plan.grasp_type not in GRASP_TYPES:
@@ -248,15 +269,18 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     lay = _layout(model_obj, plan)
     approach, axes, signs, flat = lay.approach, lay.axes, lay.signs, lay.flat
     ext, grip_centre, grip_ext, width = lay.ext, lay.grip_centre, lay.grip_ext, lay.width
-    targets = H.grasp_targets(plan, width, align_pads=not flat)
     program = program_for(plan.grasp_type)
+    targets = H.grasp_targets(
+        plan, width, align_pads=not flat, overshoot_cm=_overshoot_cm(program, model_obj)
+    )
     wrap = program.control == "wrap"
 
     depth = grip_ext[2] if approach == "top" else grip_ext[0]  # the grasped body's extent along the approach
     # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the object's
     # centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
     overhang = edge_overhang_cm(depth) if flat else 0.0
-    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat)
+    lead = float(plan.params.get(H.FINGER_LEAD_PARAM, 0.0)) if flat else 0.0
+    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat, lead)
     center_h = center_cm * H.CM
 
     obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
@@ -300,6 +324,21 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     data.ctrl[world.digit_act] = open_q
     data.ctrl[world.wrist_act] = noise
     return world
+
+
+#: How far past a floppy object's surface a lateral pinch closes (cm; other pinches: sim/hand.py
+#: ``PRECISION_OVERSHOOT_CM``, 1 cm). A soft contact takes up the 1 cm (a cloth's 10 mm impedance ramp and
+#: 0.03 s time constant): the straight fingers stopped on the cloth's face, pressing at a third of their
+#: limit, and the held strip turned out (16-22 deg) under its hanging weight. Closing 2 cm past, the thumb
+#: and the index and middle fingers gather the cloth's edge along the fingers (sim/PHYSICS.md, floppy sheets).
+LATERAL_GATHER_OVERSHOOT_CM = 2.0
+
+
+def _overshoot_cm(program, obj: ObjectModel) -> float:
+    """How far past the object's surface the pinch's closing targets lie (sim/hand.py grasp_targets)."""
+    if program.name == "lateral_pinch" and obj.rigidity == "floppy":
+        return LATERAL_GATHER_OVERSHOOT_CM
+    return H.PRECISION_OVERSHOOT_CM
 
 
 def _trial_world(model, obj: ObjectModel, plan: GraspPlan, targets, approach: str, approach_dir) -> TrialWorld:
@@ -351,7 +390,9 @@ def _add_scenery(spec: mujoco.MjSpec) -> None:
     )
 
 
-def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: bool) -> tuple[np.ndarray, float]:
+def _object_in_hand_cm(
+    program, targets: H.GraspTargets, depth: float, flat: bool, lead: float = 0.0
+) -> tuple[np.ndarray, float]:
     """Where the object's centre sits in the hand frame (cm) at the grasp pose, and how far below its near
     face the pads meet it (pinches; 0 for wraps). ``depth``: its extent along the approach axis."""
     palm_face = -H.PALM_HALF_CM[2]
@@ -362,6 +403,8 @@ def _object_in_hand_cm(program, targets: H.GraspTargets, depth: float, flat: boo
     # that far, else 3 cm below its near face; flat objects as near their centre of mass as the pads
     # reach under the overhang.
     grip_depth = edge_grip_in_cm(depth) if flat else min(depth / 2.0, 3.0)
+    if lead:  # an edge lever hold: the finger pads at the usual depth, the thumb ``lead`` nearer the edge
+        grip_depth = max(lead / 2.0, grip_depth - lead / 2.0)
     z_c = min(
         targets.contact_z_cm - depth / 2.0 + grip_depth,
         palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,

@@ -43,7 +43,11 @@ def test_a_value_changed_without_a_new_updated_at_moves_the_version(seeded_db: P
     before = kb.catalog_version()
     _write(seeded_db, f"UPDATE objects SET {CHANGES[column]} {TARGET}")
     after = kb.catalog_version()
-    assert (after.objects, after.max_id, after.updated_at) == (before.objects, before.max_id, before.updated_at)
+    assert (after.objects, after.max_id, after.updated_at) == (
+        before.objects,
+        before.max_id,
+        before.updated_at,
+    )
     assert after != before and after.values_hash != before.values_hash
 
 
@@ -96,3 +100,11 @@ def test_the_recall_snapshot_sees_a_value_changed_without_a_new_updated_at(seede
     after = load_snapshot(seeded_db)
     assert after is not before
     assert list(after.num_cols[3])[after.names.index("tennis ball")] == pytest.approx(mass + 100)
+
+
+def test_the_stored_recall_index_fingerprints_the_same_content(seeded_db: Path) -> None:
+    """recall.stored_index keeps its own copy of the fingerprint (the speed helper's module): the two agree."""
+    from recall.stored_index import catalog_fingerprint
+
+    with KnowledgeBase.open(seeded_db, read_only=True).connect() as con:
+        assert catalog_fingerprint(con) == content_fingerprint(con)

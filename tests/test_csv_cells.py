@@ -84,7 +84,9 @@ def test_catalog_export_marks_formula_like_cells_and_import_round_trips(tmp_path
 def test_negative_number_cell_is_still_refused_as_a_number(tmp_path):
     kb = KnowledgeBase.open(tmp_path / "a.duckdb")
     f = tmp_path / "neg.csv"
-    f.write_text("name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\nmug,-5,8,8,300,,,,,\n")
+    f.write_text(
+        "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\nmug,-5,8,8,300,,,,,\n"
+    )
     report = kb.import_csv(f, skip_invalid=True)
     (skipped,) = report.skipped
     assert skipped.row == 2 and skipped.column in ("a_cm", "dimensions")
@@ -92,10 +94,16 @@ def test_negative_number_cell_is_still_refused_as_a_number(tmp_path):
 
 def test_grasp_plan_reads_an_exported_catalog_with_the_exact_names(tmp_path):
     kb = KnowledgeBase.open(tmp_path / "a.duckdb")
-    kb.upsert([ObjectRecord.create(FORMULA_LIKE_NAMES[0], a_cm=12, b_cm=3, c_cm=2, mass_g=40)], source="t", adapter="csv")
+    kb.upsert(
+        [ObjectRecord.create(FORMULA_LIKE_NAMES[0], a_cm=12, b_cm=3, c_cm=2, mass_g=40)],
+        source="t",
+        adapter="csv",
+    )
     out = tmp_path / "export.csv"
     kb.export_csv(out)
-    result = CliRunner().invoke(app, ["grasp", "plan", "--catalog", str(out), "--json"], catch_exceptions=False)
+    result = CliRunner().invoke(
+        app, ["grasp", "plan", "--catalog", str(out), "--json"], catch_exceptions=False
+    )
     assert result.exit_code == 0, result.output
     (line,) = (json.loads(x) for x in result.output.splitlines())
     assert line["name"] == FORMULA_LIKE_NAMES[0]
@@ -116,3 +124,20 @@ def test_report_csv_marks_text_but_not_numbers(tmp_path):
     assert read_spreadsheet_cell(line["object_name"]) == FORMULA_LIKE_NAMES[0]
     assert line["reason"] == "'-slipped"
     assert line["slip_cm"] == "-0.25" and line["rotation_deg"] == "-3.5"
+
+
+def test_every_csv_writer_in_the_project_escapes_its_cells():
+    """A module that writes CSV (csv.writer / DictWriter, pandas or polars writers) marks its cells with
+    spreadsheet_cell; a new writer without it fails here."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    writers = ("csv.writer(", "csv.DictWriter(", ".to_csv(", ".write_csv(")
+    found = {}
+    for package in ("kb", "scrapers", "recall", "sim", "benchmarks", "scripts"):
+        for path in (root / package).rglob("*.py"):
+            text = path.read_text(encoding="utf-8")
+            if any(w in text for w in writers):
+                found[path.relative_to(root).as_posix()] = "spreadsheet_cell" in text
+    assert {"kb/csvio.py", "sim/report.py"} <= set(found)  # the two writers there are today
+    assert [p for p, escaped in found.items() if not escaped] == []

@@ -91,3 +91,52 @@ def test_a4_sheet_held_as_a_sheet_turns_out_as_one_floppy_plate(monkeypatch):
     as_plate = run_trial(obj, plan)
     assert as_sheet.success, as_sheet.reason
     assert not as_plate.success and "turned" in as_plate.reason
+
+
+def _towel() -> ObjectRecord:
+    """The seed catalog's hand towel (features written here): 75 x 40 x 0.5 cm, 200 g, cotton."""
+    return ObjectRecord.create(
+        "towel",
+        a_cm=75,
+        b_cm=40,
+        c_cm=0.5,
+        mass_g=200,
+        shape="thin",
+        texture="rough",
+        fragility="sturdy",
+        material="fabric",
+        rigidity="floppy",
+    )
+
+
+def test_a_lateral_pinch_closes_further_past_a_floppy_surface_only():
+    """The gather overshoot applies to the lateral pinch on a floppy object, nowhere else (its boundaries:
+    another pinch on the same cloth, the same pinch on a rigid plate)."""
+    import sim.world
+    from sim import hand as H
+    from sim.programs import program_for
+
+    cloth, board = object_model(_towel()), object_model(_sheet("rigid"))
+    lateral, pads = program_for("lateral_pinch"), program_for("thumb_2_finger")
+    assert sim.world._overshoot_cm(lateral, cloth) == sim.world.LATERAL_GATHER_OVERSHOOT_CM == 2.0
+    assert sim.world._overshoot_cm(lateral, board) == H.PRECISION_OVERSHOOT_CM == 1.0
+    assert sim.world._overshoot_cm(pads, cloth) == H.PRECISION_OVERSHOOT_CM
+    plan = _plan(_towel(), "lateral_pinch")
+    near, far = H.grasp_targets(plan, 0.5), H.grasp_targets(plan, 0.5, overshoot_cm=2.0)
+    assert (far.open == near.open).all() and (far.touch == near.touch).all()
+    thumb, index = H.ACTUATOR_NAMES.index("thumb_flex"), H.ACTUATOR_NAMES.index("index_mcp")
+    assert far.close[thumb] > near.close[thumb] and far.close[index] > near.close[index]
+
+
+def test_a_towel_pinched_laterally_holds_when_the_pinch_gathers_its_edge(monkeypatch):
+    """The hand towel's lateral pinch: closing 1 cm past the cloth, the held strip turns out under the
+    hanging cloth (21.9 deg, seed 0); closing 2 cm past (the gather), it holds (sim/PHYSICS.md)."""
+    import sim.world
+
+    obj = _towel()
+    plan = _plan(obj, "lateral_pinch")
+    gathered = run_trial(obj, plan)
+    monkeypatch.setattr(sim.world, "LATERAL_GATHER_OVERSHOOT_CM", 1.0)
+    pressed = run_trial(obj, plan)
+    assert gathered.success, gathered.reason
+    assert not pressed.success and "turned" in pressed.reason

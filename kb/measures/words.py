@@ -23,7 +23,16 @@ from collections.abc import Sequence
 
 from kb.measures.numbers import DIGITS_PATTERN, VULGAR_FRACTIONS, digits_value
 
-__all__ = ["FRACTION_WORDS", "MAGNITUDE_WORDS", "NUMBER_WORDS", "is_number_token", "number_value", "parse_number_words"]
+__all__ = [
+    "COUNT_WORDS",
+    "FRACTION_WORDS",
+    "MAGNITUDE_WORDS",
+    "NUMBER_WORDS",
+    "count_words",
+    "is_number_token",
+    "number_value",
+    "parse_number_words",
+]
 
 #: Number words and their values (tag NW). "couple" is 2 ("a couple of centimeters"), "dozen" 12.
 NUMBER_WORDS: dict[str, int] = {
@@ -41,6 +50,34 @@ FRACTION_WORDS: dict[str, float] = {
     "fifth": 0.2, "fifths": 0.2, "sixth": 1 / 6, "sixths": 1 / 6, "eighth": 0.125, "eighths": 0.125,
     "tenth": 0.1, "tenths": 0.1, "sixteenth": 0.0625, "sixteenths": 0.0625,
 }  # fmt: skip
+
+#: Counts of items written as words ("a set of four", "vier Stück", "lot de trois"), by language: the store
+#: languages whose set wording :mod:`scrapers.sets` reads. English is :data:`NUMBER_WORDS` from two up
+#: ("couple" aside: "a couple pack" is no count); the others are the small counts stores write in words.
+#: The description parser reads English only (``NUMBER_WORDS``).
+COUNT_WORDS: dict[str, dict[str, int]] = {
+    "en": {w: v for w, v in NUMBER_WORDS.items() if v >= 2 and w != "couple"},
+    "de": {"zwei": 2, "drei": 3, "vier": 4, "fünf": 5, "sechs": 6, "sieben": 7, "acht": 8, "neun": 9,
+           "zehn": 10, "zwölf": 12},
+    "fr": {"deux": 2, "trois": 3, "quatre": 4, "cinq": 5, "six": 6, "sept": 7, "huit": 8, "dix": 10,
+           "douze": 12},  # not "neuf": in a product name it is "new" more often than nine
+    "es": {"dos": 2, "tres": 3, "cuatro": 4, "cinco": 5, "seis": 6, "siete": 7, "ocho": 8, "nueve": 9,
+           "diez": 10, "doce": 12},
+    "it": {"due": 2, "tre": 3, "quattro": 4, "cinque": 5, "sei": 6, "sette": 7, "otto": 8, "nove": 9,
+           "dieci": 10, "dodici": 12},
+}  # fmt: skip
+
+
+def count_words() -> dict[str, int]:
+    """Every count word of :data:`COUNT_WORDS`, any language, with its value (a word two languages share
+    has one value: French and English "six")."""
+    merged: dict[str, int] = {}
+    for table in COUNT_WORDS.values():
+        for word, value in table.items():
+            if merged.setdefault(word, value) != value:
+                raise ValueError(f"count word {word!r} has two values")
+    return merged
+
 
 _HYPHEN_WORDS = re.compile(r"[a-z]+(?:-[a-z]+)+")
 _ARTICLES = frozenset({"a", "an"})
