@@ -42,7 +42,7 @@ import numpy as np
 
 from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
 from recall.cells import CellIndex
-from recall.columns import SortedColumns
+from recall.columns import LIST_BELOW, SortedColumns
 from recall.combinations import CombinationIndex
 from recall.costs import PlanCosts, after_probe, before_probe
 from recall.metrics import (
@@ -172,6 +172,8 @@ class JPIndex(SortedColumns):
         _ = self.cells, self.combinations, self.records
         if self.n <= BRUTE_BELOW:
             _ = self.wide
+        if self.n <= LIST_BELOW:
+            _ = self._key_lists, self._order_lists
         self.plan_and_search(FeatureQuery.from_values({"a_cm": 10.0, "material": "wood"}), 1)
         return self
 
