@@ -42,7 +42,7 @@ from urllib.parse import urlsplit
 
 import requests
 
-from kb.errors import ExtractionError, FetchError, IngestionError, InvalidFeature
+from kb.errors import ExtractionError, FetchError, ImpossibleValues, IngestionError, InvalidFeature
 from kb.features import (
     DIMENSIONS,
     NUMERIC_FEATURES,
@@ -156,12 +156,14 @@ def _validate(record: ProductRecord) -> tuple[ObjectRecord, list[dict[str, float
     name = normalize_name(record.name or "")
     if not name:
         raise _Rejected("no_name", "the page names no product")
-    absurd = [reason for reason in record.refused.values() if "absurd" in reason]
-    if absurd:
-        # Every value the page states for one of the product's features is impossible (a mug 40 m tall):
-        # none of its numbers can be trusted. An absurd candidate that lost to a valid value (a misread
-        # alternative, another block's number) is only an --explain row and a warning.
-        raise _Rejected("absurd_value", absurd[0])
+    impossible = [
+        reason for reason in record.refused.values() if "absurd" in reason or "not positive" in reason
+    ]
+    if impossible:
+        # Every value the page states for one of the product's features is impossible (a mug 40 m tall, a
+        # plate weighing -600 g): none of its numbers can be trusted. An impossible candidate that lost to a
+        # valid value (a misread alternative, another block's number) is only an --explain row and a warning.
+        raise _Rejected("absurd_value" if "absurd" in impossible[0] else "invalid_value", impossible[0])
     dims = tuple(record.dims_cm or ())
     if not dims and record.mass_g is None:
         raise _Rejected("no_measurements", "no product dimensions or mass")
@@ -259,6 +261,10 @@ def _process_page(
         return page
     try:
         record = extract(body, result.final_url, result.content_type)
+    except ImpossibleValues as err:  # every value refused: the same reasons as _validate's
+        kind = "absurd_value" if "absurd" in err.refusal else "invalid_value"
+        page.outcome, page.stage, page.reason, page.detail = "rejected", "extract", kind, str(err)
+        return page
     except ExtractionError as err:
         page.outcome, page.stage, page.reason, page.detail = "rejected", "extract", "no_product", str(err)
         return page

@@ -9,6 +9,7 @@ without a quantity gives None or [].
 
 from __future__ import annotations
 
+import math
 import re
 
 from kb.measures.numbers import DECIMAL_COMMA_LANGUAGES, DOT_GROUPED, decimal_comma_for, parse_number
@@ -16,6 +17,7 @@ from kb.measures.numbers import NUMBER_PATTERN as _NUMBER
 from kb.measures.text import MAX_TEXT, clean_text
 from kb.measures.units import UNIT_PATTERN as _UNIT
 from kb.measures.units import combine, is_smaller_unit, length_unit, lookup, mass_unit, volume_unit
+from scrapers.signs import minus_before
 from scrapers.sizes import AXIS_LETTER_ROLES, Dims, parse_dims
 
 __all__ = [
@@ -36,7 +38,9 @@ __all__ = [
 ]
 
 # One mass in two units: "1 lb 2 oz", Amazon India's "1 kg 450 g" (and "1 kg 450 grams", "2 кг 300 г").
-_TWO_UNITS = re.compile(rf"(?P<a>{_NUMBER})\s*(?P<ua>{_UNIT}),?\s*(?:and\s+)?(?P<b>{_NUMBER})\s*(?P<ub>{_UNIT})")
+_TWO_UNITS = re.compile(
+    rf"(?P<a>{_NUMBER})\s*(?P<ua>{_UNIT}),?\s*(?:and\s+)?(?P<b>{_NUMBER})\s*(?P<ub>{_UNIT})"
+)
 _QUANTITY_RE = re.compile(rf"(?P<n>{_NUMBER})\s*(?P<u>{_UNIT})?")
 _RANGE_RE = re.compile(rf"{_NUMBER}\s*(?:{_UNIT})?\s*(?:-|–|—|~|to|bis|a|à)\s*{_NUMBER}")
 
@@ -58,9 +62,9 @@ def unit_hint(label: str) -> str | None:
 
 
 def _mass_in_two_units(s: str, decimal_comma: bool | None) -> float | None:
-    """Grams of the first mass written in two units (:func:`kb.measures.units.combine`), -1.0 when it is
-    refused ("2 lb 20 oz": not one mass, and the first unit alone would not be what the page says), or
-    None when there is none ("1 kg 2 lb", "1.5 kg, 200 g" are two masses)."""
+    """Grams of the first mass written in two units (:func:`kb.measures.units.combine`), negative after a
+    minus sign, NaN when it is refused ("2 lb 20 oz": not one mass, and the first unit alone would not be
+    what the page says), or None when there is none ("1 kg 2 lb", "1.5 kg, 200 g" are two masses)."""
     for m in _TWO_UNITS.finditer(s):
         unit, sub_unit = lookup(m["ua"]), lookup(m["ub"])
         if unit is None or sub_unit is None or unit.kind != "mass":
@@ -70,9 +74,9 @@ def _mass_in_two_units(s: str, decimal_comma: bool | None) -> float | None:
             continue
         one = combine(value, unit, sub_value, sub_unit)
         if not isinstance(one, str):
-            return round(one * unit.factor, 6)
+            return round((-1.0 if minus_before(s, m.start("a")) else 1.0) * one * unit.factor, 6)
         if is_smaller_unit(unit, sub_unit) and value == int(value):
-            return -1.0  # the units make one quantity, but the second value is a whole first unit or more
+            return math.nan  # the units make one quantity, but the second value is a whole first unit or more
     return None
 
 
@@ -81,7 +85,7 @@ def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: b
     if convert is mass_unit:
         grams = _mass_in_two_units(s, decimal_comma)
         if grams is not None:
-            return grams if grams > 0 else None
+            return None if math.isnan(grams) or grams == 0 else grams
     if _RANGE_RE.search(s):
         return None
     for m in _QUANTITY_RE.finditer(s):
@@ -106,7 +110,7 @@ def _parse_single(text: str, convert, default_unit: str | None, decimal_comma: b
             value = parse_number(number, decimal_comma)
         if value is None or value <= 0:
             continue
-        return round(value * factor, 6)
+        return round((-1.0 if minus_before(s, m.start("n")) else 1.0) * value * factor, 6)
     return None
 
 
@@ -114,7 +118,8 @@ def parse_length(
     text: str, default_unit: str | None = None, decimal_comma: bool | None = None
 ) -> float | None:
     """The first length in ``text`` in cm (``"67,7 cm"`` -> 67.7), or None; a range (``15.5 - 116.5"``) is
-    not one length."""
+    not one length. A length stated with a minus sign (``-5 cm``, :mod:`scrapers.signs`) is returned
+    negative, for the catalog limits to refuse it with its reason."""
     try:
         return _parse_single(text, length_unit, default_unit, decimal_comma)
     except Exception:  # noqa: BLE001
@@ -122,7 +127,8 @@ def parse_length(
 
 
 def parse_mass(text: str, default_unit: str | None = None, decimal_comma: bool | None = None) -> float | None:
-    """The first mass in ``text`` in grams (``"Gewicht 4,7 kg"`` -> 4700.0), or None; ranges are refused."""
+    """The first mass in ``text`` in grams (``"Gewicht 4,7 kg"`` -> 4700.0), or None; ranges are refused,
+    and a mass stated with a minus sign is returned negative (as :func:`parse_length`)."""
     try:
         return _parse_single(text, mass_unit, default_unit, decimal_comma)
     except Exception:  # noqa: BLE001

@@ -15,16 +15,18 @@ from kb.measures.numbers import parse_number
 from kb.measures.text import MAX_TEXT, clean_text
 from kb.measures.units import UNIT_PATTERN as _UNIT
 from kb.measures.units import length_unit, words_pattern
+from scrapers.signs import minus_before
 
 __all__ = ["AXIS_LETTER_ROLES", "Dims", "parse_dims"]
 
 _LENGTHS = [name for name, kind in KINDS.items() if kind == "length"]
 _TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
+_SIGN = r"(?:[-\u2212](?=\d))?"  # "27 x -27": a minus sign inside a size (kept: scrapers.signs)
 
 _DIMS_RE = re.compile(
     rf"(?P<n1>{_NUMBER})\s*(?P<u1>{_UNIT})?\s*(?P<l1>\(?\b(?![xX]\b)[a-zA-Z]\b\)?)?"
-    rf"{_TIMES}(?P<n2>{_NUMBER})\s*(?P<u2>{_UNIT})?\s*(?P<l2>\(?\b(?![xX]\b)[a-zA-Z]\b\)?)?"
-    rf"(?:{_TIMES}(?P<n3>{_NUMBER})\s*(?P<u3>{_UNIT})?)?"
+    rf"{_TIMES}{_SIGN}(?P<n2>{_NUMBER})\s*(?P<u2>{_UNIT})?\s*(?P<l2>\(?\b(?![xX]\b)[a-zA-Z]\b\)?)?"
+    rf"(?:{_TIMES}{_SIGN}(?P<n3>{_NUMBER})\s*(?P<u3>{_UNIT})?)?"
 )
 # An axis letter or word written before a number inside a dimensions value.
 _AXIS_PREFIX = re.compile(
@@ -100,7 +102,8 @@ def _find_unit(tokens: list[str | None], convert, default: str | None) -> list[f
 
 def parse_dims(text: str, default_unit: str | None = None, decimal_comma: bool | None = None) -> list[Dims]:
     """Every ``A x B [x C]`` group in ``text`` with a length unit (after each term, after the last term,
-    or ``default_unit`` from the label), converted to cm. Groups without a length unit are skipped."""
+    or ``default_unit`` from the label), converted to cm. Groups without a length unit are skipped; a
+    value stated with a minus sign (``-27 x 27 x 2 cm``) is negative, for the limits to refuse."""
     try:
         return _parse_dims(text, default_unit, decimal_comma)
     except Exception:  # noqa: BLE001 - the contract is "never raises on any text"
@@ -194,7 +197,8 @@ class _Marks:
 def _times_group(
     m: re.Match, s: str, marks: _Marks, default_unit: str | None, decimal_comma: bool | None
 ) -> Dims | None:
-    """One ``A x B [x C]`` match as :class:`Dims`, or None without a length unit or with a value <= 0."""
+    """One ``A x B [x C]`` match as :class:`Dims`, or None without a length unit or with a value of 0; a
+    value written with a minus sign (:func:`scrapers.signs.minus_before`) is kept negative, to be refused."""
     nums = [m.group("n1"), m.group("n2"), m.group("n3")]
     n = 3 if nums[2] is not None else 2
     nums = nums[:n]
@@ -205,7 +209,8 @@ def _times_group(
     values = [parse_number(x, decimal_comma) for x in nums]
     if any(v is None or v <= 0 for v in values):
         return None
-    cm = [round(v * f, 6) for v, f in zip(values, factors, strict=True)]
+    signs = [-1.0 if minus_before(s, m.start(f"n{i + 1}")) else 1.0 for i in range(n)]
+    cm = [round(sign * v * f, 6) for sign, v, f in zip(signs, values, factors, strict=True)]
     plain = [i for i, x in enumerate(nums) if x not in marks.diameters]
     if len(marks.prefixed) == len(plain) and all(letter is None for letter in letters):
         for i, letter in zip(plain, marks.prefixed, strict=True):  # "Ø 12 x H 20", "Diameter 30 x Height 15"

@@ -11,6 +11,7 @@ from typing import Any, Literal
 
 __all__ = [
     "ACTIVE_FINGERS",
+    "drapes",
     "sheet_held_cm",
     "FAMILIES",
     "FINGER_LEAD_PARAM",
@@ -154,6 +155,14 @@ def edge_lever_lead_cm(mass_g: float, depth_cm: float, squeeze_n: float) -> floa
     lever_cm = max(0.0, depth_cm / 2.0 - edge_grip_in_cm(depth_cm))
     lead = mass_g / 1000.0 * 9.81 * lever_cm / max(squeeze_n, 1e-9)
     return round(min(EDGE_LEVER_MAX_LEAD_CM, max(EDGE_LEVER_MIN_LEAD_CM, lead)), 3)
+
+
+def drapes(rigidity: str | None, material: str | None) -> bool:
+    """Does a flat object of this rigidity and material bend under its own weight when lifted by one edge,
+    so that the trial builds it as a draping sheet (sim/sheet.py)? Floppy things (paper, cloth, gloves), and
+    a fabric bag of stuffing (a pillow, a cushion: squeezable fabric), which folds over the hand as cloth
+    does, only far stiffer."""
+    return rigidity == "floppy" or (rigidity == "squeezable" and material == "fabric")
 
 
 def sheet_held_cm(depth_cm: float, overhang_cm: float) -> float:

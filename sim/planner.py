@@ -34,6 +34,7 @@ from sim.grasps import (
     GRASP_TYPES,
     HAND_MAX_APERTURE_CM,
     GraspPlan,
+    drapes,
     edge_depth_cm,
     edge_grip_in_cm,
     edge_lever_lead_cm,
@@ -215,6 +216,13 @@ def _plan(
             f"aperture: needs a {opening:g} cm opening round {width:g} cm, more than the hand's "
             f"{HAND_MAX_APERTURE_CM:g} cm: ranked down"
         )
+    lever = _lever(ctx, program, hold, force_ok, force)
+    if lever:
+        rationale.append(
+            f"lever: the finger pads {lever[FINGER_LEAD_PARAM]:g} cm deeper under it than the thumb on top, so "
+            f"the squeeze's couple carries the moment of its weight at the edge (fingers extended, Feix 2016's "
+            f"parallel extension)"
+        )
     return GraspPlan(
         grasp_type=grasp_type,
         family=GRASP_TYPES[grasp_type],
@@ -241,7 +249,7 @@ def _plan(
             **_round_across(o, hold),
             **_sheet(ctx, hold),
             **_edge(ctx, hold),
-            **_lever(ctx, program, hold, force_ok, force),
+            **lever,
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
@@ -264,7 +272,7 @@ def _sheet(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
     box body): the held strip's depth behind the edge, where the pads press, and the grams that hang from
     it; sim/diagnosis.py reads them instead of the rigid plate's edge moment (grasp-small)."""
     o = ctx.o
-    if hold or not ctx.edge_force or o.rigidity != "floppy":
+    if hold or not ctx.edge_force or not drapes(o.rigidity, o.material):
         return {}
     body = o.body()
     if not (len(body.parts) == 1 and body.parts[0].geom == "box"):
@@ -301,7 +309,7 @@ def _lever(
     finger pads under it deeper than the thumb on top, by the lead whose couple ``F L`` carries that moment
     at the planned squeeze (sim/grasps.py ``edge_lever_lead_cm``; sim/hand.py extends the fingers)."""
     o = ctx.o
-    if hold or force_ok or not ctx.edge_force or program.control != "pinch" or o.rigidity == "floppy":
+    if hold or force_ok or not ctx.edge_force or program.control != "pinch" or drapes(o.rigidity, o.material):
         return {}
     return {FINGER_LEAD_PARAM: edge_lever_lead_cm(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), squeeze)}
 

@@ -19,11 +19,18 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from sim.grasps import sheet_held_cm
+from sim.grasps import drapes, sheet_held_cm
 from sim.hand import HAND_BIT, OBJECT_BIT, TABLE_BIT
 from sim.objects import CM, CONTACT_SOFTNESS, MATERIAL_RGBA, TORSIONAL_PATCH_M, ObjectModel
 
-__all__ = ["BENDING_STIFFNESS_NM", "SEGMENT_CM", "add_sheet", "is_sheet", "sheet_strips"]
+__all__ = [
+    "BENDING_STIFFNESS_NM",
+    "SEGMENT_CM",
+    "STUFFED_BENDING_STIFFNESS_NM",
+    "add_sheet",
+    "is_sheet",
+    "sheet_strips",
+]
 
 #: Strips of the draping part at most this wide (cm) across the table edge: a sheet bends on a scale of a
 #: few centimetres under its own weight; finer chains cost solver time and change nothing measured here.
@@ -34,6 +41,12 @@ SEGMENT_CM = 4.0
 #: hot water bottle's bag): 1e-4 N m. Ours, within those published ranges; the trial's verdict barely
 #: depends on them (the weight, not the stiffness, dominates once the rest hangs).
 BENDING_STIFFNESS_NM: dict[str | None, float] = {"paper": 3e-4, "fabric": 5e-5, None: 1e-4}
+#: A stuffed fabric bag (a pillow, a cushion; squeezable fabric): far stiffer than its cover. Ours, from the
+#: droop of a bed pillow held by one edge, which bends through most of a right angle over its 45 cm: a
+#: cantilever of 13 N/m over 0.45 m deflecting about its length has EI of about q L^4 / (8 L) = 0.15 N m^2,
+#: 0.2 N m per metre of its 0.65 m width. The trial's verdict on the seed pillow is the same from 0.01 to
+#: 2 N m (sim/PHYSICS.md, floppy sheets).
+STUFFED_BENDING_STIFFNESS_NM = 0.2
 #: Hinge damping per unit of stiffness (s): a 10 ms time constant, the contacts' own, so a strip settles
 #: within a few control ticks instead of swinging.
 HINGE_DAMPING_S = 0.01
@@ -43,11 +56,11 @@ HINGE_ARMATURE = 2e-7
 
 
 def is_sheet(model: ObjectModel, flat: bool) -> bool:
-    """Is ``model`` built as a draping sheet? Floppy objects laid flat at a table edge, of a plain box body
-    (a composite keeps its rigid parts)."""
+    """Is ``model`` built as a draping sheet? Objects that drape (sim/grasps.py ``drapes``: floppy, or a
+    stuffed fabric bag) laid flat at a table edge, of a plain box body (a composite keeps its rigid parts)."""
     body = model.body
     plain = body is None or (len(body.parts) == 1 and body.parts[0].geom == "box")
-    return flat and model.rigidity == "floppy" and plain
+    return flat and drapes(model.rigidity, model.material) and plain
 
 
 def sheet_strips(depth_cm: float, overhang_cm: float) -> tuple[float, list[float]]:
@@ -67,7 +80,12 @@ def add_sheet(spec: mujoco.MjSpec, model: ObjectModel, ext_cm: np.ndarray, pos_m
     depth, width, thick = (float(v) for v in ext_cm)
     held, strips = sheet_strips(depth, overhang_cm)
     density = model.mass_kg / (depth * width * thick)  # per cm^3: the catalog mass spread by area
-    stiffness = BENDING_STIFFNESS_NM.get(model.material, BENDING_STIFFNESS_NM[None]) * width * CM
+    per_width = (
+        STUFFED_BENDING_STIFFNESS_NM
+        if model.rigidity == "squeezable"
+        else BENDING_STIFFNESS_NM.get(model.material, BENDING_STIFFNESS_NM[None])
+    )
+    stiffness = per_width * width * CM
     solref, solimp = CONTACT_SOFTNESS[model.rigidity]
     # A finger cannot sink into a sheet deeper than the sheet is thick: the soft ramp ends within it.
     solimp = (*solimp[:2], min(solimp[2], thick * CM), *solimp[3:])

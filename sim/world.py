@@ -30,6 +30,10 @@ APPROACH_M = 0.06
 #: Gap between the palm face and the object above it in pinches (cm); a wrap's gap is its hand program's
 #: ``palm_gap_cm`` (sim/programs.py: 0.4 cm pressed to the palm, 1 cm held in the fingers).
 PRECISION_PALM_CLEARANCE_CM = 1.0
+#: A rod lying on the table is pinched this fraction of its radius below its centre line ...
+ROD_BELOW_FRACTION = 0.25
+#: ... but never with the contact lower than this above the table (a pad's radius: its centre stays clear).
+ROD_PAD_CLEAR_CM = 0.9
 #: Deeper overlap than this at the pre-grasp pose means the hand starts inside the object.
 PENETRATION_TOL_M = 0.002
 
@@ -279,8 +283,12 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     # Over the table's edge as far as the pads reach in (up to 6 cm), never by so much that the object's
     # centre of mass leaves the table (sim/grasps.py, shared with the planner's force).
     overhang = edge_overhang_cm(depth) if flat else 0.0
+    lying = (
+        approach == "top" and model_obj.kind == "cylinder" and model_obj.axis_dim is not None
+        and axes.get(model_obj.axis_dim) != 2 and plan.params.get("hold") is None
+    )  # fmt: skip
     lead = float(plan.params.get(H.FINGER_LEAD_PARAM, 0.0)) if flat else 0.0
-    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat, lead)
+    center_cm, grip_depth = _object_in_hand_cm(program, targets, depth, flat, lead, rod=lying)
     center_h = center_cm * H.CM
 
     obj_pos = np.array([0.0, 0.0, ext[2] / 2.0 * H.CM])
@@ -391,7 +399,7 @@ def _add_scenery(spec: mujoco.MjSpec) -> None:
 
 
 def _object_in_hand_cm(
-    program, targets: H.GraspTargets, depth: float, flat: bool, lead: float = 0.0
+    program, targets: H.GraspTargets, depth: float, flat: bool, lead: float = 0.0, rod: bool = False
 ) -> tuple[np.ndarray, float]:
     """Where the object's centre sits in the hand frame (cm) at the grasp pose, and how far below its near
     face the pads meet it (pinches; 0 for wraps). ``depth``: its extent along the approach axis."""
@@ -405,6 +413,8 @@ def _object_in_hand_cm(
     grip_depth = edge_grip_in_cm(depth) if flat else min(depth / 2.0, 3.0)
     if lead:  # an edge lever hold: the finger pads at the usual depth, the thumb ``lead`` nearer the edge
         grip_depth = max(lead / 2.0, grip_depth - lead / 2.0)
+    if rod and depth / 2.0 <= 3.0:  # below a lying rod's centre line, as far as the pads clear the table
+        grip_depth += max(0.0, min(ROD_BELOW_FRACTION * depth / 2.0, depth / 2.0 - ROD_PAD_CLEAR_CM))
     z_c = min(
         targets.contact_z_cm - depth / 2.0 + grip_depth,
         palm_face - PRECISION_PALM_CLEARANCE_CM - depth / 2,

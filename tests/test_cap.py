@@ -37,7 +37,9 @@ def test_the_cap_is_a_stepped_crown_on_a_thin_brim_within_its_stated_sizes():
     names = [p.name for p in body.parts]
     assert names == ["crown_0", "crown_1", "crown_top", "brim"]
     radii = [p.size_cm[0] for p in body.parts[:3]]
-    assert radii == sorted(radii, reverse=True) and radii[0] == 9.5  # the crown narrows to the top, 19 cm across
+    assert (
+        radii == sorted(radii, reverse=True) and radii[0] == 9.5
+    )  # the crown narrows to the top, 19 cm across
     brim = body.parts[3]
     assert brim.extent_cm("a") == pytest.approx(8.0) and brim.extent_cm("c") == pytest.approx(0.38)
     lo = min(p.pos_cm[0] - p.extent_cm("a") / 2 for p in body.parts)
@@ -54,12 +56,16 @@ def test_the_cap_is_planned_by_its_brim_with_the_crowns_moment():
     assert first.grasp_type == "thumb_4_finger" and first.params["hold"] == HOLD_PART
     assert first.params["part"] == "brim" and first.grasped_dim == "c" and first.params["width_cm"] == 0.38
     lever = first.params["brim_lever_cm"]
-    assert 14.0 < lever < 15.0  # the brim's pads 2.7 cm in from its tip, the crown's centre of mass near its axis
+    assert (
+        14.0 < lever < 15.0
+    )  # the brim's pads 2.7 cm in from its tip, the crown's centre of mass near its axis
     assert first.grip_force_n == pytest.approx(2.4 * 0.09 * 9.81 * lever / (2 * 0.3), abs=0.02)
     assert first.params["force_within_capacity"] and any("crown's weight" in r for r in first.rationale)
     assert not any("grasped width 12 cm" in r for r in first.rationale)  # the brim, not the crown's height
     assert [p.params.get("hold") for p in plans[1:]] == [None] * (len(plans) - 1)  # its body's grasps follow
-    box = ObjectRecord.create("shoe box", a_cm=27, b_cm=19, c_cm=12, mass_g=90, shape="prism", material="paper")
+    box = ObjectRecord.create(
+        "shoe box", a_cm=27, b_cm=19, c_cm=12, mass_g=90, shape="prism", material="paper"
+    )
     assert "hold" not in best_grasp(box).params
 
 
@@ -85,5 +91,9 @@ def test_the_brim_pinch_runs_and_its_failure_is_the_crowns_moment():
     assert r.outcome == "failure" and r.lifted and r.rotation_deg > 15.0
     row = {**r.to_dict(), "details": json.dumps({"plan": plan.to_dict()})}
     cause = diagnose(row)
-    assert cause.kind == "moment" and "crown" in cause.text and f"{plan.params['brim_lever_cm']:g} cm" in cause.text
+    assert (
+        cause.kind == "moment"
+        and "crown" in cause.text
+        and f"{plan.params['brim_lever_cm']:g} cm" in cause.text
+    )
     assert np.isfinite(r.slip_cm)

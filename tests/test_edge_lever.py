@@ -47,8 +47,10 @@ def test_only_a_rigid_flat_pinch_over_its_capacity_gets_a_lead():
     heavy = _pinch(_plate())
     assert heavy.params["force_within_capacity"] is False
     assert heavy.params[FINGER_LEAD_PARAM] == pytest.approx(0.674, abs=1e-3)
+    assert any(line.startswith("lever: the finger pads 0.674 cm deeper") for line in heavy.rationale)
     light = _pinch(_plate(mass_g=150))  # a plastic plate's weight: the pads at one depth carry it
     assert light.params["force_within_capacity"] is True and FINGER_LEAD_PARAM not in light.params
+    assert not any(line.startswith("lever:") for line in light.rationale)
     wraps = [p for p in plan_grasps(_plate()) if p.grasp_type in ("medium_wrap", "power_disk")]
     assert wraps and all(FINGER_LEAD_PARAM not in p.params for p in wraps)
     towel = ObjectRecord.create(

@@ -5,6 +5,8 @@ import subprocess
 
 import pytest
 
+from kb.service.mainjob import ingest_line
+
 
 @pytest.mark.slow
 def test_demo_runs_end_to_end(tmp_path, cli_env):
@@ -44,3 +46,18 @@ def test_demo_runs_end_to_end(tmp_path, cli_env):
     joined = " ".join(proc.stderr.split())
     assert f"first choice holds for {choice['first_holds']} of {choice['objects']} objects" in joined
     assert f"a validated grasp for {choice['validated']}" in joined
+
+
+def test_ingest_line_says_why_pages_were_rejected_so_the_counts_add_up():
+    ing = {"pages": 51, "fetched": 47, "extracted": 45, "rejected": 7, "new": 32, "updated": 5,
+           "rejected_reasons": {"absurd_value": 1, "no_product": 2, "robots_disallowed": 1, "timeout": 1,
+                                "http_500": 1, "too_large": 1}}
+    line = ingest_line(ing)
+    assert line.startswith("ingest: 51 pages listed, 47 fetched, 45 extracted, 7 rejected at any stage (")
+    assert "absurd_value 1" in line and "no_product 2" in line and "robots_disallowed 1" in line
+    assert line.endswith("; 32 new and 5 updated objects")
+
+
+def test_ingest_line_without_rejections_or_page_count():
+    line = ingest_line({"fetched": 3, "extracted": 3, "rejected": 0, "new": 1, "updated": 0})
+    assert line == "ingest: 3 fetched, 3 extracted, 0 rejected at any stage; 1 new and 0 updated objects"

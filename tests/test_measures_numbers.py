@@ -209,9 +209,10 @@ def test_a_negative_value_is_refused_by_the_parser_and_never_read_as_negative(va
     parsed = parse(f"it is -{value} {word}")
     assert not any(k in parsed.features for k in ("a_cm", "mass_g"))
     assert parsed.refused and parsed.refused[0].reason.startswith("negative")
-    # a page's "-" is a dash or a bullet: the reader never gives a negative value
+    # a page's "-" glued to the number is a sign: the reader keeps it, and the limits refuse the value
     found = parse_length(f"-{value} {word}") or parse_mass(f"-{value} {word}")
-    assert found is not None and found > 0
+    assert found is not None and found < 0
+    assert "not positive" in (check_dims([found]) if word in ("cm", "inches") else check_mass(found))
 
 
 def test_zero_is_refused_on_both_sides() -> None:

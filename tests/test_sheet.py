@@ -140,3 +140,50 @@ def test_a_towel_pinched_laterally_holds_when_the_pinch_gathers_its_edge(monkeyp
     pressed = run_trial(obj, plan)
     assert gathered.success, gathered.reason
     assert not pressed.success and "turned" in pressed.reason
+
+
+def _pillow(material: str = "fabric") -> ObjectRecord:
+    """The seed catalog's pillow (features written here): 65 x 45 x 12 cm, 600 g, a stuffed fabric bag."""
+    return ObjectRecord.create(
+        "pillow",
+        a_cm=65,
+        b_cm=45,
+        c_cm=12,
+        mass_g=600,
+        shape="thin",
+        texture="smooth",
+        fragility="sturdy",
+        material=material,
+        rigidity="squeezable",
+    )
+
+
+def test_floppy_things_and_stuffed_fabric_drape_other_squeezables_do_not():
+    from sim.grasps import drapes
+
+    assert drapes("floppy", None) and drapes("floppy", "paper") and drapes("squeezable", "fabric")
+    assert not drapes("squeezable", "other") and not drapes("squeezable", None)
+    assert not drapes("rigid", "fabric")
+    assert is_sheet(object_model(_pillow()), flat=True)
+    assert not is_sheet(object_model(_pillow("other")), flat=True)  # a foam block keeps its shape
+
+
+def test_a_pillow_wrapped_at_its_edge_holds_as_a_draping_bag_and_slips_as_a_rigid_slab(monkeypatch):
+    """Seed 0: the pillow's medium wrap (its first choice) holds once the rest of it bends down behind the
+    held strip; as one rigid 65 x 45 x 12 cm box it slips past 5 cm in the sideways push (the failure
+    before programs version 7). Its hinges are the stuffed bag's stiffness, not a cloth's."""
+    import sim.world
+    from sim.sheet import STUFFED_BENDING_STIFFNESS_NM
+
+    obj = _pillow()
+    plan = _plan(obj, "medium_wrap")
+    world = build_world(obj, plan)
+    m = world.model
+    hinge = m.joint("sheet_hinge_0").id
+    strip_cm = 2 * (m.geom_size[m.geom("sheet_0_geom").id][0] * 100)
+    assert m.jnt_stiffness[hinge] == pytest.approx(STUFFED_BENDING_STIFFNESS_NM * 0.65 / (strip_cm / 100))
+    draped = run_trial(obj, plan)
+    monkeypatch.setattr(sim.world, "is_sheet", lambda model, flat: False)
+    rigid = run_trial(obj, plan)
+    assert draped.success, draped.reason
+    assert not rigid.success and "slipped" in rigid.reason

@@ -32,8 +32,8 @@ __all__ = [
 
 #: Not a number of its own: digits that are part of scientific notation ("1e308", "2.5E+1": the mantissa or
 #: the exponent). A page never writes a size in exponents, so such digits are not read at all (reading "308"
-#: out of "1e308" and "1" out of "2.5e1" was the old fault). A minus sign is not a sign on a page (a size is
-#: never negative: it is a dash or a bullet, see ``test_a_negative_value_is_refused_by_the_parser...``).
+#: out of "1e308" and "1" out of "2.5e1" was the old fault). A minus sign is not part of the number: the
+#: page readers decide whether a "-" before it is a sign, a dash or a bullet (``scrapers/signs.py``).
 _NOT_ALONE = r"(?<!\d[eE])(?<!\d[eE][+-])"
 _NO_EXPONENT = r"(?![.,]?\d*[eE][+-]?\d)"
 #: One number in digits (atomic: no backtracking), or a leading-dot decimal like ".5" after a space, an

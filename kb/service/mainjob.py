@@ -53,9 +53,7 @@ def run_demo(db: Path, out_dir: Path, *, console: Console | None = None, workers
 
     console.rule("[bold]2. ingest the demo storefront (127.0.0.1, no network)")
     result.steps["ingest"] = ing = _ingest_demo_store(kb, console)
-    console.print(f"ingest: {ing.get('fetched', 0)} pages fetched, {ing.get('extracted', 0)} extracted, "
-                  f"{ing.get('rejected', 0)} rejected, {ing.get('new', 0)} new and {ing.get('updated', 0)} "
-                  "updated objects")
+    console.print(ingest_line(ing))
 
     console.rule("[bold]3. recall sample descriptions (looked up in the demo store's search when unknown)")
     recalled = _recall_samples(db, console)
@@ -97,7 +95,20 @@ def _ingest_demo_store(kb: KnowledgeBase, console: Console) -> dict[str, Any]:
             report = run_ingestion(kb, sources, session=session, progress=progress)
     print_ingest_summary(report)
     out = report.to_dict()
-    return {k: out[k] for k in ("fetched", "not_modified", "extracted", "rejected", "new", "updated") if k in out}
+    keys = ("pages", "fetched", "not_modified", "extracted", "rejected", "rejected_reasons", "new", "updated")
+    return {k: out[k] for k in keys if k in out}
+
+
+def ingest_line(ing: dict[str, Any]) -> str:
+    """The ingestion step in one line whose counts add up: a rejected page may have been rejected before it
+    was fetched (robots.txt, a time-out), after (no product) or after extraction (an absurd value), so the
+    reasons are said with the count."""
+    reasons = ing.get("rejected_reasons") or {}
+    why = f" ({', '.join(f'{k} {v}' for k, v in reasons.items())})" if reasons else ""
+    pages = f"{ing['pages']} pages listed, " if "pages" in ing else ""
+    return (f"ingest: {pages}{ing.get('fetched', 0)} fetched, {ing.get('extracted', 0)} extracted, "
+            f"{ing.get('rejected', 0)} rejected at any stage{why}; {ing.get('new', 0)} new and "
+            f"{ing.get('updated', 0)} updated objects")
 
 
 def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
@@ -110,7 +121,9 @@ def _recall_samples(db: Path, console: Console) -> list[dict[str, Any]]:
 
     with demo_descriptions_path().open(newline="", encoding="utf-8") as fh:
         descriptions = [row["description"] for row in csv.DictReader(fh)]
-    table = Table("description", "recalled", "score", "confidence", "open set", "lookup", show_lines=True)
+    table = Table("description", "recalled", "score", "confidence", "open set", "lookup", show_lines=True,
+                  caption="score: the ranking score, lower is better: the feature distance minus the name's "
+                  "evidence, so below 0 when the description names the object")
     rows = []
     with DemoStore(port=0, crawl_delay=None) as store, requests.Session() as session:
         sources = load_sources(DEMO_SOURCES, base_url=store.base_url, delay_s=0)

@@ -31,7 +31,7 @@ def _shopify_product(data: Any) -> dict | None:
 
 def _variant_mass(variant: dict) -> tuple[float | None, str]:
     grams = variant.get("grams")
-    if isinstance(grams, (int, float)) and not isinstance(grams, bool) and grams > 0:
+    if isinstance(grams, (int, float)) and not isinstance(grams, bool) and grams != 0:  # < 0: refused later
         return float(grams), f"grams: {grams}"
     weight, unit = variant.get("weight"), variant.get("weight_unit")
     if isinstance(weight, str):
@@ -39,7 +39,7 @@ def _variant_mass(variant: dict) -> tuple[float | None, str]:
             weight = float(weight)
         except ValueError:
             weight = None
-    if isinstance(weight, (int, float)) and not isinstance(weight, bool) and weight > 0:
+    if isinstance(weight, (int, float)) and not isinstance(weight, bool) and weight != 0:
         # the .js product format gives "weight" in grams with no unit
         factor = mass_unit(str(unit)) if unit else (1.0 if "grams" not in variant else None)
         if factor is not None:

@@ -16,6 +16,7 @@ from scrapers.adapters import Observation, adapter
 from scrapers.normalize import material_from_text
 from scrapers.page import Page
 from scrapers.quantities import parse_dims, parse_length, parse_mass, third_axis
+from scrapers.signs import minus_before
 
 __all__ = ["MAX_PROSE_LINES", "free_text", "text"]
 
@@ -121,11 +122,15 @@ def free_text(page: Page) -> list[Observation]:
                 extra = third_axis(text.split(dims[0].text, 1)[-1], dc) if len(values) == 2 else None
                 if extra is not None:
                     values, roles = (*values, extra), (*roles, "extent")
-                obs.append(Observation("dims", values, rank=2, order=line.index, raw=raw, note=note, roles=roles))
+                obs.append(
+                    Observation("dims", values, rank=2, order=line.index, raw=raw, note=note, roles=roles)
+                )
         axes: dict[str, float] = {}
         for m in _AXIS_PHRASE.finditer(text):
             kind = _AXIS_WORDS[m.group("axis").lower()]
             value = parse_length(m.group("q"), None, dc)
+            if value is not None and minus_before(text, m.start("q")):
+                value = -value  # "-30 cm long": stated negative, refused by the limits
             if value is not None and kind not in axes:
                 axes[kind] = value
         if len(axes) >= 2:

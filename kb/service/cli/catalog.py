@@ -143,7 +143,9 @@ def catalog_list(
             table.add_row(_fmt(o.name), *(_fmt(getattr(o, f)) for f in features))
     else:
         table = Table(title=f"{len(objects)} objects", caption="texture, fragility: --json or a wider terminal")
-        table.add_column("name", ratio=3, overflow="fold")
+        # wide enough for the longest word of a name (up to 20 characters) so names break between words
+        longest = max((len(w) for o in objects for w in o.name.split()), default=4)
+        table.add_column("name", ratio=3, overflow="fold", min_width=min(20, max(4, longest)))
         for column in ("size cm", "mass g", "shape", "material", "rigidity"):
             table.add_column(column, no_wrap=True)
         for o in objects:

@@ -1,0 +1,51 @@
+"""The slide-to-the-edge experiment (sim/slide.py, sim/PHYSICS.md "Sliding a coin to the edge"): the class
+rule at its boundary, the rim-push geometry, and the two slide phases on a euro coin (data written here)."""
+
+import math
+
+import pytest
+
+from kb.features import ObjectRecord
+from sim import slide as S
+from sim.grasps import EDGE_PAD_CLEAR_CM, edge_grip_in_cm
+from sim.planner import best_grasp
+from sim.world import build_world
+
+COIN = dict(name="one euro coin", a_cm=2.325, b_cm=2.325, c_cm=0.233, mass_g=7.5, shape="thin",
+            material="metal", texture="medium", rigidity="rigid")  # fmt: skip
+
+
+def test_needs_slide_where_the_pads_would_press_nearer_the_rim_than_their_radius_plus_the_margin():
+    need = S.pad_radius_cm() + S.SLIDE_MARGIN_CM  # 1.065 cm
+    # edge_grip_in_cm = 0.45 d - 0.9 in this range: the boundary depth d = (need + 0.9) / 0.45
+    boundary = (need + EDGE_PAD_CLEAR_CM) / 0.45
+    assert edge_grip_in_cm(boundary) == pytest.approx(need)
+    assert S.needs_slide(boundary - 0.01) and not S.needs_slide(boundary + 0.01)
+    assert S.needs_slide(2.325) and S.needs_slide(3.3)  # the euro coin; the paper clip, by its length
+    assert not S.needs_slide(10.0)  # a phone
+
+
+def test_overhang_needed_puts_a_coins_centre_of_mass_off_the_table():
+    assert S.overhang_needed_cm() == pytest.approx(EDGE_PAD_CLEAR_CM + S.pad_radius_cm() + S.SLIDE_MARGIN_CM)
+    assert S.overhang_needed_cm() > 2.325 / 2.0
+
+
+def test_rim_push_ratio_at_its_limits():
+    assert S.rim_push_ratio(0.233, 0.9) == pytest.approx(math.sqrt(0.81 - 0.717**2) / 0.717)
+    assert S.rim_push_ratio(1.0, 0.9) == math.inf  # a rim above the tip's centre: a horizontal push
+    assert S.rim_push_ratio(0.04, 0.9) == 0.0  # a rim lower than the gap: the tip passes over it
+    assert S.rim_push_ratio(0.1, 0.9) < S.rim_push_ratio(0.233, 0.9)  # the paper clip's is lower
+
+
+def test_a_hook_behind_the_inner_rim_slides_a_coin_out_and_holds_it_on_the_table():
+    coin = ObjectRecord.create(**COIN)
+    slide = S.hook_pull(build_world(coin, best_grasp(coin), seed=0), 2.325, 1.5)
+    assert slide.slid_cm > 0.8 and not slide.fell and slide.tilt_deg < 5.0
+    assert slide.thumb_n > 0.05  # the thumb pushes it
+
+
+def test_a_light_press_does_not_drag_a_coin_the_object_friction_governs_both_contacts():
+    coin = ObjectRecord.create(**COIN)
+    slide = S.press_drag(build_world(coin, best_grasp(coin), seed=0), 1.5, press_cm=0.05)
+    assert slide.thumb_n > 0.05  # pressed ...
+    assert abs(slide.slid_cm) < 0.05 and not slide.fell  # ... and the pad slid over it
