@@ -22,6 +22,7 @@ clear line (CLI, exit code 1) or a JSON body (HTTP 4xx). Anything else is a bug.
     │   ├── RobotsDisallowed
     │   └── PageTooLarge
     ├── ExtractionError           a page was fetched but holds no usable product record
+    │   └── ImpossibleValues      every product value it states was refused (absurd, not positive)
     ├── IngestionError            an ingestion run failed as a whole (the catalog is left as it was)
     ├── SourcesError              a sources.toml file is malformed
     ├── SimulationError           a grasp trial could not be run
@@ -157,6 +158,15 @@ class PageTooLarge(FetchError):
 
 class ExtractionError(ObjrecallError):
     """A page was fetched but holds no usable product record."""
+
+
+class ImpossibleValues(ExtractionError):
+    """Every product value a page states was refused (``refusal``: the first reason, as
+    ``scrapers.normalize`` words it: "... is absurd ...", "... is not positive")."""
+
+    def __init__(self, message: str, refusal: str):
+        super().__init__(message)
+        self.refusal = refusal
 
 
 class IngestionError(ObjrecallError):

@@ -14,8 +14,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from kb.kinds import singular, words_of
+from recall.compounds import COMPOUND_CHECK_LIMIT, compound_agrees, modifier_noun
 from recall.names import GENERIC_NOUNS, MIN_SUFFIX, name_words, rows_with_word
-from recall.subject import adjective_feature_words, feature_words, is_participle, subject_phrase
+from recall.subject import adjective_feature_words, counted_head, feature_words, is_participle, subject_phrase
 
 __all__ = ["HEAD_WEIGHT", "NAME_WEIGHT", "NameEvidence", "NameIndex"]
 
@@ -103,6 +104,7 @@ class NameIndex:
         self.vocabulary = tables.vocabulary
         self.longest = tables.longest
         self.size = len(names)
+        self._names, self._aliases = names, aliases  # for compounds (recall.compounds)
 
     def unknown_noun(self, text: str) -> str | None:
         """The head noun of the description's subject (:func:`subject_head`) when the catalog does not know
@@ -142,7 +144,7 @@ class NameIndex:
         exact: dict[int, float] = {}
         head: dict[int, float] = {}
         phrases = self._whole_names(words, exact, head)
-        heads = self._head_nouns(words, material, head)
+        heads = self._head_nouns(words, material, head, counted_head(text))
         if not phrases and not heads:
             heads = self._name_words(list(subject_phrase(text)[-1:]), head)  # the subject's head only
         return NameEvidence(
@@ -196,16 +198,23 @@ class NameIndex:
                 found.append(word)
         return found
 
-    def _head_nouns(self, words: list[str], material: str | None, head: dict[int, float]) -> list[str]:
+    def _head_nouns(
+        self, words: list[str], material: str | None, head: dict[int, float], counted: str | None = None
+    ) -> list[str]:
         """Record in ``head`` the rows a head noun in ``words`` names (not those whose names all state
-        another material than ``material``); returns the head nouns found."""
+        another material than ``material``, nor those that are another compound: "a wedding ring" is no
+        "key ring", :mod:`recall.compounds`); returns the head nouns found. A material word is no head
+        noun unless an article counts it as the subject (``counted``: "a glass")."""
         n = max(self.size, 1)
         heads: list[str] = []
         for i, word in enumerate(words):
-            if word in self.heads and word not in self.not_heads and not _comparison(words, i, i + 1):
+            material_word = word in self.not_heads and word != counted
+            if word in self.heads and not material_word and not _comparison(words, i, i + 1):
                 if word in adjective_feature_words() and (word,) not in self.phrases:
                     continue  # a feature word ("light", "heavy") is no head noun ("tea light")
-                rows = self.heads[word]
+                rows = self._same_compound(words, i, self.heads[word])
+                if not rows:
+                    continue
                 for row in rows:
                     implied = self.head_materials.get((word, row))
                     if material is not None and implied and material not in implied:
@@ -213,3 +222,12 @@ class NameIndex:
                     head[row] = max(head.get(row, 0.0), math.log(n / len(rows)))
                 heads.append(word)
         return heads
+
+    def _same_compound(self, words: list[str], i: int, rows: set[int]) -> set[int]:
+        """The rows the head ``words[i]`` names given the noun modifier before it (all of them without one,
+        or above :data:`recall.compounds.COMPOUND_CHECK_LIMIT` rows)."""
+        modifier = modifier_noun(words, i)
+        if modifier is None or len(rows) > COMPOUND_CHECK_LIMIT:
+            return rows
+        names, aliases = self._names, self._aliases
+        return {r for r in rows if compound_agrees(modifier, words[i], (names[r], *aliases[r]))}

@@ -33,6 +33,7 @@ __all__ = [
     "material_agrees",
     "material_of_word",
     "is_open_set",
+    "is_qualifier",
     "synonym_rows",
     "unseen_noun",
 ]
@@ -182,10 +183,10 @@ def _names_catalog_object(words: tuple[str, ...], phrases, heads) -> bool:
         return True
     if words[-1] not in heads:
         return False
-    return all(_modifier(w) for w in words[:-1])
+    return all(is_qualifier(w) for w in words[:-1])
 
 
-def _modifier(word: str) -> bool:
+def is_qualifier(word: str) -> bool:
     """Whether a word before a catalog head noun only qualifies it: a material (also a word of a
     multi-word one: "*cast* iron", "*stainless* steel") or colour, or a feature word or adjective that is
     no lexicon noun ("heavy", "non-stick", "pre-seasoned"). A noun ("*egg* cup", "*bottle* warmer") makes

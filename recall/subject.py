@@ -16,6 +16,7 @@ from kb.kinds import singular, words_of
 
 __all__ = [
     "adjective_feature_words",
+    "counted_head",
     "said_in_plural",
     "feature_words",
     "is_adjective",
@@ -89,6 +90,21 @@ def _phrases(text: str):
             previous = word
         if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
             yield tuple(singular(w) for w in phrase)
+
+
+def counted_head(text: str) -> str | None:
+    """The subject's head noun when an indefinite article counts it ("*a* glass", "*a* tall glass, 12 cm",
+    "*a* glass of water"), else None. A material word so counted names a thing ("a glass": the drinking
+    glass), not what a thing is made of ("glass, 10 cm tall"; "a glass bottle", whose head is "bottle";
+    "a glass and steel lamp", "a glass-topped table": a material joined to another word)."""
+    phrase = subject_phrase(text)
+    if not phrase:
+        return None
+    low = re.split(r"[.!?;\n]", text.lower(), maxsplit=1)[0]
+    skip = "|".join(sorted(_PHRASE_SKIP))
+    words = r"\s+".join(re.escape(w) for w in phrase)
+    counted = rf"\b(?:a|an|one)\s+(?:(?:{skip})\s+)*{words}\b(?!\s*[-/&+]|\s+(?:and|or|n)\b)"
+    return phrase[-1] if re.search(counted, low) else None
 
 
 def noun_phrase(text: str) -> tuple[str, ...]:

@@ -15,11 +15,13 @@ refused with a warning.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
-from kb.errors import ExtractionError
+from kb.errors import ExtractionError, ImpossibleValues
 from kb.features import MATERIALS, axes_from_extents
 from kb.files import read_input_file
+from kb.measures.text import clean_text
 
 # Importing an adapter module registers its adapters (in priority order, whatever the import order).
 from scrapers.adapters import (  # noqa: F401
@@ -42,7 +44,7 @@ from scrapers.normalize import (
 )
 from scrapers.page import MAX_LINES, Page
 from scrapers.records import ProductRecord
-from scrapers.sets import per_item, set_size
+from scrapers.sets import set_apart, set_size
 from scrapers.trail import category_trail
 
 __all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "extract_page", "fuse"]
@@ -53,6 +55,9 @@ AGREE_TOLERANCE = 0.02
 #: (a page listing thousands of weights is a list, not a product page).
 MAX_CANDIDATES = 200
 MAX_DISAGREEMENTS = 5
+#: A statement worth comparing (:func:`_without_partial_reads`): a number of two digits or more, or two
+#: numbers (a lone "2" may well be written elsewhere on the page for another reason).
+_STATED = re.compile(r"\d{2}|\d\D+\d")
 #: Larger saved pages are refused (the fetcher caps downloads the same way).
 MAX_PAGE_BYTES = 50 * 1024 * 1024
 
@@ -258,6 +263,46 @@ def _valid(
             refused.append(reason)
         elif not reason:
             out.append(o)
+    return _without_partial_reads(observations, out, feature, warnings, decisions, refused)
+
+
+def _statement(raw: str) -> str:
+    """The value part of an observation's page text (after its label), folded for comparison."""
+    return clean_text(raw.split(": ", 1)[-1]).lower()
+
+
+def _without_partial_reads(
+    observations: list[Observation], valid: list[Observation], feature: str, warnings: list[str],
+    decisions: list[dict], refused: list[str] | None,
+) -> list[Observation]:
+    """``valid`` without the candidates read from a statement that was refused as impossible elsewhere
+    (a spec table's ``5000 x 8 x 8 cm`` refused, the same text in JSON-LD read as 8 cm): one statement of
+    a feature is refused once, never replaced by a partial read of itself. Each dropped candidate gets
+    its decision and warning."""
+    impossible = {}
+    kept = {id(o) for o in valid}
+    for o in observations:
+        if o.feature == feature and id(o) not in kept and o.raw:
+            reason = check_dims(o.value) if feature == "dims" else check_mass(o.value)
+            statement = _statement(o.raw)
+            if reason and ("absurd" in reason or "not positive" in reason) and _STATED.search(statement):
+                impossible.setdefault(statement, reason)
+    if not impossible:
+        return valid
+    out = []
+    for o in valid:
+        page_text = clean_text(o.raw).lower()
+        hit = next((s for s in impossible if s in page_text), None)
+        if hit is None:
+            out.append(o)
+            continue
+        reason = f"a partial read of a refused statement ({hit[:60]!r}: {impossible[hit]})"
+        if len(decisions) < MAX_CANDIDATES:
+            decisions.append(_candidate(o, f"refused: {reason}"))
+        if len(warnings) < MAX_CANDIDATES:
+            warnings.append(f"{feature} from {o.source} refused: {reason} ({o.raw[:80]!r})")
+        if refused is not None:
+            refused.append(impossible[hit])
     return out
 
 
@@ -311,14 +356,16 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
     }  # fmt: skip
     name = _first(observations, "name")
     the_set = set_size(name)
-    set_mass = _set_apart(chosen, the_set, warnings, decisions)
+    set_mass = set_apart(chosen, the_set, warnings, decisions)
     dims_obs, mass_obs = chosen["dims"], chosen["mass"]
     if dims_obs is None and mass_obs is None and set_mass is None and not any(apart.values()):
         what = f" for {name!r}" if name else ""
         reasons = "; ".join(warnings[:3])
-        raise ExtractionError(
-            f"{url}: no product dimensions or mass found{what}" + (f" ({reasons})" if reasons else "")
-        )
+        message = f"{url}: no product dimensions or mass found{what}" + (f" ({reasons})" if reasons else "")
+        refusals = refused["dims"] + refused["mass"]
+        if refusals:
+            raise ImpossibleValues(message, refusals[0])
+        raise ExtractionError(message)
     for o in (dims_obs, mass_obs):
         if o is not None:
             raw["dims" if o.feature == "dims" else "mass"] = o.raw
@@ -353,30 +400,3 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         refused={f: r[0] for f, r in refused.items() if r and chosen[f] is None},
         candidates=decisions,
     )
-
-
-def _set_apart(
-    chosen: dict[str, Observation | None], the_set: tuple[int, str] | None, warnings: list[str],
-    decisions: list[dict],
-) -> float | None:
-    """On a page selling a set (:func:`scrapers.sets.set_size`), the chosen mass is the set's unless its
-    text says it is one item's: it is taken from ``chosen`` and returned (the set's mass), with a warning
-    and its decision changed. The chosen dimensions stay, with a warning that they may be the set's."""
-    if the_set is None:
-        return None
-    count, words = the_set
-    mass_obs, dims_obs = chosen["mass"], chosen["dims"]
-    set_mass = None
-    if mass_obs is not None and not per_item(mass_obs.raw):
-        set_mass, chosen["mass"] = mass_obs.value, None
-        warnings.append(
-            f"mass: the page sells a set of {count} ({words!r}); {mass_obs.value:g} g is the set's weight, "
-            f"not one item's (about {mass_obs.value / count:.4g} g each if the items are alike); not used"
-        )
-        for d in decisions:
-            if d["feature"] == "mass" and d["decision"].startswith("chosen"):
-                d["decision"] = f"the set's value (a set of {count}, {words!r}), kept apart"
-                d["role"] = "set"
-    if dims_obs is not None and not per_item(dims_obs.raw):
-        warnings.append(f"dims: the page sells a set of {count} ({words!r}); the size may be the set's, not one item's")
-    return set_mass

@@ -42,7 +42,7 @@ from urllib.parse import urlsplit
 
 import requests
 
-from kb.errors import ExtractionError, FetchError, IngestionError, InvalidFeature
+from kb.errors import ExtractionError, FetchError, ImpossibleValues, IngestionError, InvalidFeature
 from kb.features import (
     DIMENSIONS,
     NUMERIC_FEATURES,
@@ -261,6 +261,10 @@ def _process_page(
         return page
     try:
         record = extract(body, result.final_url, result.content_type)
+    except ImpossibleValues as err:  # every value refused: the same reasons as _validate's
+        kind = "absurd_value" if "absurd" in err.refusal else "invalid_value"
+        page.outcome, page.stage, page.reason, page.detail = "rejected", "extract", kind, str(err)
+        return page
     except ExtractionError as err:
         page.outcome, page.stage, page.reason, page.detail = "rejected", "extract", "no_product", str(err)
         return page

@@ -14,7 +14,7 @@ import re
 
 from kb.measures.words import count_words
 
-__all__ = ["MAX_SET", "per_item", "set_size"]
+__all__ = ["MAX_SET", "per_item", "set_apart", "set_size"]
 
 #: Counts above this are not a set of household objects (a "500 pcs" box of screws is sold by the box).
 MAX_SET = 1000
@@ -66,3 +66,30 @@ def set_size(name: str | None) -> tuple[int, str] | None:
 def per_item(text: str | None) -> bool:
     """Whether ``text`` (a label and its value) says the value is one item's."""
     return bool(text and _PER_ITEM.search(text))
+
+
+def set_apart(
+    chosen: dict, the_set: tuple[int, str] | None, warnings: list[str],
+    decisions: list[dict],
+) -> float | None:
+    """On a page selling a set (:func:`set_size`), the chosen mass is the set's unless its
+    text says it is one item's: it is taken from ``chosen`` and returned (the set's mass), with a warning
+    and its decision changed. The chosen dimensions stay, with a warning that they may be the set's."""
+    if the_set is None:
+        return None
+    count, words = the_set
+    mass_obs, dims_obs = chosen["mass"], chosen["dims"]
+    set_mass = None
+    if mass_obs is not None and not per_item(mass_obs.raw):
+        set_mass, chosen["mass"] = mass_obs.value, None
+        warnings.append(
+            f"mass: the page sells a set of {count} ({words!r}); {mass_obs.value:g} g is the set's weight, "
+            f"not one item's (about {mass_obs.value / count:.4g} g each if the items are alike); not used"
+        )
+        for d in decisions:
+            if d["feature"] == "mass" and d["decision"].startswith("chosen"):
+                d["decision"] = f"the set's value (a set of {count}, {words!r}), kept apart"
+                d["role"] = "set"
+    if dims_obs is not None and not per_item(dims_obs.raw):
+        warnings.append(f"dims: the page sells a set of {count} ({words!r}); the size may be the set's, not one item's")
+    return set_mass

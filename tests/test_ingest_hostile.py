@@ -29,10 +29,18 @@ def ingested(tmp_path_factory):
 def test_a_page_with_negative_values_is_rejected_with_the_reason(ingested):
     _, names, events = ingested
     assert "negative plate" not in names
-    stage, reason = events["negative"]
-    assert stage == "validate" and "not positive" in reason and ("-600 g" in reason or "-27 cm" in reason)
+    _, reason = events["negative"]
+    assert reason.startswith("invalid_value") and "not positive" in reason
+    assert "-600 g" in reason or "-27 cm" in reason
 
 
 def test_a_good_page_beside_them_is_stored(ingested):
     _, names, _ = ingested
     assert "plain mug" in names
+
+
+def test_a_page_whose_size_is_absurd_in_every_field_is_rejected_as_absurd(ingested):
+    _, names, events = ingested
+    assert "giant teacup" not in names
+    _, reason = events["absurd"]
+    assert reason.startswith("absurd_value") and "5000 cm" in reason

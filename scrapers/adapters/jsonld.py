@@ -95,6 +95,27 @@ def quantity(value: Any, kind: str) -> tuple[float | None, str]:
     return None, str(value)[:80]
 
 
+def whole_size(value: Any, axis: str, order: int) -> Observation | None:
+    """A single-dimension field (``width``) whose text states a whole size (``"5000 x 8 x 8 cm"``): the
+    size, every extent of it (for the limits to refuse when one is absurd), rank 1 as a ``size`` field;
+    None when the field holds one length."""
+    if isinstance(value, list):
+        value = next((v for v in value if v not in (None, "", {})), None)
+    if isinstance(value, dict):
+        unit = value.get("unitCode") or value.get("unitText")
+        value = value.get("value") if unit is None else f"{value.get('value')} {unit}"
+    if not isinstance(value, str):
+        return None
+    found = parse_dims(value, None, None)
+    if not found or len(found[0].values_cm) < 2:
+        return None
+    note = f"JSON-LD {axis} states a whole size ({value[:60]!r}); read as the size"
+    raw = f"{axis}: {value[:80]}"
+    return Observation(
+        "dims", found[0].values_cm, rank=1, order=order, raw=raw, note=note, roles=found[0].roles
+    )
+
+
 def read_product(node: dict, order: int, decimal_comma: bool | None) -> list[Observation]:
     """Observations of one product node (schema.org vocabulary, JSON-LD or microdata shaped alike)."""
     obs: list[Observation] = []
@@ -114,7 +135,9 @@ def read_product(node: dict, order: int, decimal_comma: bool | None) -> list[Obs
         obs.append(Observation("material", material, rank=0, order=order, raw=material))
     axes = []
     for axis in ("depth", "width", "height"):
-        if axis in node:
+        if axis in node and (whole := whole_size(node.get(axis), axis, order)) is not None:
+            obs.append(whole)  # "width": "5000 x 8 x 8 cm": the whole size, never its last figure alone
+        elif axis in node:
             value, raw = quantity(node.get(axis), "length")
             if value is not None:
                 axes.append((value, f"{axis}: {raw}", axis))

@@ -127,6 +127,12 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
                 )
     elif info.kind in AXES and (joint := _axes_in_one_value(pair, decimal_comma)) is not None:
         out.append(joint)  # "Diameter 30cm x Height 15cm": one value naming its axes
+    elif info.kind in AXES and (size := parse_dims(pair.value, info.unit, decimal_comma)):
+        # "Width: 5000 x 8 x 8 cm": a whole size in a single-dimension field is read as the size (every
+        # extent, for the limits to judge), never as one of its figures
+        d = size[0]
+        note = f"a whole size in a {info.kind} field ({pair.value[:60]!r}); read as the size"
+        out.append(Observation("dims", d.values_cm, package, rank, pair.order, pair.group, raw, note, roles=d.roles))
     elif info.kind in AXES:
         length = parse_length(pair.value, info.unit, decimal_comma)
         note = None
