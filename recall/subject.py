@@ -95,7 +95,9 @@ def _sentence_phrases(sentence: str):
                     break  # "a mug not a glass"
             elif not phrase and _request_word(word, words[i + 1 : i + 2]):
                 pass  # "Could you pass the salt shaker", "Where is the scoop", "Hand me the hammer"
-            elif word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
+            elif (word in _PHRASE_ENDS or _size_words(words, i)) and not (
+                phrase and _compound_verb(word, words[i + 1 : i + 2])
+            ):
                 if phrase:
                     break
             elif phrase and _ADJECTIVE_PARTICIPLE.search(word) and set(words[i + 1 : i + 2]) & _PHRASE_ENDS:
@@ -215,6 +217,34 @@ _REQUEST_WORDS = frozenset(
     "please can could would will find get grab bring hand pass give fetch show locate pick need want where "
     "what which looking look search searching seeking got".split()
 )
+
+
+def _size_words(words: list[str], i: int) -> bool:
+    """Whether ``words[i]`` starts the statement of a size, never a word of the subject: a hedge of the
+    parser's lexicon ("about", "approximately", "up to", "a bit over", "bigger than"; ``lexicon.HEDGES``),
+    a range word ("between", "from") or a dimension noun that ends its chunk or comes before a phrase
+    end ("a ball diameter 6 cm", "a box height is 10 cm"; not "a side table")."""
+    single, sequences, dimension_nouns = _size_vocabulary()
+    word = words[i]
+    if word in single or any(tuple(words[i : i + len(seq)]) == seq for seq in sequences.get(word, ())):
+        return True
+    return word in dimension_nouns and (i + 1 == len(words) or words[i + 1] in _PHRASE_ENDS)
+
+
+@functools.cache
+def _size_vocabulary() -> tuple[frozenset[str], dict[str, list[tuple[str, ...]]], frozenset[str]]:
+    """The single-word hedges and range words, the multi-word hedges by their first word, and the
+    one-word dimension nouns (see :func:`_size_words`)."""
+    from recall import lexicon as lx
+
+    single = {h for h in lx.HEDGES if " " not in h} | {w for w, t in lx.FUNCTION_WORDS.items() if t == "BETW"}
+    sequences: dict[str, list[tuple[str, ...]]] = {}
+    for hedge in lx.HEDGES:
+        words = tuple(_WORD.findall(hedge))
+        if len(words) > 1:
+            sequences.setdefault(words[0], []).append(words)
+    nouns = frozenset(w for w in lx.DIMENSION_NOUNS if " " not in w)
+    return frozenset(single), sequences, nouns
 
 
 def _request_word(word: str, following: list[str]) -> bool:
