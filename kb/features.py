@@ -20,6 +20,8 @@ rigidity   stiffness (the paper's "stiffness": soft -> squeezable) rigid squeeza
 ========== ======================================================= =========================
 
 Dimensions given in any order are sorted so that ``a >= b >= c``. Any feature may be unknown (None).
+A record's values together must also be a plausible household object (:mod:`kb.plausibility`: at least
+10 µm thick and 1 mm long, at least 10 mg, a density over its box a x b x c from 5e-5 to 45 g/cm³).
 
 **Partial sizes.** A page often states fewer than three extents (only a diameter, a height and a diameter,
 one length). Each stated extent has a role (:data:`EXTENT_ROLES`); :func:`axes_from_extents` says exactly
@@ -43,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from kb.errors import InvalidFeature
+from kb.plausibility import check_plausible
 
 __all__ = [
     "CATEGORIES",
@@ -288,9 +291,14 @@ class ObjectRecord:
         aliases: Iterable[str] = (),
         source: str | None = None,
         extra: Mapping[str, Any] | None = None,
+        plausible: bool = True,
         **features: Any,
     ) -> ObjectRecord:
-        """Validate ``features`` (see :func:`validate_features`) and build a record; a blank name is refused."""
+        """Validate ``features`` (see :func:`validate_features`, then, with ``plausible``, the values together:
+        :func:`kb.plausibility.check_plausible`) and build a record; a blank name is refused.
+
+        ``plausible=False`` is for a record that is never stored: the object a description asks a grasp for
+        (``recall/target.py``), whose sides are the stated ones and the rest a catalog object's."""
         unknown = set(features) - set(FEATURES)
         if unknown:
             raise InvalidFeature(sorted(unknown)[0], features[sorted(unknown)[0]], "not a known feature")
@@ -299,6 +307,8 @@ class ObjectRecord:
             raise InvalidFeature("name", name, "missing name")
         check_name("name", clean_name)
         values = validate_features(features)
+        if plausible:
+            check_plausible(values)
         clean_aliases = tuple(dict.fromkeys(a for a in (normalize_name(x) for x in aliases) if a and a != clean_name))
         for alias in clean_aliases:
             check_name("aliases", alias)
@@ -322,7 +332,9 @@ class ObjectRecord:
 
     def with_features(self, **changes: Any) -> ObjectRecord:
         merged = {**self.features(), **changes}
-        return replace(self, **validate_features(merged))
+        values = validate_features(merged)
+        check_plausible(values)
+        return replace(self, **values)
 
 
 def encode(features: Mapping[str, Any] | ObjectRecord) -> tuple[np.ndarray, np.ndarray]:

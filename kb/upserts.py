@@ -15,7 +15,9 @@ from typing import Any
 import duckdb
 
 from kb.csvio import SkippedRow
-from kb.features import FEATURES, NUMERIC_FEATURES, ObjectRecord
+from kb.errors import InvalidFeature
+from kb.features import DIMENSIONS, FEATURES, NUMERIC_FEATURES, ObjectRecord, sort_dims
+from kb.plausibility import check_plausible
 
 __all__ = ["ARROW_TYPES", "OBJECT_COLUMNS", "ImportReport", "bulk_execute", "features_hash", "upsert_records"]
 
@@ -75,6 +77,7 @@ def upsert_records(
         known = rec.known_features()
         old = existing.get(rec.name)
         if old is None:
+            _check_merged(rec.name, rec.features())
             inserts.append([rec.name, *(getattr(rec, f) for f in FEATURES), rec.source, now, now])
             changed = known
             report.new.append(rec.name)
@@ -83,6 +86,7 @@ def upsert_records(
             new_source = rec.source if rec.source and rec.source != old["source"] else None
             if changed or new_source:
                 merged = {f: (changed[f] if f in changed else old[f]) for f in FEATURES}
+                _check_merged(rec.name, merged)
                 updates.append([*(merged[f] for f in FEATURES), new_source or old["source"], now, rec.name])
                 report.updated.append(rec.name)
             else:
@@ -98,6 +102,19 @@ def upsert_records(
                 taken_aliases.add(alias)
                 alias_rows.append([alias, rec.name])
     _write_rows(con, inserts, updates, observations, alias_rows)
+
+
+def _check_merged(name: str, merged: Mapping[str, Any]) -> None:
+    """An object's values are checked together as they will be stored (:mod:`kb.plausibility`): a partial
+    update with the stored values it keeps (400 kg given alone is fine, not on a stored 1 cm cube), a new
+    record even when it was built without ``ObjectRecord.create``."""
+    values = dict(merged)
+    values.update(zip(DIMENSIONS, sort_dims(*(merged[d] for d in DIMENSIONS)), strict=True))
+    try:
+        check_plausible(values)
+    except InvalidFeature as err:
+        stored = ", ".join(f"{f}={values[f]:g}" for f in NUMERIC_FEATURES if values[f] is not None)
+        raise InvalidFeature(err.field, err.value, f"{err.reason}; with {name!r}'s values ({stored})") from None
 
 
 def _write_rows(con: duckdb.DuckDBPyConnection, inserts, updates, observations, alias_rows) -> None:

@@ -48,7 +48,7 @@ def grasp_target(result: Any, get_object: Callable[[str], ObjectRecord]) -> tupl
     if from_hint:
         why += f"; the rest ({', '.join(from_hint)}) from {hint.name}, as a hint"
     info.update(planned_for=name, hint=hint.name, stated=sorted(stated), from_hint=from_hint, why=why)
-    return ObjectRecord.create(name, **{k: v for k, v in values.items() if v is not None}), info
+    return ObjectRecord.create(name, plausible=False, **{k: v for k, v in values.items() if v is not None}), info
 
 
 def _fill_sides(stated: dict[str, Any], hint: list[float | None]) -> dict[str, float | None]:

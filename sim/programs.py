@@ -31,12 +31,14 @@ from sim.grasps import GRASP_TYPES
 
 __all__ = ["PROGRAMS", "PROGRAMS_VERSION", "HandProgram", "merged_types", "program_for"]
 
+# 8: a flat object thinner than a pad radius and too shallow to pinch where it lies (coins, a paper clip) is
+# slid out over the table edge by a thumb hook first (sim/slide.py);
 # 7: a stuffed fabric bag laid flat (a pillow) drapes as a sheet (sim/sheet.py, sim/grasps.py drapes);
 # 6: a rod lying under a pinch from above is pinched a quarter radius below its centre line (sim/world.py);
 # 5: an edge lever hold's fingers lead the thumb, extended (sim/hand.py); 4: a floppy object's lateral pinch
 # closes 2 cm past it (sim/world.py); 3: pinch pads aligned at the thumb's height off the table edge;
 # 2: precision circular on three fingers
-PROGRAMS_VERSION = "7"
+PROGRAMS_VERSION = "8"
 
 ALL4 = ("index", "middle", "ring", "little")
 

@@ -168,6 +168,12 @@ class Runner:
             lambda u: d.ctrl.__setitem__(w.digit_act, open_q + _smooth(u) * (close_q - open_q)),
         )
         self._phase(CLOSE_HOLD_S, " while closing")
+        self.latch_reference()
+
+    def latch_reference(self) -> None:
+        """End of any close: latch the impedance hold, record the closed posture, and take the object's
+        pose in the palm as the reference the success rule measures from."""
+        w, d = self.w, self.d
         self._latch()
         self.closed_posture = tuple(round(float(q), 4) for q in d.qpos[w.digit_qpos])
         self.ref_pos, self.ref_rot = self.w.object_in_palm()

@@ -1,15 +1,14 @@
-"""Sliding a small flat object out over the table edge before pinching it (an experiment; no trial uses it).
+"""Sliding a small flat object out over the table edge before pinching it (programs version 8).
 
 A coin or a paper clip at the table edge can overhang only as far as its centre of mass allows (0.45 of its
 depth, sim/grasps.py ``edge_overhang_cm``), so the edge pinch's pads press nearer its rim than their own
 radius and squeeze it out (sim/PHYSICS.md, "Narrow flat things"). People first slide it out under a
-fingertip. This module holds what was measured of that idea with this hand (sim/PHYSICS.md, "Sliding a
-coin to the edge"): the class of objects it is for (:func:`needs_slide`), the geometry it needs
-(:func:`overhang_needed_cm`, :func:`rim_push_ratio`) and two slide phases on a built trial world, a press
-and drag (:func:`press_drag`: a light press does not move it, the object's own friction governing both its
-contacts; a firmer one tips it over the edge) and a hook behind the inner rim (:func:`hook_pull`: slides
-it, the thumb holding it down). No re-grip from there into a pinch held, so the trial (sim/trial.py) does
-not call these.
+fingertip. Here (sim/PHYSICS.md, "Sliding a coin to the edge"): the class of objects it is for
+(:func:`needs_slide`, :func:`slides`), the geometry it needs (:func:`overhang_needed_cm`,
+:func:`rim_push_ratio`), two measured slide phases (:func:`press_drag`: a light press does not move a coin,
+the object's own friction governing both its contacts, a firmer one tips it over the edge;
+:func:`hook_pull`: a thumb hook behind the inner rim slides it, holding it down) and the program the trial
+runs in place of the approach and the close (:func:`slide_and_pinch`).
 """
 
 from __future__ import annotations
@@ -23,6 +22,7 @@ import numpy as np
 from sim import hand as H
 from sim.diagnosis import PAD_TIP_RADIUS_CM
 from sim.grasps import EDGE_PAD_CLEAR_CM, edge_grip_in_cm
+from sim.programs import program_for
 from sim.runner import Runner, _smooth
 from sim.world import TrialWorld
 
@@ -56,11 +56,13 @@ def pad_radius_cm() -> float:
     return PAD_TIP_RADIUS_CM
 
 
-def needs_slide(depth_cm: float) -> bool:
-    """Does a flat object ``depth_cm`` deep across the table edge need sliding out before an edge pinch?
-    Yes when the pads, laid where its centre of mass lets it overhang, would press nearer its rim than a
-    pad's radius plus :data:`SLIDE_MARGIN_CM` (a coin: 0.3 cm; a paper clip: 0.585 cm)."""
-    return edge_grip_in_cm(depth_cm) < pad_radius_cm() + SLIDE_MARGIN_CM
+def needs_slide(depth_cm: float, thickness_cm: float) -> bool:
+    """Does a flat object ``depth_cm`` deep across the table edge and ``thickness_cm`` thick need sliding out
+    before an edge pinch? Yes when the pads, laid where its centre of mass lets it overhang, would press
+    nearer its rim than a pad's radius plus :data:`SLIDE_MARGIN_CM` (a coin: 0.3 cm; a paper clip: 0.585
+    cm) and it is thinner than a pad's radius (a plate the pads' curvature squeezes out; the teaspoon,
+    1 cm thick, holds in the plain edge pinch at 0.45 cm from its rim)."""
+    return edge_grip_in_cm(depth_cm) < pad_radius_cm() + SLIDE_MARGIN_CM and thickness_cm < pad_radius_cm()
 
 
 def overhang_needed_cm() -> float:
@@ -125,14 +127,15 @@ def _object_x_m(world: TrialWorld) -> float:
     return float(world.data.xpos[world.object_body][0])
 
 
-def hook_pull(world: TrialWorld, depth_cm: float, pull_cm: float) -> Slide:
+def hook_pull(world: TrialWorld, depth_cm: float, pull_cm: float, runner: Runner | None = None) -> Slide:
     """The thumb tip lowered just behind the object's inner rim (the table side, ``depth_cm`` from its outer
-    one), the wrist pulls ``pull_cm`` along +x, over the edge. Call on a freshly built edge world."""
+    one), the wrist pulls ``pull_cm`` along +x, over the edge. Call on a freshly built edge world (the hand
+    starts above the hook point); ``runner``: the trial's, so that it measures as it goes."""
     radius = float(world.model.geom("thumb_distal_geom").size[0]) / H.CM
     _straighten_fingers(world)
     inner = _object_x_m(world) / H.CM - depth_cm / 2.0
     goal = np.array([inner - radius - HOOK_BEHIND_CM, 0.0, radius + HOOK_CLEARANCE_CM]) * H.CM
-    return _lower_and_move(world, goal, pull_cm)
+    return _lower_and_move(world, goal, pull_cm, runner)
 
 
 def press_drag(world: TrialWorld, pull_cm: float, press_cm: float, inward_cm: float = 0.0) -> Slide:
@@ -157,8 +160,10 @@ class Slide:
     fell: bool
 
 
-def _lower_and_move(world: TrialWorld, goal_m: np.ndarray, pull_cm: float) -> Slide:
-    runner = Runner(world)
+def _lower_and_move(
+    world: TrialWorld, goal_m: np.ndarray, pull_cm: float, runner: Runner | None = None
+) -> Slide:
+    runner = runner or Runner(world)
     wrist = _start_above(world, goal_m)
     before = _object_x_m(world)
     above = world.data.ctrl[world.wrist_act].copy()
@@ -179,3 +184,187 @@ def _lower_and_move(world: TrialWorld, goal_m: np.ndarray, pull_cm: float) -> Sl
         tilt_deg=round(tilt, 2),
         fell=bool(d.xpos[world.object_body][2] < -FELL_CM * H.CM),
     )
+
+
+# ---------------------------------------------------------------------------------------------------------
+# The slide-and-pinch program: hook it out, catch it from below, then pinch it across its thickness
+# ---------------------------------------------------------------------------------------------------------
+#: The thumb's flexion (rad) while it hooks the rim: at this flexion the wrist sits low enough that the
+#: index pad reaches the object's underside 1.7-2.1 cm from the hooked rim (a kinematic scan of 0.3-0.55
+#: rad; the pre-shape's 0.59 reaches only 1.4 cm: inside a coin's centre of mass).
+HOOK_THUMB_FLEX = 0.48
+#: The pull is the slide needed plus what the hook's gap and the thumb's give take up (cm, measured: a
+#: 1.5 cm pull slides the euro coin 0.93 cm).
+PULL_SLACK_CM = 0.6
+#: The finger pads catch the object this far (cm) beyond its centre of mass and this far below it.
+CATCH_BEYOND_CM = 0.7
+CATCH_BELOW_CM = 0.05
+#: After the catch the thumb lifts by this (rad) and the wrist rises by RISE_CM, the fingers holding their
+#: pads where they caught it (inverse kinematics), then it shifts until the thumb is over them.
+THUMB_LIFT_RAD = 0.35
+RISE_CM = 1.0
+IK_STEPS = 10
+IK_STEP_S = 0.04
+#: Once the thumb touches the top, thumb and fingers press on past it (rad), force-limited like the plain
+#: pinch's 1 cm overshoot (sim/hand.py: each digit presses at the plan's torque limit).
+PRESS_PAST_RAD = (0.2, 0.15)
+
+
+def slide_overhang_cm(depth_cm: float) -> float:
+    """How far (cm) the slide pulls the object's outer rim past the table edge: :func:`overhang_needed_cm`,
+    and at least so far that its centre of mass is past the edge (the catching pads hold it there)."""
+    return max(overhang_needed_cm(), depth_cm / 2.0 + HOOK_BEHIND_CM)
+
+
+def slides(world: TrialWorld) -> bool:
+    """Does this trial slide the object out first? An edge pinch (a pinch program; not a sheet, not a lever
+    hold) of a flat object too shallow for the plain edge pinch (:func:`needs_slide`)."""
+    plan = world.plan
+    return (
+        world.approach == "edge"
+        and program_for(plan.grasp_type).control == "pinch"
+        and plan.params.get("edge_depth_cm") is not None
+        and needs_slide(float(plan.params["edge_depth_cm"]), float(plan.params.get("width_cm", math.inf)))
+        and not plan.params.get(H.FINGER_LEAD_PARAM)
+        and not plan.params.get("sheet_held_cm")
+    )
+
+
+def _finger_rows(world: TrialWorld) -> list[tuple[int, int, list[int]]]:
+    """Per used finger: its MCP and PIP actuator indices and its middle and distal geoms."""
+    rows = []
+    for f in world.targets.fingers:
+        k = H.ACTUATOR_NAMES.index(f"{f}_mcp")
+        geoms = [world.model.geom(f"{f}_{s}_geom").id for s in ("middle", "distal")]
+        rows.append((k, k + 1, geoms))
+    return rows
+
+
+def _top_point(world: TrialWorld, geoms: list[int]) -> tuple[float, float]:
+    """(z, x) in m of the highest end of a finger's middle and distal capsules, plus their radius."""
+    m, d = world.model, world.data
+    best = (-np.inf, 0.0)
+    for g in geoms:
+        axis = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g][1]
+        for end in (d.geom_xpos[g] - axis, d.geom_xpos[g] + axis):
+            z = float(end[2] + m.geom_size[g][0])
+            if z > best[0]:
+                best = (z, float(end[0]))
+    return best
+
+
+def _catch_posture(world: TrialWorld, wrist: np.ndarray, x_m: float, z_m: float) -> np.ndarray:
+    """Digit targets with each used finger's highest pad point nearest (x_m, z_m) with the wrist at
+    ``wrist`` (a grid over MCP and the PIP-per-MCP ratio; z weighs 3 times x)."""
+    d, m = world.data, world.model
+    saved = d.qpos.copy()
+    out = d.ctrl[world.digit_act].copy()
+    d.qpos[world.wrist_qpos] = wrist
+    for mcp_k, pip_k, geoms in _finger_rows(world):
+        best = None
+        for mcp in np.linspace(0.6, 1.57, 60):
+            for ratio in np.linspace(0.4, 1.3, 19):
+                pip = min(1.74, ratio * mcp)
+                d.qpos[world.digit_qpos[mcp_k]], d.qpos[world.digit_qpos[pip_k]] = mcp, pip
+                mujoco.mj_kinematics(m, d)
+                z, x = _top_point(world, geoms)
+                err = 3.0 * abs(z - z_m) + abs(x - x_m)
+                if best is None or err < best[0]:
+                    best = (err, mcp, pip)
+        out[mcp_k], out[pip_k] = best[1], best[2]
+    d.qpos[:] = saved
+    mujoco.mj_kinematics(m, d)
+    return out
+
+
+def _thumb_touch(world: TrialWorld, top_m: float) -> tuple[float, float]:
+    """The thumb flexion at which its tip's lowest point reaches ``top_m`` with the wrist where it is
+    commanded, and that point's x (m)."""
+    d, m = world.data, world.model
+    saved = d.qpos.copy()
+    radius = float(m.geom("thumb_distal_geom").size[0])
+    d.qpos[world.wrist_qpos] = d.ctrl[world.wrist_act]
+
+    def low(flex: float) -> tuple[float, float]:
+        d.qpos[world.digit_qpos[1]] = flex
+        mujoco.mj_kinematics(m, d)
+        tip = _tip_m(world, "thumb_distal_geom")
+        return float(tip[2]) - radius, float(tip[0])
+
+    lo, hi = float(d.ctrl[world.digit_act][1]), float(m.jnt_range[m.actuator_trnid[world.digit_act[1], 0]][1])
+    for _ in range(30):
+        mid = (lo + hi) / 2.0
+        lo, hi = (mid, hi) if low(mid)[0] > top_m else (lo, mid)
+    x = low(lo)[1]
+    d.qpos[:] = saved
+    mujoco.mj_kinematics(m, d)
+    return lo, x
+
+
+def _ik_move(runner: Runner, world: TrialWorld, start: np.ndarray, end: np.ndarray, catch: tuple) -> None:
+    """Move the wrist from ``start`` to ``end`` in IK_STEPS steps, the fingers keeping their pads at
+    ``catch`` (x, z in m)."""
+    d = world.data
+    for k in range(IK_STEPS):
+        wrist = start + (end - start) * (k + 1) / IK_STEPS
+        target = _catch_posture(world, wrist, *catch)
+        w0, q0 = d.ctrl[world.wrist_act].copy(), d.ctrl[world.digit_act].copy()
+
+        def step(u: float, w0=w0, q0=q0, wrist=wrist, target=target) -> None:
+            d.ctrl[world.wrist_act] = w0 + (wrist - w0) * u
+            d.ctrl[world.digit_act] = q0 + (target - q0) * u
+
+        runner._phase(IK_STEP_S, " while re-gripping", step)
+
+
+def _digits_to(runner: Runner, world: TrialWorld, target: np.ndarray, duration: float, where: str) -> None:
+    d = world.data
+    start = d.ctrl[world.digit_act].copy()
+    runner._phase(
+        duration, where, lambda u: d.ctrl.__setitem__(world.digit_act, start + (target - start) * _smooth(u))
+    )
+
+
+def slide_and_pinch(runner: Runner, world: TrialWorld) -> None:
+    """The slide program's approach and close (instead of Runner.approach and Runner.close): the thumb hooks
+    the table-side rim and pulls the object out past the edge (:func:`slide_overhang_cm`), the fingers catch
+    it from below beyond its centre of mass, the thumb lifts, the wrist rises and shifts until the thumb is
+    over the fingers (the fingers holding their pads under it), the thumb touches its top and both press on,
+    force-limited; then the plain pinch's impedance hold latches. The lift, hold and pushes follow as ever."""
+    d, m = world.data, world.model
+    depth = float(world.plan.params["edge_depth_cm"])
+    thickness = 2.0 * float(d.xpos[world.object_body][2]) / H.CM
+    edge_cm = (float(m.geom("table").pos[0]) + 0.4) / H.CM
+    _straighten_fingers(world)
+    q = d.ctrl[world.digit_act].copy()
+    q[1] = HOOK_THUMB_FLEX
+    d.ctrl[world.digit_act] = q
+    d.qpos[world.digit_qpos] = q
+    outer = _object_x_m(world) / H.CM + depth / 2.0
+    pull = slide_overhang_cm(depth) - (outer - edge_cm) + PULL_SLACK_CM
+    hook_pull(world, depth, pull, runner=runner)
+    wrist = d.ctrl[world.wrist_act].copy()
+    centre = _object_x_m(world)
+    catch = (centre + CATCH_BEYOND_CM * H.CM, -CATCH_BELOW_CM * H.CM)
+    _digits_to(runner, world, _catch_posture(world, wrist, *catch), 0.3, " while catching")
+    lifted = d.ctrl[world.digit_act].copy()
+    lifted[1] -= THUMB_LIFT_RAD
+    _digits_to(runner, world, lifted, 0.15, " while lifting the thumb")
+    risen = wrist + np.array([0.0, 0.0, RISE_CM * H.CM])
+    _ik_move(runner, world, wrist, risen, catch)
+    _, thumb_x = _thumb_touch(world, thickness * H.CM)
+    over = risen + np.array([catch[0] - thumb_x, 0.0, 0.0])
+    _ik_move(runner, world, risen, over, catch)
+    flex, _ = _thumb_touch(world, thickness * H.CM)
+    touch = d.ctrl[world.digit_act].copy()
+    touch[1] = flex
+    _digits_to(runner, world, touch, 0.25, " while closing")
+    press = touch.copy()
+    press[1] += PRESS_PAST_RAD[0]
+    for mcp_k, pip_k, _ in _finger_rows(world):
+        press[mcp_k] += PRESS_PAST_RAD[1]
+        press[pip_k] += PRESS_PAST_RAD[1]
+    _digits_to(runner, world, press, 0.25, " while closing")
+    runner._phase(0.15, " while closing")
+    runner.wrist_base = d.ctrl[world.wrist_act].copy()
+    runner.latch_reference()

@@ -43,6 +43,7 @@ from sim.runner import (
     beyond_limits,
     check_physics,
 )
+from sim.slide import slide_and_pinch, slides
 from sim.world import PENETRATION_TOL_M, TrialWorld, build_world
 
 __all__ = [
@@ -145,9 +146,13 @@ def run_trial(
         depth = runner.start_penetration_m()
         if depth > PENETRATION_TOL_M:
             return finish("failure", _inside_reason(plan, depth))
-        runner.approach()
         before = world.data.xpos[world.object_body].copy()
-        runner.close()
+        if slides(world):  # too shallow to pinch where it lies: slid out over the edge first (sim/slide.py)
+            slide_and_pinch(runner, world)
+        else:
+            runner.approach()
+            before = world.data.xpos[world.object_body].copy()
+            runner.close()
         if not world.hand_contacts()[0].size:
             return finish("failure", _no_contact_reason(world, before))
         rose = runner.lift()

@@ -262,6 +262,20 @@ def _part_layout(obj: ObjectModel, plan: GraspPlan) -> _Layout:
     return _Layout("edge", axes, {}, True, _extents(obj, axes), centre, grip_ext, float(grip_ext[2]))
 
 
+def _compile_failure(obj: ObjectModel, exc: Exception) -> str:
+    """Why the trial model did not compile, in the object's terms (never MuJoCo's raw text alone): an object
+    at kb's plausibility limits (kb/plausibility.py) can still have parts under MuJoCo's minimum mass or
+    inertia (mjMINVAL, 1e-15 in SI units), e.g. a 5 m thread 10 µm thick."""
+    size = " x ".join(f"{d:g}" for d in obj.dims_cm)
+    what = f"{obj.name!r} ({size} cm, {obj.mass_kg * 1000:g} g)"
+    if "mjMINVAL" in str(exc):
+        return (
+            f"{what} is too small or too light for MuJoCo to simulate: a part's mass or inertia is under its "
+            "minimum (mjMINVAL, 1e-15 kg m²)"
+        )
+    return f"could not build the trial model for {what}: {' '.join(str(exc).split())}"
+
+
 def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int = 0) -> TrialWorld:
     """Compile the trial's world with the hand at its start pose (pre-shaped, backed off the object)."""
     if plan.grasp_type not in GRASP_TYPES:
@@ -314,7 +328,7 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     try:
         model = spec.compile()
     except Exception as exc:
-        raise SimulationError(f"could not compile the trial model: {exc}") from exc
+        raise SimulationError(_compile_failure(model_obj, exc)) from exc
     world = _trial_world(model, model_obj, plan, targets, approach, approach_dir)
     data = world.data
 

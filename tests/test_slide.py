@@ -20,9 +20,15 @@ def test_needs_slide_where_the_pads_would_press_nearer_the_rim_than_their_radius
     # edge_grip_in_cm = 0.45 d - 0.9 in this range: the boundary depth d = (need + 0.9) / 0.45
     boundary = (need + EDGE_PAD_CLEAR_CM) / 0.45
     assert edge_grip_in_cm(boundary) == pytest.approx(need)
-    assert S.needs_slide(boundary - 0.01) and not S.needs_slide(boundary + 0.01)
-    assert S.needs_slide(2.325) and S.needs_slide(3.3)  # the euro coin; the paper clip, by its length
-    assert not S.needs_slide(10.0)  # a phone
+    assert S.needs_slide(boundary - 0.01, 0.2) and not S.needs_slide(boundary + 0.01, 0.2)
+    assert S.needs_slide(2.325, 0.233) and S.needs_slide(3.3, 0.1)  # the euro coin; the paper clip
+    assert not S.needs_slide(10.0, 0.2)  # a phone
+
+
+def test_needs_slide_only_for_things_thinner_than_a_pad_radius():
+    r = S.pad_radius_cm()
+    assert S.needs_slide(3.0, r - 0.001) and not S.needs_slide(3.0, r)
+    assert not S.needs_slide(3.0, 1.0)  # the teaspoon: held by the plain edge pinch
 
 
 def test_overhang_needed_puts_a_coins_centre_of_mass_off_the_table():
@@ -49,3 +55,41 @@ def test_a_light_press_does_not_drag_a_coin_the_object_friction_governs_both_con
     slide = S.press_drag(build_world(coin, best_grasp(coin), seed=0), 1.5, press_cm=0.05)
     assert slide.thumb_n > 0.05  # pressed ...
     assert abs(slide.slid_cm) < 0.05 and not slide.fell  # ... and the pad slid over it
+
+
+def _coin_trials():
+    import sim.trial as T
+
+    coin = ObjectRecord.create(**COIN)
+    plan = best_grasp(coin)
+    slid = T.run_trial(coin, plan, seed=0)
+    plain = T.slides
+    try:
+        T.slides = lambda world: False
+        unslid = T.run_trial(coin, plan, seed=0)
+    finally:
+        T.slides = plain
+    return plan, slid, unslid
+
+
+def test_the_trial_slides_a_coin_out_and_then_holds_it_through_the_same_checks():
+    plan, slid, unslid = _coin_trials()
+    assert plan.grasp_type == "thumb_index_finger" and S.slides(
+        build_world(ObjectRecord.create(**COIN), plan)
+    )
+    assert slid.success and slid.lifted and len(slid.perturbation) == 6  # lifted, held, every push survived
+    assert slid.slip_cm < 1.0 and slid.rotation_deg < 10.0 and slid.grip_force_n > 1.0
+    # the plain edge pinch of the same plan: pushed out of the pinch and off the table, and a distinct trajectory
+    assert (
+        unslid.reason
+        == "no contact after closing: the digits pushed the object out of the grasp and off the table"
+    )
+    assert slid.closed_posture != unslid.closed_posture
+
+
+def test_objects_that_do_not_need_a_slide_are_not_slid():
+    spoon = ObjectRecord.create(name="teaspoon", a_cm=14, b_cm=3, c_cm=1, mass_g=20, shape="long",
+                                material="metal", texture="smooth", rigidity="rigid")  # fmt: skip
+    from sim.planner import plan_grasps
+
+    assert not any(S.slides(build_world(spoon, p)) for p in plan_grasps(spoon, top=3))

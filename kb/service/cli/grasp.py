@@ -156,7 +156,8 @@ def _recall(db: Path, description: str) -> tuple[Any, dict[str, Any]]:
         raise RecallError(
             f"no catalog at {db} and no features in {description!r}: create one with `objrecall init --seed`"
         )
-    return ObjectRecord.create("described object", **values), {"method": "parsed", "db": str(db)}
+    # a description's object is planned for, never stored: its values are not held to the catalog's limits
+    return ObjectRecord.create("described object", plausible=False, **values), {"method": "parsed", "db": str(db)}
 
 
 def plan(
