@@ -147,7 +147,6 @@ def check_name(field_name: str, text: str) -> None:
         )
 
 
-
 def normalize_name(name: str) -> str:
     """Catalog key of an object name: lower case, single spaces, trimmed."""
     return " ".join(str(name).lower().split())
