@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 import re
+import unicodedata
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
@@ -135,12 +136,34 @@ _UNWRITABLE_NAME = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
 MAX_NAME_CHARS = 200
 
 
+#: Unicode categories no name may hold beyond ASCII: control (Cc: C1 controls), format (Cf: the bidi
+#: embeddings, overrides and isolates U+202A-U+202E and U+2066-U+2069, zero-width space, joiners, word
+#: joiner, byte-order mark, soft hyphen, ...) and lone surrogates (Cs, which UTF-8 cannot write). A format
+#: character is invisible, and a bidi override shows a name reversed in the page, reports and CSV.
+_INVISIBLE_CATEGORIES = {"Cc": "control character", "Cf": "invisible format character", "Cs": "lone surrogate"}
+
+
+def _invisible_character(text: str) -> str | None:
+    """How the first character of a category in :data:`_INVISIBLE_CATEGORIES` is named, or None."""
+    if text.isascii():  # the ASCII controls are _UNWRITABLE_NAME's; ASCII holds no Cf or Cs
+        return None
+    for ch in text:
+        kind = _INVISIBLE_CATEGORIES.get(unicodedata.category(ch))
+        if kind:
+            return f"the {kind} U+{ord(ch):04X} {unicodedata.name(ch, '')}".rstrip()
+    return None
+
+
 def check_name(field_name: str, text: str) -> None:
-    """Raise :class:`InvalidFeature` when ``text`` cannot be a name or alias: a control character, or over
-    :data:`MAX_NAME_CHARS` characters. The one name rule of every path in (CSV, HTTP, ingestion)."""
+    """Raise :class:`InvalidFeature` when ``text`` cannot be a name or alias: a control character, an
+    invisible format character (:data:`_INVISIBLE_CATEGORIES`), or over :data:`MAX_NAME_CHARS` characters.
+    The one name rule of every path in (CSV, HTTP, ingestion)."""
     bad = _UNWRITABLE_NAME.search(text)
     if bad:
         raise InvalidFeature(field_name, text[:80], f"contains the control character {bad.group()!r}")
+    invisible = _invisible_character(text)
+    if invisible:
+        raise InvalidFeature(field_name, text[:80], f"contains {invisible}")
     if len(text) > MAX_NAME_CHARS:
         raise InvalidFeature(
             field_name, text[:80] + "...", f"{len(text):,} characters (at most {MAX_NAME_CHARS})"
