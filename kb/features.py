@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 import re
+import unicodedata
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
@@ -130,10 +131,31 @@ _VECTOR_INDEX = {col: i for i, col in enumerate(VECTOR_COLUMNS)}
 _UNWRITABLE_NAME = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
 
 
+#: Unicode categories no name may hold beyond ASCII: control (Cc: C1 controls), format (Cf: the bidi
+#: embeddings, overrides and isolates U+202A-U+202E and U+2066-U+2069, zero-width space, joiners, word
+#: joiner, byte-order mark, soft hyphen, ...) and lone surrogates (Cs, which UTF-8 cannot write). A format
+#: character is invisible, and a bidi override shows a name reversed in the page, reports and CSV.
+_INVISIBLE_CATEGORIES = {"Cc": "control character", "Cf": "invisible format character", "Cs": "lone surrogate"}
+
+
+def _invisible_character(text: str) -> str | None:
+    """How the first character of a category in :data:`_INVISIBLE_CATEGORIES` is named, or None."""
+    if text.isascii():  # the ASCII controls are _UNWRITABLE_NAME's; ASCII holds no Cf or Cs
+        return None
+    for ch in text:
+        kind = _INVISIBLE_CATEGORIES.get(unicodedata.category(ch))
+        if kind:
+            return f"the {kind} U+{ord(ch):04X} {unicodedata.name(ch, '')}".rstrip()
+    return None
+
+
 def _check_name_text(field_name: str, text: str) -> None:
     bad = _UNWRITABLE_NAME.search(text)
     if bad:
         raise InvalidFeature(field_name, text, f"contains the control character {bad.group()!r}")
+    invisible = _invisible_character(text)
+    if invisible:
+        raise InvalidFeature(field_name, text, f"contains {invisible}")
 
 
 def normalize_name(name: str) -> str:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import bisect
 import math
+import sys
 from functools import cached_property
 
 import numpy as np
@@ -94,8 +95,11 @@ class SortedColumns:
 
     @property
     def sorted_nbytes(self) -> int:
+        """Bytes of the sorted arrays, and of the Python lists once built (their objects counted)."""
         arrays = [*self.num_order, *self.num_keys, *self.cat_order, *self.cat_starts]
-        return int(sum(a.nbytes for a in arrays))
+        lists = [*self.__dict__.get("_key_lists", ()), *self.__dict__.get("_order_lists", ())]
+        held = sum(sys.getsizeof(x) + sum(map(sys.getsizeof, x)) for x in lists)
+        return int(sum(a.nbytes for a in arrays) + held)
 
     def _group(self, feat: str, code: int) -> np.ndarray:
         """Rows (ascending) whose code of ``feat`` is ``code`` (-1 = unknown)."""

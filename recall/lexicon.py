@@ -310,6 +310,12 @@ VALUE_NEGATIONS: frozenset[str] = NEGATIONS - {"hardly"}
 #: Words that may stand between a value negation and its value ("does not weigh 300 g", "is not really
 #: 10 cm"); tokens tagged BE ("is", "the", ":") may too. At most two of them.
 NEGATION_GAP_WORDS: frozenset[str] = frozenset({"weigh", "weighs", "really", "actually"})
+#: Negations that negate the noun right after them ("no handle", "without a lid", "neither a mug nor a
+#: cup"); the others negate a noun phrase only through an article ("not *a* mug", "isn't *the* cup"; "not
+#: heavy" negates the adjective): the noun-phrase scope of ``recall.subject.negated_words``.
+NOUN_NEGATIONS: frozenset[str] = frozenset({"no", "without", "neither", "nor"})
+#: Articles: after a value negation they start a negated noun phrase ("not a mug").
+ARTICLES: frozenset[str] = frozenset({"a", "an", "the"})
 #: A word between a negation and its value that turns the negation into a bound or a hedge: "not quite
 #: 10 cm" is a little under 10 (about, like "nearly"), "not even 10 cm" is at most 10.
 NEGATED_HEDGE_WORDS: dict[str, str] = {"quite": "about", "even": "at_most"}

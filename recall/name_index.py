@@ -16,7 +16,14 @@ from dataclasses import dataclass, field
 from kb.kinds import singular, words_of
 from recall.compounds import COMPOUND_CHECK_LIMIT, compound_agrees, modifier_noun
 from recall.names import GENERIC_NOUNS, MIN_SUFFIX, name_words, rows_with_word
-from recall.subject import adjective_feature_words, counted_head, feature_words, is_participle, subject_phrase
+from recall.subject import (
+    adjective_feature_words,
+    counted_head,
+    feature_words,
+    is_participle,
+    negated_spans,
+    subject_phrase,
+)
 
 __all__ = ["HEAD_WEIGHT", "NAME_WEIGHT", "NameEvidence", "NameIndex"]
 
@@ -131,13 +138,14 @@ class NameIndex:
         """The rows named in ``text``.
 
         Characters in ``skip_spans`` (the parser's numeric evidence, so "seven and quarter centimeters"
-        never names the US quarter) are ignored, and so are comparisons ("lemon-shaped", "like a pen",
+        never names the US quarter) and in negated noun phrases ("not a mug": ``subject.negated_spans``)
+        are ignored, and so are comparisons ("lemon-shaped", "like a pen",
         "the size of a tennis ball"). Exact matches inside a longer match are dropped, then the longest
         remaining phrases win. A head noun does not name an object whose names all state another
         material than the description's ``material`` ("a metal cylinder" is no "wood cylinder").
         """
         chars = list(text)
-        for start, end in skip_spans:
+        for start, end in (*skip_spans, *negated_spans(text)):  # and "not a mug": no name
             for i in range(max(0, start), min(len(chars), end)):
                 chars[i] = " "
         words = words_of("".join(chars))

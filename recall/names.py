@@ -14,6 +14,7 @@ rows, ``get``). A test checks them against the name-by-name rules on real and ra
 from __future__ import annotations
 
 import functools
+import itertools
 import re
 from collections.abc import Sequence
 from types import SimpleNamespace
@@ -93,7 +94,7 @@ def _head(words: tuple[str, ...]) -> str:
 def name_tables(names: Sequence[str], aliases: Sequence[Sequence[str]], materials, min_suffix: int):
     """The tables of :class:`recall.engine.NameIndex`: column-wise from :data:`COLUMNWISE_FROM`
     phrases, else by the rules one name at a time (the same tables; a test checks they are equal)."""
-    if len(names) + sum(len(a) for a in aliases) >= COLUMNWISE_FROM:
+    if len(names) >= COLUMNWISE_FROM or len(names) + sum(map(len, aliases)) >= COLUMNWISE_FROM:
         return NameTables(names, aliases, materials, min_suffix)
     return tables_by_rules(names, aliases, materials, min_suffix)
 
@@ -226,11 +227,10 @@ class NameTables:
     def __init__(self, names: Sequence[str], aliases: Sequence[Sequence[str]], materials, min_suffix: int):
         import pyarrow as pa
 
-        texts, owners = list(names), list(range(len(names)))
-        for row, alias in enumerate(aliases):
-            texts.extend(alias)
-            owners.extend([row] * len(alias))
-        owners = np.asarray(owners, dtype=np.int64)
+        texts = list(names)
+        texts.extend(itertools.chain.from_iterable(aliases))  # the owner of each: its row
+        per_row = np.fromiter(map(len, aliases), dtype=np.int64, count=len(aliases))
+        owners = np.concatenate((np.arange(len(names)), np.repeat(np.arange(len(aliases)), per_row)))
         n_phr = len(texts)
         words, wpar = _tokens(texts, strip_parens=False)
         core, cpar = _tokens(texts, strip_parens=True)

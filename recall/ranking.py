@@ -50,7 +50,7 @@ def byte_table(feature: str, value: str, factor: bool) -> np.ndarray:
 
 
 def _category_lookup(feature: str, value: str, codes: np.ndarray, factor: bool) -> np.ndarray:
-    return byte_table(feature, value, factor)[codes.view(np.uint8)]
+    return byte_table(feature, value, factor).take(codes.view(np.uint8))  # (take: half a [] gather's time)
 
 
 def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None, wide=None) -> np.ndarray:
@@ -67,9 +67,11 @@ def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None, wide=None) -> 
             term = np.log1p(cond.differences(x))
         total = term if total is None else np.add(total, term, out=total)
     for feat, value in query.categorical:
-        col = cat_cols[CAT_INDEX[feat]]
-        codes = col if rows is None else col[rows]
-        term = _category_lookup(feat, value, codes, factor=False)
+        if wide is not None:
+            term = byte_table(feat, value, False).take(wide.codes[CAT_INDEX[feat]])
+        else:
+            col = cat_cols[CAT_INDEX[feat]]
+            term = _category_lookup(feat, value, col if rows is None else col[rows], factor=False)
         total = term if total is None else np.add(total, term, out=total)
     if total is None:
         size = len(num_cols[0]) if rows is None else len(np.arange(len(num_cols[0]))[rows])
@@ -78,10 +80,12 @@ def jp_scores(num_cols, cat_cols, query: FeatureQuery, rows=None, wide=None) -> 
 
 
 class WideColumns:
-    """Numeric columns in float64 with their unknown rows (~8 B per value), for scoring every row of a
+    """Numeric columns in float64 with their unknown rows (~8 B per value) and the category codes as
+    indices (8 B per value), for scoring every row of a
     small catalog without converting them at each query (the same float64 values: exact)."""
 
-    def __init__(self, num_cols):
+    def __init__(self, num_cols, cat_cols):
+        self.codes = [c.view(np.uint8).astype(np.intp) for c in cat_cols]  # byte_table's index (0.4 µs less)
         self.values = [c.astype(np.float64) for c in num_cols]
         self.unknown = [np.isnan(c).nonzero()[0] for c in self.values]  # rows (a set by index: 0.4 µs
         # less than a masked copy at 1k rows)
@@ -104,7 +108,7 @@ class WideColumns:
 
     @property
     def nbytes(self) -> int:
-        return int(sum(a.nbytes for a in (*self.values, *self.unknown)))
+        return int(sum(a.nbytes for a in (*self.values, *self.unknown, *self.codes)))
 
 
 def factors(item, num_cols, cat_cols, rows=None, optimistic: bool = False) -> np.ndarray:

@@ -8,7 +8,8 @@ each query the cheapest of these plans from counts it can take before scoring an
   rows are at distance 0, else a pass of uint8 levels over the rows (small catalogs) or the category
   combinations scored instead of the rows (~0.3 ms at any size);
 * **column**: one number and nothing else, read off its sorted column
-  (:meth:`recall.columns.SortedColumns.one_column`, O(k) but for ties);
+  (:meth:`recall.columns.SortedColumns.one_column`, O(k) but for ties; up to COLUMN_FROM objects only
+  when k rows hold the value, or from the column's Python lists, else brute);
 * **window**: argmin Σ log(1 + d_j) = argmin Π (1 + d_j) and every term is >= 0, so a row can only
   score <= S if each stated feature has ``d_j <= e^S − 1``: for a numeric feature the rows of one window
   of the column sorted by value (NaN last), for a category its row list. S starts as the k-th best of a
@@ -41,7 +42,7 @@ import numpy as np
 
 from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
 from recall.cells import CellIndex
-from recall.columns import SortedColumns
+from recall.columns import LIST_BELOW, SortedColumns
 from recall.combinations import CombinationIndex
 from recall.costs import PlanCosts, after_probe, before_probe
 from recall.metrics import (
@@ -73,8 +74,9 @@ BRUTE_BELOW = 3072
 #: (below that, the fixed costs of the other plans exceed the scan; measured, see RECALL.md).
 SCAN_BELOW = 32768
 SCAN_WORK = 40_000
-#: One number and nothing else is read off its sorted column above this many objects (below, a scan is
-#: cheaper: ~12 NumPy calls of fixed cost against a pass over a few thousand rows; measured).
+#: One number and nothing else is read off its sorted column by NumPy above this many objects (below,
+#: ~12 NumPy calls of fixed cost cost more than a pass over every row; measured): up to it only when k
+#: rows hold the value (two binary searches), or from Python lists (``recall.columns.LIST_BELOW``).
 COLUMN_FROM = 1024
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
@@ -157,8 +159,8 @@ class JPIndex(SortedColumns):
 
     @cached_property
     def wide(self) -> WideColumns:
-        """The numeric columns in float64 (the brute plan's, up to BRUTE_BELOW rows: +36 B a row)."""
-        return WideColumns(self.num_cols)
+        """The columns widened for the brute plan (up to BRUTE_BELOW rows: +33 B a row numeric, +40 B categories)."""
+        return WideColumns(self.num_cols, self.cat_cols)
 
     @cached_property
     def combinations(self) -> CombinationIndex:
@@ -170,6 +172,8 @@ class JPIndex(SortedColumns):
         _ = self.cells, self.combinations, self.records
         if self.n <= BRUTE_BELOW:
             _ = self.wide
+        if self.n <= LIST_BELOW:
+            _ = self._key_lists, self._order_lists
         self.plan_and_search(FeatureQuery.from_values({"a_cm": 10.0, "material": "wood"}), 1)
         return self
 

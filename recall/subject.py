@@ -21,6 +21,8 @@ __all__ = [
     "feature_words",
     "is_adjective",
     "is_participle",
+    "negated_spans",
+    "negated_words",
     "noun_phrase",
     "subject_head",
     "subject_phrase",
@@ -65,18 +67,37 @@ def subject_phrase(text: str) -> tuple[str, ...]:
 
 
 def _phrases(text: str):
-    """The noun phrases of the first sentence, one per chunk (see :func:`subject_phrase`), in order."""
+    """The noun phrases of the first sentence, one per chunk (see :func:`subject_phrase`), in order; a
+    negated phrase is none ("not a mug, a glass": glass), and when every phrase of the first sentence is
+    negated, the next sentence's ("Not a mug. A glass.")."""
     low = text.lower().replace("\u2019", "'")
     low = re.sub(r"\b(it|that|there|what|he|she)'s\b", r"\1 is", low).replace("'s", "").replace("'", "")
-    sentence = re.split(r"[.!?;\n]", low, maxsplit=1)[0]  # a colon ends a chunk: "..., 8 cm tall: a salt shaker"
+    sentences = re.split(r"[.!?;\n]", low, maxsplit=2)  # a colon ends a chunk: "..., 8 cm tall: a salt shaker"
+    found = False
+    for n, sentence in enumerate(sentences[:2]):
+        for phrase in _sentence_phrases(sentence):
+            found = True
+            yield phrase
+        if found or n or not _NEGATION_WORD.search(sentence):
+            return
+
+
+def _sentence_phrases(sentence: str):
+    """The noun phrases of one sentence (lower case, apostrophes dropped), one per chunk."""
     for chunk in re.split(r"[,:()\[\]\d\"/&+*=-]", sentence):
         phrase: list[str] = []
         previous = ""
         words = _WORD.findall(chunk)
+        negated = negated_words(words)
         for i, word in enumerate(words):
-            if not phrase and _request_word(word, words[i + 1 : i + 2]):
+            if i in negated or word in _negations():
+                if phrase:
+                    break  # "a mug not a glass"
+            elif not phrase and _request_word(word, words[i + 1 : i + 2]):
                 pass  # "Could you pass the salt shaker", "Where is the scoop", "Hand me the hammer"
-            elif word in _PHRASE_ENDS and not (phrase and _compound_verb(word, words[i + 1 : i + 2])):
+            elif (word in _PHRASE_ENDS or _size_words(words, i)) and not (
+                phrase and _compound_verb(word, words[i + 1 : i + 2])
+            ):
                 if phrase:
                     break
             elif phrase and _ADJECTIVE_PARTICIPLE.search(word) and set(words[i + 1 : i + 2]) & _PHRASE_ENDS:
@@ -100,11 +121,80 @@ def counted_head(text: str) -> str | None:
     phrase = subject_phrase(text)
     if not phrase:
         return None
-    low = re.split(r"[.!?;\n]", text.lower(), maxsplit=1)[0]
+    low = text.lower()
     skip = "|".join(sorted(_PHRASE_SKIP))
     words = r"\s+".join(re.escape(w) for w in phrase)
     counted = rf"\b(?:a|an|one)\s+(?:(?:{skip})\s+)*{words}\b(?!\s*[-/&+]|\s+(?:and|or|n)\b)"
     return phrase[-1] if re.search(counted, low) else None
+
+
+def negated_words(words: list[str]) -> set[int]:
+    """The indices of the words of a negated noun phrase in ``words`` (lower case, apostrophes dropped,
+    punctuation as its own words): the parser's negation scope for values (``recall/PARSER.md``,
+    "Negated values") applied to nouns. After a value negation (``lexicon.VALUE_NEGATIONS``; not "non",
+    "hardly") and at most two gap words ("is", "really", ...), an article starts the phrase ("not *a mug*",
+    "isn't really *the cup*"; not "not heavy"), and ``lexicon.NOUN_NEGATIONS`` start it right after them
+    ("no *handle*", "without *a lid*", "neither *a mug* nor *a cup*"); it runs to a comma or other
+    punctuation, "and", "but", a number or the next negation."""
+    negated: set[int] = set()
+    i = 0
+    while i < len(words):
+        start = _negated_start(words, i)
+        i += 1
+        if start is None:
+            continue
+        i = start
+        while i < len(words) and words[i] not in _NEGATED_PHRASE_ENDS and words[i] not in _negations():
+            if not words[i].isalpha():
+                break
+            negated.add(i)
+            i += 1
+    return negated
+
+
+def negated_spans(text: str) -> list[tuple[int, int]]:
+    """The character spans of the words of ``text`` in a negated noun phrase (:func:`negated_words`):
+    they name no object ("not a mug, a glass")."""
+    tokens = list(_TOKEN.finditer(text))
+    words = [m.group().lower().replace("'", "").replace("\u2019", "") for m in tokens]
+    return [tokens[i].span() for i in sorted(negated_words(words))]
+
+
+_TOKEN = re.compile(r"[^\W_]+(?:['\u2019][^\W_]+)*|[^\w\s]")
+#: What ends a negated noun phrase (besides punctuation, numbers and another negation).
+_NEGATED_PHRASE_ENDS = frozenset({"and", "but", "&", "instead", "rather"})
+_NEGATION_WORD = re.compile(r"\b(?:not|no|never|without|neither|nor|isnt|arent|wasnt|werent|doesnt|dont|didnt)\b")
+
+
+def _negated_start(words: list[str], i: int) -> int | None:
+    """The index where the noun phrase negated by ``words[i]`` starts, or None (see :func:`negated_words`)."""
+    from recall import lexicon as lx
+
+    word = words[i]
+    if word not in _negations() or word in ("non", "hardly"):
+        return None
+    if word in lx.NOUN_NEGATIONS:
+        j = i + 1
+        return j + 1 if j < len(words) and words[j] in lx.ARTICLES else j
+    for j in range(i + 1, min(len(words), i + 4)):
+        if words[j] in lx.ARTICLES:
+            return j + 1
+        if not (words[j] in lx.NEGATION_GAP_WORDS or words[j] in _GAP_WORDS):
+            return None
+    return None
+
+
+#: Linking words that may stand between a negation and its article ("is not really a mug": the parser's
+#: BE words and gap words).
+_GAP_WORDS = frozenset({"is", "are", "was", "be", "really", "actually", "quite", "even", "exactly", "just"})
+
+
+@functools.cache
+def _negations() -> frozenset[str]:
+    """The negation words, apostrophes dropped ("isnt", "doesnt")."""
+    from recall import lexicon as lx
+
+    return frozenset(w.replace("'", "") for w in lx.NEGATIONS)
 
 
 def noun_phrase(text: str) -> tuple[str, ...]:
@@ -127,6 +217,34 @@ _REQUEST_WORDS = frozenset(
     "please can could would will find get grab bring hand pass give fetch show locate pick need want where "
     "what which looking look search searching seeking got".split()
 )
+
+
+def _size_words(words: list[str], i: int) -> bool:
+    """Whether ``words[i]`` starts the statement of a size, never a word of the subject: a hedge of the
+    parser's lexicon ("about", "approximately", "up to", "a bit over", "bigger than"; ``lexicon.HEDGES``),
+    a range word ("between", "from") or a dimension noun that ends its chunk or comes before a phrase
+    end ("a ball diameter 6 cm", "a box height is 10 cm"; not "a side table")."""
+    single, sequences, dimension_nouns = _size_vocabulary()
+    word = words[i]
+    if word in single or any(tuple(words[i : i + len(seq)]) == seq for seq in sequences.get(word, ())):
+        return True
+    return word in dimension_nouns and (i + 1 == len(words) or words[i + 1] in _PHRASE_ENDS)
+
+
+@functools.cache
+def _size_vocabulary() -> tuple[frozenset[str], dict[str, list[tuple[str, ...]]], frozenset[str]]:
+    """The single-word hedges and range words, the multi-word hedges by their first word, and the
+    one-word dimension nouns (see :func:`_size_words`)."""
+    from recall import lexicon as lx
+
+    single = {h for h in lx.HEDGES if " " not in h} | {w for w, t in lx.FUNCTION_WORDS.items() if t == "BETW"}
+    sequences: dict[str, list[tuple[str, ...]]] = {}
+    for hedge in lx.HEDGES:
+        words = tuple(_WORD.findall(hedge))
+        if len(words) > 1:
+            sequences.setdefault(words[0], []).append(words)
+    nouns = frozenset(w for w in lx.DIMENSION_NOUNS if " " not in w)
+    return frozenset(single), sequences, nouns
 
 
 def _request_word(word: str, following: list[str]) -> bool:

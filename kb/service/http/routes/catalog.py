@@ -1,5 +1,9 @@
 """The catalog over HTTP: ``GET /objects``, ``GET /objects/{name}``, ``PUT /objects/{name}`` (a write) and
-``POST /sql`` (one read-only statement in the sandbox)."""
+``POST /sql`` (one read-only statement in the sandbox).
+
+A name is the rest of the path, "/" included (``{name:path}``): catalog names may hold a "/" ("salt/pepper
+shaker", from a CSV or a store page), and ``/objects/salt%2Fpepper%20shaker`` or ``/objects/salt/pepper
+shaker`` reach it. Nothing else is routed under ``/objects/``."""
 
 import json
 from dataclasses import replace
@@ -36,7 +40,7 @@ def list_objects(state: State, limit: LimitQ = DEFAULT_PAGE, offset: OffsetQ = 0
     return {"total": kb.count_objects(), "limit": limit, "offset": offset, "items": to_jsonable(items)}
 
 
-@router.get("/objects/{name}")
+@router.get("/objects/{name:path}")
 def get_object(name: NameP, state: State) -> dict[str, Any]:
     """One object by name or alias, with the provenance of its values (newest first)."""
     return object_with_provenance(state.knowledge_base(), name)
@@ -63,7 +67,7 @@ def run_sql(body: SqlIn, state: State) -> Response:
     return Response(content=data, media_type="application/json")
 
 
-@router.put("/objects/{name}", dependencies=[Depends(require_token)])
+@router.put("/objects/{name:path}", dependencies=[Depends(require_token)])
 def put_object(name: NameP, body: ObjectIn, state: State) -> JSONResponse:
     """Insert or edit an object: given values replace stored ones (validated like the CSV import),
     and every change is kept in its provenance with source ``api``. 201 when the object is new."""
