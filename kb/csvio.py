@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from kb.errors import CatalogImportError, InvalidFeature
-from kb.features import CSV_COLUMNS, FEATURES, ObjectRecord, normalize_name
+from kb.features import CSV_COLUMNS, FEATURES, MAX_NAME_CHARS, ObjectRecord, normalize_name
 from kb.files import read_input_file
 
 __all__ = [
@@ -49,8 +49,6 @@ OPTIONAL_COLUMNS = ("aliases", "source")
 MAX_CELL_CHARS = 131_072
 #: The largest catalog CSV read (a million objects take about 150 MB).
 MAX_CSV_BYTES = 1024 * 1024 * 1024
-#: The longest object name accepted from a CSV (a longer one is a broken row, not an object).
-MAX_NAME_CHARS = 200
 _CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
 #: First characters that make a spreadsheet (Excel, LibreOffice, Google Sheets) read a cell as a formula.
 FORMULA_STARTS = frozenset("=+-@\t\r")

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 import re
+import unicodedata
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
@@ -58,6 +59,7 @@ __all__ = [
     "FRAGILITIES",
     "MATERIALS",
     "MAX_DIM_CM",
+    "MAX_NAME_CHARS",
     "MAX_MASS_G",
     "NUMERIC_FEATURES",
     "ObjectRecord",
@@ -66,6 +68,7 @@ __all__ = [
     "TEXTURES",
     "VECTOR_COLUMNS",
     "axes_from_extents",
+    "check_name",
     "encode",
     "normalize_category",
     "normalize_name",
@@ -128,12 +131,43 @@ _VECTOR_INDEX = {col: i for i, col in enumerate(VECTOR_COLUMNS)}
 #: Characters no name or alias may hold, whatever path it comes in by (CSV, HTTP, Python, ingestion): control
 #: characters, NUL included (the CSV import refuses them, so an export holding one could not be read back).
 _UNWRITABLE_NAME = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+#: The longest object name or alias, whatever path it comes in by (the CSV import, the HTTP API's
+#: ``max_length``, ingestion): a longer one is a broken row or page, not an object's name.
+MAX_NAME_CHARS = 200
 
 
-def _check_name_text(field_name: str, text: str) -> None:
+#: Unicode categories no name may hold beyond ASCII: control (Cc: C1 controls), format (Cf: the bidi
+#: embeddings, overrides and isolates U+202A-U+202E and U+2066-U+2069, zero-width space, joiners, word
+#: joiner, byte-order mark, soft hyphen, ...) and lone surrogates (Cs, which UTF-8 cannot write). A format
+#: character is invisible, and a bidi override shows a name reversed in the page, reports and CSV.
+_INVISIBLE_CATEGORIES = {"Cc": "control character", "Cf": "invisible format character", "Cs": "lone surrogate"}
+
+
+def _invisible_character(text: str) -> str | None:
+    """How the first character of a category in :data:`_INVISIBLE_CATEGORIES` is named, or None."""
+    if text.isascii():  # the ASCII controls are _UNWRITABLE_NAME's; ASCII holds no Cf or Cs
+        return None
+    for ch in text:
+        kind = _INVISIBLE_CATEGORIES.get(unicodedata.category(ch))
+        if kind:
+            return f"the {kind} U+{ord(ch):04X} {unicodedata.name(ch, '')}".rstrip()
+    return None
+
+
+def check_name(field_name: str, text: str) -> None:
+    """Raise :class:`InvalidFeature` when ``text`` cannot be a name or alias: a control character, an
+    invisible format character (:data:`_INVISIBLE_CATEGORIES`), or over :data:`MAX_NAME_CHARS` characters.
+    The one name rule of every path in (CSV, HTTP, ingestion)."""
     bad = _UNWRITABLE_NAME.search(text)
     if bad:
-        raise InvalidFeature(field_name, text, f"contains the control character {bad.group()!r}")
+        raise InvalidFeature(field_name, text[:80], f"contains the control character {bad.group()!r}")
+    invisible = _invisible_character(text)
+    if invisible:
+        raise InvalidFeature(field_name, text[:80], f"contains {invisible}")
+    if len(text) > MAX_NAME_CHARS:
+        raise InvalidFeature(
+            field_name, text[:80] + "...", f"{len(text):,} characters (at most {MAX_NAME_CHARS})"
+        )
 
 
 def normalize_name(name: str) -> str:
@@ -293,13 +327,13 @@ class ObjectRecord:
         clean_name = normalize_name(name) if name is not None else ""
         if not clean_name:
             raise InvalidFeature("name", name, "missing name")
-        _check_name_text("name", clean_name)
+        check_name("name", clean_name)
         values = validate_features(features)
         if plausible:
             check_plausible(values)
         clean_aliases = tuple(dict.fromkeys(a for a in (normalize_name(x) for x in aliases) if a and a != clean_name))
         for alias in clean_aliases:
-            _check_name_text("aliases", alias)
+            check_name("aliases", alias)
         return cls(name=clean_name, aliases=clean_aliases, source=source, extra=dict(extra or {}), **values)
 
     @property

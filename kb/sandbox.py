@@ -14,6 +14,10 @@ in the caller's process. A small pool of worker processes (``python -m kb.sandbo
 * only plain reads run: an allow-list of statement types (SELECT, and EXPLAIN of a SELECT); any other
   type, including one this DuckDB version cannot name (``UPDATE EXTENSIONS``), is refused; so are the
   table functions that reveal the server's files (:data:`HIDDEN_FUNCTIONS`);
+* a refused statement is named by the word the user wrote (INSTALL, RESET, TRUNCATE, where DuckDB's types
+  say LOAD, SET, DELETE), and a write inside a SELECT (``WITH x AS (DELETE ... RETURNING *) SELECT ...``),
+  which the read-only connection stops before it runs, is refused in the sandbox's words (DuckDB's name the
+  database file); ``max_rows`` is at most :data:`MAX_ROWS`;
 * result columns with the same name are renamed visibly (``a``, ``a (2)``), never merged.
 
 The worker (``kb.sandbox._worker_main``) speaks length-prefixed pickle frames on its stdin/stdout with its parent only.
@@ -43,6 +47,7 @@ __all__ = [
     "HIDDEN_FUNCTIONS",
     "CATALOG_READ_CONFIG",
     "DYNAMIC_SQL_FUNCTIONS",
+    "MAX_ROWS",
     "MAX_TIMEOUT_S",
     "SANDBOX_CONFIG",
     "USER_SQL_CONFIG",
@@ -125,6 +130,9 @@ _DYNAMIC_RE = re.compile(
 #: The longest time limit user SQL may ask for (a day; the HTTP service caps it far lower). A longer one is
 #: refused with a reason: past about 10**9 s the operating system's timers cannot represent it.
 MAX_TIMEOUT_S = 86_400.0
+#: The most rows user SQL may ask for: more than an answer can carry (:data:`MAX_ANSWER_BYTES`), and far
+#: under the 64-bit count DuckDB's ``fetchmany`` takes (a larger number was its TypeError).
+MAX_ROWS = 100_000_000
 #: A worker's answer may be at most this large (pickled); a bigger one is refused inside the worker.
 MAX_ANSWER_BYTES = 64 * 1024 * 1024
 #: Worker processes that may run at once (more callers wait for a free one, within their time limit).
@@ -203,9 +211,39 @@ def _statement_kind(con, query: str) -> str:
             return kind
         kind = "EXPLAIN (of a statement that is not a SELECT)"
     if kind not in ALLOWED_STATEMENTS:
-        what = "statements of this type are" if kind == "UNKNOWN" else f"{kind} statements are"
+        said = _leading_keyword(query)
+        if said and not kind.startswith("EXPLAIN"):  # the user's word: INSTALL, not DuckDB's type LOAD
+            what = f"{said} statements are"
+        else:
+            what = "statements of this type are" if kind == "UNKNOWN" else f"{kind} statements are"
         raise QueryRefused(f"refused: {what} not allowed; the catalog is read-only (SELECT only)")
     return kind
+
+
+#: Comments and white space before a statement's first word.
+_LEAD = r"(?:\s|--[^\n]*(?:\n|\Z)|/\*.*?\*/)*"
+#: The first word (two for FORCE INSTALL and UPDATE EXTENSIONS) of a statement, as the user wrote it.
+_LEADING_WORD = re.compile(_LEAD + r"(force\s+install|update\s+extensions|[a-z_]+)", re.IGNORECASE | re.DOTALL)
+#: Statement words that change data or schema, looked for when a query inside a SELECT tried to write.
+_WRITE_WORD = re.compile(r"(?<![a-z0-9_])(insert|update|delete|merge|truncate|copy|create|drop|alter)(?![a-z0-9_])", re.I)
+
+
+def _leading_keyword(query: str) -> str | None:
+    """The statement's first word as the user wrote it (DuckDB names INSTALL and LOAD both ``LOAD``, RESET
+    ``SET``, TRUNCATE ``DELETE``), upper case; None for WITH (its statement's type names it better)."""
+    m = _LEADING_WORD.match(query)
+    if not m or m.group(1).lower() == "with":
+        return None
+    return " ".join(m.group(1).upper().split())
+
+
+def _write_refusal(query: str) -> str:
+    """The sandbox's own words for a write inside a SELECT (``WITH x AS (DELETE ... RETURNING *) SELECT ...``),
+    which DuckDB's read-only connection stops before it runs."""
+    bare = re.sub(r"'(?:[^']|'')*'|\"(?:[^\"]|\"\")*\"|--[^\n]*|/\*.*?\*/", " ", query, flags=re.DOTALL)
+    word = _WRITE_WORD.search(bare)
+    inside = f" ({word.group(1).upper()} inside the query)" if word else ""
+    return f"refused: the query writes{inside}; the catalog is read-only (SELECT only)"
 
 
 def _execute(con, request: dict[str, Any]) -> SqlAnswer:
@@ -234,8 +272,8 @@ def _execute(con, request: dict[str, Any]) -> SqlAnswer:
     except (duckdb.OutOfMemoryException, MemoryError):
         raise QueryRefused(_memory_refusal()) from None
     except duckdb.Error as err:
-        if "read-only" in str(err).lower():
-            raise QueryRefused(f"refused: {_first_line(err)}") from None
+        if "read-only" in str(err).lower():  # DuckDB's text names the database file: never passed on
+            raise QueryRefused(_write_refusal(query)) from None
         if "out of memory" in str(err).lower() or "bad allocation" in str(err).lower():
             raise QueryRefused(_memory_refusal()) from None
         raise QueryFailed(f"SQL error: {_first_line(err)}") from None
@@ -432,11 +470,10 @@ def run_user_sql(
     Raises :class:`~kb.errors.QueryRefused`, :class:`~kb.errors.QueryFailed`,
     :class:`~kb.errors.QueryTimeout` (the worker is killed at the deadline) or a database error.
     """
-    if not (0 < timeout_s <= MAX_TIMEOUT_S and max_rows >= 1):
-        raise QueryFailed(
-            f"timeout_s must be > 0 and at most {MAX_TIMEOUT_S:g} s and max_rows >= 1, "
-            f"got {timeout_s!r} and {max_rows!r}"
-        )
+    if not 0 < timeout_s <= MAX_TIMEOUT_S:
+        raise QueryFailed(f"timeout_s must be more than 0 and at most {MAX_TIMEOUT_S:g} s, got {timeout_s!r}")
+    if not 1 <= max_rows <= MAX_ROWS:
+        raise QueryFailed(f"max_rows must be from 1 to {MAX_ROWS:,}, got {max_rows!r}")
     request = {"path": str(Path(path).resolve()), "query": query, "params": list(params) if params else None,
                "max_rows": int(max_rows), "timeout_s": float(timeout_s), "busy_timeout": float(busy_timeout)}
     worker = _POOL.acquire(time.monotonic() + timeout_s)

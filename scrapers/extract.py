@@ -43,6 +43,7 @@ from scrapers.normalize import (
     shape_from_name,
 )
 from scrapers.page import MAX_LINES, Page
+from scrapers.product_names import choose_name
 from scrapers.records import ProductRecord
 from scrapers.sets import set_apart, set_size
 from scrapers.trail import category_trail
@@ -333,6 +334,13 @@ def _material(observations: list[Observation], raw: dict[str, str]) -> str | Non
     return None
 
 
+def _name(observations: list[Observation], warnings: list[str]) -> tuple[str | None, str | None]:
+    """The product's name (:func:`scrapers.product_names.choose_name`) among the candidates by rank, then
+    adapter priority."""
+    found = sorted((o for o in observations if o.feature == "name"), key=lambda o: (o.rank, _priority(o)))
+    return choose_name([(o.source, str(o.value)) for o in found[:MAX_CANDIDATES]], warnings)
+
+
 def _first(observations: list[Observation], feature: str, by_rank: bool = True):
     found = [o for o in observations if o.feature == feature]
     found.sort(key=(lambda o: (o.rank, _priority(o))) if by_rank else _priority)
@@ -354,7 +362,7 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
                                     decisions, whose)
         for whose in ("package", "shipping") for feature in ("dims", "mass")
     }  # fmt: skip
-    name = _first(observations, "name")
+    name, name_refusal = _name(observations, warnings)
     the_set = set_size(name)
     set_mass = set_apart(chosen, the_set, warnings, decisions)
     dims_obs, mass_obs = chosen["dims"], chosen["mass"]
@@ -397,6 +405,7 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         adapter=adapter,
         warnings=list(dict.fromkeys(warnings)),
         raw=raw,
-        refused={f: r[0] for f, r in refused.items() if r and chosen[f] is None},
+        refused={f: r[0] for f, r in refused.items() if r and chosen[f] is None}
+        | ({"name": name_refusal} if name_refusal else {}),
         candidates=decisions,
     )

@@ -154,6 +154,8 @@ def _validate(record: ProductRecord) -> tuple[ObjectRecord, list[dict[str, float
     """The catalog record a page supports, its package values and warnings; raises _Rejected."""
     warnings: list[str] = []
     name = normalize_name(record.name or "")
+    if not name and record.refused.get("name"):
+        raise _Rejected("invalid_name", f"the page's name is refused: {record.refused['name']}")
     if not name:
         raise _Rejected("no_name", "the page names no product")
     impossible = [

@@ -85,8 +85,9 @@ MAX_LINES = 12_000
 
 def decode_body(body: str | bytes, content_type: str | None = None) -> str:
     """Page bytes as text: a BOM, then UTF-8 if the bytes are valid UTF-8, then the charset of the
-    Content-Type header or a ``<meta charset>``, then the charset ``charset_normalizer`` detects (a saved
-    Shift_JIS page whose header was lost), then cp1252 (which decodes anything)."""
+    Content-Type header or a ``<meta charset>`` (the ``<meta>`` one when the header says UTF-8 and the
+    bytes are not), then the charset ``charset_normalizer`` detects (a saved Shift_JIS page whose header
+    was lost), then cp1252 (which decodes anything)."""
     if isinstance(body, str):
         return body
     if not isinstance(body, (bytes, bytearray, memoryview)):
@@ -99,15 +100,18 @@ def decode_body(body: str | bytes, content_type: str | None = None) -> str:
         return data.decode("utf-8")
     except UnicodeDecodeError:
         pass
-    declared = None
+    header = None
     if content_type:
         m = re.search(r"charset\s*=\s*[\"']?([\w.:-]+)", content_type, re.IGNORECASE)
-        declared = m.group(1) if m else None
-    if declared is None:
-        m = _META_CHARSET.search(data[:8192])
-        declared = m.group(1).decode("ascii", "replace") if m else None
-    if declared is None:
-        declared = _detected_charset(data)
+        header = m.group(1) if m else None
+    m = _META_CHARSET.search(data[:8192]) if header is None or _is_utf8(header) else None
+    meta = m.group(1).decode("ascii", "replace") if m else None
+    if header is not None and _is_utf8(header) and meta is not None and not _is_utf8(meta):
+        declared = meta  # the header's UTF-8 does not fit the bytes; the page's own <meta> names another
+    else:
+        # a declared UTF-8 the bytes are not is decoded with U+FFFD marking each error (never a guess:
+        # a name holding one is refused, scrapers.product_names)
+        declared = header or meta or _detected_charset(data)
     for codec in (declared, "cp1252"):
         if codec:
             try:
@@ -115,6 +119,10 @@ def decode_body(body: str | bytes, content_type: str | None = None) -> str:
             except LookupError:
                 continue
     return data.decode("latin-1")
+
+
+def _is_utf8(codec: str) -> bool:
+    return codec.lower().replace("_", "-") in ("utf-8", "utf8")
 
 
 #: Bytes the charset detector reads (it is linear in what it reads; the start of a page says enough).
@@ -248,9 +256,17 @@ class Page:
 
     @cached_property
     def title(self) -> str | None:
+        titles = self.titles
+        return titles[0] if titles else None
+
+    @cached_property
+    def titles(self) -> list[str]:
+        """The page's title candidates, best first (og:title, the product title element, a title-like
+        heading, ``<title>``, the first heading), each once; script and style text is never part of one."""
         tree = self.tree
         if tree is None:
-            return None
+            return []
+        found: list[str] = []
         for xp in (
             "//meta[@property='og:title']/@content",
             "//*[@id='productTitle' or @id='title' or @itemprop='name'][1]",
@@ -259,11 +275,12 @@ class Page:
             "//h1",
         ):
             for hit in tree.xpath(xp):
-                text = hit if isinstance(hit, str) else text_content(hit)
+                text = hit if isinstance(hit, str) else visible_text(hit)
                 text = _WS.sub(" ", text).strip()
-                if text:
-                    return text
-        return None
+                if text and text not in found:
+                    found.append(text)
+                    break
+        return found[:5]
 
     @cached_property
     def canonical_url(self) -> str | None:
@@ -359,6 +376,26 @@ def _html_parser():
 def text_content(el) -> str:
     """All text inside an element, spaces collapsed."""
     return " ".join("".join(el.itertext()).split())
+
+
+def visible_text(el) -> str:
+    """The text inside an element a reader sees: without the text of scripts, styles and the other
+    :data:`_DROP_TAGS` inside it; spaces collapsed."""
+    parts: list[str] = []
+
+    def walk(node, top: bool) -> None:
+        tag = node.tag.lower() if isinstance(node.tag, str) else ""
+        if not top and (tag in _DROP_TAGS or not isinstance(node.tag, str)):
+            parts.append(node.tail or "")
+            return
+        parts.append(node.text or "")
+        for child in node:
+            walk(child, False)
+        if not top:
+            parts.append(node.tail or "")
+
+    walk(el, True)
+    return " ".join("".join(parts).split())
 
 
 def _add_line(lines: list[Line], text: str, package: bool, group: int) -> None:

@@ -44,3 +44,15 @@ def test_a_page_whose_size_is_absurd_in_every_field_is_rejected_as_absurd(ingest
     assert "giant teacup" not in names
     _, reason = events["absurd"]
     assert reason.startswith("absurd_value") and "5000 cm" in reason
+
+
+@pytest.mark.parametrize("page", ["longname", "nul", "notutf8"])
+def test_a_page_whose_name_breaks_the_name_rules_is_rejected_with_the_reason(ingested, page):
+    _, _, events = ingested
+    assert events[page][1].startswith("invalid_name: the page's name is refused")
+
+
+def test_no_stored_name_breaks_the_name_rules_and_markup_never_enters_one(ingested):
+    _, names, _ = ingested
+    assert "hostile mug" in names
+    assert all(len(n) <= 200 and "\ufffd" not in n and "<" not in n and "alert" not in n for n in names)

@@ -59,3 +59,72 @@ def test_other_routes_are_untouched(writer):
     assert writer.get("/objects", params={"limit": 1}).json()["total"] == 2
     assert writer.get("/objects/").status_code == 422  # an empty name, said so
     assert writer.get("/health").status_code == 200
+
+
+# ------------------------------------------------------------- invisible characters (Unicode Cc, Cf)
+def _refused_characters() -> list[str]:
+    import sys
+    import unicodedata
+
+    return [chr(c) for c in range(128, sys.maxunicode + 1) if unicodedata.category(chr(c)) in ("Cc", "Cf")]
+
+
+def test_every_control_and_format_character_is_refused_in_names_and_aliases():
+    from kb.errors import InvalidFeature
+    from kb.features import ObjectRecord
+
+    chars = _refused_characters()
+    assert len(chars) > 150 and "\u202e" in chars and "\u200b" in chars and "\x9b" in chars
+    whitespace = {ch for ch in chars if ch.isspace()}  # U+0085 NEL: white space, read as one space
+    for ch in chars:
+        if ch in whitespace:
+            assert ObjectRecord.create(f"a{ch}b").name == "a b"
+            continue
+        with pytest.raises(InvalidFeature, match=f"U\\+{ord(ch):04X}"):
+            ObjectRecord.create(f"mug {ch}x")
+        with pytest.raises(InvalidFeature, match="aliases"):
+            ObjectRecord.create("mug", aliases=[f"cup{ch}"])
+
+
+@pytest.mark.parametrize(
+    ("name", "stored"),
+    [
+        ("a\u2029b", "a b"),  # U+2029 paragraph separator (Zp), just before U+202A: white space
+        ("a\u202fb", "a b"),  # U+202F narrow no-break space (Zs), just after U+202E: white space
+        ("a\u2065b", "a\u2065b"),  # U+2065 (unassigned), just before U+2066: not a format character
+        ("café crème", "café crème"),  # letters and marks beyond ASCII are names
+        ("日本茶 cup", "日本茶 cup"),
+    ],
+)
+def test_the_neighbours_of_the_refused_ranges_are_accepted(name, stored):
+    from kb.features import ObjectRecord
+
+    assert ObjectRecord.create(name).name == stored
+
+
+@pytest.mark.parametrize(
+    ("path", "body", "words"),
+    [
+        ("/objects/%E2%80%AEevil%E2%80%AC", {"mass_g": 5}, "U+202E RIGHT-TO-LEFT OVERRIDE"),
+        ("/objects/zero%E2%80%8Bwidth", {"mass_g": 5}, "U+200B ZERO WIDTH SPACE"),
+        ("/objects/widget", {"mass_g": 5, "aliases": ["wid\u2066get"]}, "U+2066 LEFT-TO-RIGHT ISOLATE"),
+        ("/objects/c1%C2%9Bctl", {"mass_g": 5}, "control character U+009B"),
+    ],
+)
+def test_put_refuses_invisible_characters_naming_them(writer, path, body, words):
+    r = writer.put(path, json=body, headers=AUTH)
+    assert r.status_code == 400 and r.json()["error"] == "InvalidFeature", r.text
+    assert words in r.json()["detail"]
+    assert writer.get("/objects").json()["total"] == 2  # nothing written
+
+
+def test_csv_import_refuses_a_bidi_override_in_a_name_or_alias(tmp_path):
+    from kb.errors import CatalogImportError
+
+    for row in ["\u202eevil\u202c,9,4,4,80,prism,,,,,", "mug,10,8,8,300,prism,,,,,cup\u200b;beaker"]:
+        csv = tmp_path / "bidi.csv"
+        csv.write_text(",".join([*CSV_COLUMNS, "aliases"]) + "\n" + row + "\n", encoding="utf-8")
+        kb = KnowledgeBase.open(tmp_path / f"{len(row)}.duckdb")
+        with pytest.raises(CatalogImportError, match="invisible format character"):
+            kb.import_csv(csv)
+        assert kb.count_objects() == 0

@@ -30,8 +30,9 @@ def text(page: Page) -> list[Observation]:
     """The page title (name, and a size written in it), the canonical URL and "made of ..." material."""
     obs: list[Observation] = []
     title = page.title
+    for i, candidate in enumerate(page.titles):  # later ones stand in when one breaks the name rules
+        obs.append(Observation("name", candidate, rank=2, order=i, raw=candidate))
     if title:
-        obs.append(Observation("name", title, rank=2, raw=title))
         dims = parse_dims(title, None, page.decimal_comma)
         if dims:
             obs.append(

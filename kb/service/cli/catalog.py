@@ -14,6 +14,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from kb.errors import ObjrecallError
 from kb.service.cli.common import DbOption, JsonOption, emit, resolve_db
 
 console = Console()
@@ -219,6 +220,7 @@ def sql(
     json_out: JsonOption = False,
 ) -> None:
     """Run read-only SQL on the catalog (no file or network access, no extensions)."""
+    _check_sql_options(max_rows, timeout)
     kb = _open(db, read_only=True)
     result = kb.sql(query, max_rows=max_rows, timeout_s=timeout)
     if json_out:
@@ -230,6 +232,16 @@ def sql(
     console.print(table)
     if result.truncated:
         console.print(f"(first {max_rows} rows shown)", style="yellow")
+
+
+def _check_sql_options(max_rows: int, timeout: float) -> None:
+    """The sandbox's limits (kb/sandbox.py), refused in the options' own names."""
+    from kb.sandbox import MAX_ROWS, MAX_TIMEOUT_S
+
+    if not 1 <= max_rows <= MAX_ROWS:
+        raise ObjrecallError(f"--max-rows must be from 1 to {MAX_ROWS:,}, got {max_rows}")
+    if not 0 < timeout <= MAX_TIMEOUT_S:
+        raise ObjrecallError(f"--timeout must be more than 0 and at most {MAX_TIMEOUT_S:g} seconds, got {timeout:g}")
 
 
 def register(app: typer.Typer) -> None:

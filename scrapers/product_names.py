@@ -1,0 +1,81 @@
+"""The product's name on a page, under the catalog's name rules (:func:`kb.features.check_name`, the rule
+the CSV import and the HTTP API apply: no control character, at most ``MAX_NAME_CHARS`` characters).
+
+A page states its name in several places (JSON-LD, microdata, the title, the heading). Each candidate is
+read as text: markup written inside a name (``<script>alert(1)</script> Mug``) is parsed, and script
+or style content never enters a name. The first candidate, in the adapters' order, that passes the rules
+is the name; one that does not is skipped with its reason, and when none passes, the page's name is
+refused with the first reason. Besides the catalog's rules a page name must not hold U+FFFD (bytes the
+page's encoding could not decode, or a NUL the HTML parser replaced: a decoding error is never a name)
+and must hold at least :data:`MIN_NAME_CHARACTERS` letters or digits (a title of ``x`` names nothing).
+"""
+
+from __future__ import annotations
+
+import re
+
+from kb.errors import InvalidFeature
+from kb.features import check_name, normalize_name
+
+__all__ = ["MIN_NAME_CHARACTERS", "choose_name", "name_problem", "plain_name"]
+
+#: Letters or digits a page name needs at least ("x", "-" name nothing; "U2" does).
+MIN_NAME_CHARACTERS = 2
+_MARKUP = re.compile(r"<\s*/?\s*[a-zA-Z!][^<>]*>")
+_HIDDEN = frozenset({"script", "style", "noscript", "template", "head", "iframe"})
+
+
+def plain_name(text: str) -> str:
+    """``text`` with markup removed (script and style content dropped), spaces collapsed."""
+    if _MARKUP.search(text):
+        text = _visible_text(text)
+    return " ".join(text.split())
+
+
+def _visible_text(markup: str) -> str:
+    from lxml import etree, html
+
+    try:
+        root = html.fragment_fromstring(markup, create_parent="div")
+    except (etree.ParserError, ValueError):
+        return _MARKUP.sub(" ", markup)
+    parts: list[str] = []
+
+    def walk(el) -> None:
+        if isinstance(el.tag, str) and el.tag.lower() in _HIDDEN:
+            parts.append(el.tail or "")
+            return
+        parts.append(el.text or "")
+        for child in el:
+            walk(child)
+        parts.append(el.tail or "")
+
+    walk(root)
+    return " ".join("".join(parts).split())
+
+
+def name_problem(name: str) -> str | None:
+    """Why ``name`` (as :func:`plain_name` gives it) cannot be the product's catalog name, or None."""
+    if "\ufffd" in name:
+        return "holds U+FFFD: bytes the page's encoding could not decode (or a NUL byte)"
+    try:
+        check_name("name", normalize_name(name))
+    except InvalidFeature as err:
+        return err.reason
+    if sum(ch.isalnum() for ch in name) < MIN_NAME_CHARACTERS:
+        return f"too short to name a product (fewer than {MIN_NAME_CHARACTERS} letters or digits)"
+    return None
+
+
+def choose_name(candidates: list[tuple[str, str]], warnings: list[str]) -> tuple[str | None, str | None]:
+    """The first of ``candidates`` ((source, text), best first) that passes the rules, as plain text, and
+    None; or (None, the first candidate's reason) when none passes. Each skipped candidate is a warning."""
+    first_problem = None
+    for source, text in candidates:
+        name = plain_name(text)
+        problem = name_problem(name)
+        if problem is None:
+            return name, None
+        first_problem = first_problem or problem
+        warnings.append(f"name from {source} refused: {problem} ({name[:60]!r})")
+    return None, first_problem
