@@ -29,6 +29,31 @@ def _negated(segment: list[Token], i: int) -> bool:
     return False
 
 
+#: Words that may stand beside a material word in a comma clause of its own ("mostly plastic", "solid
+#: oak", "metal and plastic"): the clause still only states the object's material.
+_MATERIAL_CLAUSE_WORDS = frozenset(
+    "mostly mainly all solid pure real genuine entirely white black grey gray silver gold golden red green "
+    "blue yellow orange pink purple brown beige clear transparent dark bright".split()
+)
+
+
+def _alone_in_clause(segment: list[Token], i: int) -> bool:
+    """Whether the material word at ``i`` makes up a comma clause (or the sentence) of its own with only
+    other material words, :data:`_MATERIAL_CLAUSE_WORDS` (degree words, colours) and "and"/"or" ("Metal, about 6 in long",
+    "..., stainless steel and plastic, ..."): the object's own material, as a listing states it, not
+    the material of something it acts on or holds ("clips *paper* together", "cuts *wood*")."""
+    lo = i
+    while lo > 0 and segment[lo - 1].tag not in ("CM", "SEP"):
+        lo -= 1
+    hi = i
+    while hi + 1 < len(segment) and segment[hi + 1].tag not in ("CM", "SEP"):
+        hi += 1
+    return all(
+        t.tag in ("MAT", "AND") or t.low in ("or", "&") or t.low in _MATERIAL_CLAUSE_WORDS
+        for t in segment[lo : hi + 1]
+    )
+
+
 def _in_part_phrase(segment: list[Token], i: int, through_and: bool = False) -> bool:
     """True when the word at ``i`` describes a part or a container, not the object: a part noun follows it
     ("rubber grip", "plastic bag", "long stem") or it is in a phrase opened by "with"/"in"/"on" ("with a
@@ -53,6 +78,8 @@ def _material_rank(segment: list[Token], i: int) -> int:
             return 2  # "made of plastic" beats a material in a name
     if i + 1 < len(segment) and segment[i + 1].low in lx.BODY_WORDS:
         return 2  # "a plastic body", "clear plastic barrel"
+    if _alone_in_clause(segment, i):
+        return 2  # "..., metal, about 6 in long": a listed attribute, not "clips *paper* together"
     for j in range(i - 1, max(-1, i - 4), -1):
         if segment[j].low in lx.BODY_WORDS:
             return 2  # "the body is aluminium", "body: steel"

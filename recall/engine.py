@@ -45,10 +45,12 @@ from recall.openset import (
     DescribedNoun,
     KindIndex,
     describe,
+    disagreeing_features,
     foreign_modifier,
     is_open_set,
     material_agrees,
     names_inside,
+    nothing_compared,
     synonym_rows,
 )
 from recall.results import Match, RecallResult
@@ -170,7 +172,7 @@ class Recaller:
             noun = self.described(text)
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun,
-            subject=subject,
+            subject=subject, unused=nothing_compared(parsed.refused, bool(query.numeric)),
         )  # fmt: skip
         result.text = text
         result.parsed = parsed.to_dict()
@@ -247,6 +249,7 @@ class Recaller:
         soft: SoftEvidence | None = None,
         noun: DescribedNoun | None = None,
         subject: tuple[str, ...] = (),
+        unused: tuple[str, ...] = (),
     ) -> RecallResult:
         metric = _checked(metric, features_only, top)
         qdict = {
@@ -286,7 +289,9 @@ class Recaller:
             and modifier is None
             and material_agrees(subject, matches[0].features.get("material"))
         )
+        disagrees = disagreeing_features(errors)  # a stated feature far off, or none left (unused): not close
         open_set = not_in_catalog or is_open_set(closeness, trusted, unknown or modifier)
+        open_set = open_set or bool(disagrees or unused)
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
             margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
@@ -308,6 +313,8 @@ class Recaller:
             vague=list(soft.words) if soft is not None else [],
             competitors=competitors,
             foreign_modifier=modifier,
+            disagrees=disagrees,
+            unused=unused,
             **base,
         )
 

@@ -75,6 +75,10 @@ class RecallResult:
     #: The noun before the subject's head that the named best match's names lack ("salad" in "a salad
     #: plate" -> dinner plate): the name is then not trusted by the open-set rule.
     foreign_modifier: str | None = None
+    #: Stated numeric features far from the best match's (``recall.openset.disagreeing_features``) and the
+    #: refused values when none is left to compare (``recall.openset.nothing_compared``): not a close match.
+    disagrees: tuple[str, ...] = ()
+    unused: tuple[str, ...] = ()
 
     @property
     def best(self) -> Match | None:
@@ -98,6 +102,8 @@ class RecallResult:
             "vague": list(self.vague),
             "competitors": self.competitors,
             "foreign_modifier": self.foreign_modifier,
+            "disagrees": list(self.disagrees),
+            "unused": list(self.unused),
             "verdict": verdict(self).to_dict(),
             "query": dict(self.query),
             "parsed": self.parsed,

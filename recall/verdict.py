@@ -41,7 +41,19 @@ def verdict(result) -> Verdict:
         )
     if not result.matches:
         return Verdict("not a close match", f"confidence {result.confidence:.2f}; nothing recalled")
-    if result.open_set:
+    unused, disagrees = (
+        getattr(result, "unused", ()),
+        getattr(result, "disagrees", ()),
+    )  # duck-typed results too
+    if unused:
+        refused = ", ".join(repr(w) for w in unused)
+        label, said = (
+            "not a close match",
+            f"NOT a close match: nothing stated is left to compare ({refused} refused)",
+        )
+    elif disagrees:
+        label, said = "not a close match", f"NOT a close match: {_disagreement(result)}"
+    elif result.open_set:
         label, said = "not a close match", "NOT a close match (open set): nothing in the catalog is near"
     elif result.confidence < GUESS_CONFIDENCE:
         many = result.competitors >= GUESS_COMPETITORS
@@ -49,7 +61,7 @@ def verdict(result) -> Verdict:
     else:
         label, said = "close match", "close match"
     why = []
-    if result.closeness is not None:
+    if result.closeness is not None and not unused:  # over what the name implies only: no reason
         why.append(f"mean relative error of the best match {result.closeness:.2f}")
     if result.unknown_noun:
         why.append(f"'{result.unknown_noun}' is no catalog noun")
@@ -57,3 +69,25 @@ def verdict(result) -> Verdict:
         why.append(f"about {round(result.competitors)} candidates as good")  # a soft count
     reasons = f" ({'; '.join(why)})" if why else ""
     return Verdict(label, f"confidence {result.confidence:.2f}; {said}{reasons}")
+
+
+#: How a numeric feature is called in a verdict, and its catalog unit.
+_FEATURE_WORDS = {
+    "a_cm": ("largest size (a)", "cm"), "b_cm": ("middle size (b)", "cm"), "c_cm": ("smallest size (c)", "cm"),
+    "mass_g": ("mass", "g"),
+}  # fmt: skip
+
+
+def _disagreement(result) -> str:
+    """Which stated features disagree with the best match, by how much: "the stated mass (56000 g) is
+    1000x the tennis ball's (56 g)"."""
+    best = result.matches[0]
+    stated = result.query.get("values", {})
+    parts = []
+    for feature in result.disagrees:
+        word, unit = _FEATURE_WORDS.get(feature, (feature, ""))
+        v, x = float(stated[feature]), float(best.features[feature])
+        ratio = max(v, x) / max(min(v, x), 1e-12)
+        how = f"{ratio:.0f}x" if v >= x else f"1/{ratio:.0f}"
+        parts.append(f"the stated {word} ({v:g} {unit}) is {how} the {best.name}'s ({x:g} {unit})")
+    return "; ".join(parts)

@@ -369,11 +369,27 @@ def run_ingestion(
     report.errors = [{"url": u, "stage": s, "reason": r} for u, s, r in events]
     for p in outcomes:
         report.warnings.extend(f"{p.url}: {w}" for w in p.warnings)
-    if events:
-        report.status = "ok_with_errors"
+    report.status = run_status(report, events)
     report.duration_s = clock.monotonic() - t0  # the write adds its own time (real clock) in _write
     write_run(kb, outcomes, report, events, clock)
     return report
+
+
+def run_status(report: IngestionReport, events: list[tuple[str, str, str]]) -> str:
+    """The run's status: ``failed`` when nothing was read (no page fetched or confirmed unchanged) because
+    of failures (an unreadable sitemap or robots.txt, every page's fetch failing: a store that is down),
+    ``ok_with_errors`` when some were read despite failures, else ``ok`` (also a run whose stores list no
+    page at all and nothing failed). ``objrecall ingest`` exits non-zero on ``failed``
+    (:data:`EXIT_CODES`)."""
+    failures = bool(events) or report.rejected > 0
+    if report.fetched + report.not_modified == 0 and failures:
+        return "failed"
+    return "ok_with_errors" if events else "ok"
+
+
+#: ``objrecall ingest``'s exit code per run status (1 and 2 are the CLI's own: an error before the run,
+#: such as a malformed sources file or a database that cannot be written, and a usage error).
+EXIT_CODES = {"ok": 0, "ok_with_errors": 0, "failed": 3}
 
 
 #: The stages for other jobs that read pages one by one (the on-demand lookup, scrapers.lookup).

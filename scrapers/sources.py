@@ -135,8 +135,14 @@ class Sources:
     origin: str = "<sources>"
 
     def describe(self) -> str:
-        """One line for the ingestion-runs table: the file and the store names."""
-        return f"{self.origin}: " + ", ".join(s.name for s in self.stores)
+        """One line for the ingestion-runs table (readable by anyone with SQL access: ``objrecall sql``,
+        ``POST /sql``): the sources file's name, never its path on the server, and the store names."""
+        return f"{file_name(self.origin)}: " + ", ".join(s.name for s in self.stores)
+
+
+def file_name(origin: str) -> str:
+    """The last part of a path (``/srv/app/stores.toml`` -> ``stores.toml``, also with backslashes)."""
+    return re.split(r"[/\\]", origin)[-1] or origin
 
 
 def _fail(origin: str, where: str, message: str) -> SourcesError:

@@ -116,13 +116,18 @@ def ingest_command(
     json_out: JsonOption = False,
 ) -> None:
     """Fetch the stores' product pages, extract, validate and add them to the catalog with provenance
-    (one short write transaction; a second run over unchanged pages changes nothing)."""
+    (one short write transaction; a second run over unchanged pages changes nothing).
+
+    Exit codes: 0 the run is ok or ok_with_errors (some pages or a sitemap failed, the rest was read: see
+    errors and rejected); 1 an error before or while writing (a malformed sources file, a database that
+    cannot be written: nothing changed); 2 a usage error; 3 the run failed: nothing was fetched because of
+    failures (every store unreachable), recorded in ingestion_runs with status failed."""
     import sys
 
     import requests
 
     from kb.catalog import KnowledgeBase
-    from scrapers.ingest import run_ingestion
+    from scrapers.ingest import EXIT_CODES, run_ingestion
     from scrapers.sources import load_sources
 
     plan = load_sources(sources, base_url=base_url, delay_s=delay)
@@ -131,8 +136,13 @@ def ingest_command(
         report = run_ingestion(kb, plan, session=session, progress=progress)
     if json_out:
         emit(report)
-        return
-    print_ingest_summary(report)
+    else:
+        print_ingest_summary(report)
+    if EXIT_CODES.get(report.status, 0):
+        if not json_out:
+            typer.echo(f"ingestion run {report.run_id} failed: nothing was fetched ({len(report.errors)} errors, "
+                       f"{report.rejected} pages rejected)", err=True)  # fmt: skip
+        raise typer.Exit(EXIT_CODES[report.status])
 
 
 class IngestProgress:
