@@ -48,7 +48,7 @@ def test_feature_limits_at_the_boundary(feature, limit):
 
 
 def test_csv_refuses_just_past_the_feature_limits():
-    ok = parse_catalog_csv(HEADER + f"big box,{MAX_DIM_CM:g},1,1,{MAX_MASS_G:g},,,,,,\n")
+    ok = parse_catalog_csv(HEADER + f"big box,{MAX_DIM_CM:g},50,50,{MAX_MASS_G:g},,,,,,\n")  # 0.4 g/cm³
     assert ok.records[0].a_cm == MAX_DIM_CM and ok.records[0].mass_g == MAX_MASS_G
     for row, column in (("big box,500.0001,1,1,10,,,,,,\n", "a_cm"), ("big box,1,1,1,500000.01,,,,,,\n", "mass_g")):
         with pytest.raises(CatalogImportError) as err:
