@@ -38,6 +38,7 @@ from scrapers.adapters import (  # noqa: F401
 from scrapers.normalize import (
     check_dims,
     check_mass,
+    impossible_value,
     material_from_text,
     shape_from_dims,
     shape_from_name,
@@ -286,7 +287,7 @@ def _without_partial_reads(
         if o.feature == feature and id(o) not in kept and o.raw:
             reason = check_dims(o.value) if feature == "dims" else check_mass(o.value)
             statement = _statement(o.raw)
-            if reason and ("absurd" in reason or "not positive" in reason) and _STATED.search(statement):
+            if reason and impossible_value(reason) and _STATED.search(statement):
                 impossible.setdefault(statement, reason)
     if not impossible:
         return valid

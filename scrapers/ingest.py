@@ -52,6 +52,7 @@ from kb.features import (
 )
 from scrapers.catalog_write import PAUSE_ENV, write
 from scrapers.fetcher import Clock, PoliteFetcher, SystemClock, Validators, fetch_error_kind
+from scrapers.normalize import impossible_value
 from scrapers.outcomes import LOCAL_HOSTS, IngestionReport, PageOutcome, page_identity
 from scrapers.records import ProductRecord
 from scrapers.sources import Sources, StoreSource
@@ -158,14 +159,12 @@ def _validate(record: ProductRecord) -> tuple[ObjectRecord, list[dict[str, float
         raise _Rejected("invalid_name", f"the page's name is refused: {record.refused['name']}")
     if not name:
         raise _Rejected("no_name", "the page names no product")
-    impossible = [
-        reason for reason in record.refused.values() if "absurd" in reason or "not positive" in reason
-    ]
+    impossible = [reason for reason in record.refused.values() if impossible_value(reason)]
     if impossible:
         # Every value the page states for one of the product's features is impossible (a mug 40 m tall, a
         # plate weighing -600 g): none of its numbers can be trusted. An impossible candidate that lost to a
         # valid value (a misread alternative, another block's number) is only an --explain row and a warning.
-        raise _Rejected("absurd_value" if "absurd" in impossible[0] else "invalid_value", impossible[0])
+        raise _Rejected(impossible_value(impossible[0]), impossible[0])
     dims = tuple(record.dims_cm or ())
     if not dims and record.mass_g is None:
         raise _Rejected("no_measurements", "no product dimensions or mass")
@@ -185,8 +184,7 @@ def _validate(record: ProductRecord) -> tuple[ObjectRecord, list[dict[str, float
             **categories,
         )
     except InvalidFeature as err:
-        kind = "absurd_value" if "absurd" in err.reason else "invalid_value"
-        raise _Rejected(kind, str(err)) from None
+        raise _Rejected(impossible_value(err.reason) or "invalid_value", str(err)) from None
     packages: list[dict[str, float]] = []
     n = max(len(record.package_dims_cm), len(record.package_mass_g))
     for i in range(n):
@@ -264,7 +262,7 @@ def _process_page(
     try:
         record = extract(body, result.final_url, result.content_type)
     except ImpossibleValues as err:  # every value refused: the same reasons as _validate's
-        kind = "absurd_value" if "absurd" in err.refusal else "invalid_value"
+        kind = impossible_value(err.refusal) or "invalid_value"
         page.outcome, page.stage, page.reason, page.detail = "rejected", "extract", kind, str(err)
         return page
     except ExtractionError as err:

@@ -34,6 +34,7 @@ __all__ = [
     "PRISM_RATIO",
     "check_dims",
     "check_mass",
+    "impossible_value",
     "material_from_text",
     "shape_from_dims",
     "shape_from_name",
@@ -73,6 +74,15 @@ def check_mass(value: float) -> str | None:
     if value > MAX_MASS_G:
         return f"mass {value:g} g is absurd for a household object (over {MAX_MASS_G:g} g)"
     return None
+
+
+def impossible_value(reason: str) -> str | None:
+    """The kind of a refusal of :func:`check_dims` or :func:`check_mass` (or the catalog's) that says the
+    value cannot be: ``absurd_value`` ("... is absurd ...") or ``invalid_value`` ("... is not positive");
+    None for another reason (a count of dimensions)."""
+    if "absurd" in reason:
+        return "absurd_value"
+    return "invalid_value" if "not positive" in reason else None
 
 
 def shape_from_name(name: str | None) -> str | None:
