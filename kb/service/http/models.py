@@ -7,7 +7,7 @@ from fastapi import Path as PathParam
 from fastapi import Query
 from pydantic import BaseModel, ConfigDict, Field
 
-from kb.features import CATEGORIES
+from kb.features import CATEGORIES, MAX_NAME_CHARS
 from kb.service.http.settings import MAX_PAGE, MAX_TEXT_CHARS, MAX_TOP, SQL_MAX_ROWS, SQL_MAX_TIMEOUT_S
 from recall.metrics import METRICS
 
@@ -17,7 +17,7 @@ MetricName = Literal[tuple(METRICS)]  # type: ignore[valid-type]
 
 LimitQ = Annotated[int, Query(ge=1, le=MAX_PAGE, description=f"Page size (at most {MAX_PAGE}).")]
 OffsetQ = Annotated[int, Query(ge=0, le=10_000_000, description="Items to skip.")]
-NameP = Annotated[str, PathParam(min_length=1, max_length=200, description="A catalog name or alias.")]
+NameP = Annotated[str, PathParam(min_length=1, max_length=MAX_NAME_CHARS, description="A catalog name or alias.")]
 
 
 class Page(BaseModel):
@@ -51,7 +51,7 @@ class LookupIn(RecallIn):
 class PlanIn(BaseModel):
     model_config = ConfigDict(extra="forbid")
     text: str | None = Field(None, min_length=1, max_length=MAX_TEXT_CHARS, description="A description.")
-    name: str | None = Field(None, min_length=1, max_length=200, description="A catalog name or alias.")
+    name: str | None = Field(None, min_length=1, max_length=MAX_NAME_CHARS, description="A catalog name or alias.")
     top: int = Field(3, ge=1, le=15, description="How many ranked grasp plans.")
 
 
@@ -79,5 +79,5 @@ class ObjectIn(BaseModel):
     fragility: str | None = _category("fragility")
     material: str | None = _category("material")
     rigidity: str | None = _category("rigidity")
-    aliases: list[Annotated[str, Field(max_length=200)]] = Field(default_factory=list, max_length=50)
+    aliases: list[Annotated[str, Field(max_length=MAX_NAME_CHARS)]] = Field(default_factory=list, max_length=50)
     source: str | None = Field(None, max_length=500, description="Where the values come from.")

@@ -7,6 +7,7 @@ from fastapi import APIRouter, Query
 from fastapi.responses import Response
 
 from kb.errors import ObjectNotFound, ObjrecallError, RecallError
+from kb.features import MAX_NAME_CHARS
 from kb.jsonable import to_jsonable
 from kb.service.http.models import LimitQ, OffsetQ, Page, PlanIn
 from kb.service.http.routes import State
@@ -78,7 +79,7 @@ def _latest_validation(state: State, name: str) -> dict[str, Any] | None:
 @router.get("/grasp/render")
 def grasp_render(
     state: State,
-    object: Annotated[str, Query(min_length=1, max_length=200, description="A catalog name or alias.")],
+    object: Annotated[str, Query(min_length=1, max_length=MAX_NAME_CHARS, description="A catalog name or alias.")],
     grasp_type: Annotated[str, Query(max_length=40, description="One of the object's planned types.")],
 ) -> Response:
     """A PNG of the simulated grasp (MuJoCo, to the end of the hold, seed 0) of one of the object's planned
@@ -102,7 +103,7 @@ def grasp_render(
 @router.get("/grasp/validations", response_model=Page)
 def grasp_validations(
     state: State,
-    object: Annotated[str | None, Query(max_length=200, description="Only this object.")] = None,
+    object: Annotated[str | None, Query(max_length=MAX_NAME_CHARS, description="Only this object.")] = None,
     limit: LimitQ = DEFAULT_PAGE,
     offset: OffsetQ = 0,
 ) -> dict[str, Any]:
