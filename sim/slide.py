@@ -325,7 +325,8 @@ def slide_and_pinch(runner: Runner, world: TrialWorld) -> None:
     d, m = world.data, world.model
     depth = float(world.plan.params["edge_depth_cm"])
     thickness = 2.0 * float(d.xpos[world.object_body][2]) / H.CM
-    edge_cm = (float(m.geom("table").pos[0]) + 0.4) / H.CM
+    table = m.geom("table")
+    edge_cm = float(table.pos[0] + table.size[0]) / H.CM  # the table's +x edge (sim/objects.py add_table)
     _straighten_fingers(world)
     q = d.ctrl[world.digit_act].copy()
     q[1] = HOOK_THUMB_FLEX
