@@ -21,24 +21,13 @@ from __future__ import annotations
 
 import argparse
 import os
-import statistics
-import time
 from pathlib import Path
+
+from timing import median_cpu_s
 
 from kb.errors import ExtractionError
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def _median_s(func, repeat: int) -> float:
-    """Median CPU seconds of ``func`` (process time: the machine's 2 cores are shared, and wall time under a
-    load of 10 says more about the neighbours than about the extractor)."""
-    times = []
-    for _ in range(repeat):
-        start = time.process_time()
-        func()
-        times.append(time.process_time() - start)
-    return statistics.median(times)
 
 
 def _extract_or_none(body: bytes, url: str):
@@ -93,8 +82,8 @@ def _score(pages, repeat: int) -> dict:
         else:
             out["mass_none"][0] += mass is None
             out["mass_none"][1] += 1
-        out["ms"] += _median_s(lambda b=body, u=url: _extract_or_none(b, u), repeat) * 1000
-        out["lxml"] += _median_s(lambda b=body: lxml.html.document_fromstring(b), repeat) * 1000
+        out["ms"] += median_cpu_s(lambda b=body, u=url: _extract_or_none(b, u), repeat) * 1000
+        out["lxml"] += median_cpu_s(lambda b=body: lxml.html.document_fromstring(b), repeat) * 1000
     return out
 
 
@@ -236,8 +225,8 @@ def _print_other_folders(extract_page, judge, load_labels, package_matches, repe
             if record is not None:
                 right += judge(record, page.truth).right
                 package += package_matches(record, page.truth)
-            ms += _median_s(lambda b=body, u=url: _extract_or_none(b, u), repeat) * 1000
-            base += _median_s(lambda b=body: lxml.html.document_fromstring(b), repeat) * 1000
+            ms += median_cpu_s(lambda b=body, u=url: _extract_or_none(b, u), repeat) * 1000
+            base += median_cpu_s(lambda b=body: lxml.html.document_fromstring(b), repeat) * 1000
         n = len(pages)
         print(
             f"{name:9} {n:3} {right:3}/{n:<2} {package:4}/{n:<3} {ms / n:11.1f} {base / n:8.1f} {ms / base:6.2f}"
@@ -254,8 +243,8 @@ def _print_spec_dumps(extract_page, repeat: int) -> dict[str, float]:
     for kind in ("weights", "sizes"):
         body = _spec_dump(20_000, kind)
         record = extract_page(body, "https://shop.example.de/liste", "text/html")
-        s = _median_s(lambda b=body: extract_page(b, "https://shop.example.de/liste", "text/html"), repeat)
-        b = _median_s(lambda b=body: lxml.html.document_fromstring(b), repeat)
+        s = median_cpu_s(lambda b=body: extract_page(b, "https://shop.example.de/liste", "text/html"), repeat)
+        b = median_cpu_s(lambda b=body: lxml.html.document_fromstring(b), repeat)
         seconds[kind] = s
         print(
             f"{'20,000 rows of ' + kind:24} {len(body) / 1e6:5.1f} {s:10.2f} {b:7.2f} {s / b:6.2f}  "

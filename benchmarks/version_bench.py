@@ -12,10 +12,10 @@ from __future__ import annotations
 import argparse
 import os
 import shutil
-import statistics
 import tempfile
-import time
 from pathlib import Path
+
+from timing import median_cpu_s
 
 from kb.catalog import KnowledgeBase
 from kb.versions import catalog_version
@@ -41,14 +41,6 @@ def _build(db: Path, objects: int) -> None:
         )
 
 
-def _median_cpu(func, repeat: int) -> float:
-    times = []
-    for _ in range(repeat):
-        start = time.process_time()
-        func()
-        times.append(time.process_time() - start)
-    return statistics.median(times)
-
 
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -61,8 +53,8 @@ def main(argv: list[str] | None = None) -> None:
         _build(db, args.objects)
         kb = KnowledgeBase.open(db, read_only=True)
         with kb.connect() as con:
-            new = _median_cpu(lambda: catalog_version(con), args.repeat)
-            old = _median_cpu(lambda: [con.execute(q).fetchone() for q in _OLD], args.repeat)
+            new = median_cpu_s(lambda: catalog_version(con), args.repeat)
+            old = median_cpu_s(lambda: [con.execute(q).fetchone() for q in _OLD], args.repeat)
         print(
             f"catalog_version at {args.objects:,} objects ({args.objects // 10:,} aliases; synthetic, written "
             f"here): {new:.3f} s CPU with the value checksum, {old:.3f} s without; load {os.getloadavg()[0]:.1f}"

@@ -376,9 +376,9 @@ def _brim_plan(ctx: _Context) -> GraspPlan | None:
     from sim.bodies import HOLD_PART
 
     o = ctx.o
-    if o.body().form != "cap":
-        return None
     body = o.body()
+    if body.form != "cap":
+        return None
     brim = next(p for p in body.parts if p.name == "brim")
     length = brim.extent_cm("a")
     grip_a = brim.pos_cm[0] + length / 2.0 - edge_grip_in_cm(length)

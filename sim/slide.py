@@ -86,20 +86,22 @@ def rim_push_ratio(
     return math.sqrt(tip_radius_cm**2 - below**2) / below
 
 
+def _axis_ends(world: TrialWorld, g: int) -> tuple[np.ndarray, np.ndarray]:
+    """World positions (m) of the two ends of capsule geom ``g``'s axis."""
+    axis = world.data.geom_xmat[g].reshape(3, 3)[:, 2] * world.model.geom_size[g][1]
+    return world.data.geom_xpos[g] - axis, world.data.geom_xpos[g] + axis
+
+
 def _tip_m(world: TrialWorld, geom: str) -> np.ndarray:
     """World position (m) of the lower end of a digit capsule's axis."""
-    m, d = world.model, world.data
-    g = m.geom(geom).id
-    axis = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g][1]
-    ends = (d.geom_xpos[g] - axis, d.geom_xpos[g] + axis)
-    return min(ends, key=lambda e: e[2]).copy()
+    return min(_axis_ends(world, world.model.geom(geom).id), key=lambda e: e[2]).copy()
 
 
-def _ramp(runner: Runner, duration: float, where: str, start: np.ndarray, end: np.ndarray) -> None:
-    d, w = runner.d, runner.w
-    runner._phase(
-        duration, where, lambda u: d.ctrl.__setitem__(w.wrist_act, start + (end - start) * _smooth(u))
-    )
+def _ctrl_to(runner: Runner, act: np.ndarray, target: np.ndarray, duration: float, where: str) -> None:
+    """Ramp the controls ``act`` (the wrist's or the digits') smoothly from where they are to ``target``."""
+    d = runner.d
+    start = d.ctrl[act].copy()
+    runner._phase(duration, where, lambda u: d.ctrl.__setitem__(act, start + (target - start) * _smooth(u)))
 
 
 def _straighten_fingers(world: TrialWorld) -> None:
@@ -166,8 +168,7 @@ def _lower_and_move(
     runner = runner or Runner(world)
     wrist = _start_above(world, goal_m)
     before = _object_x_m(world)
-    above = world.data.ctrl[world.wrist_act].copy()
-    _ramp(runner, LOWER_S, " while lowering the thumb", above, wrist)
+    _ctrl_to(runner, world.wrist_act, wrist, LOWER_S, " while lowering the thumb")
     forces: list[float] = []
     end = wrist + np.array([pull_cm * H.CM, 0.0, 0.0])
 
@@ -242,12 +243,10 @@ def _finger_rows(world: TrialWorld) -> list[tuple[int, int, list[int]]]:
 
 def _top_point(world: TrialWorld, geoms: list[int]) -> tuple[float, float]:
     """(z, x) in m of the highest end of a finger's middle and distal capsules, plus their radius."""
-    m, d = world.model, world.data
     best = (-np.inf, 0.0)
     for g in geoms:
-        axis = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g][1]
-        for end in (d.geom_xpos[g] - axis, d.geom_xpos[g] + axis):
-            z = float(end[2] + m.geom_size[g][0])
+        for end in _axis_ends(world, g):
+            z = float(end[2] + world.model.geom_size[g][0])
             if z > best[0]:
                 best = (z, float(end[0]))
     return best
@@ -317,14 +316,6 @@ def _ik_move(runner: Runner, world: TrialWorld, start: np.ndarray, end: np.ndarr
         runner._phase(IK_STEP_S, " while re-gripping", step)
 
 
-def _digits_to(runner: Runner, world: TrialWorld, target: np.ndarray, duration: float, where: str) -> None:
-    d = world.data
-    start = d.ctrl[world.digit_act].copy()
-    runner._phase(
-        duration, where, lambda u: d.ctrl.__setitem__(world.digit_act, start + (target - start) * _smooth(u))
-    )
-
-
 def slide_and_pinch(runner: Runner, world: TrialWorld) -> None:
     """The slide program's approach and close (instead of Runner.approach and Runner.close): the thumb hooks
     the table-side rim and pulls the object out past the edge (:func:`slide_overhang_cm`), the fingers catch
@@ -334,7 +325,8 @@ def slide_and_pinch(runner: Runner, world: TrialWorld) -> None:
     d, m = world.data, world.model
     depth = float(world.plan.params["edge_depth_cm"])
     thickness = 2.0 * float(d.xpos[world.object_body][2]) / H.CM
-    edge_cm = (float(m.geom("table").pos[0]) + 0.4) / H.CM
+    table = m.geom("table")
+    edge_cm = float(table.pos[0] + table.size[0]) / H.CM  # the table's +x edge (sim/objects.py add_table)
     _straighten_fingers(world)
     q = d.ctrl[world.digit_act].copy()
     q[1] = HOOK_THUMB_FLEX
@@ -346,10 +338,10 @@ def slide_and_pinch(runner: Runner, world: TrialWorld) -> None:
     wrist = d.ctrl[world.wrist_act].copy()
     centre = _object_x_m(world)
     catch = (centre + CATCH_BEYOND_CM * H.CM, -CATCH_BELOW_CM * H.CM)
-    _digits_to(runner, world, _catch_posture(world, wrist, *catch), 0.3, " while catching")
+    _ctrl_to(runner, world.digit_act, _catch_posture(world, wrist, *catch), 0.3, " while catching")
     lifted = d.ctrl[world.digit_act].copy()
     lifted[1] -= THUMB_LIFT_RAD
-    _digits_to(runner, world, lifted, 0.15, " while lifting the thumb")
+    _ctrl_to(runner, world.digit_act, lifted, 0.15, " while lifting the thumb")
     risen = wrist + np.array([0.0, 0.0, RISE_CM * H.CM])
     _ik_move(runner, world, wrist, risen, catch)
     _, thumb_x = _thumb_touch(world, thickness * H.CM)
@@ -358,13 +350,13 @@ def slide_and_pinch(runner: Runner, world: TrialWorld) -> None:
     flex, _ = _thumb_touch(world, thickness * H.CM)
     touch = d.ctrl[world.digit_act].copy()
     touch[1] = flex
-    _digits_to(runner, world, touch, 0.25, " while closing")
+    _ctrl_to(runner, world.digit_act, touch, 0.25, " while closing")
     press = touch.copy()
     press[1] += PRESS_PAST_RAD[0]
     for mcp_k, pip_k, _ in _finger_rows(world):
         press[mcp_k] += PRESS_PAST_RAD[1]
         press[pip_k] += PRESS_PAST_RAD[1]
-    _digits_to(runner, world, press, 0.25, " while closing")
+    _ctrl_to(runner, world.digit_act, press, 0.25, " while closing")
     runner._phase(0.15, " while closing")
     runner.wrist_base = d.ctrl[world.wrist_act].copy()
     runner.latch_reference()

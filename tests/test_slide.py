@@ -57,26 +57,15 @@ def test_a_light_press_does_not_drag_a_coin_the_object_friction_governs_both_con
     assert abs(slide.slid_cm) < 0.05 and not slide.fell  # ... and the pad slid over it
 
 
-def _coin_trials():
+def test_the_trial_slides_a_coin_out_and_then_holds_it_through_the_same_checks(monkeypatch):
     import sim.trial as T
 
     coin = ObjectRecord.create(**COIN)
     plan = best_grasp(coin)
     slid = T.run_trial(coin, plan, seed=0)
-    plain = T.slides
-    try:
-        T.slides = lambda world: False
-        unslid = T.run_trial(coin, plan, seed=0)
-    finally:
-        T.slides = plain
-    return plan, slid, unslid
-
-
-def test_the_trial_slides_a_coin_out_and_then_holds_it_through_the_same_checks():
-    plan, slid, unslid = _coin_trials()
-    assert plan.grasp_type == "thumb_index_finger" and S.slides(
-        build_world(ObjectRecord.create(**COIN), plan)
-    )
+    monkeypatch.setattr(T, "slides", lambda world: False)
+    unslid = T.run_trial(coin, plan, seed=0)
+    assert plan.grasp_type == "thumb_index_finger" and S.slides(build_world(coin, plan))
     assert slid.success and slid.lifted and len(slid.perturbation) == 6  # lifted, held, every push survived
     assert slid.slip_cm < 1.0 and slid.rotation_deg < 10.0 and slid.grip_force_n > 1.0
     # the plain edge pinch of the same plan: pushed out of the pinch and off the table, and a distinct trajectory
