@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_of
+from recall.reading import NEGATED_REASON
 from recall.subject import feature_words, is_adjective, is_participle
 
 __all__ = [
@@ -77,7 +78,7 @@ def nothing_compared(refused: Sequence, numeric_stated: bool) -> tuple[str, ...]
     ("a mug, not 10 cm") was not stated: it does not count. Empty otherwise."""
     if numeric_stated:
         return ()
-    return tuple(r.words for r in refused if not r.reason.startswith("negated"))
+    return tuple(r.words for r in refused if r.reason != NEGATED_REASON)
 
 
 #: Catalogs larger than this are not scanned for their kinds just to tell a kind name's hypernym

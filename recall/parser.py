@@ -39,7 +39,7 @@ from recall.chunks import GRAMMAR, MAX_SEGMENT_TOKENS, Chunker, size
 from recall.dimensions import read_relations, resolve_dims
 from recall.mass import resolve_mass
 from recall.quantities import QuantityReader
-from recall.reading import Reading, Stated
+from recall.reading import NEGATED_REASON, Reading, Stated
 from recall.tags import Tagger
 from recall.tokens import Tokenizer
 from recall.toolkit import Tree
@@ -185,7 +185,6 @@ _VALUE_CHUNKS = frozenset({"QUANT", "MULTI", "DIM", "RANGE"})
 #: What a negated bound or exact hedge becomes: "not over 10 cm" is at most 10, "not under" at least,
 #: "not exactly 10 cm" about 10.
 _NEGATED_HEDGE_TAGS = {"HL": "at_most", "HU": "at_least", "HX": "about"}
-_NEGATED_REASON = "negated: the description says it is not this value"
 
 
 def _negation(segment: list[Any], k: int) -> str | None:
@@ -231,7 +230,7 @@ def _negate(
             requalified[(toks[0].start, toks[-1].end)] = how or _NEGATED_HEDGE_TAGS[hedges[0]]
         else:
             kept.extend(child.leaves())
-            reading.refuse(toks[0].start, toks[-1].end, _NEGATED_REASON)
+            reading.refuse(toks[0].start, toks[-1].end, NEGATED_REASON)
             if any(t.tag in ("DIM", "DIMN") for t in toks):
                 reading.in_dim_chunk.update(range(pos + k, pos + k + n))  # "not 10 cm long": no long shape
         k += n

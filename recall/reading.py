@@ -15,10 +15,21 @@ from kb.features import validate_features
 from kb.measures.units import Unit
 from recall.tokens import Token
 
-__all__ = ["MIN_STATED", "DimStatement", "Quantity", "Reading", "Relation", "Stated", "limit_refusal"]
+__all__ = [
+    "MIN_STATED",
+    "NEGATED_REASON",
+    "DimStatement",
+    "Quantity",
+    "Reading",
+    "Relation",
+    "Stated",
+    "limit_refusal",
+]
 
 #: The smallest value stated (cm or g): the parser's evidence has 4 decimals.
 MIN_STATED = 0.0001
+#: The reason a negated value is refused ("not 10 cm": not stated; :meth:`Reading.refuse`).
+NEGATED_REASON = "negated: the description says it is not this value"
 
 
 @dataclass(slots=True)

@@ -78,7 +78,7 @@ def _phrases(text: str):
         for phrase in _sentence_phrases(sentence):
             found = True
             yield phrase
-        if found or n or not _NEGATION_WORD.search(sentence):
+        if found or n or not _phrase_negation().search(sentence):
             return
 
 
@@ -163,7 +163,6 @@ def negated_spans(text: str) -> list[tuple[int, int]]:
 _TOKEN = re.compile(r"[^\W_]+(?:['\u2019][^\W_]+)*|[^\w\s]")
 #: What ends a negated noun phrase (besides punctuation, numbers and another negation).
 _NEGATED_PHRASE_ENDS = frozenset({"and", "but", "&", "instead", "rather"})
-_NEGATION_WORD = re.compile(r"\b(?:not|no|never|without|neither|nor|isnt|arent|wasnt|werent|doesnt|dont|didnt)\b")
 
 
 def _negated_start(words: list[str], i: int) -> int | None:
@@ -171,7 +170,7 @@ def _negated_start(words: list[str], i: int) -> int | None:
     from recall import lexicon as lx
 
     word = words[i]
-    if word not in _negations() or word in ("non", "hardly"):
+    if word not in _phrase_negations():
         return None
     if word in lx.NOUN_NEGATIONS:
         j = i + 1
@@ -195,6 +194,21 @@ def _negations() -> frozenset[str]:
     from recall import lexicon as lx
 
     return frozenset(w.replace("'", "") for w in lx.NEGATIONS)
+
+
+@functools.cache
+def _phrase_negations() -> frozenset[str]:
+    """The negations that can negate a noun phrase (:func:`negated_words`), apostrophes dropped: the
+    value negations (``lexicon.VALUE_NEGATIONS``) but "non" ("non-stick")."""
+    from recall import lexicon as lx
+
+    return frozenset(w.replace("'", "") for w in lx.VALUE_NEGATIONS - {"non"})
+
+
+@functools.cache
+def _phrase_negation() -> re.Pattern[str]:
+    """A word of :func:`_phrase_negations` in a sentence (lower case, apostrophes dropped)."""
+    return re.compile(rf"\b(?:{'|'.join(sorted(_phrase_negations()))})\b")
 
 
 def noun_phrase(text: str) -> tuple[str, ...]:
