@@ -1,0 +1,174 @@
+#!/usr/bin/env python3
+"""Build and check the real-page corpus cache from fetched repository snapshots.
+
+    python scripts/real_pages.py materialize [--mirror /work/.mirror] [--cache DIR]
+    python scripts/real_pages.py check [--cache DIR]
+    python scripts/real_pages.py add REPO PATH [--member M] [--url U] [--language L] [--by NAME] [--shard NAME]
+
+``materialize`` copies every page of ``tests/data/real_pages/manifest*.jsonl`` out of its snapshot
+(``<mirror>/<owner>+<name>/repo``, a bare git directory that the search tool's ``fetch`` brings) at the
+manifest's commit, unpacks it (``container``: gzip, ``json:<key>`` for a page stored inside a JSON
+document, ``zip:<member>``, ``tar:<member>``), checks its sha256 and writes ``<cache>/<id>.html``.
+Nothing fetched is committed: only the manifest and the labels are.
+
+``add`` appends one page to a manifest shard (``manifest-<shard>.jsonl``): it reads the page from the
+snapshot's newest commit, records the commit and sha256, and prints the new id. The store is derived
+from ``--url`` (``scrapers.corpus.store_group``); give ``--store`` when the page has no address.
+"""
+
+from __future__ import annotations
+
+import argparse
+import gzip
+import hashlib
+import io
+import json
+import subprocess
+import sys
+import tarfile
+import zipfile
+from collections import Counter
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from scrapers.corpus import CORPUS_DIR, cache_dir, held_out, load_corpus, load_manifest, store_group  # noqa: E402
+
+MIRROR = Path("/work/.mirror")
+
+
+def _git_dir(mirror: Path, repo: str) -> Path:
+    path = mirror / repo.replace("/", "+") / "repo"
+    if not path.is_dir():
+        raise SystemExit(f"no snapshot of {repo} at {path}: fetch it first (search tool: fetch github:{repo})")
+    return path
+
+
+def _blob(git_dir: Path, commit: str, path: str) -> bytes:
+    out = subprocess.run(["git", "--git-dir", str(git_dir), "show", f"{commit}:{path}"], capture_output=True)
+    if out.returncode:
+        raise SystemExit(f"{path} at {commit[:10]}: {out.stderr.decode(errors='replace').strip()}")
+    return out.stdout
+
+
+def _head(git_dir: Path) -> str:
+    return subprocess.run(["git", "--git-dir", str(git_dir), "rev-parse", "HEAD"], capture_output=True,
+                          text=True, check=True).stdout.strip()
+
+
+def unpack(data: bytes, path: str, container: str | None) -> bytes:
+    """The page's own bytes from the stored file (see the module doc for ``container``)."""
+    if container is None and path.endswith(".gz"):
+        container = "gzip"
+    if not container:
+        return data
+    kind, _, member = container.partition(":")
+    if kind == "gzip":
+        return gzip.decompress(data)
+    if kind == "json":
+        value = json.loads(data)
+        for key in member.split("."):
+            value = value[int(key)] if isinstance(value, list) else value[key]
+        return value.encode("utf-8") if isinstance(value, str) else bytes(value)
+    if kind == "zip":
+        with zipfile.ZipFile(io.BytesIO(data)) as archive:
+            return archive.read(member)
+    if kind == "tar":
+        with tarfile.open(fileobj=io.BytesIO(data)) as archive:
+            return archive.extractfile(member).read()
+    raise SystemExit(f"unknown container {container!r}")
+
+
+def materialize(mirror: Path, cache: Path) -> int:
+    cache.mkdir(parents=True, exist_ok=True)
+    done = missing = 0
+    for row in load_manifest():
+        target = cache / f"{row['id']}.html"
+        if target.is_file() and hashlib.sha256(target.read_bytes()).hexdigest() == row["sha256"]:
+            done += 1
+            continue
+        try:
+            git_dir = _git_dir(mirror, row["source_repo"])
+        except SystemExit as e:
+            print(f"skip {row['id']}: {e}", file=sys.stderr)
+            missing += 1
+            continue
+        page = unpack(_blob(git_dir, row["commit"], row["path"]), row["path"], row.get("container"))
+        digest = hashlib.sha256(page).hexdigest()
+        if digest != row["sha256"]:
+            raise SystemExit(f"{row['id']}: sha256 {digest[:12]} is not the manifest's {row['sha256'][:12]}")
+        target.write_bytes(page)
+        done += 1
+    print(f"{done} pages in {cache}; {missing} whose snapshot is missing")
+    return 1 if missing else 0
+
+
+def add(args) -> int:
+    git_dir = _git_dir(args.mirror, args.repo)
+    commit = args.commit or _head(git_dir)
+    container = f"{args.container}:{args.member}" if args.member else args.container
+    page = unpack(_blob(git_dir, commit, args.path), args.path, container)
+    digest = hashlib.sha256(page).hexdigest()
+    store = args.store or store_group(args.url or "")
+    if not store:
+        raise SystemExit("give --url or --store: the store is what the split is by")
+    known = {row["sha256"]: row["id"] for row in load_manifest()}
+    if digest in known:
+        raise SystemExit(f"already in the corpus as {known[digest]}")
+    pid = f"{store}-{digest[:10]}"
+    row = {"id": pid, "source_repo": args.repo, "path": args.path, "commit": commit, "container": container,
+           "sha256": digest, "bytes": len(page), "url": args.url, "store": store, "language": args.language,
+           "licence": args.licence, "collected_by": args.by}
+    with (CORPUS_DIR / f"manifest-{args.shard}.jsonl").open("a", encoding="utf-8") as out:
+        out.write(json.dumps(row, ensure_ascii=False) + "\n")
+    cache = args.cache or cache_dir()
+    cache.mkdir(parents=True, exist_ok=True)
+    (cache / f"{pid}.html").write_bytes(page)
+    print(pid)
+    return 0
+
+
+def check(cache: Path) -> int:
+    rows = load_manifest()
+    pages = load_corpus(cache=cache, shared=True, labelled_only=False)
+    labelled = [p for p in pages if p.truth is not None]
+    stores = Counter(p.store for p in pages)
+    langs = Counter(p.language for p in pages)
+    print(f"manifest rows {len(rows)}; present (with shared batches) {len(pages)}; labelled {len(labelled)}")
+    print(f"stores {len(stores)} ({sum(held_out(s) for s in stores)} held out); languages {len(langs)}: "
+          + ", ".join(f"{k or '?'} {v}" for k, v in langs.most_common()))
+    held = [p for p in labelled if p.held_out]
+    print(f"labelled pages: development {len(labelled) - len(held)}, held out {len(held)}")
+    return 0
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--mirror", type=Path, default=MIRROR)
+    parser.add_argument("--cache", type=Path, default=None)
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("materialize")
+    sub.add_parser("check")
+    a = sub.add_parser("add")
+    a.add_argument("repo")
+    a.add_argument("path")
+    a.add_argument("--commit")
+    a.add_argument("--container", help="gzip, json, zip or tar (with --member)")
+    a.add_argument("--member", help="json key path (a.b.0), zip or tar member")
+    a.add_argument("--url", default="")
+    a.add_argument("--store", default="")
+    a.add_argument("--language", default="")
+    a.add_argument("--licence", default="")
+    a.add_argument("--by", default="")
+    a.add_argument("--shard", default="main")
+    args = parser.parse_args(argv)
+    if args.command == "materialize":
+        return materialize(args.mirror, args.cache or cache_dir())
+    if args.command == "check":
+        return check(args.cache or cache_dir())
+    return add(args)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
