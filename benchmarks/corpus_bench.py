@@ -1,0 +1,219 @@
+"""Extraction on the real-page corpus (``scrapers.corpus.load_corpus``), scored by the rule of
+``scrapers/verdicts.py``: dimensions right when every stated extent is found and every extracted extent is
+stated (within 2 %; a page stating none gives none), mass the same; invented values counted.
+
+Prints, for the development stores (and, with ``--held-out``, the held-out stores in aggregate only: no
+page of a held-out store is ever named): pages right by language and by layout class, the shared batches
+apart, the invented-value count over the whole corpus, a leave-one-store-out table
+(``--loso``), and the CPU time of extraction against a bare lxml parse of
+the same page (median of the per-page ratios), with the load average.
+
+Run: ``python benchmarks/corpus_bench.py [--held-out] [--loso] [--failures] [--repeat N] [--save]``.
+``--failures`` lists the development pages that fail (never a held-out one). ``--save`` (needs
+``--held-out``) writes ``benchmarks/results/corpus_bench.json``, from which ``scripts/readme_figures.py``
+renders the README's extraction table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+from timing import median_cpu_s
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from kb.errors import ExtractionError  # noqa: E402
+
+#: Layout classes of the shared batches, whose labels have a free-text ``format`` instead of ``layout``.
+_FORMAT_WORDS = (
+    ("json-ld", "json-ld"), ("microdata", "microdata"), ("state", "embedded-json"), ("json", "embedded-json"),
+    ("table", "table"), ("dl", "dl"), ("bullet", "list"), ("list", "list"), ("description", "free-text"),
+    ("prose", "free-text"), ("title", "title"), ("variant", "variant-list"), ("select", "variant-list"),
+)  # fmt: skip
+
+
+def layouts(page) -> list[str]:
+    """The layout classes of a page's label (``layout``; for the shared batches read from ``format``)."""
+    truth = page.truth or {}
+    found = truth.get("layout")
+    if isinstance(found, str):
+        found = [found]
+    if found:
+        return list(found)
+    text = (truth.get("format") or "").lower()
+    classes = [cls for word, cls in _FORMAT_WORDS if word in text]
+    return list(dict.fromkeys(classes)) or ["unlabelled"]
+
+
+def part_of(page) -> str:
+    batch = (page.source or {}).get("batch")
+    return batch if batch else "corpus"
+
+
+def extract(page):
+    from scrapers.extract import extract_page
+
+    try:
+        return extract_page(page.path.read_bytes(), page.url or f"https://example.test/{page.id}", "text/html")
+    except ExtractionError:
+        return None
+
+
+def score_page(page, repeat: int) -> dict:
+    import lxml.html
+
+    from scrapers.verdicts import invented, judge, page_numbers
+
+    body = page.path.read_bytes()
+    record = extract(page)
+    verdict = judge(record, page.truth)
+    text = body.decode("utf-8", errors="replace")
+    out = {"dims": verdict.dims_right, "mass": verdict.mass_right, "problems": verdict.problems,
+           "invented": invented(record, page.truth, page_numbers(text))}  # fmt: skip
+    if repeat:
+        cpu = median_cpu_s(lambda: extract(page), repeat)
+        base = median_cpu_s(lambda: lxml.html.document_fromstring(body), repeat)
+        out["cpu"], out["lxml"] = cpu, base
+    return out
+
+
+def _cell(rows: list[dict], key: str) -> str:
+    return f"{sum(r[key] for r in rows)}/{len(rows)}" if rows else "-"
+
+
+def table(rows: list[tuple], title: str) -> list[str]:
+    """Rows (page, score) grouped by language and by layout class: dims and mass right."""
+    lines = [f"{title}: {len(rows)} pages, {len({p.store for p, _ in rows})} stores",
+             f"  {'group':24} {'pages':>5} {'dims':>8} {'mass':>8} {'both':>8}"]
+    groups: dict[str, list[dict]] = defaultdict(list)
+    for page, s in rows:
+        s = {**s, "both": s["dims"] and s["mass"]}
+        groups["all"].append(s)
+        groups[f"lang {page.language or '?'}"].append(s)
+        for cls in layouts(page):
+            groups[f"layout {cls}"].append(s)
+        groups[f"part {part_of(page)}"].append(s)
+    order = sorted(groups, key=lambda k: (k != "all", k.split()[0], -len(groups[k]), k))
+    for key in order:
+        g = groups[key]
+        lines.append(f"  {key:24} {len(g):5} {_cell(g, 'dims'):>8} {_cell(g, 'mass'):>8} {_cell(g, 'both'):>8}")
+    return lines
+
+
+def loso_table(rows: list[tuple]) -> dict:
+    """The development stores one by one. The chooser has no fitted weights yet, so a store left out
+    scores what it scores with all stores in: this is the per-store table."""
+    by_store: dict[str, list[dict]] = defaultdict(list)
+    for page, s in rows:
+        by_store[page.store].append(s)
+    table_rows = [{"store": k, "pages": len(v), "dims": _cell(v, "dims"), "mass": _cell(v, "mass")}
+                  for k, v in sorted(by_store.items())]  # fmt: skip
+    lines = [f"leave-one-store-out (development stores): {len(by_store)} stores",
+             f"  {'store':20} {'pages':>5} {'dims':>8} {'mass':>8}"]  # fmt: skip
+    lines += [f"  {r['store']:20} {r['pages']:5} {r['dims']:>8} {r['mass']:>8}" for r in table_rows]
+    return {"rows": table_rows, "lines": lines}
+
+
+def summary(rows: list[tuple]) -> dict:
+    """The saved figures of a part: counts overall, by language, by layout class and by batch."""
+    def counts(sel):
+        return {"pages": len(sel), "dims": sum(s["dims"] for s in sel), "mass": sum(s["mass"] for s in sel)}
+
+    by: dict[str, dict[str, list]] = {"language": defaultdict(list), "layout": defaultdict(list),
+                                      "part": defaultdict(list)}  # fmt: skip
+    for page, s in rows:
+        by["language"][page.language or "?"].append(s)
+        for cls in layouts(page):
+            by["layout"][cls].append(s)
+        by["part"][part_of(page)].append(s)
+    return {"all": counts([s for _, s in rows]), "stores": len({p.store for p, _ in rows}),
+            **{k: {g: counts(v) for g, v in sorted(d.items())} for k, d in by.items()}}  # fmt: skip
+
+
+def speed(rows: list[tuple]) -> dict:
+    ratios = [s["cpu"] / s["lxml"] for _, s in rows if s.get("lxml")]
+    if not ratios:
+        return {}
+    return {
+        "median_ratio": round(statistics.median(ratios), 2),
+        "cpu_ms_median": round(statistics.median(s["cpu"] for _, s in rows) * 1000, 1),
+        "lxml_ms_median": round(statistics.median(s["lxml"] for _, s in rows) * 1000, 1),
+        "pages": len(ratios), "load_average": round(os.getloadavg()[0], 1),
+    }  # fmt: skip
+
+
+def main(argv: list[str] | None = None) -> int:
+    from scrapers.corpus import load_corpus
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--held-out", action="store_true", help="also score the held-out stores (aggregate only)")
+    ap.add_argument("--failures", action="store_true", help="list the failing development pages")
+    ap.add_argument("--loso", action="store_true", help="leave-one-store-out table of the fitted chooser")
+    ap.add_argument("--repeat", type=int, default=3, help="timing repeats per page (0: no timing)")
+    ap.add_argument("--save", action="store_true")
+    args = ap.parse_args(argv)
+
+    pages = load_corpus()
+    if not pages:
+        print("no corpus pages (the cache and the shared batches are absent)")
+        return 0
+    dev = [p for p in pages if not p.held_out]
+    held = [p for p in pages if p.held_out] if args.held_out else []
+    dev_rows = [(p, score_page(p, args.repeat)) for p in dev]
+    held_rows = [(p, score_page(p, args.repeat)) for p in held]
+    print("\n".join(table(dev_rows, "development stores")))
+    if args.failures:
+        for page, s in dev_rows:
+            if not (s["dims"] and s["mass"]) or s["invented"]:
+                print(f"    FAIL {page.id} [{page.store}, {page.language}, {'/'.join(layouts(page))}]: "
+                      f"{'; '.join(s['problems'] + s['invented'])}")
+    if held_rows:
+        print("\n".join(table(held_rows, "held-out stores (aggregate only)")))
+    else:
+        print(f"held-out stores: {len(pages) - len(dev)} pages, not scored (--held-out)")
+    inv = [(p, s) for p, s in dev_rows + held_rows if s["invented"]]
+    n_inv = sum(len(s["invented"]) for _, s in inv)
+    print(f"invented values: {n_inv} on {len(inv)} pages of {len(dev_rows) + len(held_rows)} scored")
+    loso = loso_table(dev_rows) if args.loso else None
+    if loso:
+        print("\n".join(loso["lines"]))
+    sp = speed(dev_rows + held_rows)
+    if sp:
+        print(f"speed: extraction {sp['cpu_ms_median']} ms CPU median, lxml parse {sp['lxml_ms_median']} ms; "
+              f"median per-page ratio {sp['median_ratio']}x over {sp['pages']} pages; load {sp['load_average']}")
+    if args.save:
+        if not held_rows:
+            print("not saved: --save needs --held-out")
+            return 1
+        save(dev_rows, held_rows, n_inv, sp, loso)
+    return 0
+
+
+def save(dev_rows, held_rows, n_inv: int, sp: dict, loso: dict | None) -> None:
+    from saved import save_result
+
+    d, h = summary(dev_rows), summary(held_rows)
+    def pct(c, k):
+        return f"{c[k]}/{c['pages']}"
+
+    result = (
+        f"real pages ({d['all']['pages'] + h['all']['pages']} pages, {d['stores'] + h['stores']} stores): held-out "
+        f"stores dims {pct(h['all'], 'dims')}, mass {pct(h['all'], 'mass')}; development dims {pct(d['all'], 'dims')}, "
+        f"mass {pct(d['all'], 'mass')} (every stated extent found and every extracted one stated, within 2 %); "
+        f"invented values {n_inv}; extraction {sp.get('median_ratio')}x a bare lxml parse (median per page, "
+        f"CPU, load {sp.get('load_average')})"
+    )
+    data = {"development": d, "held_out": h, "invented": n_inv, "speed": sp,
+            "loso": loso["rows"] if loso else None}  # fmt: skip
+    path = save_result("corpus_bench", benchmark="extraction, real-page corpus", result=result, data=data, order=29)
+    print(f"saved {path}")
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
