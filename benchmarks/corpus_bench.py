@@ -5,7 +5,7 @@ stated (within 2 %; a page stating none gives none), mass the same; invented val
 Prints, for the development stores (and, with ``--held-out``, the held-out stores in aggregate only: no
 page of a held-out store is ever named): pages right by language and by layout class, the shared batches
 apart, the invented-value count over the whole corpus, a leave-one-store-out table
-(``--loso``), and the CPU time of extraction against a bare lxml parse of
+of the chooser's weights fitted without the store (``--loso``), and the CPU time of extraction against a bare lxml parse of
 the same page (median of the per-page ratios), with the load average.
 
 Run: ``python benchmarks/corpus_bench.py [--held-out] [--loso] [--failures] [--repeat N] [--save]``.
@@ -75,7 +75,8 @@ def score_page(page, repeat: int) -> dict:
     verdict = judge(record, page.truth)
     text = body.decode("utf-8", errors="replace")
     out = {"dims": verdict.dims_right, "mass": verdict.mass_right, "problems": verdict.problems,
-           "invented": invented(record, page.truth, page_numbers(text))}  # fmt: skip
+           "invented": invented(record, page.truth, page_numbers(text)),
+           "samples": choice_samples(record, page.truth)}  # fmt: skip
     if repeat:
         cpu = median_cpu_s(lambda: extract(page), repeat)
         base = median_cpu_s(lambda: lxml.html.document_fromstring(body), repeat)
@@ -106,18 +107,58 @@ def table(rows: list[tuple], title: str) -> list[str]:
     return lines
 
 
+def choice_samples(record, truth) -> dict[str, list[tuple[dict, bool]]]:
+    """Per feature, the clusters the chooser weighed on one page as ``(features, right)``: what
+    ``scrapers.choice.fit_weights`` fits on (``right``: the cluster's value is the label's, within 2 %)."""
+    from scrapers.records import ProductRecord
+    from scrapers.verdicts import dims_right, truth_of, within
+
+    if record is None:
+        return {}
+    want_dims, want_mass = truth_of(truth)
+    found: dict[str, dict[int, tuple[dict, bool]]] = defaultdict(dict)
+    for c in record.candidates:
+        if not c.get("representative"):
+            continue
+        if c["feature"] == "dims":
+            right = dims_right(ProductRecord(name=None, url="", dims=c["extents"]), want_dims)
+        else:
+            right = want_mass is not None and within(c["value"], want_mass)
+        found[c["feature"]][c["cluster"]] = (c["features"], right)
+    return {f: [v for _, v in sorted(d.items())] for f, d in found.items()}
+
+
 def loso_table(rows: list[tuple]) -> dict:
-    """The development stores one by one. The chooser has no fitted weights yet, so a store left out
-    scores what it scores with all stores in: this is the per-store table."""
+    """Leave-one-store-out over the development stores: the chooser's weights fitted
+    (``scrapers.choice.fit_weights``) on every development store but one, then that store scored with
+    them; beside it the store's score with the weights in use (``scrapers.choice.WEIGHTS``)."""
+    from scrapers.choice import WEIGHTS, fit_weights, pick
+
     by_store: dict[str, list[dict]] = defaultdict(list)
     for page, s in rows:
         by_store[page.store].append(s)
-    table_rows = [{"store": k, "pages": len(v), "dims": _cell(v, "dims"), "mass": _cell(v, "mass")}
-                  for k, v in sorted(by_store.items())]  # fmt: skip
-    lines = [f"leave-one-store-out (development stores): {len(by_store)} stores",
-             f"  {'store':20} {'pages':>5} {'dims':>8} {'mass':>8}"]  # fmt: skip
-    lines += [f"  {r['store']:20} {r['pages']:5} {r['dims']:>8} {r['mass']:>8}" for r in table_rows]
-    return {"rows": table_rows, "lines": lines}
+
+    def right(s: dict, feature: str, weights: dict) -> bool:
+        sample = s["samples"].get(feature)
+        return pick(sample, weights) if sample and weights is not WEIGHTS else s[feature]
+
+    table_rows = []
+    for store, scored in sorted(by_store.items()):
+        others = [x for k, v in by_store.items() if k != store for s in v for x in s["samples"].values()]
+        w = fit_weights(others)
+        changed = {k: v for k, v in w.items() if v != WEIGHTS[k]}
+        row = {"store": store, "pages": len(scored), "weights": changed}
+        for f in ("dims", "mass"):
+            row[f] = f"{sum(right(s, f, w) for s in scored)}/{len(scored)}"
+            row[f"{f}_in_use"] = f"{sum(s[f] for s in scored)}/{len(scored)}"
+        table_rows.append(row)
+    lines = [f"leave-one-store-out (development stores): {len(by_store)} stores; fitted on the others "
+             "(in use: scrapers.choice.WEIGHTS)",
+             f"  {'store':20} {'pages':>5} {'dims':>7} {'in use':>7} {'mass':>7} {'in use':>7}  weights fitted"]
+    for r in table_rows:
+        lines.append(f"  {r['store']:20} {r['pages']:5} {r['dims']:>7} {r['dims_in_use']:>7} {r['mass']:>7} "
+                     f"{r['mass_in_use']:>7}  {r['weights'] or 'same'}")
+    return {"rows": table_rows, "lines": lines}  # fmt: skip
 
 
 def summary(rows: list[tuple]) -> dict:

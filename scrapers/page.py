@@ -54,6 +54,12 @@ _DROP_TAGS = frozenset(
     {"script", "style", "noscript", "template", "svg", "head", "iframe", "select", "option"}
 )
 _NEVER_DROP = frozenset({"html", "body", "main"})
+#: Elements that hold what every page of a store shows (a header, footer, navigation, an aside): a size
+#: there is a size guide's or a banner's, not the product's. ``header`` and ``footer`` count only outside
+#: sectioning content (HTML's rule: inside an ``article`` or ``section`` they are that section's own).
+SITE_WIDE_TAGS = frozenset({"header", "footer", "nav", "aside"})
+SITE_WIDE_ROLES = frozenset({"banner", "contentinfo", "navigation", "complementary"})
+_SECTIONING = frozenset({"article", "section", "main"})
 _LD_JSON = re.compile(
     r"<script\b[^>]*\btype\s*=\s*[\"']?application/ld\+json[\"']?[^>]*>(.*?)</script\s*>",
     re.IGNORECASE | re.DOTALL,
@@ -92,6 +98,9 @@ class Line:
     package: bool
     group: int
     index: int
+    #: Read in a site-wide block (:data:`SITE_WIDE_TAGS`, :data:`SITE_WIDE_ROLES`): the store's header,
+    #: footer, navigation or an aside, outside the product's main content.
+    site_wide: bool = False
 
 
 class Page:
@@ -244,7 +253,8 @@ class Page:
         if tree is None:
             return []
         lines: list[Line] = []
-        stack: list[bool] = []  # package context of each open element
+        # context of each open element: (package, site-wide, inside sectioning content)
+        stack: list[tuple[bool, bool, bool]] = [(False, False, False)]
         walker = etree.iterwalk(tree, events=("start", "end"))
         for event, el in walker:
             if len(lines) >= MAX_LINES:
@@ -255,20 +265,27 @@ class Page:
                 foreign, own_package = _container_kind(el.get("id"), el.get("class"))
                 if tag in _DROP_TAGS or not tag or (foreign and tag not in _NEVER_DROP):
                     walker.skip_subtree()
-                    stack.append(stack[-1] if stack else False)
+                    stack.append(stack[-1])
                     # an element skipped at "start" still gets its "end" event (for its tail)
                     continue
-                package = (stack[-1] if stack else False) or own_package
-                stack.append(package)
+                package, site_wide, sectioned = stack[-1]
+                if not site_wide and (tag in SITE_WIDE_TAGS or el.get("role") in SITE_WIDE_ROLES):
+                    site_wide = tag in ("nav", "aside") or not sectioned or el.get("role") in SITE_WIDE_ROLES
+                context = (package or own_package, site_wide, sectioned or tag in _SECTIONING)
+                stack.append(context)
                 if el.text:
-                    _add_line(lines, el.text, package, id(el))
+                    _add_line(lines, el.text, context, id(el))
             else:
-                if stack:
+                if len(stack) > 1:
                     stack.pop()
                 if el.tail:
-                    parent = el.getparent()
-                    _add_line(lines, el.tail, stack[-1] if stack else False, id(parent))
+                    _add_line(lines, el.tail, stack[-1], id(el.getparent()))
         return lines
+
+    def site_wide_line(self, index: int) -> bool:
+        """Whether visible line ``index`` sits in a site-wide block (False for an index out of range)."""
+        lines = self.lines
+        return 0 <= index < len(lines) and lines[index].site_wide
 
 
 @lru_cache(maxsize=8192)
@@ -341,10 +358,10 @@ def visible_text(el) -> str:
     return " ".join("".join(parts).split())
 
 
-def _add_line(lines: list[Line], text: str, package: bool, group: int) -> None:
+def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool], group: int) -> None:
     text = _WS.sub(" ", text).strip()
     if text:
-        lines.append(Line(text, package, group, len(lines)))
+        lines.append(Line(text, context[0], group, len(lines), context[1]))
 
 
 def _loads_lenient(text: str) -> tuple[Any, str | None]:
