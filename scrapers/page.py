@@ -246,41 +246,54 @@ class Page:
 
     @cached_property
     def lines(self) -> list[Line]:
-        """Visible text nodes in document order, outside scripts and other products' containers."""
-        from lxml import etree
+        """Visible text nodes in document order, outside scripts and other products' containers.
 
+        The text nodes that hold more than spaces are found by one XPath (in C); each one's context comes
+        from its element's, computed once per element from its parent's (:meth:`_context`)."""
         tree = self.tree
         if tree is None:
             return []
         lines: list[Line] = []
-        # context of each open element: (package, site-wide, inside sectioning content)
-        stack: list[tuple[bool, bool, bool]] = [(False, False, False)]
-        walker = etree.iterwalk(tree, events=("start", "end"))
-        for event, el in walker:
+        contexts: dict[Any, tuple[bool, bool, bool, int] | None] = {}
+        for text in tree.xpath("//text()[normalize-space()]"):
+            owner = text.getparent()
+            if owner is None:
+                continue
+            holder = owner.getparent() if text.is_tail else owner
+            if holder is None:
+                continue
+            context = self._context(holder, contexts)
+            if context is None:
+                continue
             if len(lines) >= MAX_LINES:
                 self.truncated = True
                 break
-            tag = el.tag if isinstance(el.tag, str) else ""
-            if event == "start":
-                foreign, own_package = _container_kind(el.get("id"), el.get("class"))
-                if tag in _DROP_TAGS or not tag or (foreign and tag not in _NEVER_DROP):
-                    walker.skip_subtree()
-                    stack.append(stack[-1])
-                    # an element skipped at "start" still gets its "end" event (for its tail)
-                    continue
-                package, site_wide, sectioned = stack[-1]
-                if not site_wide and (tag in SITE_WIDE_TAGS or el.get("role") in SITE_WIDE_ROLES):
-                    site_wide = tag in ("nav", "aside") or not sectioned or el.get("role") in SITE_WIDE_ROLES
-                context = (package or own_package, site_wide, sectioned or tag in _SECTIONING)
-                stack.append(context)
-                if el.text:
-                    _add_line(lines, el.text, context, id(el))
-            else:
-                if len(stack) > 1:
-                    stack.pop()
-                if el.tail:
-                    _add_line(lines, el.tail, stack[-1], id(el.getparent()))
+            _add_line(lines, str(text), context)
         return lines
+
+    @staticmethod
+    def _context(el, contexts: dict) -> tuple[bool, bool, bool, int] | None:
+        """(package, site-wide, inside sectioning content, group) of the text ``el`` holds, None when it is
+        not read (inside a dropped tag or another product's container); memoised in ``contexts``."""
+        chain = []
+        node = el
+        while node is not None and node not in contexts:
+            chain.append(node)
+            node = node.getparent()
+        context = contexts[node] if node is not None else (False, False, False, 0)
+        for node in reversed(chain):
+            if context is not None:
+                tag = node.tag if isinstance(node.tag, str) else ""
+                foreign, own_package = _container_kind(node.get("id"), node.get("class"))
+                if tag in _DROP_TAGS or not tag or (foreign and tag not in _NEVER_DROP):
+                    context = None
+                else:
+                    package, site_wide, sectioned, _ = context
+                    if not site_wide and (tag in SITE_WIDE_TAGS or node.get("role") in SITE_WIDE_ROLES):
+                        site_wide = tag in ("nav", "aside") or not sectioned or node.get("role") in SITE_WIDE_ROLES
+                    context = (package or own_package, site_wide, sectioned or tag in _SECTIONING, len(contexts) + 1)
+            contexts[node] = context
+        return context
 
     def site_wide_line(self, index: int) -> bool:
         """Whether visible line ``index`` sits in a site-wide block (False for an index out of range)."""
@@ -358,10 +371,10 @@ def visible_text(el) -> str:
     return " ".join("".join(parts).split())
 
 
-def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool], group: int) -> None:
-    text = _WS.sub(" ", text).strip()
+def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
+    text = " ".join(text.split())
     if text:
-        lines.append(Line(text, context[0], group, len(lines), context[1]))
+        lines.append(Line(text, context[0], context[3], len(lines), context[1]))
 
 
 def _loads_lenient(text: str) -> tuple[Any, str | None]:
