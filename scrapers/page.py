@@ -221,7 +221,7 @@ class Page:
         found: list[str] = []
         for xp in (
             "//meta[@property='og:title']/@content",
-            "//*[@id='productTitle' or @id='title' or @itemprop='name'][1]",
+            "//@id[. = 'productTitle' or . = 'title']/.. | //@itemprop[. = 'name']/..",
             "//h1[contains(@class, 'title') or contains(@class, 'name')]",
             "//title",
             "//h1",
@@ -262,7 +262,9 @@ class Page:
             holder = owner.getparent() if text.is_tail else owner
             if holder is None:
                 continue
-            context = self._context(holder, contexts)
+            context = contexts.get(holder, _UNSEEN)
+            if context is _UNSEEN:
+                context = self._context(holder, contexts)
             if context is None:
                 continue
             if len(lines) >= MAX_LINES:
@@ -299,6 +301,9 @@ class Page:
         """Whether visible line ``index`` sits in a site-wide block (False for an index out of range)."""
         lines = self.lines
         return 0 <= index < len(lines) and lines[index].site_wide
+
+
+_UNSEEN = object()
 
 
 @lru_cache(maxsize=8192)
