@@ -8,7 +8,7 @@ apart, the invented-value count over the whole corpus, a leave-one-store-out tab
 of the chooser's weights fitted without the store (``--loso``), and the CPU time of extraction against a bare lxml parse of
 the same page (median of the per-page ratios), with the load average.
 
-Run: ``python benchmarks/corpus_bench.py [--held-out] [--loso] [--failures] [--repeat N] [--save]``.
+Run: ``python benchmarks/corpus_bench.py [--held-out] [--loso] [--failures] [--stages] [--repeat N] [--save]``.
 ``--failures`` lists the development pages that fail (never a held-out one). ``--save`` (needs
 ``--held-out``) writes ``benchmarks/results/corpus_bench.json``, from which ``scripts/readme_figures.py``
 renders the README's extraction table.
@@ -20,7 +20,9 @@ import argparse
 import os
 import statistics
 import sys
+import time
 from collections import defaultdict
+from functools import partial
 from pathlib import Path
 
 from timing import median_cpu_s
@@ -81,6 +83,62 @@ def score_page(page, repeat: int) -> dict:
         cpu = median_cpu_s(lambda: extract(page), repeat)
         base = median_cpu_s(lambda: lxml.html.document_fromstring(body), repeat)
         out["cpu"], out["lxml"] = cpu, base
+    return out
+
+
+def stages(pages, repeat: int) -> list[str]:
+    """CPU per page of each stage of extraction (decoding, the tree, the visible lines, each adapter run
+    on every page, fallbacks too, the category trail, the chooser) beside a bare lxml parse: where the
+    time goes. Medians over pages of the per-page median of ``repeat`` runs."""
+    import lxml.html
+
+    per: dict[str, list[float]] = defaultdict(list)
+    for page in pages:
+        body, url = page.path.read_bytes(), page.url or f"https://example.test/{page.id}"
+        per["lxml parse (baseline)"].append(median_cpu_s(partial(lxml.html.document_fromstring, body), repeat))
+        runs: dict[str, list[float]] = defaultdict(list)
+        for _ in range(max(repeat, 1)):
+            for name, seconds in _stage_times(body, url):
+                runs[name].append(seconds)
+        for name, times in runs.items():
+            per[name].append(statistics.median(times))
+    lines = [f"CPU per page by stage ({len(pages)} pages; every adapter on every page), median ms:"]
+    lines += [f"  {name:28} {statistics.median(v) * 1000:6.2f}" for name, v in per.items()]
+    return lines
+
+
+def _stage_times(body: bytes, url: str) -> list[tuple[str, float]]:
+    """One extraction of ``body`` run stage by stage: (stage, CPU seconds)."""
+    from scrapers.extract import ADAPTERS, fuse
+    from scrapers.page import Page
+    from scrapers.trail import category_trail
+
+    out = []
+    clock = time.process_time
+    t = clock()
+    pg = Page(body, url, "text/html")
+    out.append(("decode", clock() - t))
+    for name, attr in (("tree", "tree"), ("lines", "lines"), ("language and decimal mark", "decimal_comma")):
+        t = clock()
+        getattr(pg, attr)
+        out.append((name, clock() - t))
+    obs = []
+    for a in ADAPTERS:
+        t = clock()
+        found = a.func(pg)
+        out.append((f"adapter {a.name}", clock() - t))
+        for o in found:
+            o.source = a.name
+        obs.extend(found)
+    t = clock()
+    category_trail(pg)
+    out.append(("trail", clock() - t))
+    t = clock()
+    try:
+        fuse(obs, url)
+    except ExtractionError:
+        pass
+    out.append(("chooser", clock() - t))
     return out
 
 
@@ -197,6 +255,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--failures", action="store_true", help="list the failing development pages")
     ap.add_argument("--loso", action="store_true", help="leave-one-store-out table of the fitted chooser")
     ap.add_argument("--repeat", type=int, default=3, help="timing repeats per page (0: no timing)")
+    ap.add_argument("--stages", action="store_true", help="CPU per page of each stage of extraction")
     ap.add_argument("--save", action="store_true")
     args = ap.parse_args(argv)
 
@@ -228,6 +287,8 @@ def main(argv: list[str] | None = None) -> int:
     if sp:
         print(f"speed: extraction {sp['cpu_ms_median']} ms CPU median, lxml parse {sp['lxml_ms_median']} ms; "
               f"median per-page ratio {sp['median_ratio']}x over {sp['pages']} pages; load {sp['load_average']}")
+    if args.stages:
+        print("\n".join(stages(dev + held, args.repeat)))
     if args.save:
         if not held_rows:
             print("not saved: --save needs --held-out")
