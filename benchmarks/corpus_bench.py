@@ -4,7 +4,8 @@ stated (within 2 %; a page stating none gives none), mass the same; invented val
 
 Prints, for the development stores (and, with ``--held-out``, the held-out stores in aggregate only: no
 page of a held-out store is ever named): pages right by language and by layout class, the shared batches
-apart, the invented-value count over the whole corpus, a leave-one-store-out table
+apart, the invented-value count over the whole corpus, the values one store's pages report for
+different products (a size guide or a banner read as the product's), a leave-one-store-out table
 of the chooser's weights fitted without the store (``--loso``), and the CPU time of extraction against a bare lxml parse of
 the same page (median of the per-page ratios), with the load average.
 
@@ -78,7 +79,7 @@ def score_page(page, repeat: int) -> dict:
     text = body.decode("utf-8", errors="replace")
     out = {"dims": verdict.dims_right, "mass": verdict.mass_right, "problems": verdict.problems,
            "invented": invented(record, page.truth, page_numbers(text)),
-           "samples": choice_samples(record, page.truth)}  # fmt: skip
+           "samples": choice_samples(record, page.truth), "reported": reported(record)}  # fmt: skip
     if repeat:
         cpu = median_cpu_s(lambda: extract(page), repeat)
         base = median_cpu_s(lambda: lxml.html.document_fromstring(body), repeat)
@@ -140,6 +141,34 @@ def _stage_times(body: bytes, url: str) -> list[tuple[str, float]]:
         pass
     out.append(("chooser", clock() - t))
     return out
+
+
+def reported(record) -> list[tuple]:
+    """The product values a record reports, as comparable keys: ("dims", extents) and ("mass", g)."""
+    if record is None:
+        return []
+    out = []
+    if record.dims:
+        out.append(("dims", tuple(sorted(round(e["cm"], 1) for e in record.dims))))
+    if record.mass_g is not None:
+        out.append(("mass", round(record.mass_g, 1)))
+    return out
+
+
+def shared_values(rows: list[tuple]) -> tuple[int, int]:
+    """Values one store's pages report for different products (a size guide or a banner read as the
+    product's): (how many such values, on how many pages). A value counts when two or more pages of one
+    store report it and it is wrong on at least one of them."""
+    by_store: dict[str, dict[tuple, list[dict]]] = defaultdict(lambda: defaultdict(list))
+    for page, s in rows:
+        for key in s["reported"]:
+            by_store[page.store][key].append(s)
+    values, pages = 0, 0
+    for seen in by_store.values():
+        for (feature, _), group in seen.items():
+            if len(group) > 1 and not all(s[feature] for s in group):
+                values, pages = values + 1, pages + len(group)
+    return values, pages
 
 
 def _cell(rows: list[dict], key: str) -> str:
@@ -280,6 +309,8 @@ def main(argv: list[str] | None = None) -> int:
     inv = [(p, s) for p, s in dev_rows + held_rows if s["invented"]]
     n_inv = sum(len(s["invented"]) for _, s in inv)
     print(f"invented values: {n_inv} on {len(inv)} pages of {len(dev_rows) + len(held_rows)} scored")
+    n_shared, on_pages = shared_values(dev_rows + held_rows)
+    print(f"values one store reports for different products, wrong on one at least: {n_shared} ({on_pages} pages)")
     loso = loso_table(dev_rows) if args.loso else None
     if loso:
         print("\n".join(loso["lines"]))
@@ -312,6 +343,7 @@ def save(dev_rows, held_rows, n_inv: int, sp: dict, loso: dict | None) -> None:
         f"CPU, load {sp.get('load_average')})"
     )
     data = {"development": d, "held_out": h, "invented": n_inv, "speed": sp,
+            "shared_across_products": shared_values(dev_rows + held_rows)[0],
             "loso": loso["rows"] if loso else None}  # fmt: skip
     path = save_result("corpus_bench", benchmark="extraction, real-page corpus", result=result, data=data, order=29)
     print(f"saved {path}")

@@ -20,6 +20,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
+from scrapers import labelled_pages
 from scrapers.records import ProductRecord
 
 __all__ = ["TOLERANCE", "Verdict", "invented", "judge", "page_numbers", "stated_extents", "truth_of"]
@@ -34,7 +35,7 @@ _VULGAR = {"½": 0.5, "¼": 0.25, "¾": 0.75, "⅛": 0.125, "⅜": 0.375, "⅝":
 
 
 def within(a: float, b: float, tolerance: float = TOLERANCE) -> bool:
-    return abs(a - b) <= tolerance * max(abs(a), abs(b))
+    return labelled_pages.within(a, b, tolerance)
 
 
 @dataclass
