@@ -6,8 +6,8 @@ Entry points: :func:`extract_page` (a body as fetched), :func:`extract_file` (a 
 
 Fusion (documented in ``scrapers/EXTRACTION.md``): for the product's dimensions and for its mass
 separately, observations that agree (within :data:`AGREE_TOLERANCE`, a shorter dimension list agreeing
-with part of a longer one) form a cluster; the cluster holding the highest-priority observation
-(adapter order in :data:`ADAPTERS`, then the observation's rank, then page order) wins, its most complete
+with part of a longer one) form a cluster; the highest-scoring cluster wins (:mod:`scrapers.choice`: one
+scored decision over its reader, rank, support, completeness and place on the page), its most complete
 member is the value, and every other cluster becomes a warning. Package values are kept apart, as
 listed by the highest-priority adapter that states any. Values outside ``kb.features`` limits are
 refused with a warning.
@@ -22,6 +22,7 @@ from kb.errors import ExtractionError, ImpossibleValues
 from kb.features import MATERIALS, axes_from_extents
 from kb.files import read_input_file
 from kb.measures.text import clean_text
+from scrapers import choice
 
 # Importing an adapter module registers its adapters (in priority order, whatever the import order).
 from scrapers.adapters import (  # noqa: F401
@@ -128,8 +129,7 @@ def extract_file(path: str | Path) -> ProductRecord:
 
 
 def _priority(o: Observation) -> tuple[int, int, int]:
-    index = next((i for i, a in enumerate(ADAPTERS) if a.name == o.source), len(ADAPTERS))
-    return (index, o.rank, o.order)
+    return (_source_index(o), o.rank, o.order)
 
 
 def _close(x: float, y: float) -> bool:
@@ -175,37 +175,30 @@ def _candidate(o: Observation, decision: str) -> dict:
 def _choose(
     cands: list[Observation], agree, feature: str, warnings: list[str], decisions: list[dict] | None = None
 ) -> Observation | None:
-    """The winning observation among valid candidates (see the module doc); others become warnings.
-    Each candidate's fate is appended to ``decisions`` (``extract --explain``)."""
+    """The winning observation among valid candidates: the one scored decision of :mod:`scrapers.choice`;
+    other clusters become warnings. Each candidate's fate is appended to ``decisions`` (``extract
+    --explain``), with its cluster's number, features and score."""
     if not cands:
         return None
-    clusters: list[list[Observation]] = []
-    for o in sorted(cands, key=_priority)[:MAX_CANDIDATES]:
-        for cluster in clusters:
-            if agree(cluster[0].value, o.value):
-                cluster.append(o)
-                break
-        else:
-            clusters.append([o])
+    ranked = sorted(cands, key=_priority)[:MAX_CANDIDATES]
+    clusters = choice.choose(ranked, agree, _source_index, len(ADAPTERS))
     best = clusters[0]
-    if feature == "dims":
-        chosen = sorted(best, key=lambda o: (-len(o.value), _priority(o)))[0]
-    else:
-        chosen = best[0]
+    chosen = best.value
     if decisions is not None:
-        for i, cluster in enumerate(clusters[:MAX_CANDIDATES]):
-            for o in cluster:
+        for i, c in enumerate(clusters):
+            scored = {"cluster": i + 1, "score": round(c.score, 3), "features": c.features}
+            for o in c.members:
                 if o is chosen:
-                    why = "chosen: highest-priority cluster (adapter, rank, page order)"
-                    if feature == "dims" and len(best) > 1:
-                        why += ", most complete member"
+                    why = "chosen: highest-scoring cluster (scrapers.choice)"
+                    if feature == "dims" and len(c.members) > 1:
+                        why += ", its most complete member"
                 elif i == 0:
                     why = "agrees with the chosen value"
                 else:
-                    why = f"alternative: disagrees with the chosen value (cluster {i + 1}, lower priority)"
-                decisions.append(_candidate(o, why))
+                    why = f"alternative: disagrees with the chosen value (cluster {i + 1}, lower score)"
+                decisions.append(_candidate(o, why) | scored | ({"representative": True} if o is c.value else {}))
     for other in clusters[1 : 1 + MAX_DISAGREEMENTS]:
-        o = other[0]
+        o = other.members[0]
         warnings.append(
             f"{feature}: {o.source} also states {_fmt(o.value)} ({o.raw[:80]!r}); kept {_fmt(chosen.value)} "
             f"from {chosen.source} ({chosen.raw[:80]!r})"
@@ -213,6 +206,10 @@ def _choose(
     if len(clusters) > 1 + MAX_DISAGREEMENTS:
         warnings.append(f"{feature}: and {len(clusters) - 1 - MAX_DISAGREEMENTS} more disagreeing values")
     return chosen
+
+
+def _source_index(o: Observation) -> int:
+    return next((i for i, a in enumerate(ADAPTERS) if a.name == o.source), len(ADAPTERS))
 
 
 def _collapse_repeats(values: list) -> list:

@@ -13,6 +13,8 @@ import unicodedata
 
 
 def fold(text: str) -> str:
+    if text.isascii():
+        return text.lower()  # NFKD leaves ASCII as it is, and it has no combining marks
     decomposed = unicodedata.normalize("NFKD", text.lower())
     return "".join(ch for ch in decomposed if not unicodedata.combining(ch))
 

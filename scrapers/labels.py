@@ -142,7 +142,7 @@ def _classify(label: object) -> LabelInfo | None:
     if squashed in CJK_LABELS:
         kind, package = CJK_LABELS[squashed]
         return LabelInfo(kind, package, unit, shipping=_ships(package, [squashed]))
-    if any(_is_cjk(ch) for ch in squashed):
+    if _has_cjk(squashed):
         if unit is None and (m := _TRAILING_UNIT.search(text)) and (length_unit(m.group(1)) or mass_unit(m.group(1))):
             unit = m.group(1)  # "本体サイズ（H×W×D） mm"
         return _classify_cjk(squashed, unit)
@@ -233,13 +233,12 @@ def _ships(package: bool, words: list[str]) -> bool:
 
 
 
-def _is_cjk(ch: str) -> bool:
-    return (
-        "\u3040" <= ch <= "\u30ff"
-        or "\u4e00" <= ch <= "\u9fff"
-        or "\uac00" <= ch <= "\ud7af"
-        or "\u1100" <= ch <= "\u11ff"
-    )
+#: Kana, CJK ideographs, Hangul syllables and jamo: labels written without spaces.
+_CJK = re.compile("[\u3040-\u30ff\u4e00-\u9fff\uac00-\ud7af\u1100-\u11ff]")
+
+
+def _has_cjk(text: str) -> bool:
+    return _CJK.search(text) is not None
 
 
 def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
@@ -286,7 +285,7 @@ def classify_other(label: object) -> LabelInfo | None:
         folded = fold(_BRACKETS.sub(" ", text))
         if any(token in folded for token in CJK_CAPACITY):
             return LabelInfo("weight", role="capacity")
-        if any(_is_cjk(ch) for ch in folded):
+        if _has_cjk(folded):
             return _cjk_component(re.sub(r"[\W_]+", "", folded))
         words = [w for w in re.split(r"[\W_]+", folded) if w]
         if not words or len(words) > _MAX_WORDS:
@@ -323,8 +322,13 @@ def _cjk_component(squashed: str) -> LabelInfo | None:
     return None
 
 
+_SUFFIXES = tuple(COMPOUND_SUFFIXES)
+
+
 def _compound_kind(word: str) -> str | None:
     """The kind a compound's measurement suffix names, whatever its prefix (``schlauchlänge`` -> length)."""
+    if not word.endswith(_SUFFIXES):
+        return None
     for suffix in COMPOUND_SUFFIXES:
         if word.endswith(suffix) and len(word) > len(suffix) + 2:
             return KIND_WORDS[suffix]
@@ -332,6 +336,8 @@ def _compound_kind(word: str) -> str | None:
 
 
 def _split_compound(word: str) -> tuple[str, bool] | None:
+    if not word.endswith(_SUFFIXES):
+        return None
     for suffix in COMPOUND_SUFFIXES:
         if word.endswith(suffix) and len(word) > len(suffix):
             prefix = word[: -len(suffix)].rstrip("-")

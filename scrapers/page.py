@@ -54,6 +54,12 @@ _DROP_TAGS = frozenset(
     {"script", "style", "noscript", "template", "svg", "head", "iframe", "select", "option"}
 )
 _NEVER_DROP = frozenset({"html", "body", "main"})
+#: Elements that hold what every page of a store shows (a header, footer, navigation, an aside): a size
+#: there is a size guide's or a banner's, not the product's. ``header`` and ``footer`` count only outside
+#: sectioning content (HTML's rule: inside an ``article`` or ``section`` they are that section's own).
+SITE_WIDE_TAGS = frozenset({"header", "footer", "nav", "aside"})
+SITE_WIDE_ROLES = frozenset({"banner", "contentinfo", "navigation", "complementary"})
+_SECTIONING = frozenset({"article", "section", "main"})
 _LD_JSON = re.compile(
     r"<script\b[^>]*\btype\s*=\s*[\"']?application/ld\+json[\"']?[^>]*>(.*?)</script\s*>",
     re.IGNORECASE | re.DOTALL,
@@ -92,6 +98,9 @@ class Line:
     package: bool
     group: int
     index: int
+    #: Read in a site-wide block (:data:`SITE_WIDE_TAGS`, :data:`SITE_WIDE_ROLES`): the store's header,
+    #: footer, navigation or an aside, outside the product's main content.
+    site_wide: bool = False
 
 
 class Page:
@@ -212,7 +221,7 @@ class Page:
         found: list[str] = []
         for xp in (
             "//meta[@property='og:title']/@content",
-            "//*[@id='productTitle' or @id='title' or @itemprop='name'][1]",
+            "//@id[. = 'productTitle' or . = 'title']/.. | //@itemprop[. = 'name']/..",
             "//h1[contains(@class, 'title') or contains(@class, 'name')]",
             "//title",
             "//h1",
@@ -237,38 +246,64 @@ class Page:
 
     @cached_property
     def lines(self) -> list[Line]:
-        """Visible text nodes in document order, outside scripts and other products' containers."""
-        from lxml import etree
+        """Visible text nodes in document order, outside scripts and other products' containers.
 
+        The text nodes that hold more than spaces are found by one XPath (in C); each one's context comes
+        from its element's, computed once per element from its parent's (:meth:`_context`)."""
         tree = self.tree
         if tree is None:
             return []
         lines: list[Line] = []
-        stack: list[bool] = []  # package context of each open element
-        walker = etree.iterwalk(tree, events=("start", "end"))
-        for event, el in walker:
+        contexts: dict[Any, tuple[bool, bool, bool, int] | None] = {}
+        for text in tree.xpath("//text()[normalize-space()]"):
+            owner = text.getparent()
+            if owner is None:
+                continue
+            holder = owner.getparent() if text.is_tail else owner
+            if holder is None:
+                continue
+            context = contexts.get(holder, _UNSEEN)
+            if context is _UNSEEN:
+                context = self._context(holder, contexts)
+            if context is None:
+                continue
             if len(lines) >= MAX_LINES:
                 self.truncated = True
                 break
-            tag = el.tag if isinstance(el.tag, str) else ""
-            if event == "start":
-                foreign, own_package = _container_kind(el.get("id"), el.get("class"))
-                if tag in _DROP_TAGS or not tag or (foreign and tag not in _NEVER_DROP):
-                    walker.skip_subtree()
-                    stack.append(stack[-1] if stack else False)
-                    # an element skipped at "start" still gets its "end" event (for its tail)
-                    continue
-                package = (stack[-1] if stack else False) or own_package
-                stack.append(package)
-                if el.text:
-                    _add_line(lines, el.text, package, id(el))
-            else:
-                if stack:
-                    stack.pop()
-                if el.tail:
-                    parent = el.getparent()
-                    _add_line(lines, el.tail, stack[-1] if stack else False, id(parent))
+            _add_line(lines, str(text), context)
         return lines
+
+    @staticmethod
+    def _context(el, contexts: dict) -> tuple[bool, bool, bool, int] | None:
+        """(package, site-wide, inside sectioning content, group) of the text ``el`` holds, None when it is
+        not read (inside a dropped tag or another product's container); memoised in ``contexts``."""
+        chain = []
+        node = el
+        while node is not None and node not in contexts:
+            chain.append(node)
+            node = node.getparent()
+        context = contexts[node] if node is not None else (False, False, False, 0)
+        for node in reversed(chain):
+            if context is not None:
+                tag = node.tag if isinstance(node.tag, str) else ""
+                foreign, own_package = _container_kind(node.get("id"), node.get("class"))
+                if tag in _DROP_TAGS or not tag or (foreign and tag not in _NEVER_DROP):
+                    context = None
+                else:
+                    package, site_wide, sectioned, _ = context
+                    if not site_wide and (tag in SITE_WIDE_TAGS or node.get("role") in SITE_WIDE_ROLES):
+                        site_wide = tag in ("nav", "aside") or not sectioned or node.get("role") in SITE_WIDE_ROLES
+                    context = (package or own_package, site_wide, sectioned or tag in _SECTIONING, len(contexts) + 1)
+            contexts[node] = context
+        return context
+
+    def site_wide_line(self, index: int) -> bool:
+        """Whether visible line ``index`` sits in a site-wide block (False for an index out of range)."""
+        lines = self.lines
+        return 0 <= index < len(lines) and lines[index].site_wide
+
+
+_UNSEEN = object()
 
 
 @lru_cache(maxsize=8192)
@@ -341,10 +376,10 @@ def visible_text(el) -> str:
     return " ".join("".join(parts).split())
 
 
-def _add_line(lines: list[Line], text: str, package: bool, group: int) -> None:
-    text = _WS.sub(" ", text).strip()
+def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
+    text = " ".join(text.split())
     if text:
-        lines.append(Line(text, package, group, len(lines)))
+        lines.append(Line(text, context[0], context[3], len(lines), context[1]))
 
 
 def _loads_lenient(text: str) -> tuple[Any, str | None]:

@@ -68,8 +68,9 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
         shortest = max(1, len(words)) if k == 0 and len(words) <= _MAX_LABEL_WORDS else 1
         for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
             first = words[-n].group(0)
-            if k > 0 and (DIGIT.search(first) or is_unit(first)):
-                continue  # "Weight: 2 kg Height: 30 cm": "kg" ends the previous value, it starts no label
+            if k > 0 and (DIGIT.search(first) or is_unit(first.rstrip(";,|"))):
+                continue  # "Weight: 2 kg Height: 30 cm", "Height: 30 cm; Width: 20 cm": "kg", "cm;" end the
+                # previous value, they start no label
             cand_start = prev_end + words[-n].start()
             info = classify_label(text[cand_start : sep.start()])
             if info is not None:
@@ -179,7 +180,7 @@ def _pairs_at(lines: list[Line], i: int, pairs: list[Pair], column_values: set[i
             return
     if info is not None:
         j = i + 1
-        while j < n and j <= i + 2 and _PUNCT_ONLY.fullmatch(lines[j].text):
+        while j < n and j <= i + MAX_FILLER_LINES and _filler(lines[j].text):
             j += 1
         if j < n:
             nxt = lines[j]
@@ -227,6 +228,21 @@ def _with_heading_unit(pair: Pair, headings: dict[str, tuple[str, str, int]], i:
         return pair
     unit, heading, _ = found
     return replace(pair, info=replace(pair.info, unit=unit), unit_context=f"the unit of the heading {heading!r}")
+
+
+#: Lines a label's value may follow after: an info icon's letter, a tooltip's ``?``, ``approx.`` (sibling
+#: elements between the label's and the value's: ``<span>Weight</span><span class=tip>i</span><p>3.2 kg``).
+MAX_FILLER_LINES = 3
+_MAX_FILLER_CHARS = 12
+
+
+def _filler(text: str) -> bool:
+    """Whether a line between a label and its value is filler: punctuation, or a short text without a
+    digit that names no measurement (:func:`classify_label`, :func:`classify_other`)."""
+    if _PUNCT_ONLY.fullmatch(text):
+        return True
+    return (len(text) <= _MAX_FILLER_CHARS and not DIGIT.search(text) and classify_label(text) is None
+            and classify_other(text) is None)  # fmt: skip
 
 
 def _label_line(line: Line) -> bool:

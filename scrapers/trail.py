@@ -98,14 +98,19 @@ def _category_texts(value: Any) -> list[str]:
     return []
 
 
+#: Elements whose class or id says "breadcrumb" in the cases pages write it (``breadcrumb``,
+#: ``Breadcrumb``, ``BreadCrumb``, ``BREADCRUMB``), in document order. Testing the attributes and taking
+#: their elements runs ~5x faster in libxml2 than a predicate on every element (``//*[...]``).
+_CRUMB_WORDS = " or ".join(f"contains(., '{word}')" for word in ("readcrumb", "readCrumb", "READCRUMB"))
+_CRUMB_PATH = f"//@class[{_CRUMB_WORDS}]/.. | //@id[{_CRUMB_WORDS}]/.."
+
+
 def _html_crumbs(page: Page) -> list[str]:
     """The items of the first element whose id or class says "breadcrumb"."""
     tree = page.tree
     if tree is None:
         return []
-    lower = "translate({}, 'BREADCUM', 'breadcum')"
-    path = f"//*[contains({lower.format('@class')}, 'breadcrumb') or contains({lower.format('@id')}, 'breadcrumb')]"
-    for el in tree.xpath(path)[:20]:
+    for el in tree.xpath(_CRUMB_PATH)[:20]:
         parts = [text_content(a) for a in el.xpath(".//a | .//li[not(.//a)]")]
         parts = [p for p in parts if p] or _SEPARATORS.split(text_content(el))
         parts = [p for p in parts if _LETTER.search(p)]

@@ -50,6 +50,8 @@ class Observation:
     role: str = "product"
     #: For a component's value, the part it names (``cable``), else None.
     part: str | None = None
+    #: Read in a site-wide block (the store's header, footer, navigation, an aside: ``Line.site_wide``).
+    site_wide: bool = False
 
     def extents(self) -> tuple[tuple[str, float], ...]:
         """``(role, cm)`` per stated extent of a dims observation."""

@@ -355,4 +355,6 @@ def spec_table(page: Page) -> list[Observation]:
     if _inch_locale(page.lang):
         pairs = [_with_locale_inches(p, page.lang) for p in pairs]
     obs = observations_from_pairs(pairs, page.decimal_comma)
+    for o in obs:
+        o.site_wide = page.site_wide_line(o.order)
     return obs + selected_variant(page) + material_observations(page.lines)

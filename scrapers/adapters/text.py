@@ -146,4 +146,6 @@ def free_text(page: Page) -> list[Observation]:
             mass = parse_mass(weighs.group("q"), None, dc)
             if mass is not None:
                 obs.append(Observation("mass", mass, rank=2, order=line.index, raw=raw, note=note))
+    for o in obs:
+        o.site_wide = page.site_wide_line(o.order)
     return obs
