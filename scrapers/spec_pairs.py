@@ -159,6 +159,8 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
         text = line.text
         if (heading := _heading_unit(text)) is not None:
             headings[heading[0]] = (heading[1], text, i)
+        elif (heading := _column_unit(lines, i)) is not None:
+            headings[heading[0]] = (heading[1], f"{text} {lines[i + 1].text}", i + 1)
         before = len(pairs)
         _pairs_at(lines, i, pairs, column_values)
         if headings and len(pairs) > before:
@@ -211,6 +213,20 @@ def _heading_unit(text: str) -> tuple[str, str] | None:
         return None
     unit = unit_hint(text)
     if unit is None or classify_label(text) is None:
+        return None
+    if length_unit(unit) is not None:
+        return "length", unit
+    return ("mass", unit) if mass_unit(unit) is not None else None
+
+
+def _column_unit(lines: list[Line], i: int) -> tuple[str, str] | None:
+    """("length" or "mass", unit) when line ``i`` is a measurement label without a value and the next line
+    is a unit alone: a table's header row whose column states the unit (``Dimension | cm | inch`` over
+    ``Width | 30 | 11.8``, ``Weight | kg``). The first unit column is the one the values are read in."""
+    if i + 1 >= len(lines) or not _label_line(lines[i]):
+        return None
+    unit = lines[i + 1].text.strip("()[] ")
+    if not is_unit(unit):
         return None
     if length_unit(unit) is not None:
         return "length", unit

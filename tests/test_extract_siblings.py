@@ -64,3 +64,22 @@ def test_several_pairs_on_one_line_keep_each_values_unit(sep):
     assert [v for _, v, _ in split_inline(text)] == ["30 cm", "20 cm", "10 cm"]
     record = extract_page(page(f"<ul><li>{text}</li></ul>"), "https://shop.test/p", "text/html")
     assert sorted(e["cm"] for e in record.dims) == [10.0, 20.0, 30.0]
+
+
+def dims_of(body: str):
+    try:
+        return sorted(e["cm"] for e in extract_page(page(body), "https://shop.test/p", "text/html").dims)
+    except ExtractionError:
+        return None
+
+
+def test_a_unit_in_a_column_header_gives_the_unit_of_the_values_under_it():
+    # layout class: a spec table whose header row states the unit per column, values as bare numbers
+    table = ("<table><tr><th>Dimension</th><th>{unit}</th><th>inch</th></tr>"
+             "<tr><td>Width</td><td>30</td><td>11.8</td></tr><tr><td>Height</td><td>20</td><td>7.9</td></tr></table>")
+    assert dims_of(table.format(unit="cm")) == [20.0, 30.0]
+    assert dims_of(table.format(unit="(mm)")) == [2.0, 3.0]
+    assert mass_of("<table><tr><th>Weight</th><th>kg</th></tr><tr><td>Weight</td><td>2.5</td></tr></table>") == 2500.0
+    # the header's first cell must name a measurement, and the unit must be the cell right after it
+    assert dims_of(table.format(unit="cm").replace("Dimension", "Model")) is None
+    assert dims_of(table.format(unit="metric").replace("metric</th>", "metric</th><th>cm</th>")) is None
