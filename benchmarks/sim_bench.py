@@ -1,11 +1,12 @@
 """Simulation benchmarks: single trials (physics part) and the validation worker (workers part).
 
-Run: ``python benchmarks/sim_bench.py [--quick] [--only trials|workers|choice] [--top N] [--save]``. Prints ratios
+Run: ``python benchmarks/sim_bench.py [--quick] [--only trials|workers|choice|protocols] [--top N] [--save]``. Prints ratios
 against a baseline measured in the same run (no absolute thresholds): trials per second on one and on two
 worker processes, the wall time of validating the whole seed catalog's best grasps (planner -> trial ->
 knowledge base), and the closed-loop choice (issue 14): objects with a validated grasp, first-choice
 success, how often they differ and trials per CPU second, beside the figures before that issue and at the
-start of this session. ``--save`` (a full-catalog run) saves the choice row for the README (benchmarks/results).
+start of this session; ``protocols`` runs both validation protocols (sim/protocols.py), today's as the
+baseline, with their failures by push direction and cause. ``--save`` (a full-catalog run) saves the choice row for the README (benchmarks/results).
 """
 
 from __future__ import annotations
@@ -211,11 +212,91 @@ def bench_choice(top: int = 3, *, limit: int | None = None, workers: int = 2) ->
     return out
 
 
+def _phase_of(reason: str) -> str:
+    """Where a failed trial failed: a push's direction, the lift, the hold, or the set-up and close."""
+    for direction in ("+x", "-x", "+y", "-y", "+z", "-z"):
+        if f"the {direction} push" in reason:
+            return direction
+    for phase in ("lift", "hold"):
+        if f"the {phase}" in reason:
+            return phase
+    return "lift" if reason.startswith("not lifted") else "close"
+
+
+def failures_by_direction(rows: list[dict[str, Any]]) -> dict[str, dict[str, int]]:
+    """Failed trials counted by where they failed (each push direction; under six_direction every
+    direction not held counts) and by their cause's class (sim/diagnosis.py)."""
+    from sim.diagnosis import diagnose
+
+    out: dict[str, dict[str, int]] = {}
+    for row in rows:
+        if row.get("success") or row.get("outcome") == "error":
+            continue
+        details = json.loads(row.get("details") or "{}")
+        cause = diagnose({**row, "details": details})
+        kind = cause.kind if cause is not None else "other"
+        where = details.get("failed_directions") or [_phase_of(str(row.get("reason") or ""))]
+        for w in where:
+            out.setdefault(w, {}).setdefault(kind, 0)
+            out[w][kind] += 1
+    return out
+
+
+def bench_protocols(top: int = 3, *, limit: int | None = None, workers: int = 2) -> dict[str, Any]:
+    """Both validation protocols (sim/protocols.py) on the seed catalog (data written here), in one run and
+    one knowledge base: today's ``lift_push`` first, the baseline, then ``six_direction``; for each the
+    objects with a grasp that passes, the first choice that passes, trials per CPU second (the ratio to the
+    baseline's) and the failures by direction and cause."""
+    from kb.catalog import KnowledgeBase
+    from kb.csvio import write_catalog_csv
+    from sim.worker import validate
+
+    records = seed_records()[:limit] if limit else seed_records()
+    out: dict[str, Any] = {"top": top, "objects": len(records), "protocols": {}}
+    with tempfile.TemporaryDirectory() as tmp:
+        csv = Path(tmp) / "catalog.csv"
+        write_catalog_csv(records, csv)
+        kb = KnowledgeBase.open(Path(tmp) / "protocols.duckdb")
+        kb.import_csv(csv)
+        base = None
+        for name in ("lift_push", "six_direction"):
+            summary = validate(kb, None, top=top, workers=workers, progress=False, render=None, protocol=name)
+            cpu = sum(float(json.loads(r["details"]).get("cpu_time_s") or 0.0) for r in summary.results)
+            c = summary.choice_summary
+            rate = round(summary.ran / cpu, 2) if cpu else None
+            base = base or rate
+            run = {
+                "validated": c.validated,
+                "first_holds": c.first_holds,
+                "trials": summary.ran,
+                "errors": summary.errors,
+                "trials_per_cpu_s": rate,
+                "vs_lift_push": round(rate / base, 3) if rate and base else None,
+                "wall_s": summary.wall_time_s,
+                "load_avg_1min": round(os.getloadavg()[0], 2),
+                "failures": failures_by_direction(summary.results),
+                "no_grasp_passes": sorted(ch.object_name for ch in summary.choices if ch.validated is None),
+            }
+            out["protocols"][name] = run
+            n = c.objects
+            print(
+                f"{name}, top {top}, {n} seed objects (data written here): a grasp passes for {c.validated}/{n} "
+                f"({100 * c.validated / n:.1f} %), first choice {c.first_holds}/{n}; {rate} trials per CPU second "
+                f"(x{run['vs_lift_push']} of lift_push in this run); {summary.errors} errors; "
+                f"load average {run['load_avg_1min']:g}\n  failures by direction and cause: {run['failures']}\n"
+                f"  no grasp passes: {run['no_grasp_passes']}",
+                flush=True,
+            )
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="20 objects instead of the whole seed catalog")
     parser.add_argument(
-        "--only", choices=("trials", "workers", "choice"), help="run one part (default: all three)"
+        "--only",
+        choices=("trials", "workers", "choice", "protocols"),
+        help="run one part (default: trials, workers and choice)",
     )
     parser.add_argument("--top", type=int, default=3, help="candidates per object in the choice part")
     parser.add_argument(
@@ -227,6 +308,8 @@ def main(argv: list[str] | None = None) -> int:
         bench_trials(quick=args.quick)
     if args.only in (None, "workers"):
         bench_workers(limit=limit)
+    if args.only == "protocols":
+        bench_protocols(args.top, limit=limit)
     if args.only in (None, "choice"):
         choice = bench_choice(args.top, limit=limit)
         if args.save:

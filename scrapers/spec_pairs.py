@@ -68,8 +68,9 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
         shortest = max(1, len(words)) if k == 0 and len(words) <= _MAX_LABEL_WORDS else 1
         for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
             first = words[-n].group(0)
-            if k > 0 and (DIGIT.search(first) or is_unit(first)):
-                continue  # "Weight: 2 kg Height: 30 cm": "kg" ends the previous value, it starts no label
+            if k > 0 and (DIGIT.search(first) or is_unit(first.rstrip(";,|"))):
+                continue  # "Weight: 2 kg Height: 30 cm", "Height: 30 cm; Width: 20 cm": "kg", "cm;" end the
+                # previous value, they start no label
             cand_start = prev_end + words[-n].start()
             info = classify_label(text[cand_start : sep.start()])
             if info is not None:

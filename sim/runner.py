@@ -14,6 +14,7 @@ import numpy as np
 from kb.errors import PhysicsError
 from sim import hand as H
 from sim.programs import program_for
+from sim.protocols import LIFT_PUSH
 from sim.world import APPROACH_M, TrialWorld
 
 __all__ = [
@@ -27,9 +28,9 @@ __all__ = [
     "check_physics",
 ]
 
-#: Success thresholds, relative to the palm (the issue's; DexGraspBench uses similar ones).
-MAX_SLIP_CM = 5.0
-MAX_ROTATION_DEG = 15.0
+#: Success thresholds of the default protocol, relative to the palm (sim/protocols.py LIFT_PUSH).
+MAX_SLIP_CM = LIFT_PUSH.max_translation_cm
+MAX_ROTATION_DEG = LIFT_PUSH.max_rotation_deg
 #: Lift height and the fraction of it the object must follow to count as lifted.
 LIFT_M = 0.10
 #: Phase durations (s). Closing ramps for CLOSE_RAMP_S then settles; each perturbation lasts PUSH_S.
@@ -241,10 +242,12 @@ class Runner:
                 joint[3] = torque
             d.ctrl[a] = q_ref + direction * torque / m.actuator_gainprm[a, 0]
 
-    def lift(self) -> float:
+    def lift(self, height_m: float = LIFT_M, *, above_m: float = 0.0) -> float:
+        """Raise the wrist by ``height_m`` over LIFT_S, from ``above_m`` over its grasp height (a second
+        rise continues from the first's top); returns how far (cm) the object has risen since closing."""
         w, d = self.w, self.d
-        base = self.wrist_base.copy()
-        up = np.array([0.0, 0.0, LIFT_M])
+        base = self.wrist_base + np.array([0.0, 0.0, above_m])
+        up = np.array([0.0, 0.0, height_m])
         self._phase(
             LIFT_S, " during the lift", lambda u: d.ctrl.__setitem__(w.wrist_act, base + _smooth(u) * up)
         )

@@ -137,7 +137,10 @@ def run_task(task: TrialTask) -> dict[str, Any]:
         )
         if res.get("hand_version") and str(res["hand_version"]) != task.hand_version:
             details["trial_hand_version"] = str(res["hand_version"])  # the key keeps the planned version
-        for key in ("program", "lifted", "perturbation", "closed_posture", "sim_time_s", "wall_time_s"):
+        for key in (
+            "program", "lifted", "perturbation", "closed_posture", "sim_time_s", "wall_time_s", "protocol",
+            "failed_directions",
+        ):
             if key in res:
                 details[key] = res[key]
         details.setdefault("wall_time_s", round(time.perf_counter() - start, 4))

@@ -34,7 +34,8 @@ from kb.features import ObjectRecord
 from sim import hand as H
 from sim.grasps import HAND_MAX_APERTURE_CM, GraspPlan
 from sim.programs import program_for
-from sim.runner import (
+from sim.protocols import DEFAULT_PROTOCOL, Protocol, protocol_named
+from sim.runner import (  # noqa: F401 - re-exported
     LIFT_M,
     MAX_ROTATION_DEG,
     MAX_SLIP_CM,
@@ -56,6 +57,7 @@ __all__ = [
     "beyond_limits",
     "build_world",
     "check_physics",
+    "run_six_direction_trial",
     "run_trial",
 ]
 
@@ -96,6 +98,8 @@ class TrialResult:
     wall_time_s: float = 0.0
     simulator: str = SIMULATOR
     hand_version: str = H.HAND_VERSION
+    protocol: str = DEFAULT_PROTOCOL  # sim/protocols.py: the success rule this result was judged by
+    failed_directions: list[str] = field(default_factory=list)  # six_direction: the directions not held
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
@@ -108,13 +112,17 @@ def run_trial(
     seed: int = 0,
     stop_after: str | None = None,
     world: TrialWorld | None = None,
+    protocol: str | Protocol = DEFAULT_PROTOCOL,
 ) -> TrialResult:
     """Run one grasp trial of ``plan`` on ``obj`` (see the module docstring for the protocol).
 
     Returns a :class:`TrialResult`; a diverged simulation gives ``outcome='error'``. Raises
-    :class:`SimulationError` only when the trial cannot be set up (an object without usable features).
-    ``stop_after='hold'`` ends the trial after the hold (for rendering, with ``world`` given).
+    :class:`SimulationError` only when the trial cannot be set up (an object without usable features)
+    or the protocol is unknown. ``stop_after='hold'`` ends the trial after the hold (for rendering, with
+    ``world`` given). ``protocol`` names the success rule (sim/protocols.py): ``lift_push`` (pushes in
+    turn) or ``six_direction`` (each direction on its own from the held state).
     """
+    rule = protocol_named(protocol)
     t0 = time.perf_counter()
     if world is None:
         world = build_world(obj, plan, seed=seed)
@@ -128,6 +136,8 @@ def run_trial(
         success=False,
         reason="",
         program=program_for(plan.grasp_type).name,
+        protocol=rule.name,
+        hand_version=H.HAND_VERSION + rule.version_tag,
     )
 
     def finish(outcome: str, reason: str) -> TrialResult:
@@ -159,24 +169,70 @@ def run_trial(
         result.lifted = rose >= LIFTED_FRACTION * LIFT_M / H.CM
         if not result.lifted:
             return finish("failure", f"not lifted: the object rose {rose:.1f} cm of {LIFT_M / H.CM:.0f}")
-        if runner.failed():
-            return finish("failure", _slip_reason(runner, "the lift"))
+        if rule.beyond(runner.slip, runner.turn):
+            return finish("failure", _slip_reason(runner, "the lift", rule))
         runner.hold()
-        if runner.failed():
-            return finish("failure", _slip_reason(runner, "the hold"))
+        if rule.beyond(runner.slip, runner.turn):
+            return finish("failure", _slip_reason(runner, "the hold", rule))
         if stop_after == "hold":
             return finish("success", "stopped after the hold")
-        for direction in PERTURBATION_DIRECTIONS:
-            result.perturbation[direction] = round(runner.perturb(direction), 3)
-            if runner.failed():
-                return finish("failure", _slip_reason(runner, f"the {direction} push"))
+        if rule.raise_m:
+            runner.lift(rule.raise_m, above_m=LIFT_M)
+            if rule.beyond(runner.slip, runner.turn):
+                return finish("failure", _slip_reason(runner, "the second rise", rule))
+        if rule.independent:
+            failed = _push_each(runner, result, rule)
+            if failed:
+                return finish("failure", failed)
+        else:
+            for direction in PERTURBATION_DIRECTIONS:
+                result.perturbation[direction] = round(runner.perturb(direction), 3)
+                if rule.beyond(runner.slip, runner.turn):
+                    return finish("failure", _slip_reason(runner, f"the {direction} push", rule))
     except PhysicsError as exc:
         return finish("error", str(exc))
+    each = " each on its own from the held state" if rule.independent else ""
     return finish(
         "success",
         f"held: moved {runner.slip:.2f} cm and turned {runner.turn:.1f} deg relative to the palm "
-        f"under pushes of its weight ({world.obj.weight_n:.2f} N)",
+        f"under pushes of its weight ({world.obj.weight_n:.2f} N){each}",
     )
+
+
+def run_six_direction_trial(obj: ObjectRecord, plan: GraspPlan, *, seed: int = 0) -> TrialResult:
+    """:func:`run_trial` under the ``six_direction`` protocol (a module-level callable the validation
+    worker can name: ``sim.trial:run_six_direction_trial``)."""
+    return run_trial(obj, plan, seed=seed, protocol="six_direction")
+
+
+def _push_each(runner: Runner, result: TrialResult, rule: Protocol) -> str:
+    """Push along each direction on its own, each from the state after the hold (restored exactly: MuJoCo's
+    full integration state), measuring from the end of closing. Records each direction's displacement in
+    ``result.perturbation`` and the ones not held in ``result.failed_directions``; the largest translation
+    and rotation over all directions become the runner's ``slip`` and ``turn``. Returns the failure reason,
+    or "" when every direction held."""
+    m, d = runner.m, runner.d
+    spec = mujoco.mjtState.mjSTATE_INTEGRATION
+    held = np.empty(mujoco.mj_stateSize(m, spec))
+    mujoco.mj_getState(m, d, held, spec)
+    slip0, turn0, force0 = runner.slip, runner.turn, runner.max_force
+    worst_slip, worst_turn, worst_force = slip0, turn0, force0
+    first = ""
+    for direction in PERTURBATION_DIRECTIONS:
+        mujoco.mj_setState(m, d, held, spec)
+        mujoco.mj_forward(m, d)  # positions derived from the restored state, read before the first step
+        runner.slip, runner.turn = slip0, turn0
+        result.perturbation[direction] = round(runner.perturb(direction), 3)
+        worst_slip, worst_turn = max(worst_slip, runner.slip), max(worst_turn, runner.turn)
+        worst_force = max(worst_force, runner.max_force)
+        if rule.beyond(runner.slip, runner.turn):
+            result.failed_directions.append(direction)
+            first = first or _slip_reason(runner, f"the {direction} push", rule)
+    runner.slip, runner.turn, runner.max_force = worst_slip, worst_turn, worst_force
+    if not first:
+        return ""
+    others = len(result.failed_directions) - 1
+    return first + (f" (and {others} more of 6 directions)" if others else "")
 
 
 def _inside_reason(plan: GraspPlan, depth_m: float) -> str:
@@ -213,7 +269,9 @@ def _no_contact_reason(world: TrialWorld, before: np.ndarray) -> str:
     return f"no contact after closing: the digits pushed the object {moved:.1f} cm out of the grasp"
 
 
-def _slip_reason(runner: Runner, phase: str) -> str:
-    if runner.slip >= MAX_SLIP_CM:
-        return f"slipped {runner.slip:.1f} cm (limit {MAX_SLIP_CM:g}) relative to the palm during {phase}"
-    return f"turned {runner.turn:.1f} deg (limit {MAX_ROTATION_DEG:g}) relative to the palm during {phase}"
+def _slip_reason(runner: Runner, phase: str, rule: Protocol) -> str:
+    if runner.slip >= rule.max_translation_cm:
+        limit = rule.max_translation_cm
+        return f"slipped {runner.slip:.1f} cm (limit {limit:g}) relative to the palm during {phase}"
+    limit = rule.max_rotation_deg
+    return f"turned {runner.turn:.1f} deg (limit {limit:g}) relative to the palm during {phase}"

@@ -29,6 +29,7 @@ from kb.features import ObjectRecord
 from sim.choice import ChoiceSummary, GraspChoice, choose, summarize_choices
 from sim.executors import Executor, make_executor
 from sim.planner import plan_grasps
+from sim.protocols import protocol_named
 from sim.task import (
     DEFAULT_RENDER,
     DEFAULT_TRIAL,
@@ -53,6 +54,10 @@ __all__ = [
 
 #: Candidate grasps validated per object.
 DEFAULT_TOP = 3
+#: The trial function of each protocol other than the default (sim/protocols.py).
+PROTOCOL_TRIALS = {"six_direction": "sim.trial:run_six_direction_trial"}
+
+
 @dataclass
 class ValidationSummary:
     """What a validation run did. ``results`` holds every requested trial's row (run now or stored
@@ -280,6 +285,7 @@ def validate(
     trial: Trial = DEFAULT_TRIAL,
     render: Trial | None = DEFAULT_RENDER,
     hand_version: str | None = None,
+    protocol: str | None = None,
     flush_every: int = 25,
     flush_seconds: float = 5.0,
     clock: Callable[[], float] = time.monotonic,
@@ -291,14 +297,22 @@ def validate(
     ``address`` configure it). ``limit`` stops after that many new trials (the rest resume later).
     ``render`` renders the first choice of each object into the report, and the validated choice where
     it differs (only with ``report_dir``). ``summary.choices`` holds each object's first and validated
-    choice (sim/choice.py). Raises ObjectNotFound for an unknown name.
+    choice (sim/choice.py). ``protocol`` names the success rule (sim/protocols.py; None: the default,
+    ``lift_push``, with ``trial`` as given): another protocol runs its own trial function and stores its
+    results under the hand version plus the protocol's tag, apart from the default's. Raises
+    ObjectNotFound for an unknown name, SimulationError for an unknown protocol.
     """
     t0 = clock()
+    rule = protocol_named(protocol) if protocol is not None else None
+    if rule is not None and rule.version_tag:
+        trial = PROTOCOL_TRIALS[rule.name]
     seeds = list(dict.fromkeys(int(s) for s in seeds))
     if top < 1:
         raise ObjrecallError(f"top must be at least 1, not {top}")
     objects = _objects(kb, names)
     hand = current_hand_version() if hand_version is None else hand_version
+    if rule is not None:
+        hand += rule.version_tag
     stored = _stored(kb, [o.name for o in objects])
     report_path = Path(report_dir) if report_dir is not None else None
     image_dir = report_path / "images" if report_path is not None else None

@@ -1,4 +1,5 @@
-"""Label and value in sibling elements with filler between them (scrapers/spec_pairs.py ``_filler``).
+"""Label and value in sibling elements with filler between them (scrapers/spec_pairs.py ``_filler``), and
+several label/value pairs in one line.
 
 Pages written here, each mirroring a layout class many stores use: a spec row whose label is followed by
 an info icon or a tooltip's ``?`` before the value's element, and a value split over elements with
@@ -52,3 +53,14 @@ def test_filler_is_short_digitless_and_names_no_measurement():
 @pytest.mark.parametrize("between", ["<span>Height</span>", "<span>" + "a" * 13 + "</span>"])
 def test_a_label_or_a_longer_text_between_ends_the_search(between):
     assert mass_of(f"<div><span>Weight</span>{between}<p>3.2 kg</p></div>") is None
+
+
+@pytest.mark.parametrize("sep", ["; ", ", ", " | "])
+def test_several_pairs_on_one_line_keep_each_values_unit(sep):
+    # layout class: one bullet or cell listing the axes, "Height: 30 cm; Width: 20 cm; Depth: 10 cm"
+    from scrapers.spec_pairs import split_inline
+
+    text = sep.join(["Height: 30 cm", "Width: 20 cm", "Depth: 10 cm"])
+    assert [v for _, v, _ in split_inline(text)] == ["30 cm", "20 cm", "10 cm"]
+    record = extract_page(page(f"<ul><li>{text}</li></ul>"), "https://shop.test/p", "text/html")
+    assert sorted(e["cm"] for e in record.dims) == [10.0, 20.0, 30.0]

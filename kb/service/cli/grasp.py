@@ -299,14 +299,22 @@ def validate(
         int | None, typer.Option("--limit", min=0, help="Stop after this many new trials.")
     ] = None,
     progress: Annotated[bool, typer.Option("--progress/--no-progress", help="Show a progress bar.")] = True,
+    protocol: Annotated[
+        str,
+        typer.Option(
+            "--protocol", help="Success rule: lift_push (pushes in turn) or six_direction (DexGraspBench's)."
+        ),
+    ] = "lift_push",
     db: DbOption = None,
     json_out: JsonOption = False,
 ) -> None:
     """Simulate the planned grasps of catalog objects, store every result, resume where it stopped."""
     from kb.catalog import KnowledgeBase
     from sim.executors import EXECUTORS
+    from sim.protocols import protocol_named
     from sim.worker import validate as run_validation
 
+    protocol_named(protocol)  # an unknown one is refused before the catalog is opened
     if executor not in EXECUTORS:
         raise ObjrecallError(f"--executor {executor!r}: expected one of {', '.join(EXECUTORS)}")
     if address and executor != "ray":
@@ -330,6 +338,7 @@ def validate(
         report_dir=report,
         progress=progress and not json_out,
         limit=limit,
+        protocol=protocol,
     )
     if json_out:
         emit(summary.to_dict())
