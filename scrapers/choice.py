@@ -14,7 +14,9 @@ value the page states, perhaps several times and in several readers. Each cluste
   navigation or aside (site-wide blocks: a store's size guide, a banner).
 
 The highest score wins (ties: the cluster holding the earliest candidate in the adapters' priority order);
-its fullest member (sizes) or its best member (mass) is the value. :func:`fit_weights` fits the weights on
+its fullest member (sizes) or its best member (mass) is the value. A cluster stated **only** in site-wide
+blocks (``main`` 0: a footer's shipping limits, an aside's size guide) is never the product's: with no
+other cluster, nothing is chosen. :func:`fit_weights` fits the weights on
 samples of labelled pages (``benchmarks/corpus_bench.py --loso`` fits them on all development stores but
 one and scores the one left out); :data:`WEIGHTS` are checked on the development stores only.
 """
@@ -48,6 +50,11 @@ class Cluster:
     members: list[Any]
     features: dict[str, float]
     score: float = 0.0
+
+    @property
+    def site_wide(self) -> bool:
+        """Stated only in site-wide blocks: never the product's value."""
+        return self.features["main"] == 0
 
     @property
     def value(self) -> Any:
@@ -93,15 +100,19 @@ def choose(
     cands: Sequence[Any], agree: Callable[[Any, Any], bool], source_index: Callable[[Any], int], n_sources: int,
     weights: dict[str, float] | None = None,
 ) -> list[Cluster]:
-    """The clusters of ``cands`` (in priority order), the winner first (module doc); [] for none."""
+    """The clusters of ``cands`` (in priority order), the winner first (module doc); [] for none. When every
+    cluster is :attr:`Cluster.site_wide`, none wins: they keep their priority order."""
     clusters = []
     for members in cluster(cands, agree):
         feats = features(members, source_index, n_sources)
         clusters.append(Cluster(members, feats, score(feats, weights)))
     if not clusters:
         return []
+    eligible = [i for i, c in enumerate(clusters) if not c.site_wide]
+    if not eligible:
+        return clusters
     # max() keeps the first of equal scores: the cluster of the earliest candidate in priority order
-    win = max(range(len(clusters)), key=lambda i: clusters[i].score)
+    win = max(eligible, key=lambda i: clusters[i].score)
     return [clusters[win]] + clusters[:win] + clusters[win + 1 :]
 
 

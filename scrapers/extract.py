@@ -110,7 +110,8 @@ def extract_page(body: str | bytes, url: str, content_type: str | None = None) -
 
 def _has_dims_and_mass(observations: list[Observation]) -> bool:
     found = {
-        o.feature for o in observations if not o.package and o.role == "product" and o.feature in ("dims", "mass")
+        o.feature for o in observations
+        if not o.package and o.role == "product" and o.feature in ("dims", "mass") and not o.site_wide
     }
     return len(found) == 2
 
@@ -183,12 +184,14 @@ def _choose(
     ranked = sorted(cands, key=_priority)[:MAX_CANDIDATES]
     clusters = choice.choose(ranked, agree, _source_index, len(ADAPTERS))
     best = clusters[0]
-    chosen = best.value
+    chosen = None if best.site_wide else best.value
     if decisions is not None:
         for i, c in enumerate(clusters):
             scored = {"cluster": i + 1, "score": round(c.score, 3), "features": c.features}
             for o in c.members:
-                if o is chosen:
+                if c.site_wide:
+                    why = "not the product's: stated only in a site-wide block (header, footer, nav, aside)"
+                elif o is chosen:
                     why = "chosen: highest-scoring cluster (scrapers.choice)"
                     if feature == "dims" and len(c.members) > 1:
                         why += ", its most complete member"
@@ -197,6 +200,9 @@ def _choose(
                 else:
                     why = f"alternative: disagrees with the chosen value (cluster {i + 1}, lower score)"
                 decisions.append(_candidate(o, why) | scored | ({"representative": True} if o is c.value else {}))
+    if chosen is None:
+        warnings.append(f"{feature}: only site-wide blocks state one ({best.members[0].raw[:80]!r}); not used")
+        return None
     for other in clusters[1 : 1 + MAX_DISAGREEMENTS]:
         o = other.members[0]
         warnings.append(

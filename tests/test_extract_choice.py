@@ -30,21 +30,21 @@ def test_a_value_in_a_site_wide_block_loses_to_the_main_contents_own():
     by_value = {tuple(c["value"]): c for c in record.candidates if c["feature"] == "dims"}
     assert by_value[(40.0, 30.0, 2.0)]["features"]["main"] == 0.0
     assert by_value[(20.0, 10.0, 5.0)]["features"]["main"] == 1.0
-    assert by_value[(40.0, 30.0, 2.0)]["decision"].startswith("alternative")
+    assert by_value[(40.0, 30.0, 2.0)]["decision"].startswith("not the product's: stated only in a site-wide")
 
 
-def test_without_the_main_content_feature_page_order_would_pick_the_size_guide():
-    # the same page, scored with a zero weight for "main": the aside's earlier row wins the tie
-    p = Page(SIZE_GUIDE_FIRST, "https://shop.test/p/1", "text/html")
+def test_the_size_guide_loses_whatever_the_weights():
+    # the same page, scored with a zero weight for "main": the aside's earlier row would win the tie on
+    # page order, but a cluster stated only in a site-wide block is never eligible
     from scrapers.adapters.spec_table import spec_table
 
+    p = Page(SIZE_GUIDE_FIRST, "https://shop.test/p/1", "text/html")
     dims = [o for o in spec_table(p) if o.feature == "dims"]
     for o in dims:
         o.source = "spec_table"
-    weights = {**choice.WEIGHTS, "main": 0.0}
-    clusters = choice.choose(dims, _dims_agree, lambda o: 0, 9, weights)
-    assert clusters[0].value.value == (40.0, 30.0, 2.0)
-    assert choice.choose(dims, _dims_agree, lambda o: 0, 9)[0].value.value == (20.0, 10.0, 5.0)
+    for weights in ({**choice.WEIGHTS, "main": 0.0}, choice.WEIGHTS):
+        clusters = choice.choose(dims, _dims_agree, lambda o: 0, 9, weights)
+        assert clusters[0].value.value == (20.0, 10.0, 5.0) and clusters[1].site_wide
 
 
 def test_site_wide_blocks_are_the_store_header_footer_nav_aside_and_their_roles():
@@ -102,3 +102,31 @@ def test_fit_weights_keeps_the_weights_in_use_unless_others_choose_more_right():
     flipped = [[({"source": 1.0, "support": 0.0}, False), ({"source": 0.5, "support": 1.0}, True)]]
     w = choice.fit_weights(flipped)
     assert choice.pick(flipped[0], w) and not choice.pick(flipped[0], choice.WEIGHTS)
+
+
+FOOTER_ONLY = page(
+    "<main><h1>Tisch Eiche</h1><p>Ein schöner Tisch.</p></main>"
+    "<footer><p>Versand: Pakete bis 30 kg; Abmessungen: 120 x 60 x 60 cm</p>"
+    "<p>Our parcels measure 120 x 60 x 60 cm and weigh up to 30 kg at most.</p></footer>"
+)
+
+
+def test_a_value_stated_only_in_a_site_wide_block_is_never_the_products():
+    # layout class: a store footer's shipping limits (spec-like and prose), no product value on the page
+    import pytest
+
+    from kb.errors import ExtractionError
+
+    with pytest.raises(ExtractionError, match="only site-wide blocks state one"):
+        extract_page(FOOTER_ONLY, "https://shop.test/p/2", "text/html")
+    # the same text in the main content is the product's
+    main = FOOTER_ONLY.replace("<footer>", "<div>").replace("</footer>", "</div>")
+    assert extract_page(main, "https://shop.test/p/2", "text/html").dims_cm == (120.0, 60.0, 60.0)
+
+
+def test_a_site_wide_cluster_never_wins_even_when_it_scores_higher():
+    strong, weak = obs(100.0, "a", 0, site_wide=True), obs(200.0, "c", 2)
+    clusters = choice.choose([strong, weak], _close, INDEX, 3)
+    assert clusters[0].members == [weak] and clusters[1].site_wide
+    (only,) = choice.choose([strong], _close, INDEX, 3)
+    assert only.site_wide  # the caller chooses nothing
