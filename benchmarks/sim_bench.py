@@ -213,11 +213,12 @@ def bench_choice(top: int = 3, *, limit: int | None = None, workers: int = 2) ->
 
 
 def _phase_of(reason: str) -> str:
-    """Where a failed trial failed: a push's direction, the lift, the hold, or the set-up and close."""
+    """Where a failed trial failed: a push's direction, the lift, the hold, six_direction's second rise,
+    or the set-up and close."""
     for direction in ("+x", "-x", "+y", "-y", "+z", "-z"):
         if f"the {direction} push" in reason:
             return direction
-    for phase in ("lift", "hold"):
+    for phase in ("second rise", "lift", "hold"):
         if f"the {phase}" in reason:
             return phase
     return "lift" if reason.startswith("not lifted") else "close"

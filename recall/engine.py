@@ -34,6 +34,7 @@ from recall.confidence import (
     confidence_from_margin,
     confidence_of,
 )
+from recall.fit import Trust, disagreeing_features, judge
 from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
 from recall.name_index import HEAD_WEIGHT, NAME_WEIGHT, NameEvidence, NameIndex
@@ -45,13 +46,13 @@ from recall.openset import (
     DescribedNoun,
     KindIndex,
     describe,
-    disagreeing_features,
     foreign_modifier,
     is_open_set,
     material_agrees,
     names_inside,
     nothing_compared,
     synonym_rows,
+    trust_of,
 )
 from recall.results import Match, RecallResult
 from recall.search import score_rows, select_top_k, top_k
@@ -113,6 +114,10 @@ class Recaller:
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._geometry: ShapeGeometry | None = None
         self._kdtrees: dict = {}
+        #: Floors of a binned catalog (:mod:`recall.catalog_folder`): feature -> the value at or above which the
+        #: catalog's value is a lower bound ("15 cm or more"); the closeness and the disagreement rule read
+        #: them, the ranking does not.
+        self.floors: dict[str, float] = {}
         from kb.features import CATEGORICAL_FEATURES, CATEGORIES
 
         material = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
@@ -262,16 +267,20 @@ class Recaller:
             noun = None  # an unseen noun and no feature ("qwerty uiop"): nothing to recall, not a foreign object
         not_in_catalog = noun is not None and not noun.in_catalog
         if len(query) == 0 and not named and soft is None:
+            trust = Trust.FOREIGN if not_in_catalog else Trust.PLAIN
+            fit = judge(None, {}, trust, (), noun.noun if not_in_catalog else None)
             return RecallResult(
                 matches=[], confidence=0.0, open_set=not_in_catalog, not_in_catalog=not_in_catalog,
-                described=noun, **base,
+                described=noun, fit=fit, **base,
             )  # fmt: skip
         rows, dist = self._candidates(query, named, top, metric, soft)
         score, parts = _ranking_scores(rows, dist, names, soft, metric)
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         matches = self._matches(rows, score, parts, query, metric, set(names.exact))
-        errors = relative_errors(self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query)
+        errors = relative_errors(
+            self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query, self.floors
+        )
         errors.update(soft.errors_of(int(rows[0])) if soft is not None else {})
         closeness = float(np.mean(list(errors.values()))) if errors else None
         # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
@@ -289,9 +298,10 @@ class Recaller:
             and modifier is None
             and material_agrees(subject, matches[0].features.get("material"))
         )
-        disagrees = disagreeing_features(errors)  # a stated feature far off, or none left (unused): not close
-        open_set = not_in_catalog or is_open_set(closeness, trusted, unknown or modifier)
-        open_set = open_set or bool(disagrees or unused)
+        trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
+        fit = judge(closeness, errors, trust, unused, noun.noun if not_in_catalog else None)
+        open_set = not fit.close
+        disagrees = disagreeing_features(errors)  # a stated feature far off: shown by the verdict
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
             margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
@@ -315,6 +325,8 @@ class Recaller:
             foreign_modifier=modifier,
             disagrees=disagrees,
             unused=unused,
+            errors=errors,
+            fit=fit,
             **base,
         )
 

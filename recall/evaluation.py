@@ -126,8 +126,8 @@ class EvaluationReport:
 
 
 def read_descriptions(path: str | Path) -> list[tuple[str, str]]:
-    """(object, description) pairs of a CSV with columns ``object,description`` (any case; ``name`` for
-    ``object`` also; others ignored)."""
+    """(object, description) pairs of a CSV with columns ``object,description`` (any case; ``name`` or
+    ``id`` for ``object`` also; others ignored)."""
     path = Path(path)
     try:
         return _read_descriptions(path)
@@ -141,8 +141,9 @@ def _read_descriptions(path: Path) -> list[tuple[str, str]]:
     with path.open(encoding="utf-8-sig", newline="") as fh:
         reader = csv.DictReader(fh)
         header = [h.strip().lower() for h in reader.fieldnames or []]
-        if "object" not in header and "name" in header:  # a catalog-style label column
-            header[header.index("name")] = "object"
+        for other in ("name", "id"):  # a catalog-style label column, or a data set's object id
+            if "object" not in header and other in header:
+                header[header.index(other)] = "object"
         missing = [c for c in ("object", "description") if c not in header]
         if missing:
             raise RecallError(f"{path}: missing column(s) {', '.join(missing)} (need object,description)")
@@ -207,14 +208,16 @@ def evaluate(
     ``open_set_csv`` (a ``description`` column of objects not in the catalog) also how many of those are
     flagged open-set."""
     from kb.features import ObjectRecord
+    from recall.catalog_folder import read_floors, read_ids
     from recall.parse_eval import score_parses
     from recall.parser import parse
 
     pairs = read_descriptions(descriptions_csv)
     with tempfile.TemporaryDirectory(prefix="objrecall-eval-") as tmp:
         recaller = _recaller_from_catalog(Path(catalog_csv), Path(tmp))
+    recaller.floors = read_floors(catalog_csv)
     snap = recaller.snapshot
-    label, index = _labeller(snap)
+    label, index = _labeller(snap, read_ids(catalog_csv))
     tally = _Tally()
     unknown: list[str] = []
     parse_pairs: list[tuple[Any, ObjectRecord]] = []
@@ -243,11 +246,12 @@ def evaluate(
     return report
 
 
-def _labeller(snap):
-    """(label -> catalog name: the name itself, an alias or a loose match, else the label unchanged;
-    catalog name -> row)."""
+def _labeller(snap, ids: dict[str, str] | None = None):
+    """(label -> catalog name: the name itself, the data set's id of it (``ids``: the catalog folder's
+    ``ids.csv``), an alias or a loose match, else the label unchanged; catalog name -> row)."""
     index = {n: i for i, n in enumerate(snap.names)}
     alias_of = {a: n for n, aliases in zip(snap.names, snap.aliases, strict=True) for a in aliases}
+    alias_of.update({normalize_name(k): v for k, v in (ids or {}).items()})
     loose = _loose_labels(snap.names, snap.aliases)
 
     def label(obj: str) -> str:

@@ -34,6 +34,7 @@ import requests
 from kb.errors import RecallError
 from kb.features import ObjectRecord
 from recall.engine import GENERIC_NOUNS, Recaller, RecallResult, subject_phrase
+from recall.fit import THRESHOLDS, Trust, judge
 from scrapers.fetcher import Clock, SystemClock
 from scrapers.lookup import DEFAULT_MAX_PAGES, StoresLookup, search_stores
 from scrapers.sources import Sources
@@ -52,8 +53,8 @@ DEFAULT_BUDGET_S = 10.0
 #: A recall less confident than this is looked up.
 LOOKUP_BELOW_CONFIDENCE = 0.5
 #: A store's product fits the description when its mean relative error over the stated features is at most
-#: this (the recall's open-set threshold for an unnamed match: a name in a store's title is no evidence).
-FIT_CLOSENESS = 0.30
+#: this: the recall's open-set threshold for an unnamed match (one rule, :mod:`recall.fit`).
+FIT_CLOSENESS = THRESHOLDS[Trust.PLAIN]
 #: Seconds of the budget kept for judging the pages, writing and recalling again (at most half the budget).
 RESERVE_S = 2.0
 NOT_FOUND = "no close match in the catalog, and none found in the stores"
@@ -131,8 +132,12 @@ def search_terms(result: RecallResult) -> tuple[str, ...]:
 
 
 def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str]:
-    """Whether the product ``record`` is the object described, and why (module docstring, 3). ``text`` is
-    the description or its parse (``recall.parser.parse``), so that many records cost one parse."""
+    """Whether the product ``record`` is the object described, and why: the recall's own fit rule
+    (:func:`recall.fit.judge`) on the description recalled over that product alone, with the store's name
+    counting as no evidence either way (:attr:`recall.fit.Trust.PLAIN`: a title can be a keyword list, a
+    URL path or another language, and the store's search already matched the words); with no stated
+    feature, when the description names the product. ``text`` is the description or its parse
+    (``recall.parser.parse``), so that many records cost one parse."""
     recaller = Recaller.from_records([record])
     if isinstance(text, str):
         result = recaller.recall_text(text, top=1)
@@ -143,9 +148,8 @@ def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str]:
     if result.closeness is None:
         named = result.matches[0].matched_by_name
         return named, "named by the description" if named else "no stated feature and not named"
-    close = not result.open_set and result.closeness <= FIT_CLOSENESS
-    verdict = "fits" if close else "does not fit"
-    return close, f"{verdict}: mean relative error {result.closeness:.2f} (at most {FIT_CLOSENESS:g})"
+    fit = judge(result.closeness, result.errors, Trust.PLAIN, result.unused)
+    return fit.close, fit.reason
 
 
 def recall_with_lookup(

@@ -290,13 +290,17 @@ def feature_terms(num: np.ndarray, cat: np.ndarray, query: FeatureQuery) -> dict
     return out
 
 
-def relative_errors(num_row: np.ndarray, cat_row: np.ndarray, query: FeatureQuery) -> dict[str, float]:
+def relative_errors(
+    num_row: np.ndarray, cat_row: np.ndarray, query: FeatureQuery, floors: Mapping[str, float] | None = None
+) -> dict[str, float]:
     """How far one catalog object is from the description, per stated feature, on one scale-free [0, 1]
     scale (the open-set closeness and the confidence use it; the ranking does not):
 
     * numeric: ``d / max(v, x)``, ``d`` the difference to the stated value or interval (as in JP), ``v``
       the stated value, ``x`` the object's (30 % too long and 30 % too heavy count the same for a coin
-      and a sofa); an unknown value counts as the unknown penalty, 1/3 (``0.5 v / 1.5 v``);
+      and a sofa); an unknown value counts as the unknown penalty, 1/3 (``0.5 v / 1.5 v``); a value at or
+      above the catalog's floor for that feature (``floors``, :mod:`recall.catalog_folder`: "15 cm or more") is a
+      lower bound, so only a stated value below it differs;
     * categorical: 0 match, 1 mismatch, 0.5 unknown.
     """
     out: dict[str, float] = {}
@@ -305,7 +309,9 @@ def relative_errors(num_row: np.ndarray, cat_row: np.ndarray, query: FeatureQuer
         if math.isnan(x):
             out[cond.feature] = UNKNOWN_NUMERIC_FRACTION / (1.0 + UNKNOWN_NUMERIC_FRACTION)
             continue
-        d = max(cond.low - x, x - cond.high, 0.0)
+        floor = floors.get(cond.feature) if floors else None
+        above = floor is not None and x >= floor
+        d = max(0.0 if above else cond.low - x, x - cond.high, 0.0)  # above the floor: never too small
         scale = max(abs(cond.value), abs(x))
         out[cond.feature] = min(d / scale, 1.0) if scale > 0 else 0.0
     for feat, value in query.categorical:

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_of
+from recall.fit import DISAGREE_FACTOR, THRESHOLDS, Trust, disagreeing_features, judge
 from recall.reading import NEGATED_REASON
 from recall.subject import feature_words, is_adjective, is_participle
 
@@ -38,37 +39,18 @@ __all__ = [
     "nothing_compared",
     "is_open_set",
     "is_qualifier",
+    "trust_of",
     "synonym_rows",
     "unseen_noun",
 ]
 
-#: Open set: the best match's closeness (mean relative error over the stated features, see
-#: :func:`recall.metrics.relative_errors`) above this means "not a close match" ...
-OPEN_SET_THRESHOLD = 0.30
+#: The open-set thresholds, one rule with the store lookup's fit (:mod:`recall.fit`, :data:`THRESHOLDS`):
+#: the best match's closeness above this means "not a close match" ...
+OPEN_SET_THRESHOLD = THRESHOLDS[Trust.PLAIN]
 #: ... above this when the description names the match by a whole name or alias (a name is evidence) ...
-OPEN_SET_NAMED_THRESHOLD = 0.45
-#: ... and above this when the subject of the description is a noun the catalog does not know ("an
-#: orange", "a watermelon"): an unknown noun alone is not enough (synonyms), with a loose match it is.
-OPEN_SET_UNKNOWN_NOUN_THRESHOLD = 0.15
-
-
-#: A stated size or mass more than this factor from the best match's disagrees with it: the match is then
-#: not a close match, whatever the mean error of the other features ("a tennis ball 6.4 cm 56 kg": the mass
-#: 1000x off, mean error 0.20). Measured over the 943 results of the development and blind sets (default
-#: hybrid): of the 773 right first matches none has a feature off by more than 3x (largest relative error
-#: 0.67: a metal cap stated 3 cm wide, 1 cm in the catalog), of the 170 wrong or out-of-catalog ones 16 a
-#: feature off by 4x or more.
-DISAGREE_FACTOR = 4.0
-
-
-def disagreeing_features(errors: dict[str, float]) -> tuple[str, ...]:
-    """The stated numeric features (``errors``: :func:`recall.metrics.relative_errors` of the best match)
-    at least :data:`DISAGREE_FACTOR` from the match's value (relative error ``d / max(v, x)`` of at least
-    1 - 1 / factor; an unknown catalog value never disagrees), in feature order."""
-    from kb.features import NUMERIC_FEATURES
-
-    limit = 1.0 - 1.0 / DISAGREE_FACTOR - 1e-9
-    return tuple(f for f in NUMERIC_FEATURES if errors.get(f, 0.0) >= limit)
+OPEN_SET_NAMED_THRESHOLD = THRESHOLDS[Trust.NAMED]
+#: ... and above this when the subject of the description is a noun the catalog does not know.
+OPEN_SET_UNKNOWN_NOUN_THRESHOLD = THRESHOLDS[Trust.DOUBTED]
 
 
 def nothing_compared(refused: Sequence, numeric_stated: bool) -> tuple[str, ...]:
@@ -313,16 +295,21 @@ def foreign_head(words: Sequence[str], vocabulary: frozenset[str]) -> str | None
 
 
 def is_open_set(closeness: float | None, named: bool, unknown_noun: str | None) -> bool:
-    """The open-set rule (RECALL.md): the best match is not a close match when its closeness (mean
-    relative error) exceeds :data:`OPEN_SET_THRESHOLD`, :data:`OPEN_SET_NAMED_THRESHOLD` when the text
-    names it exactly, or :data:`OPEN_SET_UNKNOWN_NOUN_THRESHOLD` when the subject is an unknown noun."""
+    """The open-set rule on the closeness alone (RECALL.md): the best match is not a close match when its
+    closeness (mean relative error) exceeds :data:`OPEN_SET_THRESHOLD`, :data:`OPEN_SET_NAMED_THRESHOLD` when
+    the text names it exactly, or :data:`OPEN_SET_UNKNOWN_NOUN_THRESHOLD` when the subject is an unknown noun
+    (:func:`recall.fit.judge` with that trust)."""
     if closeness is None:
         return False
+    return not judge(closeness, {}, trust_of(named, unknown_noun)).close
+
+
+def trust_of(named: bool, doubt: str | None) -> Trust:
+    """What the words say about the best match: named by the text (and not contradicted), doubted (an
+    unknown subject noun or a foreign modifier, ``doubt``), or neither."""
     if named:
-        return closeness > OPEN_SET_NAMED_THRESHOLD
-    if unknown_noun is not None:
-        return closeness > OPEN_SET_UNKNOWN_NOUN_THRESHOLD
-    return closeness > OPEN_SET_THRESHOLD
+        return Trust.NAMED
+    return Trust.DOUBTED if doubt is not None else Trust.PLAIN
 
 
 #: Nouns that also name a shape ("a wood *plate*", "a white *stick*"): after a material or colour word,

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from recall.fit import Fit
 from recall.name_index import NameEvidence
 from recall.openset import DescribedNoun
 from recall.verdict import verdict
@@ -79,6 +80,11 @@ class RecallResult:
     #: refused values when none is left to compare (``recall.openset.nothing_compared``): not a close match.
     disagrees: tuple[str, ...] = ()
     unused: tuple[str, ...] = ()
+    #: The best match's relative error per stated feature (:func:`recall.metrics.relative_errors`) and the
+    #: judgement made on them (:func:`recall.fit.judge`: ``fit.score`` is the open-set score, above 1 when
+    #: flagged; the same rule judges a store's product in a lookup).
+    errors: dict[str, float] = field(default_factory=dict)
+    fit: Fit | None = None
 
     @property
     def best(self) -> Match | None:
@@ -104,6 +110,8 @@ class RecallResult:
             "foreign_modifier": self.foreign_modifier,
             "disagrees": list(self.disagrees),
             "unused": list(self.unused),
+            "errors": dict(self.errors),
+            "fit": self.fit.to_dict() if self.fit is not None else None,
             "verdict": verdict(self).to_dict(),
             "query": dict(self.query),
             "parsed": self.parsed,

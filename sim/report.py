@@ -31,6 +31,7 @@ from typing import Any
 from kb.csvio import spreadsheet_cell
 from kb.jsonable import to_jsonable
 from sim.diagnosis import failure_cause, is_setup_failure
+from sim.protocols import DEFAULT_PROTOCOL
 from sim.task import row_details
 
 __all__ = ["CSV_FIELDS", "success_rates", "write_report"]
@@ -39,7 +40,7 @@ __all__ = ["CSV_FIELDS", "success_rates", "write_report"]
 CSV_FIELDS = (
     "object_name", "shape", "material", "rank", "grasp_type", "family", "seed", "outcome", "success",
     "reason", "slip_cm", "rotation_deg", "grip_force_n", "max_contact_force_n", "simulator", "hand_version",
-    "planner_version", "features_hash", "image", "program",
+    "planner_version", "features_hash", "image", "program", "protocol",
 )  # fmt: skip
 _GROUPS = (
     ("program", "hand program"), ("grasp_type", "grasp type"), ("shape", "shape"), ("material", "material"),
@@ -59,6 +60,7 @@ def _normalise(row: Mapping[str, Any]) -> dict[str, Any]:
     image = details.get("image")
     out["image"] = image if isinstance(image, str) and _SAFE_IMAGE.match(image) else None
     out["program"] = details.get("program") or out.get("program")
+    out["protocol"] = details.get("protocol") or out.get("protocol") or DEFAULT_PROTOCOL
     if out.get("outcome") is None:
         out["outcome"] = "success" if out.get("success") else "failure"
     out["success"] = bool(out.get("success")) and out["outcome"] == "success"
@@ -235,6 +237,8 @@ def write_report(
     versions = sorted({str(r.get("hand_version")) for r in rows if r.get("hand_version")})
     sims = sorted({str(r.get("simulator")) for r in rows if r.get("simulator")})
     meta_bits = [f"generated {generated}", f"{objects} objects, {total} trials"]
+    protocols = sorted({str(r["protocol"]) for r in rows})
+    meta_bits.append("protocol " + (", ".join(protocols) or DEFAULT_PROTOCOL))  # the success rule judged by
     if sims:
         meta_bits.append("simulator " + ", ".join(sims))
     if versions:
@@ -279,6 +283,7 @@ def write_report(
         "trials": total,
         **counts,
         "success_rate": round(rate, 4),
+        "protocols": protocols,
         "choices": chosen.to_dict(),
     }
     doc = {"summary": summary, "rates": rates, "choices": [c.to_dict() for c in choices], "results": rows}

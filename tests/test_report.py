@@ -155,3 +155,18 @@ def test_report_shows_first_and_validated_choice_and_why_nothing_holds(tmp_path)
     assert doc["summary"]["choices"] == {"objects": 3, "first_holds": 0, "validated": 1, "differs": 3}
     remote = next(c for c in doc["choices"] if c["object_name"] == "remote")
     assert (remote["first"], remote["validated"], remote["differs"]) == ("thumb_4_finger", "medium_wrap", True)
+
+
+def test_the_report_says_which_protocol_judged_the_trials(tmp_path, rows):
+    """Rows without a protocol are today's (lift_push); a six_direction row says so in the page, the JSON
+    summary and each CSV row."""
+    plain = write_report(rows, tmp_path / "plain").read_text()
+    assert "protocol lift_push" in plain and "six_direction" not in plain
+    six = [row("small cube", "medium_wrap", "power", "success")]
+    six[0]["details"] = json.dumps({"plan": {}, "protocol": "six_direction"})
+    page = write_report(six, tmp_path / "six").read_text()
+    assert "protocol six_direction" in page and "lift_push" not in page
+    summary = json.loads((tmp_path / "six" / "results.json").read_text())["summary"]
+    assert summary["protocols"] == ["six_direction"]
+    with (tmp_path / "six" / "results.csv").open(newline="") as fh:
+        assert [r["protocol"] for r in csv.DictReader(fh)] == ["six_direction"]

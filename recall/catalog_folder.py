@@ -1,0 +1,80 @@
+"""What a catalog folder holds beside its ``catalog.csv``, for catalogs imported from published data sets.
+
+* ``ids.csv`` (``id,name``): the data set's own object ids ("003_cracker_box") and the catalog names they
+  were imported as, so that description sets written against the data set can label objects by id
+  (:func:`read_ids`; ``recall.evaluation`` maps such labels to names).
+* ``floors.csv`` (``feature,at_least``): a data set that records values in bins whose top bin is open
+  ("15 cm or more") stores the bin's value, and declares it here: a catalog value at or above the floor
+  is a lower bound (:func:`read_floors`). The recall's closeness and the 4x disagreement rule then count
+  only a stated value *below* it as a difference (``recall.metrics.relative_errors``); the ranking keeps
+  the stored value (no row of such a catalog is larger, so it is the closest anyway).
+
+Both files are optional; a folder without them has no ids and no floors. Malformed files are refused with
+the file, row and reason (:class:`kb.errors.RecallError`).
+"""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+from kb.errors import RecallError
+from kb.features import NUMERIC_FEATURES, normalize_name
+
+__all__ = ["read_floors", "read_ids"]
+
+
+def _rows(path: Path, columns: tuple[str, str]) -> list[tuple[int, str, str]]:
+    try:
+        with path.open(encoding="utf-8-sig", newline="") as fh:
+            reader = csv.DictReader(fh)
+            header = [h.strip().lower() for h in reader.fieldnames or []]
+            if not set(columns) <= set(header):
+                raise RecallError(
+                    f"{path}: needs the columns {','.join(columns)} (has {','.join(header) or 'none'})"
+                )
+            reader.fieldnames = header
+            return [
+                (n, (r[columns[0]] or "").strip(), (r[columns[1]] or "").strip())
+                for n, r in enumerate(reader, 2)
+            ]
+    except (UnicodeDecodeError, csv.Error) as err:
+        raise RecallError(f"{path}: not a UTF-8 CSV file ({err})") from None
+
+
+def read_ids(catalog_csv: str | Path) -> dict[str, str]:
+    """id -> catalog name from ``ids.csv`` beside ``catalog_csv`` ({} when there is none). An id given
+    twice, or an empty cell, is refused."""
+    path = Path(catalog_csv).with_name("ids.csv")
+    if not path.is_file():
+        return {}
+    out: dict[str, str] = {}
+    for row, ident, name in _rows(path, ("id", "name")):
+        if not ident or not name:
+            raise RecallError(f"{path} row {row}: an id and a name are both needed")
+        if ident in out:
+            raise RecallError(f"{path} row {row}: id {ident!r} is given twice")
+        out[ident] = normalize_name(name)
+    return out
+
+
+def read_floors(catalog_csv: str | Path) -> dict[str, float]:
+    """feature -> floor from ``floors.csv`` beside ``catalog_csv`` ({} when there is none). Only the
+    numeric features (sizes and mass) can have a floor, each once, with a positive number."""
+    path = Path(catalog_csv).with_name("floors.csv")
+    if not path.is_file():
+        return {}
+    out: dict[str, float] = {}
+    for row, feature, value in _rows(path, ("feature", "at_least")):
+        if feature not in NUMERIC_FEATURES:
+            raise RecallError(
+                f"{path} row {row}: {feature!r} is no numeric feature ({', '.join(NUMERIC_FEATURES)})"
+            )
+        try:
+            floor = float(value)
+        except ValueError:
+            raise RecallError(f"{path} row {row}: at_least {value!r} is not a number") from None
+        if not floor > 0 or feature in out:
+            raise RecallError(f"{path} row {row}: {feature} needs one positive floor, not {value!r}")
+        out[feature] = floor
+    return out
