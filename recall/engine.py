@@ -51,6 +51,7 @@ from recall.openset import (
     material_agrees,
     names_inside,
     nothing_compared,
+    plain_name,
     synonym_rows,
     trust_of,
 )
@@ -287,15 +288,23 @@ class Recaller:
         # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)
         named_whole = matches[0].matched_by_name and not names_inside(noun, names.phrases)
         not_in_catalog = not_in_catalog and not named_whole
+        if noun is not None and noun.sort_of is not None and not named_whole:
+            # a sort of a catalog object ("a spring clamp"): in the catalog only as an object of that head
+            not_in_catalog = words_of(self.snapshot.names[int(rows[0])])[-1:] != [noun.sort_of]
         # a lexicon synonym of a catalog object ("cellphone", "pen drive": smartphone, usb stick) is no
         # unknown noun, and names it with all its words
         unknown = None if noun is not None and noun.in_catalog else names.unknown_noun
         synonym = int(rows[0]) in synonym_rows(noun, self.names.phrases)
         modifier = self._foreign_modifier(subject, int(rows[0]), names)
         modifier = None if synonym and modifier in noun.noun.split() else modifier
+        # a noun before the head of an object named by its head alone says which sort ("a *table* knife" of
+        # the catalog's "knife"): neither doubt nor a name's evidence
+        narrows = modifier is not None and plain_name(words_of(self.snapshot.names[int(rows[0])]))
+        modifier = None if narrows else modifier
         trusted = (
             (matches[0].matched_by_name or synonym)
             and modifier is None
+            and not narrows
             and material_agrees(subject, matches[0].features.get("material"))
         )
         trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)

@@ -38,6 +38,9 @@ __all__ = [
     "material_of_word",
     "nothing_compared",
     "is_open_set",
+    "plain_name",
+    "sort_of_catalog_object",
+    "SIZE_WORDS",
     "is_qualifier",
     "trust_of",
     "synonym_rows",
@@ -76,9 +79,15 @@ class DescribedNoun:
     kind: str
     english: str
     in_catalog: bool
+    #: The catalog head noun the noun names a sort of (:func:`sort_of_catalog_object`), when that alone
+    #: puts it in the catalog: the described object is then in the catalog only as an object of that head.
+    sort_of: str | None = None
 
     def to_dict(self) -> dict[str, object]:
-        return {"noun": self.noun, "kind": self.kind, "english": self.english, "in_catalog": self.in_catalog}
+        return {
+            "noun": self.noun, "kind": self.kind, "english": self.english, "in_catalog": self.in_catalog,
+            "sort_of": self.sort_of,
+        }  # fmt: skip
 
 
 class KindIndex:
@@ -91,6 +100,8 @@ class KindIndex:
         self._aliases = aliases
         self._kinds: dict[int, str | None] = {}
         self._rows: dict[str, list[int]] | None = None
+        self._heads: dict[str, frozenset[str]] | None = None
+        self._english: dict[str, str] | None = None
 
     def kind(self, row: int) -> str | None:
         if row not in self._kinds:
@@ -106,6 +117,36 @@ class KindIndex:
                     rows.setdefault(k, []).append(row)
             self._rows = rows
         return self._rows
+
+    def plain_head_kinds(self) -> dict[str, frozenset[str]]:
+        """The kinds of the catalog objects with a plain name (:func:`plain_name`), by its head noun, for
+        the heads no catalog object names a sort of ("ball" when there is a "soccer ball": none)."""
+        if self._heads is None:
+            out: dict[str, set[str]] = {}
+            sorts: set[str] = set()
+            for row in range(len(self._names)):
+                own = self.kind(row)
+                words = words_of(self._names[row])
+                if own and plain_name(words):
+                    out.setdefault(words[-1], set()).add(own)
+                elif words:
+                    sorts.add(words[-1])
+            self._heads = {h: frozenset(k) for h, k in out.items() if h not in sorts}
+        return self._heads
+
+    def english_names(self) -> dict[str, str]:
+        """The English names of the lexicon nouns heading the catalog objects' names and aliases, each with
+        the head noun of that name ("frying pan" -> "skillet")."""
+        if self._english is None:
+            out: dict[str, str] = {}
+            for row in range(len(self._names)):
+                for phrase in (self._names[row], *self._aliases[row]):
+                    words = words_of(phrase)
+                    noun = noun_in(words)
+                    if noun is not None and noun.english:
+                        out.setdefault(noun.english, words[-1])
+            self._english = out
+        return self._english
 
     def has_kind(self, kind: str) -> bool:
         """Whether some catalog object is of ``kind`` or of a kind below it. On a catalog of more than
@@ -167,7 +208,38 @@ def described_noun(
         noun.english != noun.text and bool(english)
         and (_names_catalog_object(english, phrases, heads) or english[-1] in heads)
     )  # a synonym names a sort of its English name's head noun ("puzzle cube" -> rubik's cube: a cube)
-    return DescribedNoun(noun.text, noun.kind, noun.english, known)
+    base = None if known else sort_of_catalog_object(noun, heads, kinds_of)
+    return DescribedNoun(noun.text, noun.kind, noun.english, known or base is not None, base)
+
+
+def sort_of_catalog_object(noun: Noun, heads, kinds_of: KindIndex | None) -> str | None:
+    """Whether a lexicon noun the catalog's names do not hold names a sort of an object the catalog holds
+    under a plain name (RECALL.md, "Sorts of a catalog object"): a compound or closed compound on the head
+    noun of a catalog object named by that noun alone or with qualifiers only (:func:`plain_name`: "timer",
+    "small clamp", "spoon") and of the noun's own kind ("kitchen timer", "spring clamp", "tablespoon"), or
+    a noun whose English name is a catalog object's ("frying pan" -> the skillet). Where the catalog names
+    its objects of that head by their sorts ("soccer ball", "tennis ball"), another sort ("volleyball") is
+    another object; a compound of another kind ("egg cup": tableware) is never one. The features still
+    decide whether the object is the one described (:func:`recall.fit.judge`, not named), and the engine
+    holds it in the catalog only when its best match has that head. Returns the catalog head, or None."""
+    if kinds_of is None:
+        return None
+    english = kinds_of.english_names()
+    if english.get(noun.english, noun.words[-1]) != noun.words[-1]:
+        return english[noun.english]  # "frying pan": the catalog's "skillet", whose English name it is
+    head = noun.words[-1]
+    plain = kinds_of.plain_head_kinds()
+    bases = [h for h in plain if h != head and len(h) >= 3 and head.endswith(h)]
+    if head in plain and len(noun.words) > 1:
+        bases.append(head)
+    return next((h for h in bases if noun.kind in plain[h]), None)
+
+
+def plain_name(words: Sequence[str]) -> bool:
+    """Whether a name is its head noun alone or after qualifiers only (materials, colours, adjectives:
+    "timer", "small clamp", "adjustable wrench"), no noun or gerund naming a sort ("soccer ball",
+    "frying pan", "sugar box")."""
+    return bool(words) and all(is_qualifier(w) and not w.endswith("ing") for w in words[:-1])
 
 
 def _generic(noun: Noun, generic: frozenset[str]) -> bool:
@@ -206,9 +278,17 @@ def is_qualifier(word: str) -> bool:
     multi-word one: "*cast* iron", "*stainless* steel") or colour, or a feature word or adjective that is
     no lexicon noun ("heavy", "non-stick", "pre-seasoned"). A noun ("*egg* cup", "*bottle* warmer") makes
     a compound: another object."""
-    if word in _material_words() or word in COLOURS:
+    if word in _material_words() or word in COLOURS or word in SIZE_WORDS:
         return True
     return noun_in([word]) is None and not noun_like(word)
+
+
+#: Size and degree words, which qualify a name ("*small* clamp", "*extra* large clamp") and never make a
+#: compound.
+SIZE_WORDS = frozenset(
+    "small big large little tiny mini medium extra huge giant jumbo xl xxl short long tall thin thick wide "
+    "narrow heavy light biggest smallest largest".split()
+)
 
 
 #: Words that hold the place of an object without naming one ("something", "a whatsit"): never an
