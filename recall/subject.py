@@ -82,8 +82,23 @@ def _phrases(text: str):
             return
 
 
+_LETTER_HYPHEN = re.compile(r"([^\W\d_]+)-(?=[^\W\d_])")
+
+
+def _joined(m: re.Match[str]) -> str:
+    """A word and its hyphen as one phrase's words, but a number word ("a *two*-slice toaster") keeps the
+    hyphen: it states a count, skipped like any number."""
+    from recall import lexicon as lx
+
+    word = m.group(1)
+    return f"{word}-" if word in lx.NUMBER_WORDS else f"{word} "
+
+
 def _sentence_phrases(sentence: str):
-    """The noun phrases of one sentence (lower case, apostrophes dropped), one per chunk."""
+    """The noun phrases of one sentence (lower case, apostrophes dropped), one per chunk. A hyphen between
+    letters joins the words of one phrase ("a *cross-head* screwdriver", "a t-shirt"), as the catalog's
+    names are read (:func:`kb.kinds.words_of`); any other hyphen (a range, a dash) ends a chunk."""
+    sentence = _LETTER_HYPHEN.sub(_joined, sentence)
     for chunk in re.split(r"[,:()\[\]\d\"/&+*=-]", sentence):
         phrase: list[str] = []
         previous = ""

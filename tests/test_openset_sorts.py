@@ -133,3 +133,22 @@ def test_a_noun_before_a_sort_named_objects_head_still_doubts_it(balls):
 def test_another_sort_of_a_head_the_catalog_names_by_sorts_is_not_in_it(balls):
     res = balls.recall_text("a volleyball, soft leather, 21 cm across, 270 g")
     assert res.not_in_catalog and res.open_set
+
+
+# ------------------------------------------------------------------------------------------ hyphens
+@pytest.mark.parametrize("text, phrase", [
+    ("cross-head screwdriver, eight inches long", ("cross", "head", "screwdriver")),
+    ("the T-shirt, cotton", ("t", "shirt")),
+    ("A two-slice toaster, 28 cm", ("slice", "toaster")),  # a number word keeps its hyphen: a count
+    ("a box 10-12 cm wide", ("box",)),  # a hyphen between numbers is a range
+    ("a mug - blue, 10 cm", ("mug",)),  # a dash ends the chunk
+])  # fmt: skip
+def test_a_hyphen_between_letters_joins_one_phrases_words(text, phrase):
+    from recall.subject import subject_phrase
+
+    assert subject_phrase(text) == phrase
+
+
+def test_a_hyphenated_modifier_no_longer_hides_the_head(tools):
+    res = tools.recall_text("a cross-head spoon, 18.6 cm long, 30 g")
+    assert res.described is None or res.described.noun != "cross"
