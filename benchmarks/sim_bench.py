@@ -4,7 +4,7 @@ Run: ``python benchmarks/sim_bench.py [--quick] [--only trials|workers|choice|pr
 against a baseline measured in the same run (no absolute thresholds): trials per second on one and on two
 worker processes, the wall time of validating the whole seed catalog's best grasps (planner -> trial ->
 knowledge base), and the closed-loop choice (issue 14): objects with a validated grasp, first-choice
-success, how often they differ and trials per CPU second, beside the figures before that issue and at the
+success (the rules' and, leave-one-object-out, the experience's: sim/experience.py), how often they differ and trials per CPU second, beside the figures before that issue and at the
 start of this session; ``protocols`` runs both validation protocols (sim/protocols.py), today's as the
 baseline, with their failures by push direction and cause. ``--save`` (a full-catalog run) saves the choice row for the README (benchmarks/results).
 """
@@ -187,9 +187,12 @@ def bench_choice(top: int = 3, *, limit: int | None = None, workers: int = 2) ->
         summary = validate(kb, None, top=top, workers=workers, progress=False, render=None)
     cpu = sum(float(json.loads(r["details"]).get("cpu_time_s") or 0.0) for r in summary.results)
     c = summary.choice_summary
+    experience, measure = choice_from_experience(records, summary.results)
     out = {
         "top": top,
         **c.to_dict(),
+        "experience_loo": measure.to_dict(),
+        "experience": experience.to_dict(),
         "trials": summary.ran,
         "errors": summary.errors,
         "trials_per_cpu_s": round(summary.ran / cpu, 2) if cpu else None,
@@ -209,7 +212,25 @@ def bench_choice(top: int = 3, *, limit: int | None = None, workers: int = 2) ->
         f"{summary.wall_time_s:.0f} s wall on {workers} workers, load average {out['load_avg_1min']:g}",
         flush=True,
     )
+    m = measure
+    print(
+        f"first choice from experience (sim/experience.py), leave-one-object-out: holds for {m.first_holds} of the "
+        f"{m.with_hold} objects with a grasp that holds ({100 * m.first_holds / max(1, m.with_hold):.1f} %; goal >= 95 % "
+        f"= {math.ceil(0.95 * m.with_hold)}; the rules' first choice {m.rules_first_holds}); changed for "
+        f"{len(m.changed)}: " + "; ".join(f"{n} {a} -> {b} ({'holds' if ok else 'fails'})" for n, a, b, ok in m.changed),
+        flush=True,
+    )
     return out
+
+
+def choice_from_experience(records: list[Any], rows: list[dict[str, Any]]) -> tuple[Any, Any]:
+    """The experience learned from every row (what ``--save`` stores for the planner) and the first choice
+    it gives measured leave-one-object-out (sim/experience.py)."""
+    from sim.experience import Experience, leave_one_object_out, object_class, outcomes
+    from sim.planned_object import resolve_features
+
+    seen = outcomes(rows, {r.name: object_class(resolve_features(r)) for r in records})
+    return Experience.learn(seen), leave_one_object_out(seen)
 
 
 def _phase_of(reason: str) -> str:
@@ -317,7 +338,9 @@ def main(argv: list[str] | None = None) -> int:
             if args.quick:
                 print("not saved: --quick runs 20 objects; the README row is the whole seed catalog")
             else:
-                print(f"saved {save_choice(choice)}")
+                from sim.experience import Experience
+
+                print(f"saved {save_choice(choice)} and {Experience.from_dict(choice['experience']).save()}")
     return 0
 
 
@@ -327,11 +350,13 @@ def save_choice(out: dict[str, Any]) -> Path:
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from saved import save_result
 
-    n, b, s = out["objects"], out["before"], out["session_start"]
+    n, b, s, e = out["objects"], out["before"], out["session_start"], out["experience_loo"]
     result = (
         f"first choice holds {out['first_holds']}/{n} (before issue 14: {b['first_holds']}, session start: "
         f"{s['first_holds']}), validated grasp {out['validated']}/{n} (before: {b['validated']}, session start: "
         f"{s['validated']}; goal 95 % = {math.ceil(0.95 * n)}), validated differs from first {out['differs']}/{n}; "
+        f"first choice from experience (leave-one-object-out) {e['first_holds']}/{e['with_hold']} of the objects "
+        f"with a grasp that holds (goal 95 % = {math.ceil(0.95 * e['with_hold'])}); "
         f"{out['trials_per_cpu_s']} trials per CPU-second at load average {out['load_avg_1min']:.0f} (before about "
         f"{b['trials_per_cpu_s']:g}); {out['trials']} trials in {out['wall_s']:.0f} s wall on 2 workers"
     )

@@ -411,12 +411,16 @@ def _rank_key(p: GraspPlan) -> tuple[bool, bool, float]:
     return (not p.params["fits_aperture"], not p.params["force_within_capacity"], -p.score)
 
 
-def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None) -> list[GraspPlan]:
+def plan_grasps(
+    obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None, experience: Any = None
+) -> list[GraspPlan]:
     """Ranked candidate grasps for ``obj`` (an ObjectRecord or a features mapping), best first.
 
     Every plan carries its rationale (the rules that chose it and the assumptions made for unknown
     features). ``top`` keeps only the first ``top`` plans. Raises InvalidFeature for invalid features.
-    Each hand program is listed once: a merged type the rules reach later is dropped.
+    Each hand program is listed once: a merged type the rules reach later is dropped. ``experience`` (a
+    sim.experience ``Experience``) may move a later one of the first three to the front, where the trials
+    of its object class say so; None keeps the rules' order.
     """
     ctx = _context(resolve_features(obj))
     hold = _handle_hold(ctx)
@@ -432,6 +436,8 @@ def plan_grasps(obj: ObjectRecord | Mapping[str, Any], *, top: int | None = None
         seen.add(program.name)
         plans.append(_plan(ctx, rank, grasp_type, reason, program))
     plans.sort(key=_rank_key)  # stable: rule order breaks ties
+    if experience is not None:
+        plans = experience.order(plans, ctx.o)
     return plans[:top] if top else plans
 
 

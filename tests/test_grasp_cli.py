@@ -211,3 +211,28 @@ def test_validate_says_why_nothing_holds_in_the_hands_terms(tmp_path):
     assert "validated choice: none of the 1 candidates holds" in text
     assert "why: aperture: its smallest side (30 cm) is wider than the hand's 12 cm span: it needs two hands" in text
     assert out.count("    why: ") == 1
+
+
+def test_plan_uses_the_saved_experience_and_says_why(tmp_path):
+    """The service plans with what the seed catalog's trials learned (sim/data/experience.json): an egg's
+    rules put a precision sphere first (the precision_circular program); on radial objects of its class the
+    trials held the power sphere, so the CLI's first choice is the power sphere. The planner without
+    experience keeps the rules' order."""
+    from sim.experience import saved_experience
+    from sim.planner import plan_grasps
+
+    csv = tmp_path / "c.csv"
+    csv.write_text(
+        "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity\n"
+        "egg,5.7,4.4,4.4,58,radial,smooth,fragile,other,rigid\n"
+    )
+    rules_first = plan_grasps(
+        {"name": "egg", "a_cm": 5.7, "b_cm": 4.4, "c_cm": 4.4, "mass_g": 58, "shape": "radial",
+         "texture": "smooth", "fragility": "fragile", "material": "other", "rigidity": "rigid"}, top=3
+    )[0].grasp_type  # fmt: skip
+    assert rules_first == "precision_sphere"  # runs the precision_circular program
+    assert saved_experience().counts  # the shipped file is read
+    result = invoke("grasp", "plan", "--catalog", str(csv), "--json")
+    assert result.exit_code == 0, result.output
+    line = json.loads(result.output.splitlines()[0])
+    assert line["grasp_type"] == "power_sphere"

@@ -51,6 +51,7 @@ def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
     and named in the row's ``warnings``; a row without a name gets ``error`` instead of a plan, so the
     output always has one line per row.
     """
+    from sim.experience import saved_experience
     from sim.planner import plan_grasps
 
     out: list[dict[str, Any]] = []
@@ -60,7 +61,7 @@ def catalog_plans(path: Path, *, top: int = 3) -> list[dict[str, Any]]:
         if obj is None:
             out.append({"name": name, "row": lineno, "error": error})
             continue
-        plans = plan_grasps(obj, top=top)
+        plans = plan_grasps(obj, top=top, experience=saved_experience())
         best = plans[0]
         line = {
             "name": name,
@@ -197,10 +198,11 @@ def plan(
         return
     if description is None or not description.strip():
         raise ObjrecallError("give a DESCRIPTION of the object (or --catalog FILE.csv)")
+    from sim.experience import saved_experience
     from sim.planner import plan_grasps
 
     obj, how = _recall(resolve_db(db), description.strip())
-    plans = plan_grasps(obj, top=top)
+    plans = plan_grasps(obj, top=top, experience=saved_experience())
     out: dict[str, Any] = {
         "description": description,
         "object": obj.name,

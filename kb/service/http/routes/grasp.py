@@ -33,6 +33,7 @@ def _record_of(result):
 @router.post("/grasp/plan")
 def grasp_plan(body: PlanIn, state: State) -> dict[str, Any]:
     """Ranked grasp plans for a catalog object (``name``) or the best match of a description (``text``)."""
+    from sim.experience import saved_experience
     from sim.planner import plan_grasps
 
     if (body.text is None) == (body.name is None):
@@ -47,7 +48,7 @@ def grasp_plan(body: PlanIn, state: State) -> dict[str, Any]:
         if not result.matches:
             raise RecallError("the description states no feature and names no catalog object")
         obj, how = grasp_target(result, _record_of(result))
-    plans = plan_grasps(obj, top=body.top)
+    plans = plan_grasps(obj, top=body.top, experience=saved_experience())
     return to_jsonable(
         {
             "object": obj.name,
