@@ -13,7 +13,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from kb.kinds import singular, words_of
+from kb.kinds import noun_in, singular, words_of
 from recall.compounds import COMPOUND_CHECK_LIMIT, compound_agrees, modifier_noun
 from recall.names import GENERIC_NOUNS, MIN_SUFFIX, name_words, rows_with_word
 from recall.subject import (
@@ -116,7 +116,8 @@ class NameIndex:
     def unknown_noun(self, text: str) -> str | None:
         """The head noun of the description's subject (:func:`subject_head`) when the catalog does not know
         it: in no name or alias, not a feature word of the parser's lexicon (materials, shapes, units,
-        ...; a colour word counts as a noun here: "an orange"), not a generic noun (:data:`GENERIC_NOUNS`)."""
+        ...; a colour word counts only when the lexicon has it as a noun: "an orange", not "red, round,
+        7.5 cm across"), not a generic noun (:data:`GENERIC_NOUNS`)."""
         phrase = subject_phrase(text)
         head = phrase[-1] if phrase else None
         if (
@@ -128,7 +129,7 @@ class NameIndex:
             return None  # a compound on a known noun: "remote control" (tv remote), "bottle cap"
         if head is None or head in self.vocabulary or head in GENERIC_NOUNS or is_participle(head):
             return None
-        if head in feature_words():
+        if head in feature_words() or _colour_only(head):
             return None
         return head
 
@@ -239,3 +240,12 @@ class NameIndex:
             return rows
         names, aliases = self._names, self._aliases
         return {r for r in rows if compound_agrees(modifier, words[i], (names[r], *aliases[r]))}
+
+
+def _colour_only(word: str) -> bool:
+    """Whether ``word`` is a colour and nothing else: no lexicon noun ("red", "purple"; "orange", "plum"
+    and "lime" are fruit). A subject of colour words alone is a list of adjectives, not an object."""
+    from recall.lexicon import COLOUR_WORDS
+    from recall.openset import COLOURS
+
+    return (word in COLOURS or word in COLOUR_WORDS) and noun_in([word]) is None

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 from types import SimpleNamespace
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -103,3 +104,19 @@ def test_a_size_at_the_end_of_a_store_name_is_no_head_noun():
         assert not found.exact and not found.head, (text, found)
     assert set(index.find("a skillet").head) == {0} and set(index.find("a bottle").head) == {2}
     assert set(index.find("a cup").head) == {3}
+
+
+@pytest.mark.parametrize(
+    ("text", "unknown"),
+    [
+        ("red, round, 7.5 cm across", None),  # colour words alone: adjectives, no object
+        ("dark purple, round, 5 cm", None),
+        ("bright yellow, squeezable, about 18 cm", None),
+        ("an orange, 7 cm", "orange"),  # a colour that is a lexicon noun (fruit) still names an object
+        ("a plum, 5 cm", "plum"),
+        ("a red kettle, 20 cm", "kettle"),  # a colour before a noun: the noun
+    ],
+)
+def test_a_subject_of_colour_words_alone_is_no_unknown_noun(text, unknown):
+    index = NameIndex(["tennis ball", "mug"], [(), ()], [None, None])
+    assert index.unknown_noun(text) == unknown
