@@ -197,6 +197,7 @@ class PoliteFetcher:
             extra.update(validators.headers())
         current = url
         redirects = 0
+        seen = {url}
         while True:
             key, host = self._host(current)
             with host.lock:
@@ -206,6 +207,11 @@ class PoliteFetcher:
                 )
             if result.status in REDIRECT_STATUSES and result.final_url != current:
                 redirects += 1
+                if result.final_url in seen:
+                    raise tagged_error(
+                        FetchError, url, "redirect_loop", f"redirect {redirects} leads back to {result.final_url}"
+                    )
+                seen.add(result.final_url)
                 if redirects > policy.max_redirects:
                     raise tagged_error(
                         FetchError, url, "too_many_redirects", f"more than {policy.max_redirects} redirects"

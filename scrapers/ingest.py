@@ -76,6 +76,8 @@ ProgressFn = Callable[[int, int, str], None]
 Extractor = Callable[[bytes, str, "str | None"], ProductRecord]
 
 MAX_SITEMAPS = 50
+#: URLs read from one sitemap (the sitemaps protocol's own limit); the rest are left with a reason.
+MAX_SITEMAP_URLS = 50_000
 #: Stores crawled at the same time (each host still gets one request at a time).
 DEFAULT_MAX_HOSTS = 4
 _SHOPIFY_PRODUCT = re.compile(r"^/products/[^/.]+/?$")
@@ -89,15 +91,31 @@ class _Rejected(Exception):
 
 
 # ---------------------------------------------------------------------------------------------- discover
-def _sitemap_locs(body: bytes) -> tuple[str, list[str]]:
-    """(root kind, <loc> texts) of a sitemap or sitemap index; entities and network access disabled."""
+def _sitemap_locs(body: bytes, cap: int = MAX_SITEMAP_URLS) -> tuple[str, list[str], bool]:
+    """(root kind, the first ``cap`` <loc> texts, whether more were left) of a sitemap or sitemap index,
+    parsed as a stream (elements freed as read); entities and network access disabled."""
+    import io
+
     from lxml import etree
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, recover=False, huge_tree=False)
-    root = etree.fromstring(body, parser=parser)
-    kind = etree.QName(root).localname
-    locs = [el.text.strip() for el in root.iter() if etree.QName(el).localname == "loc" and el.text]
-    return kind, locs
+    kind, locs, more = "", [], False
+    events = etree.iterparse(
+        io.BytesIO(body), events=("start", "end"), resolve_entities=False, no_network=True, huge_tree=False
+    )
+    for event, el in events:
+        if event == "start":
+            kind = kind or etree.QName(el).localname
+            continue
+        if etree.QName(el).localname == "loc" and el.text and el.text.strip():
+            if len(locs) >= cap:
+                more = True
+                break
+            locs.append(el.text.strip())
+        if el.getparent() is not None and etree.QName(el).localname in ("url", "sitemap"):
+            el.clear()
+            while el.getprevious() is not None:
+                del el.getparent()[0]
+    return kind, locs, more
 
 
 def discover_urls(
@@ -129,13 +147,17 @@ def discover_urls(
         seen_maps.add(sitemap)
         try:
             result = fetcher.fetch(sitemap, policy=store.policy, until=until)
-            kind, locs = _sitemap_locs(result.body or b"")
+            kind, locs, more = _sitemap_locs(result.body or b"")
         except FetchError as err:
             events.append((sitemap, "discover", f"{fetch_error_kind(err)}: {err.reason}"))
             continue
         except Exception as err:  # noqa: BLE001 - lxml's XMLSyntaxError and friends: a bad sitemap is skipped
             events.append((sitemap, "discover", f"bad_sitemap: {type(err).__name__}: {err}"))
             continue
+        if more:
+            events.append(
+                (sitemap, "discover", f"sitemap_truncated: more than {MAX_SITEMAP_URLS} URLs; the first kept")
+            )
         if kind == "sitemapindex":
             sitemaps.extend(locs)
         else:
