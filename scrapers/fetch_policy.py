@@ -12,6 +12,7 @@ from datetime import UTC, datetime
 from typing import Protocol
 
 __all__ = [
+    "DEFAULT_PAGE_DEADLINE_S",
     "DEFAULT_POLICY",
     "REDIRECT_STATUSES",
     "RETRY_STATUSES",
@@ -43,6 +44,10 @@ RETRY_STATUSES: frozenset[int] = frozenset({408, 429, 500, 502, 503, 504})
 REDIRECT_STATUSES: frozenset[int] = frozenset({301, 302, 303, 307, 308})
 
 
+#: The default total deadline of one page (issue 25: at most 30 s).
+DEFAULT_PAGE_DEADLINE_S = 30.0
+
+
 class Clock(Protocol):
     """Time as the fetcher sees it: a monotonic clock for delays, a sleep, and wall time for records."""
 
@@ -72,9 +77,10 @@ class FetchPolicy:
     """How politely and patiently to fetch; every field has a safe default.
 
     ``delay_s`` is the minimum gap between two requests to one host (robots.txt Crawl-delay can raise it,
-    never lower it). ``read_timeout_s`` bounds each wait for bytes; ``max_page_s`` bounds a whole body, so a
-    server that drips a byte at a time cannot hold the crawl. ``max_retries`` counts extra attempts after the first. Backoff before retry *n*
-    (1-based) is ``backoff_s * 2 ** (n - 1)``.
+    never lower it). ``read_timeout_s`` bounds each wait for bytes; ``max_page_s`` is the page's total
+    deadline (connect, headers and body, across retries and redirects; default 30 s), so a server that drips
+    a byte at a time cannot hold the crawl (:mod:`scrapers.deadlines`). ``max_retries`` counts extra
+    attempts after the first. Backoff before retry *n* (1-based) is ``backoff_s * 2 ** (n - 1)``.
     """
 
     delay_s: float = 1.0
@@ -85,7 +91,7 @@ class FetchPolicy:
     max_retries: int = 3
     backoff_s: float = 1.0
     max_retry_after_s: float = 120.0
-    max_page_s: float = 120.0
+    max_page_s: float = DEFAULT_PAGE_DEADLINE_S
     obey_robots: bool = True
     user_agent: str = USER_AGENT
 

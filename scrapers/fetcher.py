@@ -14,7 +14,11 @@ Polite by default, in the manner of Scrapy's downloader middlewares:
   back as ``not_modified`` with no body, so it costs no parsing;
 - connect and read timeouts, a redirect limit (each hop checked against robots.txt), and a size cap
   enforced while streaming: a declared ``Content-Length`` over the cap is refused before any body byte is
-  read, and an undeclared body is read in chunks and abandoned as soon as it passes the cap.
+  read, and an undeclared body is read in chunks and abandoned as soon as it passes the cap;
+- a total deadline per page (``max_page_s``, default 30 s: connect, headers and body, across retries and
+  redirects; :class:`~scrapers.deadlines.PageDeadline`), and an optional outer end (``until``: the store's
+  budget for the run). Every request's connect and read time-outs are clamped to the time left, the socket's
+  time-out again before each body read, and a pause that would end past the deadline is not taken.
 
 The network (a :class:`requests.Session`) and the clock are passed in, so tests run against a local
 server with a clock that does not really sleep.
@@ -30,10 +34,11 @@ from datetime import UTC
 from urllib.parse import urljoin, urlsplit
 
 import requests
-import urllib3
 from protego import Protego
 
-from kb.errors import FetchError, PageTooLarge, RobotsDisallowed
+from kb.errors import FetchError, RobotsDisallowed
+from scrapers.deadlines import PageDeadline
+from scrapers.fetch_body import read_body
 from scrapers.fetch_policy import (
     DEFAULT_POLICY,
     REDIRECT_STATUSES,
@@ -61,9 +66,6 @@ __all__ = [
     "fetch_error_kind",
     "with_overrides",
 ]
-
-
-_CHUNK = 64 * 1024
 
 
 @dataclass
@@ -103,12 +105,14 @@ class PoliteFetcher:
             host = self._hosts.setdefault(key, _Host())
         return key, host
 
-    def robots(self, url: str, policy: FetchPolicy | None = None) -> Protego | None:
+    def robots(
+        self, url: str, policy: FetchPolicy | None = None, *, until: float | None = None
+    ) -> Protego | None:
         """The parsed robots.txt of ``url``'s host (fetched once), or None when it allows everything."""
         policy = policy or self.policy
         key, host = self._host(url)
         with host.lock:
-            self._load_robots(key, host, policy)
+            self._load_robots(key, host, policy, until)
             return host.robots
 
     def crawl_delay(self, url: str, policy: FetchPolicy | None = None) -> float | None:
@@ -119,19 +123,27 @@ class PoliteFetcher:
         delay = rp.crawl_delay(policy.user_agent if policy else self.policy.user_agent)
         return float(delay) if delay is not None else None
 
-    def sitemaps(self, url: str, policy: FetchPolicy | None = None) -> list[str]:
-        rp = self.robots(url, policy)
+    def sitemaps(self, url: str, policy: FetchPolicy | None = None, *, until: float | None = None) -> list[str]:
+        rp = self.robots(url, policy, until=until)
         return list(rp.sitemaps) if rp is not None else []
 
-    def _load_robots(self, key: str, host: _Host, policy: FetchPolicy) -> None:
-        """Fetch and parse robots.txt; the caller holds ``host.lock``."""
+    def _load_robots(self, key: str, host: _Host, policy: FetchPolicy, until: float | None = None) -> None:
+        """Fetch and parse robots.txt (under its own page deadline); the caller holds ``host.lock``. A
+        robots.txt that cannot be read in time disallows the host for this fetcher's life (RFC 9309 2.3.1.4:
+        unreachable is disallow-all); one cut only by the store's budget is not remembered, another store on
+        the host may still read it."""
         if host.robots_loaded:
             return
         robots_url = key + "/robots.txt"
+        deadline = PageDeadline(policy.max_page_s, until)
         try:
-            resp = self._request(robots_url, host, policy, {}, delay_s=policy.delay_s, follow_redirects=True)
+            resp = self._request(
+                robots_url, host, policy, {}, deadline, delay_s=policy.delay_s, follow_redirects=True
+            )
         except FetchError as err:
-            host.robots_error = err.reason
+            if fetch_error_kind(err) == "store_budget_spent":
+                raise
+            host.robots_error = f"{fetch_error_kind(err)}: {err.reason}"
         else:
             if 200 <= resp.status < 300:
                 text = (resp.body or b"").decode("utf-8", errors="replace")
@@ -142,11 +154,13 @@ class PoliteFetcher:
                 host.robots_error = f"robots.txt answered HTTP {resp.status}"
         host.robots_loaded = True
 
-    def _check_robots(self, url: str, key: str, host: _Host, policy: FetchPolicy) -> float:
+    def _check_robots(
+        self, url: str, key: str, host: _Host, policy: FetchPolicy, until: float | None = None
+    ) -> float:
         """Raise RobotsDisallowed if robots.txt forbids ``url``; return the effective delay for the host."""
         if not policy.obey_robots:
             return policy.delay_s
-        self._load_robots(key, host, policy)
+        self._load_robots(key, host, policy, until)
         if host.robots_error is not None:
             raise tagged_error(
                 RobotsDisallowed, url, "robots_unavailable", f"robots.txt unavailable: {host.robots_error}"
@@ -166,25 +180,38 @@ class PoliteFetcher:
         validators: Validators | None = None,
         policy: FetchPolicy | None = None,
         headers: Mapping[str, str] | None = None,
+        until: float | None = None,
     ) -> FetchResult:
         """Fetch ``url``; returns a 2xx page or a 304 (``not_modified``).
 
+        The whole fetch (every retry and redirect) ends within ``policy.max_page_s`` of its first request,
+        and by ``until`` (a monotonic time of the fetcher's clock: the store's budget end) if given.
         Raises :class:`RobotsDisallowed`, :class:`PageTooLarge` or :class:`FetchError` (any other status,
-        timeouts and connection failures after the retries, too many redirects).
+        timeouts and connection failures after the retries, too many redirects, the deadline passed: kind
+        ``timeout``, or the budget's end: kind ``store_budget_spent``).
         """
         policy = policy or self.policy
+        deadline = PageDeadline(policy.max_page_s, until)
         extra = dict(headers or {})
         if validators is not None:
             extra.update(validators.headers())
         current = url
         redirects = 0
+        seen = {url}
         while True:
             key, host = self._host(current)
             with host.lock:
-                delay = self._check_robots(current, key, host, policy)
-                result = self._request(current, host, policy, extra, delay_s=delay, follow_redirects=False)
+                delay = self._check_robots(current, key, host, policy, until)
+                result = self._request(
+                    current, host, policy, extra, deadline, delay_s=delay, follow_redirects=False
+                )
             if result.status in REDIRECT_STATUSES and result.final_url != current:
                 redirects += 1
+                if result.final_url in seen:
+                    raise tagged_error(
+                        FetchError, url, "redirect_loop", f"redirect {redirects} leads back to {result.final_url}"
+                    )
+                seen.add(result.final_url)
                 if redirects > policy.max_redirects:
                     raise tagged_error(
                         FetchError, url, "too_many_redirects", f"more than {policy.max_redirects} redirects"
@@ -208,10 +235,13 @@ class PoliteFetcher:
             return 0.0
         return max(0.0, host.last_end + delay_s - self.clock.monotonic())
 
-    def _wait_turn(self, host: _Host, delay_s: float) -> None:
+    def _wait_turn(self, url: str, host: _Host, delay_s: float, deadline: PageDeadline) -> None:
+        """Wait for the host's turn, unless the wait would outlast the deadline; then start the deadline."""
         wait = self._until_turn(host, delay_s)
+        deadline.may_wait(url, self.clock.monotonic(), wait)
         if wait > 0:
             self.clock.sleep(wait)
+        deadline.start(self.clock.monotonic())
 
     def _request(
         self,
@@ -219,6 +249,7 @@ class PoliteFetcher:
         host: _Host,
         policy: FetchPolicy,
         headers: Mapping[str, str],
+        deadline: PageDeadline,
         *,
         delay_s: float,
         follow_redirects: bool,
@@ -231,15 +262,16 @@ class PoliteFetcher:
         hops = 0
         while True:
             attempts += 1
-            self._wait_turn(host, delay_s)
+            self._wait_turn(url, host, delay_s, deadline)
             retry_after: float | None = None
             try:
-                result = self._once(url, policy, headers)
+                result = self._once(url, policy, headers, deadline)
             except FetchError as err:
                 host.last_end = self.clock.monotonic()
                 if (
                     getattr(err, "kind", "") not in ("timeout", "connection_failed")
                     or attempts > policy.max_retries
+                    or deadline.passed(self.clock.monotonic())
                 ):
                     if attempts > 1:
                         err.reason = f"{err.reason} after {attempts} attempts"
@@ -268,6 +300,7 @@ class PoliteFetcher:
             # The host delay is counted from the end of the last request; sleep whatever more the backoff needs.
             extra = pause - self._until_turn(host, delay_s)
             if extra > 0:
+                deadline.may_wait(url, self.clock.monotonic(), extra)
                 self.clock.sleep(extra)
 
     def _retry_after(self, result: FetchResult, policy: FetchPolicy) -> float | None:
@@ -288,19 +321,24 @@ class PoliteFetcher:
             seconds = (when - self.clock.now()).total_seconds()
         return min(max(seconds, 0.0), policy.max_retry_after_s)
 
-    def _once(self, url: str, policy: FetchPolicy, headers: Mapping[str, str]) -> FetchResult:
-        """Exactly one HTTP exchange, body streamed under the size cap."""
+    def _once(
+        self, url: str, policy: FetchPolicy, headers: Mapping[str, str], deadline: PageDeadline
+    ) -> FetchResult:
+        """Exactly one HTTP exchange, time-outs clamped to the deadline, body streamed under the size cap."""
         send = {"User-Agent": policy.user_agent, "Accept-Encoding": "gzip, deflate", **headers}
+        left = deadline.left(url, self.clock.monotonic())
         self.requests_made += 1
         try:
             resp = self.session.get(
                 url,
                 headers=send,
-                timeout=(policy.connect_timeout_s, policy.read_timeout_s),
+                timeout=(min(policy.connect_timeout_s, left), min(policy.read_timeout_s, left)),
                 stream=True,
                 allow_redirects=False,
             )
         except requests.Timeout:
+            if deadline.passed(self.clock.monotonic()):
+                raise deadline.error(url, self.clock.monotonic()) from None
             raise tagged_error(
                 FetchError, url, "timeout", f"timed out (read timeout {policy.read_timeout_s:g} s)"
             ) from None
@@ -325,7 +363,7 @@ class PoliteFetcher:
             final_url = urljoin(url, location) if status in REDIRECT_STATUSES and location else url
             body: bytes | None = None
             if 200 <= status < 300:
-                body = self._read_capped(url, resp, policy)
+                body = read_body(url, resp, policy, deadline, self.clock)
             result = FetchResult(
                 url=url,
                 final_url=final_url,
@@ -340,55 +378,3 @@ class PoliteFetcher:
             return result
         finally:
             resp.close()
-
-    def _read_capped(self, url: str, resp: requests.Response, policy: FetchPolicy) -> bytes:
-        declared = resp.headers.get("Content-Length")
-        if declared and declared.strip().isdigit() and int(declared) > policy.max_bytes:
-            raise tagged_error(
-                PageTooLarge,
-                url,
-                "too_large",
-                f"declared {int(declared)} bytes, over the cap of {policy.max_bytes}",
-            )
-        chunks: list[bytes] = []
-        total = 0
-        deadline = self.clock.monotonic() + policy.max_page_s
-        try:
-            for chunk in _body_chunks(resp):
-                if self.clock.monotonic() > deadline:
-                    raise tagged_error(
-                        FetchError, url, "timeout", f"body took longer than {policy.max_page_s:g} s"
-                    )
-                total += len(chunk)
-                if total > policy.max_bytes:
-                    raise tagged_error(
-                        PageTooLarge, url, "too_large", f"body passed the cap of {policy.max_bytes} bytes"
-                    )
-                chunks.append(chunk)
-        except (requests.exceptions.ReadTimeout, urllib3.exceptions.ReadTimeoutError):
-            raise tagged_error(FetchError, url, "timeout", "timed out while reading the body") from None
-        except requests.exceptions.ConnectionError as err:
-            if "timed out" in str(err).lower():
-                raise tagged_error(FetchError, url, "timeout", "timed out while reading the body") from None
-            raise tagged_error(
-                FetchError, url, "connection_failed", "connection dropped while reading the body"
-            ) from None
-        except (requests.exceptions.RequestException, urllib3.exceptions.HTTPError, OSError) as err:
-            raise tagged_error(
-                FetchError, url, "connection_failed", f"body could not be read ({type(err).__name__})"
-            ) from None
-        return b"".join(chunks)
-
-
-def _body_chunks(resp: requests.Response):
-    """The decoded body in pieces as they arrive (``read1``: at most one socket read each), so a size cap
-    or a time limit is checked while a slow or endless body is still coming."""
-    raw = resp.raw
-    if hasattr(raw, "read1"):
-        while True:
-            chunk = raw.read1(_CHUNK, decode_content=True)
-            if not chunk:
-                return
-            yield chunk
-    else:  # an adapter without urllib3 underneath
-        yield from resp.iter_content(_CHUNK)

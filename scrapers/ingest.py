@@ -33,10 +33,8 @@ from __future__ import annotations
 
 import hashlib
 import re
-import threading
 from collections import Counter
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 from urllib.parse import urlsplit
 
@@ -51,6 +49,7 @@ from kb.features import (
     normalize_name,
 )
 from scrapers.catalog_write import PAUSE_ENV, write
+from scrapers.crawl import crawl_stores
 from scrapers.fetcher import Clock, PoliteFetcher, SystemClock, Validators, fetch_error_kind
 from scrapers.normalize import impossible_value
 from scrapers.outcomes import LOCAL_HOSTS, IngestionReport, PageOutcome, page_identity
@@ -77,7 +76,9 @@ ProgressFn = Callable[[int, int, str], None]
 Extractor = Callable[[bytes, str, "str | None"], ProductRecord]
 
 MAX_SITEMAPS = 50
-#: Hosts crawled at the same time (each host still gets one request at a time).
+#: URLs read from one sitemap (the sitemaps protocol's own limit); the rest are left with a reason.
+MAX_SITEMAP_URLS = 50_000
+#: Stores crawled at the same time (each host still gets one request at a time).
 DEFAULT_MAX_HOSTS = 4
 _SHOPIFY_PRODUCT = re.compile(r"^/products/[^/.]+/?$")
 
@@ -90,29 +91,50 @@ class _Rejected(Exception):
 
 
 # ---------------------------------------------------------------------------------------------- discover
-def _sitemap_locs(body: bytes) -> tuple[str, list[str]]:
-    """(root kind, <loc> texts) of a sitemap or sitemap index; entities and network access disabled."""
+def _sitemap_locs(body: bytes, cap: int = MAX_SITEMAP_URLS) -> tuple[str, list[str], bool]:
+    """(root kind, the first ``cap`` <loc> texts, whether more were left) of a sitemap or sitemap index,
+    parsed as a stream (elements freed as read); entities and network access disabled."""
+    import io
+
     from lxml import etree
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, recover=False, huge_tree=False)
-    root = etree.fromstring(body, parser=parser)
-    kind = etree.QName(root).localname
-    locs = [el.text.strip() for el in root.iter() if etree.QName(el).localname == "loc" and el.text]
-    return kind, locs
+    kind, locs, more = "", [], False
+    events = etree.iterparse(
+        io.BytesIO(body), events=("start", "end"), resolve_entities=False, no_network=True, huge_tree=False
+    )
+    for event, el in events:
+        if event == "start":
+            kind = kind or etree.QName(el).localname
+            continue
+        if etree.QName(el).localname == "loc" and el.text and el.text.strip():
+            if len(locs) >= cap:
+                more = True
+                break
+            locs.append(el.text.strip())
+        if el.getparent() is not None and etree.QName(el).localname in ("url", "sitemap"):
+            el.clear()
+            while el.getprevious() is not None:
+                del el.getparent()[0]
+    return kind, locs, more
 
 
 def discover_urls(
-    fetcher: PoliteFetcher, store: StoreSource, events: list[tuple[str, str, str]]
+    fetcher: PoliteFetcher,
+    store: StoreSource,
+    events: list[tuple[str, str, str]],
+    *,
+    until: float | None = None,
 ) -> list[str]:
     """The page URLs to fetch for ``store``, in order, de-duplicated, filtered and capped.
 
-    Problems (an unreadable sitemap) are appended to ``events`` as (url, stage, reason) and skipped.
+    Problems (an unreadable sitemap) are appended to ``events`` as (url, stage, reason) and skipped. Every
+    fetch ends by ``until`` (the store's budget end, a monotonic time of the fetcher's clock) if given.
     """
     urls: list[str] = list(store.urls)
     sitemaps = list(store.sitemaps)
     if not sitemaps and not urls:
         try:
-            sitemaps = fetcher.sitemaps(store.base_url + "/", store.policy)
+            sitemaps = fetcher.sitemaps(store.base_url + "/", store.policy, until=until)
         except FetchError as err:
             events.append(
                 (store.base_url + "/robots.txt", "discover", f"{fetch_error_kind(err)}: {err.reason}")
@@ -124,14 +146,18 @@ def discover_urls(
             continue
         seen_maps.add(sitemap)
         try:
-            result = fetcher.fetch(sitemap, policy=store.policy)
-            kind, locs = _sitemap_locs(result.body or b"")
+            result = fetcher.fetch(sitemap, policy=store.policy, until=until)
+            kind, locs, more = _sitemap_locs(result.body or b"")
         except FetchError as err:
             events.append((sitemap, "discover", f"{fetch_error_kind(err)}: {err.reason}"))
             continue
         except Exception as err:  # noqa: BLE001 - lxml's XMLSyntaxError and friends: a bad sitemap is skipped
             events.append((sitemap, "discover", f"bad_sitemap: {type(err).__name__}: {err}"))
             continue
+        if more:
+            events.append(
+                (sitemap, "discover", f"sitemap_truncated: more than {MAX_SITEMAP_URLS} URLs; the first kept")
+            )
         if kind == "sitemapindex":
             sitemaps.extend(locs)
         else:
@@ -235,12 +261,14 @@ def _process_page(
     url: str,
     prev: dict[str, Any] | None,
     extract: Extractor,
+    *,
+    until: float | None = None,
 ) -> PageOutcome:
     page = PageOutcome(url=url, store=store.name)
     good_before = prev is not None and prev.get("error") is None and prev.get("object_id") is not None
     validators = Validators(prev.get("etag"), prev.get("last_modified")) if good_before else None
     try:
-        result = fetcher.fetch(url, validators=validators, policy=store.policy)
+        result = fetcher.fetch(url, validators=validators, policy=store.policy, until=until)
     except FetchError as err:
         page.outcome, page.stage, page.reason, page.detail = (
             "rejected",
@@ -283,43 +311,6 @@ def _process_page(
 
 
 # ---------------------------------------------------------------------------------------------- the job
-def _fetch_all(
-    fetcher: PoliteFetcher,
-    plan: list[tuple[StoreSource, str]],
-    previous: dict[str, dict[str, Any]],
-    extract: Extractor,
-    progress: ProgressFn | None,
-    max_hosts: int,
-) -> list[PageOutcome]:
-    """Fetch and extract every planned page: hosts in parallel (up to ``max_hosts``), each host's pages in
-    order, one at a time (the fetcher also enforces that). Outcomes come back in plan order."""
-    by_host: dict[str, list[int]] = {}
-    for i, (_, url) in enumerate(plan):
-        by_host.setdefault(urlsplit(url).netloc, []).append(i)
-    outcomes: list[PageOutcome | None] = [None] * len(plan)
-    lock = threading.Lock()
-    done = 0
-
-    def crawl(indices: list[int]) -> None:
-        nonlocal done
-        for i in indices:
-            store, url = plan[i]
-            outcomes[i] = _process_page(fetcher, store, url, previous.get(url), extract)
-            with lock:
-                done += 1
-                if progress:
-                    progress(done, len(plan), url)
-
-    workers = max(1, min(max_hosts, len(by_host)))
-    if workers == 1:
-        for indices in by_host.values():
-            crawl(indices)
-    else:
-        with ThreadPoolExecutor(max_workers=workers, thread_name_prefix="ingest-host") as pool:
-            list(pool.map(crawl, by_host.values()))  # re-raises a worker's unexpected error
-    return [o for o in outcomes if o is not None]
-
-
 def run_ingestion(
     kb,
     sources: Sources,
@@ -333,8 +324,8 @@ def run_ingestion(
     """Run the whole job (see the module docstring) and return its report.
 
     ``kb`` is a :class:`kb.catalog.KnowledgeBase` opened for writing. The network (``session``) and the
-    clock are passed in. Up to ``max_hosts`` hosts are crawled at the same time (each still one request at a
-    time, with its delay). Pages that fail are recorded and skipped; only a failure of the run as a whole
+    clock are passed in. Up to ``max_hosts`` stores are crawled at the same time, each on its own thread
+    under its own budget (:mod:`scrapers.crawl`; each host still one request at a time, with its delay). Pages that fail are recorded and skipped; only a failure of the run as a whole
     (the database cannot be written) raises :class:`~kb.errors.IngestionError`, and then the catalog is
     left exactly as it was.
     """
@@ -347,17 +338,21 @@ def run_ingestion(
         previous = _previous_pages(kb)
     except Exception as err:
         raise IngestionError(f"cannot read the catalog's pages table: {err}") from None
-    events: list[tuple[str, str, str]] = []
-    plan: list[tuple[StoreSource, str]] = []
-    for store in sources.stores:
-        for url in discover_urls(fetcher, store, events):
-            plan.append((store, url))
-    # The same URL listed by two stores is fetched once.
-    plan = list({url: (store, url) for store, url in reversed(plan)}.values())[::-1]
-    report.pages = len(plan)
-    if progress:
-        progress(0, len(plan), "")
-    outcomes = _fetch_all(fetcher, plan, previous, extract, progress, max_hosts)
+
+    def process(fetcher, store, url, prev, *, until):
+        return _process_page(fetcher, store, url, prev, extract, until=until)
+
+    outcomes, events = crawl_stores(
+        fetcher,
+        sources.stores,
+        previous,
+        discover=discover_urls,
+        process=process,
+        clock=clock,
+        progress=progress,
+        max_stores=max_hosts,
+    )
+    report.pages = len(outcomes)
     report.fetched = sum(1 for p in outcomes if p.status is not None and 200 <= p.status < 300)
     report.not_modified = sum(1 for p in outcomes if p.outcome == "not_modified")
     report.extracted = sum(1 for p in outcomes if p.record is not None)

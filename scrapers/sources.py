@@ -18,6 +18,11 @@ A ``sources.toml`` lists stores under ``[[stores]]``; ``[defaults]`` holds setti
     max_pages = 1000
     search = "{base_url}/search?q={query}"  # optional: the store's search, for on-demand lookups
     search_results = 3                      # product pages a lookup reads from one store's results
+    max_page_s = 30.0                       # a page's total deadline (connect + headers + body, retries)
+    budget_s = 3600.0                       # the store's time per run; then its other pages are skipped
+
+``max_page_s`` and ``budget_s`` (and ``objrecall ingest --page-deadline`` / ``--store-budget``, which
+override every store's) bound what a slow or hostile store costs the run (:mod:`scrapers.deadlines`).
 
 ``search`` is a URL template with ``{query}`` where the search words go (URL-encoded); its answer may be
 an HTML results page (product links, ``rel="next"`` pagination) or JSON (objects with a ``url``), see
@@ -42,6 +47,7 @@ from scrapers.fetcher import FetchPolicy
 __all__ = [
     "ADAPTER_HINTS",
     "DEFAULT_MAX_PAGES",
+    "DEFAULT_STORE_BUDGET_S",
     "DEFAULT_SEARCH_RESULTS",
     "Sources",
     "StoreSource",
@@ -54,6 +60,8 @@ __all__ = [
 ADAPTER_HINTS = ("auto", "shopify")
 DEFAULT_MAX_PAGES = 1000
 DEFAULT_SEARCH_RESULTS = 3
+#: A store's time per run (seconds from its first request): once spent, its other pages are not fetched.
+DEFAULT_STORE_BUDGET_S = 3600.0
 #: Where the search words go in a ``search`` template.
 QUERY_FIELD = "{query}"
 
@@ -80,6 +88,7 @@ _STORE_KEYS = {
     "max_pages": int,
     "search": str,
     "search_results": int,
+    "budget_s": float,
     **_POLICY_KEYS,
 }
 _DEFAULT_KEYS = {
@@ -102,6 +111,7 @@ class StoreSource:
     policy: FetchPolicy = field(default_factory=FetchPolicy)
     search: str | None = None
     search_results: int = DEFAULT_SEARCH_RESULTS
+    budget_s: float = DEFAULT_STORE_BUDGET_S
 
     def search_url(self, query: str) -> str:
         """The store's search URL for ``query`` (words URL-encoded); the store must have a ``search``."""
@@ -125,6 +135,8 @@ class StoreSource:
             "urls": list(self.urls),
             "adapter": self.adapter,
             "delay_s": self.policy.delay_s,
+            "max_page_s": self.policy.max_page_s,
+            "budget_s": self.budget_s,
             "search": self.search,
         }
 
@@ -186,8 +198,11 @@ def parse_sources(
     origin: str = "<sources>",
     base_url: str | None = None,
     delay_s: float | None = None,
+    max_page_s: float | None = None,
+    budget_s: float | None = None,
 ) -> Sources:
-    """Parse and check a sources file's text. ``base_url`` and ``delay_s`` override every store's."""
+    """Parse and check a sources file's text. ``base_url``, ``delay_s``, ``max_page_s`` (the page deadline)
+    and ``budget_s`` (the store budget) override every store's."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
@@ -204,6 +219,10 @@ def parse_sources(
         _check_url(origin, "--base-url", "base_url", base_url)
     if delay_s is not None and delay_s < 0:
         raise _fail(origin, "--delay", "delay must be >= 0")
+    if max_page_s is not None and not max_page_s > 0:
+        raise _fail(origin, "--page-deadline", "the page deadline must be > 0 seconds")
+    if budget_s is not None and not budget_s > 0:
+        raise _fail(origin, "--store-budget", "the store budget must be > 0 seconds")
     stores: list[StoreSource] = []
     seen: set[str] = set()
     for i, raw in enumerate(stores_raw, start=1):
@@ -249,9 +268,14 @@ def parse_sources(
         search_results = values.get("search_results", DEFAULT_SEARCH_RESULTS)
         if search_results <= 0:
             raise _fail(origin, where, "search_results must be > 0")
+        budget = budget_s if budget_s is not None else values.get("budget_s", DEFAULT_STORE_BUDGET_S)
+        if not budget > 0:
+            raise _fail(origin, where, "budget_s must be > 0")
         policy_values = {k: values[k] for k in _POLICY_KEYS if k in values}
         if delay_s is not None:
             policy_values["delay_s"] = delay_s
+        if max_page_s is not None:
+            policy_values["max_page_s"] = max_page_s
         try:
             policy = FetchPolicy(**policy_values)
         except ValueError as err:
@@ -269,12 +293,20 @@ def parse_sources(
                 policy=policy,
                 search=search,
                 search_results=search_results,
+                budget_s=budget,
             )
         )
     return Sources(tuple(stores), origin)
 
 
-def load_sources(path: str | Path, *, base_url: str | None = None, delay_s: float | None = None) -> Sources:
+def load_sources(
+    path: str | Path,
+    *,
+    base_url: str | None = None,
+    delay_s: float | None = None,
+    max_page_s: float | None = None,
+    budget_s: float | None = None,
+) -> Sources:
     """Read and check a sources file (see :func:`parse_sources`)."""
     path = Path(path)
     try:
@@ -283,7 +315,9 @@ def load_sources(path: str | Path, *, base_url: str | None = None, delay_s: floa
         raise SourcesError(f"{path}: no such sources file") from None
     except (OSError, UnicodeDecodeError) as err:
         raise SourcesError(f"{path}: cannot be read ({err})") from None
-    return parse_sources(text, origin=str(path), base_url=base_url, delay_s=delay_s)
+    return parse_sources(
+        text, origin=str(path), base_url=base_url, delay_s=delay_s, max_page_s=max_page_s, budget_s=budget_s
+    )
 
 
 assert {f.name for f in fields(FetchPolicy)} >= set(_POLICY_KEYS)

@@ -113,6 +113,14 @@ def ingest_command(
     delay: Annotated[
         float | None, typer.Option("--delay", help="Seconds between requests to one host, for every store.")
     ] = None,
+    page_deadline: Annotated[
+        float | None,
+        typer.Option("--page-deadline", help="Seconds one page may take in all (retries included), every store."),
+    ] = None,
+    store_budget: Annotated[
+        float | None,
+        typer.Option("--store-budget", help="Seconds each store may take in this run; then its pages are skipped."),
+    ] = None,
     json_out: JsonOption = False,
 ) -> None:
     """Fetch the stores' product pages, extract, validate and add them to the catalog with provenance
@@ -130,7 +138,9 @@ def ingest_command(
     from scrapers.ingest import EXIT_CODES, run_ingestion
     from scrapers.sources import load_sources
 
-    plan = load_sources(sources, base_url=base_url, delay_s=delay)
+    plan = load_sources(
+        sources, base_url=base_url, delay_s=delay, max_page_s=page_deadline, budget_s=store_budget
+    )
     kb = KnowledgeBase.open(resolve_db(db))
     with requests.Session() as session, IngestProgress(enabled=not json_out and sys.stderr.isatty()) as progress:
         report = run_ingestion(kb, plan, session=session, progress=progress)

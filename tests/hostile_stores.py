@@ -1,0 +1,205 @@
+"""Hostile stores on loopback (issue 25), written here: each serves good product pages in ``mode = "good"``
+and misbehaves in ``mode = "hostile"``, so a test ingests once well, then again hostile, and checks that
+every page gets a recorded reason while the catalog stays as it was.
+
+- :class:`PageStore`: one host whose pages misbehave (:data:`PAGE_KINDS`): a slow drip, endless and
+  circular redirects, redirects to another port (closed) and another host (``localhost``), gzip and deflate
+  bombs, a page of 1 million nested elements, 10,000 JSON-LD blocks, a wrong and a missing charset, a 200
+  whose body is an error page;
+- ``PageStore(robots_hang_s=...)``: its robots.txt hangs (its pages are behind it);
+- ``PageStore(sitemap_urls=1_000_000)``: its sitemap lists a million URLs.
+
+:func:`sources_text` writes a sources file for a set of them (small deadlines so the tests stay fast).
+"""
+
+from __future__ import annotations
+
+import gzip
+import json
+import socket
+import threading
+import time
+import zlib
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+
+from hostile_store import product_page
+
+#: The hostile page kinds of a :class:`PageStore`, each at ``/p/<kind>``.
+PAGE_KINDS = (
+    "drip",
+    "redirect-endless",
+    "redirect-circle",
+    "redirect-other-port",
+    "redirect-other-host",
+    "gzip-bomb",
+    "deflate-bomb",
+    "nested",
+    "jsonld-10000",
+    "wrong-charset",
+    "missing-charset",
+    "error-page",
+)
+
+BOMB_BYTES = 64 * 1024 * 1024  # decoded size of the bombs (64 MiB of zeros; ~64 KiB on the wire)
+
+
+def good_page(kind: str) -> bytes:
+    name = f"Hostile {kind.replace('-', ' ').title()} Mug"
+    return product_page(name, "9 x 9 x 10 cm", "320 g").encode()
+
+
+def closed_port() -> int:
+    """A loopback port nothing listens on (bound, then released)."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class _Handler(BaseHTTPRequestHandler):
+    protocol_version = "HTTP/1.1"
+
+    def log_message(self, format: str, *args) -> None:  # noqa: A002
+        pass
+
+    def _send(self, status: int, body: bytes, ctype: str = "text/html; charset=utf-8", **headers: str) -> None:
+        self.send_response(status)
+        if ctype:
+            self.send_header("Content-Type", ctype)
+        for key, value in headers.items():
+            self.send_header(key.replace("_", "-"), value)
+        self.send_header("Content-Length", str(len(body)))
+        self.end_headers()
+        self.wfile.write(body)
+
+    def do_GET(self) -> None:  # noqa: N802
+        store: PageStore = self.server.store  # type: ignore[attr-defined]
+        store.requests += 1
+        try:
+            store.answer(self)
+        except OSError:  # the client gave up (a deadline): nothing to do
+            pass
+
+
+class PageStore:
+    """A loopback store (see the module docstring); ``mode`` may be switched between runs."""
+
+    def __init__(self, *, robots_hang_s: float = 0.0, sitemap_urls: int = 0, drip_s: float = 60.0) -> None:
+        self.mode = "good"
+        self.robots_hang_s, self.sitemap_urls, self.drip_s = robots_hang_s, sitemap_urls, drip_s
+        self.requests = 0
+        self.dead_port = closed_port()
+        self._server = ThreadingHTTPServer(("127.0.0.1", 0), _Handler)
+        self._server.daemon_threads = True
+        self._server.store = self  # type: ignore[attr-defined]
+        self._thread = threading.Thread(target=self._server.serve_forever, daemon=True)
+        self._bombs: dict[str, bytes] = {}
+
+    @property
+    def port(self) -> int:
+        return self._server.server_address[1]
+
+    @property
+    def base_url(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    def page_paths(self) -> list[str]:
+        if self.sitemap_urls:
+            return [f"/p/s{i}" for i in range(3)]
+        if self.robots_hang_s:
+            return ["/p/behind-robots"]
+        return [f"/p/{kind}" for kind in PAGE_KINDS]
+
+    def __enter__(self) -> PageStore:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self._server.shutdown()
+        self._server.server_close()
+
+    # -- answers --------------------------------------------------------------------------------------
+    def answer(self, h: _Handler) -> None:
+        path = h.path
+        if path == "/robots.txt":
+            if self.mode == "hostile" and self.robots_hang_s:
+                time.sleep(self.robots_hang_s)
+            h._send(200, b"User-agent: *\nAllow: /\n", "text/plain")
+        elif path == "/sitemap.xml":
+            h._send(200, self._sitemap(), "application/xml")
+        elif path.startswith("/p/") and self.mode == "hostile" and not path.startswith("/p/s"):
+            self._hostile(h, path[3:])
+        elif path.startswith("/p/") or path == "/moved":
+            h._send(200, good_page("redirect-other-host" if path == "/moved" else path[3:]))
+        else:
+            h._send(404, b"nope", "text/plain")
+
+    def _sitemap(self) -> bytes:
+        paths = self.page_paths()
+        if self.mode == "hostile" and self.sitemap_urls:
+            paths = [f"/p/s{i}" for i in range(self.sitemap_urls)]
+        base = self.base_url
+        locs = "".join(f"<url><loc>{base}{p}</loc></url>" for p in paths)
+        return (
+            '<?xml version="1.0"?><urlset xmlns="http://www.sitemaps.org/schemas/sitemap/0.9">'
+            f"{locs}</urlset>"
+        ).encode()
+
+    def _bomb(self, encoding: str) -> bytes:
+        if encoding not in self._bombs:
+            zeros = b"\0" * BOMB_BYTES
+            self._bombs[encoding] = gzip.compress(zeros, 9) if encoding == "gzip" else zlib.compress(zeros, 9)
+        return self._bombs[encoding]
+
+    def _hostile(self, h: _Handler, kind: str) -> None:  # noqa: C901 - one branch per hostile page
+        if kind == "drip":
+            h.send_response(200)
+            h.send_header("Content-Type", "text/html; charset=utf-8")
+            h.end_headers()
+            end = time.monotonic() + self.drip_s
+            while time.monotonic() < end:  # one byte every 50 ms: always within any read time-out
+                h.wfile.write(b" ")
+                h.wfile.flush()
+                time.sleep(0.05)
+        elif kind.startswith("redirect-endless"):
+            n = int(kind.rsplit("/", 1)[-1]) if "/" in kind else 0
+            h._send(302, b"", "", Location=f"/p/redirect-endless/{n + 1}")
+        elif kind in ("redirect-circle", "redirect-circle-b"):
+            h._send(302, b"", "", Location="/p/redirect-circle-b" if kind == "redirect-circle" else "/p/redirect-circle")
+        elif kind == "redirect-other-port":
+            h._send(301, b"", "", Location=f"http://127.0.0.1:{self.dead_port}/p/redirect-other-port")
+        elif kind == "redirect-other-host":
+            h._send(301, b"", "", Location=f"http://localhost:{self.port}/moved")
+        elif kind in ("gzip-bomb", "deflate-bomb"):
+            encoding = kind.split("-")[0]
+            h._send(200, self._bomb(encoding), Content_Encoding=encoding)
+        elif kind == "nested":  # 1 million nested elements, under the size cap (5 MB)
+            h._send(200, b"<html><body><h1>Nested Mug</h1>" + b"<div>" * 1_000_000 + b"</body></html>")
+        elif kind == "jsonld-10000":
+            blocks = "".join(
+                f'<script type="application/ld+json">{json.dumps({"@type": "WebPage", "name": f"Block {i}"})}</script>'
+                for i in range(10_000)
+            )
+            h._send(200, f"<html><head>{blocks}</head><body><h1>Ten Thousand</h1></body></html>".encode())
+        elif kind == "wrong-charset":  # the good page, says Shift_JIS, with windows-1252 words added
+            body = good_page(kind).replace(b"</body>", "<p>Caf\u00e9 Gr\u00fc\u00dfe \u20ac</p></body>".encode("cp1252"))
+            h._send(200, body, "text/html; charset=shift_jis")
+        elif kind == "missing-charset":  # the good page, no charset anywhere, latin-1 words added
+            body = good_page(kind).replace(b"</body>", "<p>Cr\u00e8me br\u00fbl\u00e9e</p></body>".encode("latin-1"))
+            h._send(200, body, "text/html")
+        elif kind == "error-page":  # a 200 whose body is a "page not found"
+            h._send(200, b"<html><head><title>404 Not Found</title></head><body><h1>Not Found</h1></body></html>")
+        else:
+            h._send(404, b"nope", "text/plain")
+
+
+def sources_text(stores: dict[str, PageStore], *, deadline_s: float = 1.0, extra: str = "") -> str:
+    """A sources file: one ``[[stores]]`` per named store, no delay, no retries, a small page deadline."""
+    text = f"[defaults]\ndelay_s = 0\nread_timeout_s = 5.0\nmax_retries = 1\nbackoff_s = 0\nmax_page_s = {deadline_s}\n"
+    for name, store in stores.items():
+        text += (
+            f'[[stores]]\nname = "{name}"\nbase_url = "{store.base_url}"\n'
+            'sitemaps = ["{base_url}/sitemap.xml"]\n'
+        )
+        if store.sitemap_urls:
+            text += "max_pages = 3\nmax_bytes = 67108864\n"
+    return text + extra
