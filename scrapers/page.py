@@ -50,6 +50,9 @@ SPEC_CONTAINER = re.compile(
 PACKAGE_CONTAINER = re.compile(
     r"(?:packag|verpack|shipping|versand|embala|emballa|imball|colis|упаков)", re.IGNORECASE
 )
+#: Class tokens that state a fact about the product, not a box of package values: WooCommerce marks every
+#: product's wrapper ``shipping-taxable`` and ``product_shipping_class-…``; shops flag ``free-shipping``.
+_PRODUCT_FLAG = re.compile(r"taxable|shipping[_-]class|free[_-]?shipping", re.IGNORECASE)
 _DROP_TAGS = frozenset(
     {"script", "style", "noscript", "template", "svg", "head", "iframe", "select", "option"}
 )
@@ -319,7 +322,7 @@ def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]
         if m and not (_WEAK_FOREIGN.fullmatch(m.group(0)) and SPEC_CONTAINER.search(names)):
             foreign = True
             break
-    return foreign, bool(PACKAGE_CONTAINER.search(names))
+    return foreign, any(PACKAGE_CONTAINER.search(t) and not _PRODUCT_FLAG.search(t) for t in names.split())
 
 
 #: A measured number with one or two decimals and a unit: ``1,5 kg`` (decimal comma), ``1.5 kg`` (point).

@@ -17,7 +17,7 @@ from kb.measures.units import UNIT_PATTERN as _UNIT
 from kb.measures.units import length_unit, words_pattern
 from scrapers.signs import minus_before
 
-__all__ = ["AXIS_LETTER_ROLES", "Dims", "parse_dims"]
+__all__ = ["AXIS_LETTER_ROLES", "AXIS_WORD_AFTER", "Dims", "parse_dims"]
 
 _LENGTHS = [name for name, kind in KINDS.items() if kind == "length"]
 _TIMES = r"(?:\s*\bx\b\s*)"  # clean_text writes every times sign as " x "
@@ -159,12 +159,25 @@ def _bracketed_unit(m: re.Match) -> str:
     return f" {m.group(1)}" if length_unit(m.group(1)) is not None else m.group(0)
 
 
+#: An axis word after a number and its unit (``13.3 inches width``, ``3.4 in high``, ``20 cm tall``), read as
+#: the axis letter the times-sign pattern knows (``13.3 inches W``).
+_AXIS_WORD_LETTER = {
+    "width": "W", "wide": "W", "height": "H", "high": "H", "tall": "H", "depth": "D", "deep": "D",
+    "length": "L", "long": "L",
+}  # fmt: skip
+AXIS_WORD_AFTER = re.compile(
+    rf"({_NUMBER}\s*(?:{_UNIT}|\"))\s+({'|'.join(_AXIS_WORD_LETTER)})\b", re.IGNORECASE
+)
+
+
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
     s = clean_text(text[:MAX_TEXT])
     if "(" in s:
         s = _BRACKETED_UNIT.sub(_bracketed_unit, _BRACKETED_AXIS.sub("", s))
     if "/" in s:
         s = _SLASHED.sub(r"\1 x \2 x \3", s)
+    if AXIS_WORD_AFTER.search(s):  # "13.3 inches width x 3.4 inches high": the axis letters' places
+        s = AXIS_WORD_AFTER.sub(lambda m: f"{m.group(1)} {_AXIS_WORD_LETTER[m.group(2).lower()]}", s)
     if not _STANDALONE_X.search(s):
         lettered = _lettered_dims(s, default_unit, decimal_comma)
         if lettered is not None:

@@ -18,7 +18,7 @@ from scrapers.labels import LabelInfo, classify_label, classify_other
 from scrapers.page import Line
 from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
 
-__all__ = ["DIGIT", "MAX_PAIRS", "Pair", "is_unit", "pairs_from_lines", "split_inline"]
+__all__ = ["DIGIT", "MAX_PAIRS", "Pair", "is_unit", "own_part_pairs", "pairs_from_lines", "split_inline"]
 
 #: Reading stops after this many recognised measurement pairs. Real product pages state at most a few
 #: dozen (23 on the richest page measured); a page with thousands is a parts list or a spec dump, and the
@@ -286,3 +286,34 @@ def _header_row(lines: list[Line], i: int) -> list[Pair]:
 
 def is_unit(text: str) -> bool:
     return len(text) <= 12 and (length_unit(text) is not None or mass_unit(text) is not None)
+
+
+def _stem(word: str) -> str:
+    return word[:-1] if len(word) > 3 and word.endswith("s") else word
+
+
+def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
+    """Pairs whose part's label names the product itself (``Robot Weight`` on a robot vacuum's page,
+    ``Speaker Dimensions`` on a speaker's: every word of the part in the page title) as the product's,
+    when no label of the page states the product's own value of that feature (mass or size): a fallback,
+    so a robot's ``Base Dimensions`` beside its ``Dimensions`` stays the base's."""
+    words = {_stem(w) for w in re.findall(r"[^\W\d_]+", (title or "").lower())}
+    if not words:
+        return pairs
+
+    def feature(info) -> str:
+        return "mass" if info.kind == "weight" else "dims"
+
+    stated = {feature(p.info) for p in pairs if p.info.role == "product" and not (p.package or p.info.package)}
+    out = []
+    for p in pairs:
+        info = p.info
+        if (
+            info.role == "component"
+            and info.part
+            and feature(info) not in stated
+            and {_stem(w) for w in info.part.split()} <= words
+        ):
+            p = replace(p, info=replace(info, role="product", part=None))
+        out.append(p)
+    return out

@@ -127,3 +127,56 @@ def test_a_value_stated_for_one_size_is_a_variants_not_the_products(value):
 def test_a_plain_length_stays_the_products(value):
     body = f"<dl><dt>Length</dt><dd>{value}</dd><dt>Weight</dt><dd>180 g</dd></dl>"
     assert _record(body).dims_cm == (72.0,)
+
+
+def _titled(title: str, body: str):
+    html = f"<html lang='en'><head><title>{title}</title></head><body><h1>{title}</h1>{body}</body></html>"
+    return extract_page(html, "https://shop.test/p", "text/html")
+
+
+def test_a_parts_label_naming_the_product_itself_is_the_products():
+    # layout class: "Robot Weight" / "Speaker Dimensions" on the robot's or the speaker's own page
+    body = "<dl><dt>Robot Weight:</dt><dd>7.49 lbs.</dd><dt>Battery Type:</dt><dd>Lithium Ion</dd></dl>"
+    assert _titled("Roomba j7+ Self-Emptying Robot Vacuum", body).mass_g == pytest.approx(3397.4, abs=0.1)
+    with pytest.raises(ExtractionError):  # the part is not the product: a battery's weight
+        _titled("Roomba j7+ Self-Emptying Vacuum", body)
+
+
+def test_the_products_own_label_keeps_a_named_part_a_part():
+    body = "<dl><dt>Weight:</dt><dd>3 kg</dd><dt>Robot Weight:</dt><dd>7.49 lbs.</dd></dl>"
+    assert _titled("Robot Vacuum", body).mass_g == 3000.0
+
+
+@pytest.mark.parametrize(
+    ("text", "cm"),
+    [
+        ("13.3 inches width x 3.4 inches high", (33.782, 8.636)),
+        ("20 cm long x 10 cm wide x 5 cm deep", (20.0, 10.0, 5.0)),
+        ("12 in. long x 3 in. wide", (30.48, 7.62)),
+    ],
+)
+def test_axis_words_after_each_unit(text, cm):
+    from scrapers.sizes import parse_dims
+
+    assert parse_dims(text)[0].values_cm == cm
+
+
+@pytest.mark.parametrize("flag", ["shipping-taxable", "product_shipping_class-heavy", "free-shipping"])
+def test_a_product_flag_class_is_no_package_container(flag):
+    # WooCommerce marks every product's wrapper "shipping-taxable": its values are the product's
+    body = f"<div class='product type-product {flag} purchasable'><dl><dt>Weight</dt><dd>600 g</dd></dl></div>"
+    assert _record(body).mass_g == 600.0
+
+
+def test_a_shipping_box_is_still_a_package_container():
+    body = "<div class='shipping-details'><dl><dt>Weight</dt><dd>600 g</dd></dl></div><p>A lamp.</p>"
+    rec = _record(body)
+    assert rec.mass_g is None and rec.package_mass_g == [600.0]
+
+
+def test_axis_words_after_each_unit_add_no_third_extent():
+    body = "<dl><dt>Dimensions:</dt><dd>13.3 inches width x 3.4 inches high</dd></dl>"
+    assert _record(body).dims_cm == (33.782, 8.636)
+    body = "<dl><dt>Dimensions:</dt><dd>13.3 inches width x 3.4 inches high; 2.5 kg</dd></dl>"
+    rec = _record(body)
+    assert rec.dims_cm == (33.782, 8.636) and rec.mass_g == 2500.0

@@ -29,7 +29,8 @@ from scrapers.quantities import (
     parse_mass,
     third_axis,
 )
-from scrapers.spec_pairs import DIGIT, MAX_PAIRS, Pair, pairs_from_lines, split_inline
+from scrapers.sizes import AXIS_WORD_AFTER
+from scrapers.spec_pairs import DIGIT, MAX_PAIRS, Pair, own_part_pairs, pairs_from_lines, split_inline
 from scrapers.value_forms import NARROW_RANGE, axis_segments, for_one_size, one_length, written_value
 
 __all__ = ["MAX_PAIRS", "Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
@@ -147,6 +148,19 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
         axes.append((info.kind, length, pair, rank if note is None else rank + 1, note))
     return out
 
+def _after_size(value: str, size_text: str) -> str:
+    """What ``value`` says after the size :func:`parse_dims` read as ``size_text`` (a third axis, a mass);
+    the reader writes axis words as letters ("inches high" -> "inches H"), so then it ends at the last
+    axis word."""
+    if not size_text:
+        return value
+    last = size_text.split()[-1]
+    if last in value:
+        return value.split(last, 1)[-1]
+    words = list(AXIS_WORD_AFTER.finditer(value))
+    return value[words[-1].end() :] if words else value
+
+
 def _dims_pair_observations(
     pair: Pair, package: bool, raw: str, decimal_comma: bool | None, rank: int
 ) -> list[Observation]:
@@ -165,7 +179,7 @@ def _dims_pair_observations(
             again = parse_dims(pair.value, info.unit, not decimal_comma)
             if again and max(again[0].values_cm) <= MAX_DIM_CM:
                 d, note = again[0], "read with a decimal comma (the other reading is absurd)"
-        rest = pair.value.split(d.text.split()[-1], 1)[-1] if d.text else pair.value
+        rest = _after_size(pair.value, d.text)
         values, roles = d.values_cm, d.roles
         if len(info.order) == len(values) and set(roles) <= {"extent"}:
             roles = info.order  # "Dimensions (H x W x D): 17.9 x 359.3 x 235.6 mm"
@@ -366,7 +380,7 @@ _UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
 def spec_table(page: Page) -> list[Observation]:
     """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
     size of the selected variant."""
-    pairs = pairs_from_lines(page.lines)
+    pairs = own_part_pairs(pairs_from_lines(page.lines), page.title)
     if _inch_locale(page.lang):
         pairs = [_with_locale_inches(p, page.lang) for p in pairs]
     obs = observations_from_pairs(pairs, page.decimal_comma)
