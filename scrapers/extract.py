@@ -231,7 +231,7 @@ def _collapse_repeats(values: list) -> list:
 def _whose(o: Observation) -> str:
     """Whose value an observation is: the product's, its package's (the product in its box), the
     shipment's (gross, the parcel sent), or a part's or a capacity's."""
-    if o.role in ("component", "capacity", "shipping"):
+    if o.role in ("component", "capacity", "shipping", "variant"):
         return o.role
     return "package" if o.package else "product"
 
@@ -249,7 +249,7 @@ def _valid(
             continue
         w = _whose(o)
         if w != whose:
-            if whose == "product" and w in ("component", "capacity") and len(decisions) < MAX_CANDIDATES:
+            if whose == "product" and w in ("component", "capacity", "variant") and len(decisions) < MAX_CANDIDATES:
                 part = f" ({o.part})" if o.part else ""
                 decisions.append(_candidate(o, f"not the product's: a {w}'s value{part} ({o.raw[:60]!r})"))
             continue

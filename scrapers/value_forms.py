@@ -11,13 +11,27 @@ from kb.measures.units import units_pattern
 from scrapers.labels import AXES, classify_label
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
-__all__ = ["NARROW_RANGE", "axis_segments", "metric_figure", "one_length", "written_value"]
+__all__ = ["NARROW_RANGE", "axis_segments", "for_one_size", "metric_figure", "one_length", "written_value"]
 
 #: A range no wider than this ratio is the object's own adjustment or a tolerance (``30-32 cm``, ``1,2 – 1,5
 #: kg``); a wider one spans variants of different sizes.
 NARROW_RANGE = 1.5
 
 _SEGMENT_SPLIT = re.compile(r"\s+|[、，,;/／|]+")
+
+#: A value stated for one size of the garment or article (``Gesamtlänge: 72 cm bei Größe S``, ``Length:
+#: 70 cm in size M``, ``Longueur : 68 cm en taille 38``, ``71 cm (talla M)``): a variant's, not the product's.
+_FOR_ONE_SIZE = re.compile(
+    r"\d.*?(?:\b(?:bei|in|für|fuer|for|at|en|pour|na|em|w|i|på|ve|v|voor|bij|op)\s+(?:der\s+|la\s+|a\s+|de\s+)?"
+    r"|[(（]\s*)(?:gr(?:ö|oe)(?:ß|ss)e|size|taille|talla|taglia|maat|rozmiarze|rozmiar|tamanho|storlek|"
+    r"størrelse|velikosti|koko|méret|beden)\b",
+    re.IGNORECASE,
+)
+
+
+def for_one_size(value: str) -> bool:
+    """Whether a measured value says it is for one size of the article (:data:`_FOR_ONE_SIZE`)."""
+    return len(value) < 200 and _FOR_ONE_SIZE.search(value) is not None
 
 
 def axis_segments(value: str, unit: str | None, decimal_comma: bool | None) -> list[tuple[str, float]]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 import pytest
 
 from kb.errors import ExtractionError
+from scrapers.adapters.spec_table import AXIS_GROUP_GAP
 from scrapers.extract import extract_page
 from scrapers.spec_pairs import MAX_FILLER_LINES, _filler
 
@@ -83,3 +84,46 @@ def test_a_unit_in_a_column_header_gives_the_unit_of_the_values_under_it():
     # the header's first cell must name a measurement, and the unit must be the cell right after it
     assert dims_of(table.format(unit="cm").replace("Dimension", "Model")) is None
     assert dims_of(table.format(unit="metric").replace("metric</th>", "metric</th><th>cm</th>")) is None
+
+
+def _record(body: str):
+    return extract_page(page(body), "https://shop.test/p", "text/html")
+
+
+_PACKAGE = (
+    "<h2>Package details</h2><div class='package-details'><p><span>Width:</span><span>8 \"</span></p>"
+    "<p><span>Height:</span><span>4 \"</span></p><p><span>Length:</span><span>10 ½ \"</span></p></div>"
+)
+
+
+def test_a_lone_product_axis_beside_a_package_of_three_axes_is_the_products_size():
+    # layout class (IKEA and others): "Product size" with one axis, "Package details" with three
+    body = "<h2>Product size</h2><dl><div><dt>Diameter:</dt><dd>5 \"</dd></div></dl>" + _PACKAGE
+    rec = _record(body)
+    assert rec.dims_cm == (12.7, 12.7)  # a diameter: two equal extents
+    assert rec.package_dims_cm == [(26.67, 20.32, 10.16)]
+
+
+def test_a_product_row_of_two_axes_still_wins_over_its_own_lone_axis():
+    body = (
+        "<dl><dt>Diameter:</dt><dd>5 \"</dd></dl>" + "<p>Text without a number.</p>" * (AXIS_GROUP_GAP + 1)
+        + "<dl><dt>Width:</dt><dd>12 cm</dd><dt>Height:</dt><dd>9 cm</dd></dl>" + _PACKAGE
+    )
+    assert _record(body).dims_cm == (12.0, 9.0)
+
+
+@pytest.mark.parametrize(
+    "value",
+    ["72 cm bei Größe S", "70 cm in size M", "68 cm en taille 38", "71 cm (talla M)", "69 cm in der Grösse 40"],
+)
+def test_a_value_stated_for_one_size_is_a_variants_not_the_products(value):
+    # layout class (clothing stores): the length of one size of a garment sold in all sizes
+    body = f"<dl><dt>Length</dt><dd>{value}</dd><dt>Weight</dt><dd>180 g</dd></dl>"
+    rec = _record(body)
+    assert rec.dims_cm is None and rec.mass_g == 180.0
+
+
+@pytest.mark.parametrize("value", ["72 cm", "Size: 72 cm", "72 cm, sized for adults"])
+def test_a_plain_length_stays_the_products(value):
+    body = f"<dl><dt>Length</dt><dd>{value}</dd><dt>Weight</dt><dd>180 g</dd></dl>"
+    assert _record(body).dims_cm == (72.0,)

@@ -30,7 +30,7 @@ from scrapers.quantities import (
     third_axis,
 )
 from scrapers.spec_pairs import DIGIT, MAX_PAIRS, Pair, pairs_from_lines, split_inline
-from scrapers.value_forms import NARROW_RANGE, axis_segments, one_length, written_value
+from scrapers.value_forms import NARROW_RANGE, axis_segments, for_one_size, one_length, written_value
 
 __all__ = ["MAX_PAIRS", "Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
 
@@ -102,6 +102,9 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
     value, written = written_value(pair.value)
     if value != pair.value:
         pair = replace(pair, value=value)
+    if info.role == "product" and for_one_size(pair.value):
+        info = replace(info, role="variant")  # "72 cm bei Größe S": one size's value, never the product's
+        pair = replace(pair, info=info)
     if info.role != "product":
         out.extend(_other_observations(pair, raw, decimal_comma, rank))
         return out
@@ -230,10 +233,23 @@ def range_extent(kind: str, rng: tuple[float, float], raw: str) -> tuple[float, 
     return low, f"{kind} given as a wide range ({raw}); took the lower bound {low:g} cm (the object's own)"
 
 
+def _chosen_rows(rows: list[list]) -> list[tuple[list, bool]]:
+    """The rows that state a size, in page order, with whether their side has a row of two axes or more:
+    the product's and the package's sides apart, each its rows of two axes or more, else its first lone
+    axis (a product's ``Diameter: 5"`` beside the package's height, width and length is still the
+    product's size). A row never mixes the sides (:func:`_group_axes` starts a new one)."""
+    chosen = []
+    for package in (False, True):
+        side = [r for r in rows if (r[0][2].package or r[0][2].info.package) == package]
+        multi = [r for r in side if len(r) >= 2]
+        chosen += [(row, bool(multi)) for row in multi or side[:1]]
+    return sorted(chosen, key=lambda item: item[0][0][2].order)
+
+
 def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterator[Observation]:
     """Rows of single-axis fields as dims observations (see :func:`observations_from_pairs`). When no row
-    has two axes, a lone axis is still the product's one stated dimension (``Diameter: 12 cm``), one
-    rank weaker."""
+    of its side (the product's or the package's) has two axes, a lone axis is still that side's one
+    stated dimension (``Diameter: 12 cm``), one rank weaker."""
     rows: list[list[tuple[str, float, Pair, int, str | None]]] = []
     for item in axes:
         kind, _, pair, _, _ = item
@@ -247,8 +263,7 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
             rows.append([item])
         else:
             row.append(item)
-    multi = [r for r in rows if len(r) >= 2]
-    for row in multi or rows[:1]:
+    for row, multi in _chosen_rows(rows):
         first = row[0][2]
         extents = [(k, v) for k, v, *_ in row]
         if len(extents) > 3:
