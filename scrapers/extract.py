@@ -231,7 +231,7 @@ def _collapse_repeats(values: list) -> list:
 def _whose(o: Observation) -> str:
     """Whose value an observation is: the product's, its package's (the product in its box), the
     shipment's (gross, the parcel sent), or a part's or a capacity's."""
-    if o.role in ("component", "capacity", "shipping", "variant"):
+    if o.role in ("component", "capacity", "shipping", "variant", "name"):
         return o.role
     return "package" if o.package else "product"
 
@@ -360,6 +360,8 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
     chosen: dict[str, Observation | None] = {}
     for feature, agree in (("dims", _dims_agree), ("mass", _close)):
         valid = _valid(observations, feature, "product", warnings, decisions, refused[feature])
+        if not valid:  # a quantity written only in the product's name ("Almonds - 13oz")
+            valid = _valid(observations, feature, "name", warnings, decisions, refused[feature])
         chosen[feature] = _choose(valid, agree, feature, warnings, decisions)
     apart = {
         (whose, feature): _packages(_valid(observations, feature, whose, warnings, decisions), feature, raw,

@@ -19,7 +19,7 @@ sv/da/no, id, he, ar, zh (traditional and simplified), ja, ko.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 from scrapers.label_vocabulary import (
@@ -85,6 +85,9 @@ class LabelInfo:
     shipping: bool = False
     #: For a component's label, the part it names (``cable`` of ``Cable length``), else None.
     part: str | None = None
+    #: For a product's label that leaves a part out (``Depth Without Handle``, ``Gewicht ohne Akku``), the
+    #: words it excludes: a value of another configuration, used when no label states the whole product's.
+    excludes: str | None = None
 
 
 #: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
@@ -155,6 +158,7 @@ def _classify(label: object) -> LabelInfo | None:
     package = False
     negated = False
     unknown: list[str] = []
+    excluded: list[str] = []
     has_body = any(w in BODY_WORDS for w in words)
     for word in words:
         if word in KIND_WORDS:
@@ -173,6 +177,9 @@ def _classify(label: object) -> LabelInfo | None:
             continue  # "LxWxH", "ВхШхГ" written as one word
         else:
             compound = _split_compound(word)
+            if compound is None and negated:
+                excluded.append(word)  # what the value leaves out: "Weight without the cable"
+                continue
             if compound is None:
                 unknown.append(word)
                 if not has_body or len(unknown) > 2:
@@ -191,14 +198,20 @@ def _classify(label: object) -> LabelInfo | None:
     # only when no axis or dimension word is present.
     if len({k for k in kinds if k in AXES}) >= 2:
         # "Width x Height x Depth", "Largo x Ancho x Alto"
-        return LabelInfo("dimensions", package, unit, _order_of(original, kinds), shipping=_ships(package, words))
+        order = _order_of(original, kinds)
+        return _excluding(excluded, LabelInfo("dimensions", package, unit, order, shipping=_ships(package, words)))
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:
-                return LabelInfo("dimensions", package, unit, shipping=_ships(package, words))  # "Weight & Dimensions"
+                # "Weight & Dimensions"
+                return _excluding(excluded, LabelInfo("dimensions", package, unit, shipping=_ships(package, words)))
             order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
-            return LabelInfo(kind, package, unit, order, shipping=_ships(package, words))
+            return _excluding(excluded, LabelInfo(kind, package, unit, order, shipping=_ships(package, words)))
     return None
+
+
+def _excluding(excluded: list[str], info: LabelInfo) -> LabelInfo:
+    return replace(info, excludes=" ".join(excluded)) if excluded else info
 
 
 _TRAILING_UNIT = re.compile(r"(?<![A-Za-z])([A-Za-z]{2,3})\s*$")

@@ -46,7 +46,8 @@ class Observation:
     roles: tuple[str, ...] = ()
     #: Whose value it is: "product" (package values have ``package``), "shipping" (a shipment's: gross, the
     #: parcel), or "component" / "capacity" (a part's extent, a capacity or rating: proposed so the chooser
-    #: can list it, never chosen).
+    #: can list it, never chosen), or "name" (a quantity written only in the product's name: used when no
+    #: other product value of that feature is stated).
     role: str = "product"
     #: For a component's value, the part it names (``cable``), else None.
     part: str | None = None

@@ -260,12 +260,23 @@ def _chosen_rows(rows: list[list]) -> list[tuple[list, bool]]:
     return sorted(chosen, key=lambda item: item[0][0][2].order)
 
 
+def _whole_product_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> list:
+    """``axes`` without the fields that leave a part out (``Depth Without Handle``,
+    :attr:`LabelInfo.excludes`) where a field of the same axis and side states the whole product's."""
+
+    def side(p: Pair) -> bool:
+        return bool(p.package or p.info.package)
+
+    whole = {(kind, side(p)) for kind, _, p, _, _ in axes if not p.info.excludes}
+    return [a for a in axes if not (a[2].info.excludes and (a[0], side(a[2])) in whole)]
+
+
 def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterator[Observation]:
     """Rows of single-axis fields as dims observations (see :func:`observations_from_pairs`). When no row
     of its side (the product's or the package's) has two axes, a lone axis is still that side's one
     stated dimension (``Diameter: 12 cm``), one rank weaker."""
     rows: list[list[tuple[str, float, Pair, int, str | None]]] = []
-    for item in axes:
+    for item in _whole_product_axes(axes):
         kind, _, pair, _, _ = item
         row = rows[-1] if rows else None
         if row:

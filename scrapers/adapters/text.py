@@ -45,6 +45,7 @@ def text(page: Page) -> list[Observation]:
                     note=f"dimensions read from the product name ({title!r})",
                 )
             )
+        obs.extend(_title_mass(title, page.decimal_comma))
     for line in page.lines[:MAX_PROSE_LINES]:
         if len(line.text) > 600:
             continue
@@ -62,6 +63,32 @@ def text(page: Page) -> list[Observation]:
     if page.canonical_url:
         obs.append(Observation("canonical_url", page.canonical_url, rank=2, raw=page.canonical_url))
     return obs
+
+
+#: A count times a quantity (``12 x 250g``, ``2×1 kg``): the name sells a pack, its mass is not one item's.
+_TIMES = re.compile(r"\d\s*[x×*]\s*\d", re.IGNORECASE)
+
+
+#: Ounces in the name of a vessel are its capacity (``Water Bottle 32oz``), not its mass.
+_VESSEL = re.compile(
+    r"\b(?:bottles?|tumblers?|cups?|mugs?|flasks?|jugs?|pitchers?|thermos|jars?|canteens?|glass(?:es)?|"
+    r"carafes?|kettles?|shakers?|growlers?|containers?|pots?|pans?|bowls?|cans?|canisters?)\b",
+    re.IGNORECASE,
+)
+_OUNCES = re.compile(r"\d\s*(?:oz|ounces?)\b", re.IGNORECASE)
+
+
+def _title_mass(title: str, decimal_comma: bool | None) -> list[Observation]:
+    """A net quantity written in the product's name (``Almonds - 13oz``, ``Qualità Oro, 250g Dose``): the
+    lowest-ranked mass, used only when nothing on the page states one. None from a pack's name, nor
+    ounces in a vessel's name (a capacity)."""
+    if _TIMES.search(title) or (_OUNCES.search(title) and _VESSEL.search(title)):
+        return []
+    grams = parse_mass(title, None, decimal_comma)
+    if grams is None:
+        return []
+    note = f"mass read from the product name ({title!r})"
+    return [Observation("mass", grams, rank=2, raw=title, note=note, role="name")]
 
 
 _QTY = rf"\d+(?:[.,]\d+)*\s*(?:{units_pattern('length')}|\"|'')"  # a length, its unit from the one table
