@@ -30,6 +30,8 @@ _BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
 _SEPARATOR = re.compile(r"\s*(?::|\s[—–]\s|=)\s*")
 DIGIT = re.compile(r"\d")
 _MAX_LABEL_WORDS = 6
+#: The last field bar before a label (``| lens height:``, ``• Weight:``): the label's words start after it.
+_FIELD_BAR = re.compile(r"[|•·](?!.*[|•·])\s*")
 CODE = re.compile(r"[{}<>;]|\":|:\s*\"")  # JSON, CSS or markup inside a string is not a spec line
 
 
@@ -61,11 +63,15 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
     starts: list[int] = []  # where each separator's label starts
     prev_end = 0
     for k, sep in enumerate(seps):
+        bar = _FIELD_BAR.search(text, prev_end, sep.start()) if k > 0 else None
+        if bar:
+            prev_end = bar.end()  # "70mm | lens height: 42mm": a new field starts at "|"
+        first_field = k == 0 or bar is not None
         words = list(re.finditer(r"\S+", text[prev_end : sep.start()]))
-        label_start = prev_end + words[-1].start() if words else sep.start()
-        # Before a line's first separator every word is the label's: "Cable length: 75 cm" names a part,
+        label_start = bar.start() if bar else prev_end + words[-1].start() if words else sep.start()
+        # Before a field's first separator every word is the label's: "Cable length: 75 cm" names a part,
         # not a length ("length" alone is only the label when nothing precedes it).
-        shortest = max(1, len(words)) if k == 0 and len(words) <= _MAX_LABEL_WORDS else 1
+        shortest = max(1, len(words)) if first_field and len(words) <= _MAX_LABEL_WORDS else 1
         for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
             first = words[-n].group(0)
             if k > 0 and (DIGIT.search(first) or is_unit(first.rstrip(";,|"))):
@@ -78,7 +84,7 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
                 label_start = cand_start
                 break
         else:
-            if k == 0 and words and (other := classify_other(text[prev_end + words[0].start() : sep.start()])):
+            if first_field and words and (other := classify_other(text[prev_end + words[0].start() : sep.start()])):
                 labelled.append((text[prev_end + words[0].start() : sep.start()], other, sep.end()))
                 label_start = prev_end + words[0].start()
         starts.append(label_start)
@@ -88,7 +94,7 @@ def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
     recognised = [sep.end() in value_starts for sep in seps]
     for label, info, value_start in labelled:
         end = _value_end(text, value_start, starts, recognised)
-        value = text[value_start:end].strip(" ;,|")
+        value = text[value_start:end].strip(" ;,|•·")
         if DIGIT.search(value):
             out.append((label, value, info))
     if not seps:
