@@ -470,7 +470,7 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     import re
 
     from recall.names import GENERIC_NOUNS
-    from recall.subject import noun_phrase, said_in_plural, subject_phrase
+    from recall.subject import introduced, noun_phrase, said_in_plural, subject_phrase
     from recall.typos import corrected
 
     subject = noun_phrase(text)
@@ -490,4 +490,6 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
         noun = described_noun((*subject[:-1], fixed), *args) if fixed is not None else None
         if noun is not None:  # "a screwdiver": the catalog's screwdriver, or a lexicon noun, misspelt
             return noun
+    if head is not None and not introduced(text, head):
+        return None  # a bare phrase in a list of features ("spring-loaded jaws, 11 cm"): doubt, no verdict
     return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))

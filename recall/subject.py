@@ -376,3 +376,26 @@ def said_in_plural(word: str, text: str) -> bool:
     return any(re.search(rf"\b{re.escape(word)}{end}\b", low) for end in ("s", "es")) or (
         word.endswith("y") and re.search(rf"\b{re.escape(word[:-1])}ies\b", low) is not None
     )
+
+
+#: Words that introduce a noun phrase as the thing spoken of: articles, demonstratives, possessives and
+#: counting words ("*a* flyswatter", "*this* toy apple", "*my* daughter's teddy bear", "*one* of the ...").
+DETERMINERS = frozenset(
+    "a an the this that these those my your our his her their its one some another any each every".split()
+)
+
+
+def introduced(text: str, word: str) -> bool:
+    """Whether ``word`` (a head noun of the subject, singular) is introduced by a determiner
+    (:data:`DETERMINERS`) earlier in its clause, up to the first comma, semicolon or full stop: "a kitchen
+    flipper", "the holder for the toilet brush"; not "kitchen flipper, nylon", "spring-loaded jaws, 11 cm",
+    "nests with others": a bare phrase in a list of features may be a part, a verb or an adjective, so
+    it names no object the catalog lacks on its own."""
+    clause = re.split(r"[,;]|\.(?!\d)", text.lower(), maxsplit=1)[0]
+    words = _WORD.findall(clause.replace("'", "").replace("\u2019", ""))
+    for w in words:
+        if w in DETERMINERS:
+            return True
+        if singular(w) == word or w == word:
+            return False
+    return False
