@@ -259,3 +259,21 @@ def test_an_unseen_noun_names_an_object_only_when_a_determiner_introduces_it():
     # the price: a bare unseen noun is only doubted, so a close match of another object fits (the hammer)
     price = r.recall_text("Flyswatter with a steel mesh, 33 cm long, 600 g.")
     assert price.unknown_noun == "flyswatter" and not price.not_in_catalog and price.best.name == "hammer"
+
+
+def test_a_later_phrase_names_the_object_only_when_a_determiner_introduces_it():
+    from recall.subject import introduced, noun_phrase
+
+    assert noun_phrase("Steel, 15 cm long, a nutcracker") == ("nutcracker",)
+    assert noun_phrase("tiny, two screw caps, 8 g") != ("screw", "cap")  # parts of the thing described
+    assert noun_phrase("plastic, handset on a base, 700 g") != ("handset",)
+    assert introduced("steel, 15 cm long, a nutcracker", "nutcracker")  # the clause that has it decides
+    assert not introduced("tiny, two screw caps, 8 g", "cap")
+
+
+def test_a_bare_word_read_as_a_misspelt_foreign_noun_is_no_verdict():
+    # "five fingers" is one edit from the lexicon's "ginger": in a bare list of features no verdict
+    r = seed()
+    assert not r.recall_text("five fingers, 19 cm long").not_in_catalog
+    slip = r.recall_text("screwdiver, 20 cm long, 90 g")  # bare too, but misspelt for a catalog word
+    assert slip.described is not None and slip.described.noun == "screwdriver" and not slip.not_in_catalog
