@@ -124,14 +124,18 @@ class KindIndex:
         if self._heads is None:
             out: dict[str, set[str]] = {}
             sorts: set[str] = set()
+            bare: set[str] = set()
             for row in range(len(self._names)):
                 own = self.kind(row)
                 words = words_of(self._names[row])
                 if own and plain_name(words):
                     out.setdefault(words[-1], set()).add(own)
+                    if len(words) == 1:
+                        bare.add(words[0])
                 elif words:
                     sorts.add(words[-1])
-            self._heads = {h: frozenset(k) for h, k in out.items() if h not in sorts}
+            # an object named by the head alone ("cord" beside "power cord") is the catalog's generic one
+            self._heads = {h: frozenset(k) for h, k in out.items() if h not in sorts or h in bare}
         return self._heads
 
     def english_names(self) -> dict[str, str]:
@@ -187,9 +191,13 @@ def described_noun(
     hypernym whenever it is no catalog head, and a compound never agrees by kind)."""
     noun: Noun | None = noun_in(list(subject))
     before = subject[-len(noun.words) - 1] if noun is not None and len(subject) > len(noun.words) else None
-    if noun is not None and len(noun.words) == 1 and noun.words[-1] in generic and before is not None:
+    if (
+        noun is not None and len(noun.words) == 1 and noun.words[-1] in generic and before is not None
+        and noun.words not in phrases
+    ):  # fmt: skip
         # "a plush dinosaur toy": a generic noun after a noun the catalog does not know names a thing of
-        # the generic noun's kind that the catalog does not have
+        # the generic noun's kind that the catalog does not have; not where a catalog object is called by
+        # the generic noun alone ("tube": "a mailing tube" is a sort of it, judged below)
         if before not in vocabulary and before not in generic and noun_like(before):
             return DescribedNoun(f"{before} {noun.text}", noun.kind, f"{before} {noun.english}", False)
     if (
@@ -470,7 +478,7 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     import re
 
     from recall.names import GENERIC_NOUNS
-    from recall.subject import noun_phrase, said_in_plural, subject_phrase
+    from recall.subject import introduced, noun_phrase, said_in_plural, subject_phrase
     from recall.typos import corrected
 
     subject = noun_phrase(text)
@@ -485,9 +493,12 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     head = names.unknown_noun(text) or compound_head(subject, names.vocabulary)
     if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
         subject, head = after_of, foreign_head(after_of, names.vocabulary)
+    bare = head is not None and not introduced(text, head)
     if head is not None and subject and subject[-1] == head:
         fixed = corrected(head, names.heads)
         noun = described_noun((*subject[:-1], fixed), *args) if fixed is not None else None
-        if noun is not None:  # "a screwdiver": the catalog's screwdriver, or a lexicon noun, misspelt
-            return noun
+        if noun is not None and (noun.in_catalog or not bare):
+            return noun  # "a screwdiver": the catalog's screwdriver, or a lexicon noun, misspelt
+    if bare:  # a bare phrase in a list of features ("spring-loaded jaws", "five fingers"): doubt, no verdict
+        return None
     return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))

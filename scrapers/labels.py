@@ -137,6 +137,8 @@ def _classify(label: object) -> LabelInfo | None:
     text = text.rstrip(" :：-–—=").strip()
     if any(_names_a_capacity(m.group(0)) for m in _BRACKETS.finditer(text)):
         return None  # "Weight (maximum)": another configuration's or a rating, see classify_other
+    if bracket_part(text) is not None:
+        return None  # "Size (Main Display)": the display's size, see classify_other
     text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
     text = _EN_BOY.sub("width x length", text)  # Turkish "En x Boy" before "en" is read as a preposition
     text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
@@ -207,6 +209,25 @@ def _classify(label: object) -> LabelInfo | None:
                 return _excluding(excluded, LabelInfo("dimensions", package, unit, shipping=_ships(package, words)))
             order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
             return _excluding(excluded, LabelInfo(kind, package, unit, order, shipping=_ships(package, words)))
+    return None
+
+
+#: Words in a label's brackets that keep it the whole product's, whatever else they name: what it includes
+#: ("Height (with stand)", "Weight (incl. battery)").
+_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus y und and".split()}
+
+
+def bracket_part(text: str) -> str | None:
+    """The part a label's brackets name (``Size (Main Display)``, ``Dimensions (Pendant)``): a part word
+    (:data:`PART_WORDS`) with nothing that keeps the label the whole product's (what it includes, what it
+    leaves out, its body). None otherwise: units, axis orders and qualifiers in brackets change nothing."""
+    for m in _BRACKETS.finditer(text):
+        inner = m.group(0)[1:-1].strip()
+        words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
+        if any(w in _INCLUDING or w in NEGATIONS or w in BODY_WORDS for w in words):
+            continue
+        if any(w in PART_WORDS for w in words):
+            return inner
     return None
 
 
@@ -311,6 +332,7 @@ def classify_other(label: object) -> LabelInfo | None:
         if kinds:
             part = " ".join(w for w in words if w not in KIND_WORDS and w not in QUALIFIERS and not _compound_kind(w))
             part = part or next((w[: -len(s)] for w in words for s in COMPOUND_SUFFIXES if w.endswith(s)), "")
+            part = bracket_part(text) or part
             return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component", part=part or None)
     except Exception:  # noqa: BLE001 - a label we cannot read is no measurement
         return None

@@ -46,6 +46,8 @@ _WEAK_FOREIGN = re.compile(r"(?:carousel|swiper|slick|slider|sponsor|advert|bann
 SPEC_CONTAINER = re.compile(
     r"(?:spec|techn|detail|descri|attribute|propert|merkmal|caracter|характер|feature)", re.IGNORECASE
 )
+#: A class token naming the product's own specification block (``pdp-product-specs``, ``product-details``).
+_OWN_SPEC = re.compile(r"(?:pdp|product)[-_]?(?:spec|techn|detail|descri|attribute|propert|feature)", re.IGNORECASE)
 #: id/class words of blocks that describe the package rather than the product.
 PACKAGE_CONTAINER = re.compile(
     r"(?:packag|verpack|shipping|versand|embala|emballa|imball|colis|упаков)", re.IGNORECASE
@@ -317,10 +319,13 @@ def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]
     if not names:
         return False, False
     foreign = False
-    for token in names.split():
+    tokens = names.split()
+    for token in tokens:
         m = FOREIGN_CONTAINER.search(token)
         if m and not (_WEAK_FOREIGN.fullmatch(m.group(0)) and SPEC_CONTAINER.search(names)):
-            foreign = True
+            # another token naming this product's own specification outranks it (Mouser's spec table
+            # is id="FindSimilarPnl" class="pdp-product-specs": "find similar" is a feature of the table)
+            foreign = not any(_OWN_SPEC.search(t) and not FOREIGN_CONTAINER.search(t) for t in tokens)
             break
     return foreign, any(PACKAGE_CONTAINER.search(t) and not _PRODUCT_FLAG.search(t) for t in names.split())
 

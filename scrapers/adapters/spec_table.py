@@ -16,6 +16,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
+from kb.measures.units import units_pattern
 from scrapers.adapters import Observation, adapter
 from scrapers.labels import AXES
 from scrapers.normalize import material_from_text
@@ -31,7 +32,14 @@ from scrapers.quantities import (
 )
 from scrapers.sizes import AXIS_WORD_AFTER
 from scrapers.spec_pairs import DIGIT, MAX_PAIRS, Pair, own_part_pairs, pairs_from_lines, split_inline
-from scrapers.value_forms import NARROW_RANGE, axis_segments, for_one_size, one_length, written_value
+from scrapers.value_forms import (
+    NARROW_RANGE,
+    axis_segments,
+    for_one_size,
+    keyed_variant,
+    one_length,
+    written_value,
+)
 
 __all__ = ["MAX_PAIRS", "Pair", "observations_from_pairs", "pairs_from_lines", "split_inline"]
 
@@ -103,8 +111,9 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
     value, written = written_value(pair.value)
     if value != pair.value:
         pair = replace(pair, value=value)
-    if info.role == "product" and for_one_size(pair.value):
-        info = replace(info, role="variant")  # "72 cm bei Größe S": one size's value, never the product's
+    if info.role == "product" and (for_one_size(pair.value) or keyed_variant(pair.value)):
+        # "72 cm bei Größe S", "1-inch: 71"L x 24"W": one size's value, never the product's
+        info = replace(info, role="variant")
         pair = replace(pair, info=info)
     if info.role != "product":
         out.extend(_other_observations(pair, raw, decimal_comma, rank))
@@ -200,7 +209,18 @@ def _dims_pair_observations(
         mass, note = _plausible_mass(rest, None, decimal_comma)
         if mass is not None:
             out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
+    elif info.kind == "size" and not out and _ONLY_A_MASS.fullmatch(clean_text(pair.value)):
+        # a grocer's "Size: 275g": the size it is sold in is its net weight
+        mass, note = _plausible_mass(pair.value, None, decimal_comma)
+        if mass is not None:
+            out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
     return out
+
+
+#: A value that is one mass and nothing else (``275g``, ``1,5 kg``, ``approx. 12 oz``).
+_ONLY_A_MASS = re.compile(
+    rf"(?:approx\.?|ca\.?|about)?\s*\d+(?:[.,]\d+)?\s*(?:{units_pattern('mass')})\.?", re.IGNORECASE
+)
 
 
 def _axes_in_one_value(pair: Pair, decimal_comma: bool | None) -> Observation | None:
