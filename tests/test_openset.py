@@ -265,10 +265,20 @@ def test_a_later_phrase_names_the_object_only_when_a_determiner_introduces_it():
     from recall.subject import introduced, noun_phrase
 
     assert noun_phrase("Steel, 15 cm long, a nutcracker") == ("nutcracker",)
-    assert noun_phrase("tiny, two screw caps, 8 g") != ("screw", "cap")  # parts of the thing described
-    assert noun_phrase("plastic, handset on a base, 700 g") != ("handset",)
+    assert noun_phrase("plastic, handset on a base, 700 g") == ("plastic",)  # a part of the thing described
     assert introduced("steel, 15 cm long, a nutcracker", "nutcracker")  # the clause that has it decides
     assert not introduced("tiny, two screw caps, 8 g", "cap")
+
+
+def test_a_count_of_a_plural_noun_lists_parts_and_names_no_object():
+    from recall.subject import counted_parts
+
+    assert counted_parts("tiny, two screw caps, 8 g", ("two", "screw", "cap"))
+    assert counted_parts("five fingers, 19 cm long", ("five", "finger"))
+    assert not counted_parts("one screw cap, 8 g", ("one", "screw", "cap"))  # one: the thing itself
+    assert not counted_parts("two screw cap, 8 g", ("two", "screw", "cap"))  # not said in the plural
+    assert not counted_parts("screw caps, 8 g", ("screw", "cap"))  # no count
+    assert not seed().recall_text("tiny, two screw caps, 8 g").not_in_catalog
 
 
 def test_a_bare_word_read_as_a_misspelt_foreign_noun_is_no_verdict():
