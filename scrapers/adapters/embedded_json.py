@@ -17,11 +17,13 @@ from scrapers.adapters import Observation, adapter
 from scrapers.adapters.spec_table import observations_from_pairs
 from scrapers.labels import classify_label
 from scrapers.page import Page
-from scrapers.spec_pairs import CODE, DIGIT, Pair, split_inline
+from scrapers.spec_pairs import CODE, DIGIT, Pair, has_unit, split_inline
 
 __all__ = ["NAME_MATCH", "embedded_json"]
 
 _LABEL_KEYS = ("title", "name", "label", "key", "attributeName", "attribute", "displayName", "property")
+#: Inline markup inside a state string (``"<B>Weight:</B> 8.5 Pounds"``, a store's bullet list): read as text.
+_INLINE_TAG = re.compile(r"</?(?:b|strong|i|em|u|span|br|p|li|small)\b[^<>]{0,40}>", re.IGNORECASE)
 _UNIT_KEYS = ("unit_string", "unit", "unitText", "unitCode", "units", "uom")
 _MAX_NODES = 200_000
 
@@ -60,9 +62,11 @@ def _keyed_value(node: dict, key: str, value: Any) -> str | None:
         inner = value.get("value", value.get("amount"))
         unit = next((value[k] for k in _UNIT_KEYS if isinstance(value.get(k), str)), None)
         return f"{inner} {unit}" if isinstance(inner, (int, float, str)) and unit else None
-    if isinstance(value, str):
-        return value if DIGIT.search(value) and len(value) < 200 else None
-    if isinstance(value, (int, float)) and not isinstance(value, bool):
+    if isinstance(value, str) and has_unit(value):
+        return value if len(value) < 200 else None
+    if isinstance(value, str) or (isinstance(value, (int, float)) and not isinstance(value, bool)):
+        # a number without a unit, as a number or a string ("width": "24", "sizes": "16x16": an icon's
+        # pixels as often as a size), is a measurement only with its unit in a sibling key
         for k in (f"{key}Unit", f"{key}_unit", f"{key}Uom", *_UNIT_KEYS):
             if isinstance(node.get(k), str) and node[k].strip():
                 return f"{value} {node[k]}"
@@ -124,7 +128,7 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
             and 3 < len(node) < 200
             and ":" in node
             and DIGIT.search(node)
-            and not CODE.search(node)
+            and not CODE.search(node := _INLINE_TAG.sub(" ", node).strip())
         ):
             for label, value, info in split_inline(node):
                 pairs.append(Pair(label, value, info, order=order))
