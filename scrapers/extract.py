@@ -363,7 +363,7 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         valid = _valid(observations, feature, "product", warnings, decisions, refused[feature])
         for cand, other in restated_elsewhere(valid, observations, feature, agree):
             valid.remove(cand)  # "Pendant measures 5/16 x 3/4" beside "Pendant measures: 0.3125 x 0.75"
-            decisions.append(_candidate(cand, f"not the product's: the page states it as a {other.role}'s "
+            decisions.append(_candidate(cand, f"not the product's: the page states it as a {_whose(other)}'s "
                                               f"({other.raw[:60]!r})"))
         if not valid:  # a quantity written only in the product's name ("Almonds - 13oz")
             valid = _valid(observations, feature, "name", warnings, decisions, refused[feature])

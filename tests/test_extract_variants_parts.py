@@ -162,3 +162,37 @@ def test_a_sentence_with_its_own_value_is_still_the_products():
 def test_lists_variants_is_symmetric(x, y):
     info = classify_label("Weight")
     assert lists_variants(f"{x:.2f} g", f"{y:.2f} g", info) == lists_variants(f"{y:.2f} g", f"{x:.2f} g", info)
+
+
+# ------------------------------------------------------------- structured data restating the parcel's
+def _microdata(weight: str) -> str:
+    return (f"<div itemscope itemtype='https://schema.org/Product'><span itemprop='name'>Monitor</span>"
+            f"<span itemprop='weight'>{weight}</span></div>")
+
+
+def test_a_bare_structured_weight_equal_to_the_labelled_shipping_weight_is_the_shipments():
+    body = _microdata("6.34 kg") + "<table><tr><td>Versandgewicht</td><td>6,34 kg</td></tr></table>"
+    r = _record(body, "Monitor")
+    assert r is None or r.mass_g is None
+    assert r is None or r.shipping_mass_g == [6340.0]
+
+
+def test_it_stays_the_products_when_a_labelled_product_weight_agrees():
+    body = _microdata("6.34 kg") + ("<table><tr><td>Gewicht</td><td>6,34 kg</td></tr>"
+                                    "<tr><td>Versandgewicht</td><td>6,34 kg</td></tr></table>")
+    assert _record(body, "Monitor").mass_g == 6340.0
+
+
+def test_a_structured_weight_equal_to_a_parts_is_still_the_products():
+    # only the parcel's or the box's labelled value says a structured weight is not the product's
+    body = _microdata("2 kg") + "<table><tr><td>Akkugewicht</td><td>2 kg</td></tr></table>"
+    assert _record(body, "Drill").mass_g == 2000.0
+
+
+def test_a_screens_size_on_a_monitors_page_is_no_extent():
+    body = "<table><tr><td>Displaygröße</td><td>23.8\"</td></tr><tr><td>Gewicht</td><td>3 kg</td></tr></table>"
+    r = _record(body, "Acer CB242YE 23.8 Full HD IPS Display schwarz")
+    assert r is not None and not r.dims and r.mass_g == 3000.0
+    # a part named by the title is still the product's otherwise ("Robot Weight" on a robot's page)
+    r = _record("<table><tr><td>Robot Weight</td><td>3.2 kg</td></tr></table>", "Robot Vacuum R7")
+    assert r is not None and r.mass_g == 3200.0

@@ -259,3 +259,31 @@ def test_an_unseen_noun_names_an_object_only_when_a_determiner_introduces_it():
     # the price: a bare unseen noun is only doubted, so a close match of another object fits (the hammer)
     price = r.recall_text("Flyswatter with a steel mesh, 33 cm long, 600 g.")
     assert price.unknown_noun == "flyswatter" and not price.not_in_catalog and price.best.name == "hammer"
+
+
+def test_a_later_phrase_names_the_object_only_when_a_determiner_introduces_it():
+    from recall.subject import introduced, noun_phrase
+
+    assert noun_phrase("Steel, 15 cm long, a nutcracker") == ("nutcracker",)
+    assert noun_phrase("plastic, handset on a base, 700 g") == ("plastic",)  # a part of the thing described
+    assert introduced("steel, 15 cm long, a nutcracker", "nutcracker")  # the clause that has it decides
+    assert not introduced("tiny, two screw caps, 8 g", "cap")
+
+
+def test_a_count_of_a_plural_noun_lists_parts_and_names_no_object():
+    from recall.subject import counted_parts
+
+    assert counted_parts("tiny, two screw caps, 8 g", ("two", "screw", "cap"))
+    assert counted_parts("five fingers, 19 cm long", ("five", "finger"))
+    assert not counted_parts("one screw cap, 8 g", ("one", "screw", "cap"))  # one: the thing itself
+    assert not counted_parts("two screw cap, 8 g", ("two", "screw", "cap"))  # not said in the plural
+    assert not counted_parts("screw caps, 8 g", ("screw", "cap"))  # no count
+    assert not seed().recall_text("tiny, two screw caps, 8 g").not_in_catalog
+
+
+def test_a_bare_word_read_as_a_misspelt_foreign_noun_is_no_verdict():
+    # "five fingers" is one edit from the lexicon's "ginger": in a bare list of features no verdict
+    r = seed()
+    assert not r.recall_text("five fingers, 19 cm long").not_in_catalog
+    slip = r.recall_text("screwdiver, 20 cm long, 90 g")  # bare too, but misspelt for a catalog word
+    assert slip.described is not None and slip.described.noun == "screwdriver" and not slip.not_in_catalog

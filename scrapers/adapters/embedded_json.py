@@ -22,6 +22,8 @@ from scrapers.spec_pairs import CODE, DIGIT, Pair, has_unit, split_inline
 __all__ = ["NAME_MATCH", "embedded_json"]
 
 _LABEL_KEYS = ("title", "name", "label", "key", "attributeName", "attribute", "displayName", "property")
+#: Inline markup inside a state string (``"<B>Weight:</B> 8.5 Pounds"``, a store's bullet list): read as text.
+_INLINE_TAG = re.compile(r"</?(?:b|strong|i|em|u|span|br|p|li|small)\b[^<>]{0,40}>", re.IGNORECASE)
 _UNIT_KEYS = ("unit_string", "unit", "unitText", "unitCode", "units", "uom")
 _MAX_NODES = 200_000
 
@@ -126,7 +128,7 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
             and 3 < len(node) < 200
             and ":" in node
             and DIGIT.search(node)
-            and not CODE.search(node)
+            and not CODE.search(node := _INLINE_TAG.sub(" ", node).strip())
         ):
             for label, value, info in split_inline(node):
                 pairs.append(Pair(label, value, info, order=order))
