@@ -50,6 +50,7 @@ from scrapers.records import ProductRecord
 from scrapers.restatements import restated_elsewhere
 from scrapers.sets import set_apart, set_size
 from scrapers.trail import category_trail
+from scrapers.value_forms import placeholder_size
 
 __all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "extract_page", "fuse"]
 
@@ -257,7 +258,9 @@ def _valid(
         if feature == "dims":
             extents = sorted(o.extents(), key=lambda e: -e[1])
             o.value, o.roles = tuple(v for _, v in extents), tuple(r for r, _ in extents)
-            reason = check_dims(o.value)
+            reason = check_dims(o.value) or (
+                "a shop system's placeholder size (1 x 1 x 1), not a measurement" if placeholder_size(o.raw) else None
+            )
         else:
             reason = check_mass(o.value)
         if reason and len(decisions) < MAX_CANDIDATES:

@@ -196,3 +196,33 @@ def test_a_screens_size_on_a_monitors_page_is_no_extent():
     # a part named by the title is still the product's otherwise ("Robot Weight" on a robot's page)
     r = _record("<table><tr><td>Robot Weight</td><td>3.2 kg</td></tr></table>", "Robot Vacuum R7")
     assert r is not None and r.mass_g == 3200.0
+
+
+# ------------------------------------------------------------------ variants in state JSON, placeholders
+def _state(obj) -> str:
+    import json
+
+    return f"<script>window.__STATE__ = {json.dumps(obj)};</script><p>A rug.</p>"
+
+
+def test_a_label_with_three_different_values_in_state_json_lists_variants():
+    sizes = [{"title": "Size", "value": v} for v in ("2'x3'", "3'x5'", "5'x7'")]
+    assert _record(_state({"product": {"name": "Thing", "options": sizes}})) is None
+
+
+def test_two_values_or_one_repeated_are_not_a_list():
+    two = [{"title": "Size", "value": v} for v in ("3'x5'", "3' x 5'", "3'x5'")]  # one size, written thrice
+    r = _record(_state({"product": {"name": "Thing", "options": two}}))
+    assert r is not None and sorted(e["cm"] for e in r.dims) == [91.44, 152.4]
+    pair = [{"title": "Size", "value": v} for v in ("2'x3'", "3'x5'")]
+    assert _record(_state({"product": {"name": "Thing", "options": pair}})) is not None
+
+
+@pytest.mark.parametrize(("size", "refused"), [("1 × 1 × 1 in", True), ("1x1x1 cm", True), ("1.0 x 1.0 x 1.0 in", True),
+                                               ("10 x 1 x 1 cm", False), ("1 x 1 x 10 cm", False)])
+def test_a_shop_systems_placeholder_size_is_refused(size, refused):
+    from scrapers.value_forms import placeholder_size
+
+    assert placeholder_size(f"dimensions_html: {size}") is refused
+    r = _record(f"<dl><dt>Dimensions</dt><dd>{size}</dd><dt>Weight</dt><dd>2 kg</dd></dl>")
+    assert r is not None and (not r.dims) is refused

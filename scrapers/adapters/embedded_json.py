@@ -11,6 +11,7 @@ product (a recommendation in the state) are not read.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from typing import Any
 
 from scrapers.adapters import Observation, adapter
@@ -135,12 +136,31 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
     return pairs
 
 
+#: A label of the product's that states this many different values in one state object lists variants
+#: (a rug store's ``"Size": "2'x3'"``, ``"3'x5'"``, ``"5'x7'"``... one per size sold).
+VARIANT_VALUES = 3
+
+
+def _variants_apart(pairs: list[Pair]) -> list[Pair]:
+    """``pairs`` with the product's labels that state :data:`VARIANT_VALUES` or more different values
+    marked as variants' (none of them is the product's)."""
+    values: dict[str, set[str]] = {}
+    for p in pairs:
+        if p.info.role == "product":
+            values.setdefault(p.label.strip().lower(), set()).add(re.sub(r"\s+", "", p.value.lower()))
+    listed = {label for label, vs in values.items() if len(vs) >= VARIANT_VALUES}
+    if not listed:
+        return pairs
+    return [replace(p, info=replace(p.info, role="variant")) if p.info.role == "product"
+            and p.label.strip().lower() in listed else p for p in pairs]  # fmt: skip
+
+
 @adapter("embedded_json", priority=60, fallback=True)
 def embedded_json(page: Page) -> list[Observation]:
     """Label/value data shipped as JSON inside the page's scripts (tabs rendered by JavaScript)."""
     obs: list[Observation] = []
     for payload in page.script_payloads:
-        pairs = _json_pairs(payload, page.title)
+        pairs = _variants_apart(_json_pairs(payload, page.title))
         if pairs:
             # JSON order is not visual order: group axes only among neighbouring entries.
             obs.extend(observations_from_pairs(pairs, page.decimal_comma, rank=1))
