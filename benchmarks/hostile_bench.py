@@ -4,8 +4,9 @@ Part 1, :func:`bench_drip_beside_demo`: the nightly job (``run_ingestion`` with 
 its delays and robots Crawl-delay as they are) over the demo store alone, then with one dripping store
 beside it (a page that sends a byte every 50 ms, each well within the read time-out, for 60 s). Reported:
 when the demo store's last page is done in each case and their ratio (the goal: 1 ± 0.2), and when the
-dripping page was rejected (the goal: within its deadline, default 30 s) with its reason. Baseline,
-measured in the same run: the demo store alone.
+dripping page was rejected (the goal: within its deadline, default 30 s) with its reason, counted from its
+request's arrival at the store (what the deadline counts; its robots.txt and the host's delay come before)
+and from the run's start. Baseline, measured in the same run: the demo store alone.
 
 Part 2, :func:`bench_each_store`: every hostile store of ``tests/hostile_stores.py`` (written here), one
 at a time, each ingested by a fresh child process (so its peak RSS is its own): wall seconds, peak RSS
@@ -35,8 +36,9 @@ sys.path[:0] = [str(REPO), str(REPO / "tests")]  # the hostile stores are the te
 
 
 # ---------------------------------------------------------------------------------------------- part 1
-def _nightly(base_url: str, extra: str, db: Path) -> tuple[float, float | None, dict[str, str], float]:
-    """One nightly run: (demo store's last page done s, drip page rejected s, drip reasons, total s)."""
+def _nightly(base_url: str, extra: str, db: Path) -> tuple[float, float | None, dict[str, str], float, float]:
+    """One nightly run: (demo store's last page done s, drip page rejected s, drip reasons, total s, the
+    run's start: ``time.monotonic()``), times in seconds from the run's start."""
     import requests
 
     from kb.catalog import KnowledgeBase
@@ -49,19 +51,19 @@ def _nightly(base_url: str, extra: str, db: Path) -> tuple[float, float | None, 
         tuple(s if s.name == "drip" else _rebased(s, base_url) for s in sources.stores), sources.origin
     )
     done: dict[str, float] = {}
-    start = time.perf_counter()
+    start = time.monotonic()  # the clock the stores' handlers record requests with
 
     def progress(_done: int, _total: int, url: str) -> None:
         if url:
-            done["drip" if "/p/drip" in url else "demo"] = time.perf_counter() - start
+            done["drip" if "/p/drip" in url else "demo"] = time.monotonic() - start
 
     kb = KnowledgeBase.open(db)
     with requests.Session() as session:
         run_ingestion(kb, sources, session=session, progress=progress)
-    total = time.perf_counter() - start
+    total = time.monotonic() - start
     with kb.connect() as con:
         reasons = {u: r for u, r in con.execute("SELECT url, reason FROM page_events").fetchall() if "/p/drip" in u}
-    return done["demo"], done.get("drip"), reasons, total
+    return done["demo"], done.get("drip"), reasons, total, start
 
 
 def _rebased(store, base_url: str):
@@ -83,7 +85,7 @@ def bench_drip_beside_demo(runs: int = 3) -> dict[str, Any]:
     from scrapers.demo_store import DemoStore
 
     tmp = Path(tempfile.mkdtemp(prefix="hostile-bench-"))
-    alone, beside, rejected, totals = [], [], [], []
+    alone, beside, rejected, after_request, totals = [], [], [], [], []
     reasons: dict[str, str] = {}
     with DemoStore() as demo, PageStore(drip_s=60.0) as drip:
         drip.mode = "hostile"
@@ -92,16 +94,19 @@ def bench_drip_beside_demo(runs: int = 3) -> dict[str, Any]:
         )
         for i in range(runs):
             alone.append(_nightly(demo.base_url, "", tmp / f"alone{i}.duckdb")[0])
-            demo_s, drip_s, reasons, total = _nightly(demo.base_url, extra, tmp / f"beside{i}.duckdb")
+            drip.seen.clear()
+            demo_s, drip_s, reasons, total, start = _nightly(demo.base_url, extra, tmp / f"beside{i}.duckdb")
             beside.append(demo_s)
             rejected.append(drip_s)
+            after_request.append(start + drip_s - drip.seen["/p/drip"])  # what the page's deadline counts
             totals.append(total)
     med = statistics.median
     result = {
         "demo_alone_s": med(alone),
         "demo_beside_drip_s": med(beside),
         "ratio": med(beside) / med(alone),
-        "drip_rejected_s": max(rejected),
+        "drip_rejected_s": max(after_request),
+        "drip_rejected_from_run_start_s": max(rejected),
         "run_total_s": med(totals),
         "drip_reason": next(iter(reasons.values()), None),
         "runs": runs,
@@ -109,7 +114,9 @@ def bench_drip_beside_demo(runs: int = 3) -> dict[str, Any]:
     print(
         f"nightly job, demo store ({runs} runs, median): its last page done after {result['demo_alone_s']:.1f} s alone, "
         f"{result['demo_beside_drip_s']:.1f} s beside a dripping store = {result['ratio']:.2f}x; the dripping "
-        f"page rejected after at most {result['drip_rejected_s']:.1f} s ({result['drip_reason']}); "
+        f"page rejected at most {result['drip_rejected_s']:.3f} s after its request reached the store "
+        f"({result['drip_rejected_from_run_start_s']:.2f} s after the run started: its robots.txt and host "
+        f"delay first) ({result['drip_reason']}); "
         f"whole run {result['run_total_s']:.1f} s"
     )
     return result
@@ -224,8 +231,9 @@ def _save(drip: dict[str, Any], rows: list[dict[str, Any]]) -> None:
     text = (
         f"loopback stores written here: the demo store's pages done in {drip['demo_beside_drip_s']:.1f} s beside a "
         f"dripping store vs {drip['demo_alone_s']:.1f} s alone ({drip['ratio']:.2f}×, median of {drip['runs']}), the "
-        f"drip rejected after {drip['drip_rejected_s']:.1f} s (`timeout`, deadline 30 s); {len(measured)} hostile "
-        f"stores one at a time: longest {worst_wall['wall_s']:.1f} s ({worst_wall['store']}), peak RSS at most "
+        f"drip rejected {drip['drip_rejected_s']:.2f} s after its request (`timeout`, deadline 30 s; "
+        f"{drip['drip_rejected_from_run_start_s']:.1f} s after the run began, robots.txt and host delay first); "
+        f"{len(measured)} hostile stores one at a time: longest {worst_wall['wall_s']:.1f} s ({worst_wall['store']}), peak RSS at most "
         f"{worst_rss['rss_mb']:.0f} MB ({worst_rss['rss_ratio']:.2f}× one good page, {worst_rss['store']}), "
         f"{crashes} crashes; 2 shared cores, load {load:.0f}"
     )

@@ -362,7 +362,7 @@ def save_choice(out: dict[str, Any]) -> Path:
     )
     return save_result(
         "sim_choice",
-        benchmark=f"closed-loop choice (`sim_bench.py --only choice`, seed catalog, top {out['top']})",
+        benchmark=f"closed-loop choice (`sim_bench.py --only choice`, seed catalog: data written here, top {out['top']})",
         result=result,
         data=out,
         order=60,

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from kb.errors import RecallError
-from kb.features import FEATURES, NUMERIC_FEATURES
+from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES
 from kb.kinds import ROOT, words_of
 from recall.alternatives import alternatives, with_alternatives
 from recall.confidence import (
@@ -34,7 +34,7 @@ from recall.confidence import (
     confidence_from_margin,
     confidence_of,
 )
-from recall.fit import Trust, disagreeing_features, judge
+from recall.fit import Trust, closeness_of, disagreeing_features, judge
 from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
 from recall.name_index import HEAD_WEIGHT, NAME_WEIGHT, NameEvidence, NameIndex
@@ -283,7 +283,7 @@ class Recaller:
             self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query, self.floors
         )
         errors.update(soft.errors_of(int(rows[0])) if soft is not None else {})
-        closeness = float(np.mean(list(errors.values()))) if errors else None
+        closeness = closeness_of(errors, self._silent_categories(int(rows[0])))
         # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
         # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)
         named_whole = matches[0].matched_by_name and not names_inside(noun, names.phrases)
@@ -338,6 +338,11 @@ class Recaller:
             fit=fit,
             **base,
         )
+
+    def _silent_categories(self, row: int) -> tuple[str, ...]:
+        """The categorical features the catalog holds no value for at ``row`` (code < 0)."""
+        codes = self.snapshot.cat_rows(row)
+        return tuple(f for f, code in zip(CATEGORICAL_FEATURES, codes, strict=True) if code < 0)
 
     def _foreign_modifier(self, subject: tuple[str, ...], row: int, names: NameEvidence) -> str | None:
         """The noun before the subject's head that none of the named best match's names has

@@ -29,6 +29,7 @@ __all__ = [
     "THRESHOLDS",
     "Fit",
     "Trust",
+    "closeness_of",
     "disagreeing_features",
     "judge",
 ]
@@ -90,6 +91,15 @@ def disagreeing_features(errors: Mapping[str, float]) -> tuple[str, ...]:
     1 - 1 / factor; an unknown catalog value never disagrees), in feature order."""
     limit = 1.0 - 1.0 / DISAGREE_FACTOR - 1e-9
     return tuple(f for f in _NUMERIC if errors.get(f, 0.0) >= limit)
+
+
+def closeness_of(errors: Mapping[str, float], silent: Sequence[str] = ()) -> float | None:
+    """The closeness: the mean relative error over the stated features (``errors``) except those the
+    object's record is ``silent`` on, a category it does not hold (a catalog that records no material
+    says nothing about a stated "plastic": counting it half a mismatch made every stated category pull a
+    right match toward "not a fit"); None when nothing is left to compare."""
+    kept = [e for f, e in errors.items() if f not in silent]
+    return sum(kept) / len(kept) if kept else None
 
 
 def _ratio(error: float) -> float:

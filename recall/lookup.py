@@ -7,7 +7,8 @@
 1. **Recall** the description from the catalog. A lookup is needed (:func:`lookup_reason`) when nothing is
    recalled, the recall says the object is not in the catalog (``not_in_catalog``: a noun the catalog does
    not have; or ``open_set``: nothing close), or its confidence is below
-   ``threshold`` (:data:`LOOKUP_BELOW_CONFIDENCE`); ``force`` looks it up anyway.
+   ``threshold`` (:data:`LOOKUP_BELOW_CONFIDENCE`), or the first match is not the thing the subject names
+   (:func:`unnamed_subject`: "peanut butter" recalled as a coffee can); ``force`` looks it up anyway.
 2. **Search words** (:func:`search_terms`): the description's subject phrase ("glazed ceramic teapot"),
    then its head noun alone ("teapot"); each store gets the first that lists products.
 3. **The stores** (:func:`scrapers.lookup.search_stores`): the top results of every store with a search,
@@ -24,6 +25,7 @@ of the budget); ``max_pages`` bounds the requests.
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -44,9 +46,11 @@ __all__ = [
     "FIT_CLOSENESS",
     "LOOKUP_BELOW_CONFIDENCE",
     "LookupResult",
+    "described_names",
     "lookup_reason",
     "recall_with_lookup",
     "search_terms",
+    "unnamed_subject",
 ]
 
 DEFAULT_BUDGET_S = 10.0
@@ -109,20 +113,59 @@ def lookup_reason(result: RecallResult, threshold: float = LOOKUP_BELOW_CONFIDEN
         return f"the catalog has no {result.described.english} (nearest: {result.best.name})"
     if result.open_set:
         return f"not in the catalog (nearest: {result.best.name}, not a close match)"
+    other = unnamed_subject(result)
+    if other is not None:
+        return f"the recalled {result.best.name} is no {other}, and the text names no catalog object"
     if result.confidence < threshold:
         return f"confidence {result.confidence:.2f} is below {threshold:g}"
     return None
+
+
+def unnamed_subject(result: RecallResult) -> str | None:
+    """The subject's head noun when the recall's first match is another thing: the head is a noun (a
+    lexicon noun, or a word that is no feature word, colour or adjective: :func:`recall.openset.noun_like`;
+    never a generic noun), the text
+    names the match neither by a name or alias nor by a head noun, and neither the noun nor its English
+    name is a word of the match's name. "crunchy peanut butter, 1 kg" recalled as the master chef can (a
+    coffee can) at confidence 0.93: a butter is no can, so the catalog's match, however close its sizes,
+    is evidence of nothing and the stores are asked (issue 22). None otherwise."""
+    import re
+
+    from recall.names import words_of
+    from recall.openset import COLOURS, _material_words, noun_in, noun_like
+
+    best = result.best
+    if best is None or best.matched_by_name or best.name_part > 0:
+        return None
+    text = result.text or ""
+    phrase = _phrase(text, keep_generic=True)
+    head = phrase[-1] if phrase else None
+    if head is None or head in GENERIC_NOUNS or head in _material_words() or head in COLOURS:
+        return None  # "a kitchen tool", "a glass object", "paper, 9 by 4 inches": no noun names a thing
+    if re.search(rf"\b{re.escape(head)}s?[- ](?:like|shaped|style|sized)\b", text.lower()):
+        return None  # "a ball-like fruit": a comparison
+    if not (noun_in([head]) is not None or noun_like(head) or result.unknown_noun == head):
+        return None
+    words = set(words_of(best.name))
+    english = words_of(result.described.english)[-1:] if result.described is not None else []
+    return None if head in words or any(w in words for w in english) else head
+
+
+def _phrase(text: str, keep_generic: bool = False) -> tuple[str, ...]:
+    """The subject phrase's words without units and (unless ``keep_generic``) generic nouns: what names
+    something to search for."""
+    from kb.measures.aliases import PARSER_LANGUAGES
+    from kb.measures.units import unit_table
+
+    units = unit_table(PARSER_LANGUAGES)
+    return tuple(w for w in subject_phrase(text) if w not in units and (keep_generic or w not in GENERIC_NOUNS))
 
 
 def search_terms(result: RecallResult) -> tuple[str, ...]:
     """The search words to try, most specific first: the subject phrase, then its head noun (in English
     when the recall recognised the noun, ``described``). Units and
     generic nouns ("5 grams", "something") name nothing to search for."""
-    from kb.measures.aliases import PARSER_LANGUAGES
-    from kb.measures.units import unit_table
-
-    units = unit_table(PARSER_LANGUAGES)
-    phrase = tuple(w for w in subject_phrase(result.text or "") if w not in units and w not in GENERIC_NOUNS)
+    phrase = _phrase(result.text or "")
     described = result.described.english if result.described is not None else None
     noun = described or result.unknown_noun or (phrase[-1] if phrase else None)
     terms = [" ".join(phrase)] if phrase else []
@@ -131,8 +174,21 @@ def search_terms(result: RecallResult) -> tuple[str, ...]:
     return tuple(terms)
 
 
-def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str]:
-    """Whether the product ``record`` is the object described, and why: the recall's own fit rule
+def described_names(result: RecallResult, terms: tuple[str, ...]) -> tuple[str, ...]:
+    """What the description calls the object, given to the products that fit as aliases: the described
+    noun and its English name (``described``), else the head noun searched for (the last of ``terms``). A
+    product found by that word whose features fit is one; its store name may not say so (a title in
+    another language, a keyword list, a model number), and the recall after the lookup, and later ones,
+    must know the object by the word a person used."""
+    noun = result.described
+    if noun is not None:
+        return tuple(dict.fromkeys((noun.noun, noun.english)))
+    return terms[-1:]
+
+
+def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float]:
+    """Whether the product ``record`` is the object described, why, and the fit's score (lower is closer;
+    above 1 is no fit): the recall's own fit rule
     (:func:`recall.fit.judge`) on the description recalled over that product alone, with the store's name
     counting as no evidence either way (:attr:`recall.fit.Trust.PLAIN`: a title can be a keyword list, a
     URL path or another language, and the store's search already matched the words); with no stated
@@ -144,12 +200,12 @@ def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str]:
     else:
         result = recaller.recall_parsed(text, top=1)
     if not result.matches:
-        return False, "the description states nothing to compare"
+        return False, "the description states nothing to compare", math.inf
     if result.closeness is None:
         named = result.matches[0].matched_by_name
-        return named, "named by the description" if named else "no stated feature and not named"
+        return named, "named by the description" if named else "no stated feature and not named", 1.0
     fit = judge(result.closeness, result.errors, Trust.PLAIN, result.unused)
-    return fit.close, fit.reason
+    return fit.close, fit.reason, fit.score
 
 
 def recall_with_lookup(
@@ -201,7 +257,8 @@ def recall_with_lookup(
     parsed = parse(text)
     try:
         out.stores = search_stores(kb, sources, terms, description=text, fits=lambda r: fits(parsed, r),
-                                   session=session, deadline=deadline, clock=clock, max_pages=max_pages)  # fmt: skip
+                                   session=session, deadline=deadline, clock=clock, max_pages=max_pages,
+                                   names=described_names(before, terms))  # fmt: skip
     finally:
         if own_session:
             session.close()

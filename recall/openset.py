@@ -102,6 +102,7 @@ class KindIndex:
         self._rows: dict[str, list[int]] | None = None
         self._heads: dict[str, frozenset[str]] | None = None
         self._english: dict[str, str] | None = None
+        self._words: dict[str, frozenset[str]] | None = None
 
     def kind(self, row: int) -> str | None:
         if row not in self._kinds:
@@ -124,15 +125,32 @@ class KindIndex:
         if self._heads is None:
             out: dict[str, set[str]] = {}
             sorts: set[str] = set()
+            bare: set[str] = set()
             for row in range(len(self._names)):
                 own = self.kind(row)
                 words = words_of(self._names[row])
                 if own and plain_name(words):
                     out.setdefault(words[-1], set()).add(own)
+                    if len(words) == 1:
+                        bare.add(words[0])
                 elif words:
                     sorts.add(words[-1])
-            self._heads = {h: frozenset(k) for h, k in out.items() if h not in sorts}
+            # an object named by the head alone ("cord" beside "power cord") is the catalog's generic one
+            self._heads = {h: frozenset(k) for h, k in out.items() if h not in sorts or h in bare}
         return self._heads
+
+    def words_by_head(self) -> dict[str, frozenset[str]]:
+        """The words before the head noun in the catalog's names, by head ("box" -> {"sugar", "cracker",
+        ...}); empty on a catalog larger than :data:`KIND_SCAN_LIMIT`."""
+        if self._words is None:
+            out: dict[str, set[str]] = {}
+            if len(self._names) <= KIND_SCAN_LIMIT:
+                for name in self._names:
+                    words = words_of(name)
+                    if len(words) > 1:
+                        out.setdefault(words[-1], set()).update(words[:-1])
+            self._words = {h: frozenset(w) for h, w in out.items()}
+        return self._words
 
     def english_names(self) -> dict[str, str]:
         """The English names of the lexicon nouns heading the catalog objects' names and aliases, each with
@@ -187,9 +205,13 @@ def described_noun(
     hypernym whenever it is no catalog head, and a compound never agrees by kind)."""
     noun: Noun | None = noun_in(list(subject))
     before = subject[-len(noun.words) - 1] if noun is not None and len(subject) > len(noun.words) else None
-    if noun is not None and len(noun.words) == 1 and noun.words[-1] in generic and before is not None:
+    if (
+        noun is not None and len(noun.words) == 1 and noun.words[-1] in generic and before is not None
+        and noun.words not in phrases
+    ):  # fmt: skip
         # "a plush dinosaur toy": a generic noun after a noun the catalog does not know names a thing of
-        # the generic noun's kind that the catalog does not have
+        # the generic noun's kind that the catalog does not have; not where a catalog object is called by
+        # the generic noun alone ("tube": "a mailing tube" is a sort of it, judged below)
         if before not in vocabulary and before not in generic and noun_like(before):
             return DescribedNoun(f"{before} {noun.text}", noun.kind, f"{before} {noun.english}", False)
     if (
@@ -208,8 +230,20 @@ def described_noun(
         noun.english != noun.text and bool(english)
         and (_names_catalog_object(english, phrases, heads) or english[-1] in heads)
     )  # a synonym names a sort of its English name's head noun ("puzzle cube" -> rubik's cube: a cube)
-    base = None if known else sort_of_catalog_object(noun, heads, kinds_of)
+    base = None if known else sort_of_catalog_object(noun, heads, kinds_of) or kind_mate(noun, subject, kinds_of)
     return DescribedNoun(noun.text, noun.kind, noun.english, known or base is not None, base)
+
+
+def kind_mate(noun: Noun, subject: Sequence[str], kinds_of: KindIndex | None) -> str | None:
+    """Whether a lexicon noun is a sort of the catalog objects named by its kind's name, with the same
+    modifier ("the yellow *sugar carton*": a carton is a box, and the catalog has a "sugar box"): the
+    kind's name (a carton's "box"), when it is the head noun of a catalog name that has the word before
+    the noun in the subject. Without that modifier ("a carton", "a cereal carton") it names another
+    object. Not worked out on catalogs larger than :data:`KIND_SCAN_LIMIT`. Returns the head, or None."""
+    if kinds_of is None or len(noun.words) != 1 or len(subject) < 2 or subject[-1] != noun.words[0]:
+        return None
+    words = kinds_of.words_by_head()
+    return noun.kind if subject[-2] in words.get(noun.kind, ()) else None
 
 
 def sort_of_catalog_object(noun: Noun, heads, kinds_of: KindIndex | None) -> str | None:
@@ -470,10 +504,12 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     import re
 
     from recall.names import GENERIC_NOUNS
-    from recall.subject import noun_phrase, said_in_plural, subject_phrase
+    from recall.subject import counted_parts, introduced, noun_phrase, said_in_plural, subject_phrase
     from recall.typos import corrected
 
     subject = noun_phrase(text)
+    if counted_parts(text, subject):
+        return None  # "tiny, two screw caps, 8 g": the parts the object has, not its name
     after_of: tuple[str, ...] = ()
     if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
         m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
@@ -485,9 +521,12 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     head = names.unknown_noun(text) or compound_head(subject, names.vocabulary)
     if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
         subject, head = after_of, foreign_head(after_of, names.vocabulary)
+    bare = head is not None and not introduced(text, head)
     if head is not None and subject and subject[-1] == head:
         fixed = corrected(head, names.heads)
         noun = described_noun((*subject[:-1], fixed), *args) if fixed is not None else None
-        if noun is not None:  # "a screwdiver": the catalog's screwdriver, or a lexicon noun, misspelt
-            return noun
+        if noun is not None and (noun.in_catalog or not bare):
+            return noun  # "a screwdiver": the catalog's screwdriver, or a lexicon noun, misspelt
+    if bare:  # a bare phrase in a list of features ("spring-loaded jaws", "five fingers"): doubt, no verdict
+        return None
     return unseen_noun(head, subject, plural=head is not None and said_in_plural(head, text))

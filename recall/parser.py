@@ -252,9 +252,41 @@ def _requalify(reading: Reading, spans: dict[tuple[int, int], str]) -> None:
         q.high = q.value if qualifier == "at_most" else None
 
 
+#: A length in parentheses right after another restates it (a unit conversion, a closer figure) when the
+#: two agree within this factor: "a bit over a metre (about 115 cm)", "2 m (6.5 ft)".
+RESTATED_FACTOR = 1.5
+
+
+def _length_cm(stmt) -> float | None:
+    q = stmt.quantities[0] if len(stmt.quantities) == 1 else None
+    if q is None or q.unit is None or q.unit.kind != "length":
+        return None
+    return q.value * q.unit.factor
+
+
+def drop_restatements(reading: Reading, text: str) -> None:
+    """Drop each single length in parentheses that restates the length stated right before it (only
+    spaces and the opening parenthesis between them, agreeing within :data:`RESTATED_FACTOR`): "a bit over
+    a metre (about 115 cm)" is one extent, not a 115 cm length and a 100 cm width; "10 inches (25 cm)
+    long, 4 in (10 cm) wide" is two. The first statement stays (it has the position the words give)."""
+    stmts = sorted((*reading.dims, *reading.sizes), key=lambda st: st.start)
+    restated = set()
+    for before, stmt in zip(stmts, stmts[1:], strict=False):
+        gap = text[before.end : stmt.start]
+        if gap.strip() != "(" or not text[stmt.end :].lstrip().startswith(")"):
+            continue
+        x, y = _length_cm(before), _length_cm(stmt)
+        if x and y and max(x, y) / min(x, y) <= RESTATED_FACTOR:
+            restated.add(id(stmt))
+    if restated:
+        reading.dims[:] = [st for st in reading.dims if id(st) not in restated]
+        reading.sizes[:] = [st for st in reading.sizes if id(st) not in restated]
+
+
 def _resolve(reading: Reading, text: str) -> tuple[dict[str, FeatureEvidence], str | None]:
     """The features (in :data:`kb.features.FEATURES` order) and the mass hint of a reading."""
     features: dict[str, FeatureEvidence] = {}
+    drop_restatements(reading, text)
     for name, dim in resolve_dims(reading).items():
         features[name] = _evidence(name, dim, text)
     mass = resolve_mass(reading)

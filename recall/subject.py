@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import re
+from collections.abc import Sequence
 
 from kb.kinds import singular, words_of
 
@@ -229,14 +230,17 @@ def _phrase_negation() -> re.Pattern[str]:
 def noun_phrase(text: str) -> tuple[str, ...]:
     """The subject phrase (:func:`subject_phrase`), or, when its words only state features ("Steel, 15
     cm long, a nutcracker": "steel"), the first later phrase of the sentence that ends in a noun of the
-    kinds lexicon (:func:`kb.kinds.noun_in`); the subject phrase otherwise."""
+    kinds lexicon (:func:`kb.kinds.noun_in`) introduced by a determiner (:func:`introduced`); the subject
+    phrase otherwise."""
     from kb.kinds import noun_in
 
     phrases = _phrases(text)
     first = next(phrases, ())
     if first and not all(w in feature_words() for w in first):
         return first
-    return next((p for p in phrases if noun_in(list(p)) is not None), first)
+    # a later phrase names the object only when a determiner introduces it ("a nutcracker"; not "tiny,
+    # two screw caps" or "plastic, handset on a base": parts of the object described)
+    return next((p for p in phrases if noun_in(list(p)) is not None and introduced(text, p[-1])), first)
 
 
 #: Words of a request or question before the subject ("please", "could you", "where is", "find me",
@@ -376,3 +380,39 @@ def said_in_plural(word: str, text: str) -> bool:
     return any(re.search(rf"\b{re.escape(word)}{end}\b", low) for end in ("s", "es")) or (
         word.endswith("y") and re.search(rf"\b{re.escape(word[:-1])}ies\b", low) is not None
     )
+
+
+#: Words that introduce a noun phrase as the thing spoken of: articles, demonstratives, possessives and
+#: counting words ("*a* flyswatter", "*this* toy apple", "*my* daughter's teddy bear", "*one* of the ...").
+DETERMINERS = frozenset(
+    "a an the this that these those my your our his her their its one some another any each every".split()
+)
+
+
+def introduced(text: str, word: str) -> bool:
+    """Whether ``word`` (a head noun of the subject, singular) is introduced by a determiner
+    (:data:`DETERMINERS`) earlier in the first clause that has it (clauses end at a comma, semicolon or
+    full stop): "a kitchen flipper", "the holder for the toilet brush", "steel, 15 cm long, a nutcracker";
+    not "kitchen flipper, nylon", "spring-loaded jaws, 11 cm", "nests with others", "tiny, two screw
+    caps": a bare phrase in a list of features may be a part, a verb or an adjective, so it names no
+    object the catalog lacks on its own."""
+    for clause in re.split(r"[,;]|\.(?!\d)", text.lower()):
+        seen = False
+        for w in _WORD.findall(clause.replace("'", "").replace("\u2019", "")):
+            if w in DETERMINERS:
+                seen = True
+            elif singular(w) == word or w == word:
+                return seen
+    return False
+
+
+def counted_parts(text: str, phrase: Sequence[str]) -> bool:
+    """Whether a subject ``phrase`` (singular words) counts several of its head in the plural ("*two*
+    screw caps", "*five* fingers", "*nine* holes", "*four* legs"): a description lists the parts the
+    object has, it does not name the object (a number word other than "one", the head said in the plural
+    in ``text``; "a two-slice toaster" keeps its hyphen, so "two" is no word of its own there)."""
+    from recall import lexicon as lx
+
+    if len(phrase) < 2 or phrase[0] == "one" or phrase[0] not in lx.NUMBER_WORDS:
+        return False
+    return said_in_plural(phrase[-1], text)

@@ -183,9 +183,10 @@ def _insert_aliases(con, fresh, matched, index, object_of_page, report, events) 
     owners = [(new_ids[g[0].clean.name], g) for g in fresh] + list(matched.items())
     for oid, group in owners:
         for p in group:
-            if p.clean.name not in taken:
-                taken.add(p.clean.name)
-                alias_rows.append({"alias": p.clean.name, "object_id": oid})
+            for alias in (p.clean.name, *p.clean.aliases):  # a record's own aliases: a lookup's search words
+                if alias not in taken:
+                    taken.add(alias)
+                    alias_rows.append({"alias": alias, "object_id": oid})
             trail = p.record
             named = assign_kind(
                 p.clean.name,

@@ -4,7 +4,10 @@ The body is read in pieces as they arrive (``read1``: at most one socket read ea
 deadline are checked while a slow or endless body is still coming. The cap counts decoded bytes (urllib3
 decodes gzip and deflate a piece at a time, at most one piece's worth per read, so a decompression bomb is
 abandoned as soon as its decoded size passes the cap). Before each read the socket's time-out is set to the
-time left (the read time-out, or less near the deadline), so a drip of bytes ends at the deadline.
+time left (the read time-out, or less near the deadline), so a drip of bytes ends at the deadline. One read
+may still loop over several socket reads (a chunk-size line, compressed bytes that decode to nothing yet):
+those are ended by the fetch's watchdog (:mod:`scrapers.fetch_watchdog`), which shuts the connection at the
+deadline.
 """
 
 from __future__ import annotations

@@ -18,7 +18,11 @@ Polite by default, in the manner of Scrapy's downloader middlewares:
 - a total deadline per page (``max_page_s``, default 30 s: connect, headers and body, across retries and
   redirects; :class:`~scrapers.deadlines.PageDeadline`), and an optional outer end (``until``: the store's
   budget for the run). Every request's connect and read time-outs are clamped to the time left, the socket's
-  time-out again before each body read, and a pause that would end past the deadline is not taken.
+  time-out again before each body read, and a pause that would end past the deadline is not taken; a
+  watchdog shuts the connection when the deadline passes, so a drip of the status line, the headers or a
+  chunk-size line (read by http.client a line at a time, each ``recv`` within the time-out) ends there too
+  (:mod:`scrapers.fetch_watchdog`, mounted on the session passed in by
+  :func:`~scrapers.fetch_watchdog.watch_session`).
 
 The network (a :class:`requests.Session`) and the clock are passed in, so tests run against a local
 server with a clock that does not really sleep.
@@ -51,6 +55,7 @@ from scrapers.fetch_policy import (
     with_overrides,
 )
 from scrapers.fetch_records import FetchResult, Validators, fetch_error_kind, tagged_error
+from scrapers.fetch_watchdog import Watchdog, watch_session
 
 __all__ = [
     "DEFAULT_POLICY",
@@ -89,6 +94,7 @@ class PoliteFetcher:
         policy: FetchPolicy = DEFAULT_POLICY,
     ):
         self.session = session
+        watch_session(session)
         self.clock = clock or SystemClock()
         self.policy = policy
         self._hosts: dict[str, _Host] = {}
@@ -324,10 +330,27 @@ class PoliteFetcher:
     def _once(
         self, url: str, policy: FetchPolicy, headers: Mapping[str, str], deadline: PageDeadline
     ) -> FetchResult:
-        """Exactly one HTTP exchange, time-outs clamped to the deadline, body streamed under the size cap."""
-        send = {"User-Agent": policy.user_agent, "Accept-Encoding": "gzip, deflate", **headers}
+        """Exactly one HTTP exchange, under a watchdog that shuts its connection when the deadline passes
+        (:mod:`scrapers.fetch_watchdog`); whatever a cut exchange gave is discarded for the deadline's error."""
         left = deadline.left(url, self.clock.monotonic())
         self.requests_made += 1
+        result: FetchResult | None = None
+        with Watchdog(left) as dog:
+            try:
+                result = self._exchange(url, policy, headers, deadline, left)
+            except FetchError:
+                if not dog.fired:
+                    raise
+        if dog.fired or result is None:
+            raise deadline.error(url, self.clock.monotonic())
+        return result
+
+    def _exchange(
+        self, url: str, policy: FetchPolicy, headers: Mapping[str, str], deadline: PageDeadline, left: float
+    ) -> FetchResult:
+        """The request and its answer: time-outs clamped to the ``left`` seconds of the deadline, body
+        streamed under the size cap."""
+        send = {"User-Agent": policy.user_agent, "Accept-Encoding": "gzip, deflate", **headers}
         try:
             resp = self.session.get(
                 url,

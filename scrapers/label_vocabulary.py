@@ -62,7 +62,7 @@ KIND_WORDS: dict[str, str] = {
         "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات "
         "ölçü ölçüler ölçüleri ölçüsü ebat ebatlar ebatları ebadı",
     ),
-    **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato размер velikost"),
+    **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato format размер velikost"),
     **_words(
         "weight",
         "weight weighs wt mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt vægt vekt "
@@ -95,6 +95,7 @@ QUALIFIERS = {
         "ungefähr aprox environ общий общая общие nominal real actual main articulo artículo artikels produkts "
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
+        "one "  # "One size: 2 x 2 x 2 in": the only size there is
         "starting at from per piece each pro stück je unit pièce unidad adet ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
         "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "
         " l b h w d t x х"
@@ -264,6 +265,7 @@ PART_WORDS = {
         "cable cord hose lid cap handle stand base bracket bracked bulb blade strap chain battery seat "
         "leg arm armrest screen display drawer shelf door opening inner interior pipe tube wire plug "
         "cushion mattress pillow heel sole shaft spout nozzle filter bowl cup glass jar tray basket wheel "
+        "pendant lens ständer standfuß standfuss fuss pied pieds piedistallo "
         "kabel schlauch deckel griff fuß sockel akku câble couvercle poignée pied cable tapa asa pie "
         "cavo coperchio manico piede kablo kapak sap ayak kordon"
     ).split()

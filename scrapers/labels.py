@@ -88,6 +88,15 @@ class LabelInfo:
     #: For a product's label that leaves a part out (``Depth Without Handle``, ``Gewicht ohne Akku``), the
     #: words it excludes: a value of another configuration, used when no label states the whole product's.
     excludes: str | None = None
+    #: For a product's label that names a part it includes (``Gewicht mit Ständer``, ``Height including
+    #: stand``, ``Weight (incl. battery)``), the words it includes: the whole product as sold, which wins
+    #: over a label of the same axis that says nothing, or leaves the part out.
+    includes: str | None = None
+
+    @property
+    def configuration(self) -> int:
+        """2 for a label that includes a part, 1 for one that says nothing, 0 for one that leaves it out."""
+        return 2 if self.includes else 0 if self.excludes else 1
 
 
 #: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
@@ -137,7 +146,9 @@ def _classify(label: object) -> LabelInfo | None:
     text = text.rstrip(" :：-–—=").strip()
     if any(_names_a_capacity(m.group(0)) for m in _BRACKETS.finditer(text)):
         return None  # "Weight (maximum)": another configuration's or a rating, see classify_other
-    text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
+    if bracket_part(text) is not None:
+        return None  # "Size (Main Display)": the display's size, see classify_other
+    text = _DIRECTION.sub(r"\1", _BRACKETS.sub(_bracket_words, text).strip()).strip()
     text = _EN_BOY.sub("width x length", text)  # Turkish "En x Boy" before "en" is read as a preposition
     text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
     folded = fold(text)
@@ -159,6 +170,8 @@ def _classify(label: object) -> LabelInfo | None:
     negated = False
     unknown: list[str] = []
     excluded: list[str] = []
+    including = False
+    included: list[str] = []
     has_body = any(w in BODY_WORDS for w in words)
     for word in words:
         if word in KIND_WORDS:
@@ -167,6 +180,8 @@ def _classify(label: object) -> LabelInfo | None:
             package = package or not negated
         elif word in NEGATIONS:
             negated = True
+        elif word in _INCLUDING and not negated:
+            including = True
         elif word in QUALIFIERS:
             continue
         elif _unit_word(word):
@@ -179,6 +194,9 @@ def _classify(label: object) -> LabelInfo | None:
             compound = _split_compound(word)
             if compound is None and negated:
                 excluded.append(word)  # what the value leaves out: "Weight without the cable"
+                continue
+            if compound is None and including and word in PART_WORDS:
+                included.append(word)  # what the value includes: "Gewicht mit Ständer", "Weight with stand"
                 continue
             if compound is None:
                 unknown.append(word)
@@ -199,19 +217,49 @@ def _classify(label: object) -> LabelInfo | None:
     if len({k for k in kinds if k in AXES}) >= 2:
         # "Width x Height x Depth", "Largo x Ancho x Alto"
         order = _order_of(original, kinds)
-        return _excluding(excluded, LabelInfo("dimensions", package, unit, order, shipping=_ships(package, words)))
+        return _excluding(excluded, included, LabelInfo("dimensions", package, unit, order, shipping=_ships(package, words)))
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:
                 # "Weight & Dimensions"
-                return _excluding(excluded, LabelInfo("dimensions", package, unit, shipping=_ships(package, words)))
+                return _excluding(excluded, included, LabelInfo("dimensions", package, unit, shipping=_ships(package, words)))
             order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
-            return _excluding(excluded, LabelInfo(kind, package, unit, order, shipping=_ships(package, words)))
+            return _excluding(excluded, included, LabelInfo(kind, package, unit, order, shipping=_ships(package, words)))
     return None
 
 
-def _excluding(excluded: list[str], info: LabelInfo) -> LabelInfo:
-    return replace(info, excludes=" ".join(excluded)) if excluded else info
+#: Words in a label's brackets that keep it the whole product's, whatever else they name: what it includes
+#: ("Height (with stand)", "Weight (incl. battery)").
+_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus".split()}
+
+
+def bracket_part(text: str) -> str | None:
+    """The part a label's brackets name (``Size (Main Display)``, ``Dimensions (Pendant)``): a part word
+    (:data:`PART_WORDS`) with nothing that keeps the label the whole product's (what it includes, what it
+    leaves out, its body). None otherwise: units, axis orders and qualifiers in brackets change nothing."""
+    for m in _BRACKETS.finditer(text):
+        inner = m.group(0)[1:-1].strip()
+        words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
+        if any(w in _INCLUDING or w in NEGATIONS or w in BODY_WORDS for w in words):
+            continue
+        if any(w in PART_WORDS for w in words):
+            return inner
+    return None
+
+
+def _excluding(excluded: list[str], included: list[str], info: LabelInfo) -> LabelInfo:
+    """``info`` with the words its label leaves out and the words it includes."""
+    if excluded:
+        info = replace(info, excludes=" ".join(excluded))
+    return replace(info, includes=" ".join(included)) if included else info
+
+
+def _bracket_words(m: re.Match) -> str:
+    """A bracket's text kept as label words when it says what the value includes or leaves out
+    (``Weight (incl. battery)``, ``Höhe (ohne Fuß)``); any other bracket (a unit, an axis order) is dropped."""
+    inner = m.group(0)[1:-1]
+    words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
+    return f" {inner} " if any(w in _INCLUDING or w in NEGATIONS for w in words) else " "
 
 
 _TRAILING_UNIT = re.compile(r"(?<![A-Za-z])([A-Za-z]{2,3})\s*$")
@@ -311,6 +359,7 @@ def classify_other(label: object) -> LabelInfo | None:
         if kinds:
             part = " ".join(w for w in words if w not in KIND_WORDS and w not in QUALIFIERS and not _compound_kind(w))
             part = part or next((w[: -len(s)] for w in words for s in COMPOUND_SUFFIXES if w.endswith(s)), "")
+            part = bracket_part(text) or part
             return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component", part=part or None)
     except Exception:  # noqa: BLE001 - a label we cannot read is no measurement
         return None

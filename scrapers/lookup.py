@@ -48,8 +48,9 @@ __all__ = ["DEFAULT_MAX_PAGES", "Candidate", "StoreAnswer", "StoresLookup", "sea
 DEFAULT_MAX_PAGES = 12
 #: Stores searched at the same time.
 MAX_PARALLEL_STORES = 4
-#: fits(record) -> (fits?, why): whether a product page is the described object.
-FitFn = Callable[[ObjectRecord], "tuple[bool, str]"]
+#: fits(record) -> (fits?, why) or (fits?, why, score): whether a product page is the described object; the
+#: score (lower is closer) says which of several pages that fit fits best.
+FitFn = Callable[[ObjectRecord], "tuple[bool, str] | tuple[bool, str, float]"]
 
 
 @dataclass
@@ -224,9 +225,14 @@ def _search_one(
     return answer, outcomes
 
 
-def _judge(outcomes: list[PageOutcome], fits: FitFn) -> list[Candidate]:
-    """Mark each page: extracted pages that do not fit become rejections (recorded, never added)."""
+def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = ()) -> list[Candidate]:
+    """Mark each page: extracted pages that do not fit become rejections (recorded, never added); a page that
+    fits is named as a person reads it (:func:`scrapers.product_names.person_name`) and ``names`` (what the
+    search asked for) become the aliases of the one that fits best (an alias names one object)."""
+    from scrapers.product_names import person_name
+
     out = []
+    scored: list[tuple[float, int, PageOutcome, Candidate]] = []
     for page in outcomes:
         name = page.clean.name if page.clean is not None else None
         cand = Candidate(page.url, page.store, name, "rejected", page.reason and f"{page.reason}: {page.detail}")
@@ -234,14 +240,37 @@ def _judge(outcomes: list[PageOutcome], fits: FitFn) -> list[Candidate]:
             cand.outcome, cand.reason = "known", "not modified since it was last read"
         elif page.outcome == "extracted":
             cand.features = page.clean.known_features()
-            ok, why = fits(page.clean)
+            ok, why, *score = fits(page.clean)
             cand.outcome, cand.reason = ("added", why) if ok else ("does_not_fit", why)
             if ok:
                 page.record.adapter = LOOKUP_ADAPTER_PREFIX + (page.record.adapter or "unknown")
+                scored.append((score[0] if score else 0.0, len(scored), page, cand))
             else:
                 page.outcome, page.stage, page.reason, page.detail = "rejected", "lookup", "does_not_fit", why
         out.append(cand)
+    for rank, (_, _, page, cand) in enumerate(sorted(scored, key=lambda s: s[:2])):
+        page.clean = _named(page.clean, person_name(page.clean.name), names if rank == 0 else ())
+        cand.name = page.clean.name
     return out
+
+
+def _named(clean: ObjectRecord, name: str, names: Sequence[str]) -> ObjectRecord:
+    """``clean`` under ``name`` with ``names`` as aliases (normalised as a record's; the name itself and
+    names no record may hold are left out)."""
+    from kb.errors import InvalidFeature
+    from kb.features import check_name, normalize_name
+
+    name = normalize_name(name) or clean.name
+    aliases = []
+    for alias in (*clean.aliases, *names):
+        alias = normalize_name(alias)
+        try:
+            check_name("aliases", alias)
+        except InvalidFeature:
+            continue
+        if alias and alias != name and alias not in aliases:
+            aliases.append(alias)
+    return replace(clean, name=name, aliases=tuple(aliases))
 
 
 def search_stores(
@@ -255,10 +284,11 @@ def search_stores(
     deadline: float,
     clock: Clock | None = None,
     max_pages: int = DEFAULT_MAX_PAGES,
+    names: Sequence[str] = (),
 ) -> StoresLookup:
     """Search the stores for ``queries`` (tried in order per store until one lists products), read the top
-    results, and add those ``fits`` accepts to ``kb`` (see the module docstring). ``deadline`` is a
-    ``clock.monotonic()`` time."""
+    results, and add those ``fits`` accepts to ``kb`` (see the module docstring), with ``names`` (what the
+    description calls the object) as their aliases. ``deadline`` is a ``clock.monotonic()`` time."""
     clock = clock or SystemClock()
     report = StoresLookup(tuple(queries))
     stores = [s for s in sources.stores if s.search]
@@ -285,7 +315,7 @@ def search_stores(
     report.extract_s = budget.extract_s
     report.fetch_s = max(time.perf_counter() - t0 - budget.extract_s, 0.0)
     t0 = time.perf_counter()
-    report.candidates = _judge(outcomes, fits)
+    report.candidates = _judge(outcomes, fits, names)
     report.judge_s = time.perf_counter() - t0
     _name_known(kb, report.candidates, previous)
     _write(kb, report, outcomes, description, clock)

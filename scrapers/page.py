@@ -46,6 +46,8 @@ _WEAK_FOREIGN = re.compile(r"(?:carousel|swiper|slick|slider|sponsor|advert|bann
 SPEC_CONTAINER = re.compile(
     r"(?:spec|techn|detail|descri|attribute|propert|merkmal|caracter|характер|feature)", re.IGNORECASE
 )
+#: A class token naming the product's own specification block (``pdp-product-specs``, ``product-details``).
+_OWN_SPEC = re.compile(r"(?:pdp|product)[-_]?(?:spec|techn|detail|descri|attribute|propert|feature)", re.IGNORECASE)
 #: id/class words of blocks that describe the package rather than the product.
 PACKAGE_CONTAINER = re.compile(
     r"(?:packag|verpack|shipping|versand|embala|emballa|imball|colis|упаков)", re.IGNORECASE
@@ -69,6 +71,30 @@ _LD_JSON = re.compile(
 )
 #: A JavaScript object literal longer than this is not read (page state of that size is a catalogue).
 MAX_SCRIPT_CHARS = 2_000_000
+
+
+#: State shipped as a JSON string literal (``window.__DATA__ = JSON.parse("{\\"product\\": ...}")``): the
+#: object is inside the string, escaped.
+_JSON_PARSE = re.compile(r"JSON\.parse\(\s*(?=\")")
+MAX_PARSED_STRINGS = 8
+
+
+def _parsed_strings(body: str, decoder: json.JSONDecoder) -> list[Any]:
+    """The objects of a script's ``JSON.parse("…")`` calls (at most :data:`MAX_PARSED_STRINGS`)."""
+    out: list[Any] = []
+    if "JSON.parse(" not in body:
+        return out
+    for m in _JSON_PARSE.finditer(body):
+        try:
+            literal, _ = decoder.raw_decode(body[m.end() : m.end() + MAX_SCRIPT_CHARS])
+            obj = json.loads(literal) if isinstance(literal, str) and literal.lstrip()[:1] in "{[" else None
+        except (ValueError, RecursionError):
+            continue
+        if obj is not None:
+            out.append(obj)
+            if len(out) >= MAX_PARSED_STRINGS:
+                break
+    return out
 
 
 def _js_object(text: str) -> Any:
@@ -197,6 +223,7 @@ class Page:
             attrs, body = m.group(1), m.group(2)
             if "ld+json" in attrs.lower() or len(body) < 20:
                 continue
+            payloads.extend(_parsed_strings(body, decoder))
             start = body.find("{")
             if start < 0:
                 continue
@@ -317,10 +344,13 @@ def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]
     if not names:
         return False, False
     foreign = False
-    for token in names.split():
+    tokens = names.split()
+    for token in tokens:
         m = FOREIGN_CONTAINER.search(token)
         if m and not (_WEAK_FOREIGN.fullmatch(m.group(0)) and SPEC_CONTAINER.search(names)):
-            foreign = True
+            # another token naming this product's own specification outranks it (Mouser's spec table
+            # is id="FindSimilarPnl" class="pdp-product-specs": "find similar" is a feature of the table)
+            foreign = not any(_OWN_SPEC.search(t) and not FOREIGN_CONTAINER.search(t) for t in tokens)
             break
     return foreign, any(PACKAGE_CONTAINER.search(t) and not _PRODUCT_FLAG.search(t) for t in names.split())
 

@@ -17,10 +17,17 @@ import re
 from kb.errors import InvalidFeature
 from kb.features import check_name, normalize_name
 
-__all__ = ["MIN_NAME_CHARACTERS", "choose_name", "name_problem", "plain_name"]
+__all__ = ["MAX_NAME_WORDS", "MIN_NAME_CHARACTERS", "choose_name", "name_problem", "person_name", "plain_name"]
 
 #: Letters or digits a page name needs at least ("x", "-" name nothing; "U2" does).
 MIN_NAME_CHARACTERS = 2
+#: Words a person's name of a product keeps at most (:func:`person_name`).
+MAX_NAME_WORDS = 8
+#: Where a store's title leaves the product's name for its keyword list: a bar, a spaced dash, a colon, a
+#: comma, a slash, a sentence's end, a bracket.
+_NAME_END = re.compile(r"\s[|｜/–—-]\s|[|｜]|:\s|,\s*|\.\s|\s?[(\[]")
+_SIGNS = re.compile(r"[®™©℗«»“”\"]")
+_URLISH = re.compile(r"^(?:[a-z][a-z0-9+.-]*://[^/\s]*)?/\S*$", re.IGNORECASE)
 _MARKUP = re.compile(r"<\s*/?\s*[a-zA-Z!][^<>]*>")
 _HIDDEN = frozenset({"script", "style", "noscript", "template", "head", "iframe"})
 
@@ -52,6 +59,37 @@ def _visible_text(markup: str) -> str:
 
     walk(root)
     return " ".join("".join(parts).split())
+
+
+def person_name(title: str) -> str:
+    """The product's name as a person reads it from a store's title: the brand and model and what it is, the
+    store's keyword list dropped. The title up to where it leaves the name (:data:`_NAME_END`: "ViewSonic
+    VX3276-4K-MHD 32 Inch 4K Monitor, IPS Display with HDR10 ..." -> "ViewSonic VX3276-4K-MHD 32 Inch 4K
+    Monitor"; "Galaxy Tab S9 FE (Wi-Fi) | Samsung Levant" -> "Galaxy Tab S9 FE"), with the next part joined
+    while the name is one word ("Microsoft - Surface Laptop - Copilot+ PC" -> "Microsoft Surface Laptop");
+    trademark signs and quotes dropped; at most :data:`MAX_NAME_WORDS` words. A URL or URL path is read
+    as the words of its segment with the most words ("/products/sleep-sound-therapy-system" -> "sleep sound
+    therapy system").
+    The title itself when nothing is left.
+
+    >>> person_name("KÄRCHER Hochdruckreiniger »K 3 Full Control«")
+    'KÄRCHER Hochdruckreiniger K 3 Full Control'
+    """
+    text = " ".join(_SIGNS.sub("", title).split())
+    if _URLISH.match(text):
+        segments = [s for s in text.split("/")[1:] if s and "." not in s[:1]]
+        segment = max(reversed(segments), key=lambda s: len(re.split(r"[-_+]+", s)), default="")
+        segment = re.sub(r"\.[a-z0-9]{2,5}$", "", segment, flags=re.IGNORECASE)
+        text = " ".join(re.sub(r"[-_+]+", " ", segment).split()) or text
+    parts = [p.strip() for p in _NAME_END.split(text)]
+    name = ""
+    for part in parts:
+        if part:
+            name = f"{name} {part}".strip()
+        if len(name.split()) >= 2:
+            break
+    name = " ".join(name.split()[:MAX_NAME_WORDS]).rstrip(" -&+")
+    return name if sum(ch.isalnum() for ch in name) >= MIN_NAME_CHARACTERS else " ".join(title.split())
 
 
 def name_problem(name: str) -> str | None:

@@ -47,10 +47,13 @@ _RANGE_RE = re.compile(rf"{_NUMBER}\s*(?:{_UNIT})?\s*(?:-|–|—|~|to|bis|a|à)
 
 def unit_hint(label: str) -> str | None:
     """A unit stated in a label: ``Výška [mm]``, ``Grubość (w mm)``, ``Габариты, см``, ``Weight (kg)``,
-    ``Width in cm``. Returns the unit token or None."""
+    ``Width in cm``, ``Dimension (HxWxD, mm)``. Returns the unit token or None."""
     text = clean_text(label[:MAX_TEXT]).lower()
     for pattern in (
         r"[\[(]\s*(?:w|in|en|em|in\s+)?\s*([^\W\d_]+\.?|''|\")\s*[\])]",
+        # one item of a bracketed list: "(HxWxD, mm)", "(mm; W x H x D)"
+        r"[\[(][^\])]{0,30}[,;]\s*([^\W\d_]+\.?)\s*[\])]",
+        r"[\[(]\s*([^\W\d_]+\.?)\s*[,;][^\])]{0,30}[\])]",
         r",\s*([^\W\d_]+)\s*:?\s*$",
         r"\b(?:in|en|em)\s+([^\W\d_]+)\s*:?\s*$",
     ):

@@ -16,9 +16,13 @@ from dataclasses import dataclass, replace
 
 from scrapers.labels import LabelInfo, classify_label, classify_other
 from scrapers.page import Line
-from scrapers.quantities import clean_text, length_unit, mass_unit, unit_hint
+from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length, parse_mass, unit_hint
+from scrapers.sizes import parse_dims
 
-__all__ = ["DIGIT", "MAX_PAIRS", "Pair", "is_unit", "own_part_pairs", "pairs_from_lines", "split_inline"]
+__all__ = [
+    "DIGIT", "MAX_PAIRS", "Pair", "has_unit", "is_unit", "lists_variants", "own_part_pairs", "pairs_from_lines",
+    "split_inline",
+]
 
 #: Reading stops after this many recognised measurement pairs. Real product pages state at most a few
 #: dozen (23 on the richest page measured); a page with thousands is a parts list or a spec dump, and the
@@ -119,12 +123,12 @@ _FIELD_SLASH = re.compile(r"\s*/\s*(?=[^\W\d_]{2})(?![^\W\d_]{1,6}\b\s*$)")
 _CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
 
 
-_MEASURED = re.compile(r"\d\s*([^\W\d_]{1,12}\.?|[\"'″])(?![^\W_])")
+_MEASURED = re.compile(r"\d\s*(?:([^\W\d_]{1,12}\.?)(?![^\W_])|([\"'″]))")
 
 
-def _measured(text: str) -> bool:
-    """Whether ``text`` holds a number followed by a unit (``2 kg``, ``30"``)."""
-    return any(is_unit(m.group(1).rstrip(".")) or m.group(1) in "\"'″" for m in _MEASURED.finditer(text))
+def has_unit(text: str) -> bool:
+    """Whether ``text`` holds a number followed by a unit (``2 kg``, ``30"``, ``20"W``)."""
+    return any(m.group(2) or is_unit(m.group(1).rstrip(".")) for m in _MEASURED.finditer(text))
 
 
 def _value_end(text: str, value_start: int, starts: list[int], recognised: list[bool]) -> int:
@@ -132,7 +136,7 @@ def _value_end(text: str, value_start: int, starts: list[int], recognised: list[
     "label" before a separator ends it only once the value holds a measured number (``Weight: Surface
     Pro 9 i5, i7: 879 g`` keeps ``i7: 879 g``; ``Weight: 2 kg Colour: red`` stops before ``Colour``)."""
     for start, known in zip(starts, recognised, strict=True):
-        if start >= value_start and (known or _measured(text[value_start:start])):
+        if start >= value_start and (known or has_unit(text[value_start:start])):
             return start
     return len(text)
 
@@ -196,11 +200,53 @@ def _pairs_at(lines: list[Line], i: int, pairs: list[Pair], column_values: set[i
             if DIGIT.search(value) and classify_label(value) is None:
                 if j + 1 < n and _BARE_NUMBER.fullmatch(value) and is_unit(lines[j + 1].text):
                     value = f"{value} {lines[j + 1].text}"
+                elif info.role == "product" and j + 1 < n and _listed(nxt, lines[j + 1]) and lists_variants(
+                    value, lines[j + 1].text, info
+                ):
+                    info = replace(info, role="variant")  # "Dimensions:" over "- 13,3 x 21,2 cm", "- 18 x 30,2 cm"
                 pairs.append(Pair(text, value, info, line.package or nxt.package, line.index, nxt.group))
                 return  # the value line is still read for pairs of its own ("Width: 30 cm")
     if DIGIT.search(text) and len(text) <= 600:
         for label, value, label_info in split_inline(text):
             pairs.append(Pair(label, value, label_info, line.package, line.index, line.group))
+
+
+def _quantity(text: str, info: LabelInfo) -> tuple[float, ...] | None:
+    """What a value line states for a label of ``info``'s kind: its mass, or its size's extents, largest first."""
+    if info.kind == "weight":
+        mass = parse_mass(text, info.unit)
+        return None if mass is None else (mass,)
+    dims = parse_dims(text, info.unit)
+    if dims:
+        return tuple(sorted(dims[0].values_cm, reverse=True))
+    length = parse_length(text, info.unit)
+    return None if length is None else (length,)
+
+
+_LIST_MARK = re.compile(r"\s*[-–•*·]\s")
+
+
+def _listed(line: Line, following: Line) -> bool:
+    """Whether two value lines are entries of one list, one under the other: lines of one element
+    (``<br>``-separated) or both marked as list entries (``- 13,3 x 21,2 cm``). A table row's cells are
+    neither: a row of values per model (``Width | 30.41 cm | 34.04 cm``) keeps its first cell the product's."""
+    if line.group == following.group:
+        return True
+    return bool(_LIST_MARK.match(line.text) and _LIST_MARK.match(following.text))
+
+
+def lists_variants(value: str, following: str, info: LabelInfo) -> bool:
+    """Whether a label's value line and the line after it are two of a list of values (one per variant):
+    the next line holds no label of its own, and both state a quantity of the label's kind that differ by
+    more than 2 % (``2 kg`` over ``4.4 lb`` is one weight written twice, not two variants)."""
+    if not DIGIT.search(following) or len(following) > 120 or split_inline(following):
+        return False
+    if classify_label(following) is not None or classify_other(following) is not None:
+        return False
+    a, b = _quantity(value, info), _quantity(following, info)
+    if a is None or b is None:
+        return False
+    return len(a) != len(b) or any(abs(x - y) > 0.02 * max(x, y) for x, y in zip(a, b, strict=True))
 
 
 #: A heading's unit applies to the pairs of the next this many lines (one spec block).
@@ -298,6 +344,10 @@ def _stem(word: str) -> str:
     return word[:-1] if len(word) > 3 and word.endswith("s") else word
 
 
+#: A screen's size is its diagonal, never an extent of the product, even on a monitor's page ("IPS Display").
+_SCREEN = re.compile(r"display|screen|bildschirm|écran|ecran|pantalla|schermo|tela|ekran|экран|panel", re.IGNORECASE)
+
+
 def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
     """Pairs whose part's label names the product itself (``Robot Weight`` on a robot vacuum's page,
     ``Speaker Dimensions`` on a speaker's: every word of the part in the page title) as the product's,
@@ -319,6 +369,7 @@ def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
             and info.part
             and feature(info) not in stated
             and {_stem(w) for w in info.part.split()} <= words
+            and not (feature(info) == "dims" and _SCREEN.search(info.part))
         ):
             p = replace(p, info=replace(info, role="product", part=None))
         out.append(p)

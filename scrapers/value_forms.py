@@ -8,10 +8,14 @@ from __future__ import annotations
 import re
 
 from kb.measures.units import units_pattern
-from scrapers.labels import AXES, classify_label
+from scrapers.label_vocabulary import BODY_WORDS, OVERALL, QUALIFIERS, fold
+from scrapers.labels import AXES, classify_label, classify_other
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
-__all__ = ["NARROW_RANGE", "axis_segments", "for_one_size", "metric_figure", "one_length", "written_value"]
+__all__ = [
+    "NARROW_RANGE", "axis_segments", "for_one_size", "keyed_variant", "metric_figure", "one_length", "placeholder_size",
+    "written_value",
+]
 
 #: A range no wider than this ratio is the object's own adjustment or a tolerance (``30-32 cm``, ``1,2 – 1,5
 #: kg``); a wider one spans variants of different sizes.
@@ -32,6 +36,35 @@ _FOR_ONE_SIZE = re.compile(
 def for_one_size(value: str) -> bool:
     """Whether a measured value says it is for one size of the article (:data:`_FOR_ONE_SIZE`)."""
     return len(value) < 200 and _FOR_ONE_SIZE.search(value) is not None
+
+
+#: A value that starts with the name of the variant it is for (``1-inch: 71"L x 24"W``, ``Queen: 60 x 80 in``,
+#: ``Modell S: 30 cm``): a short key with a letter, a colon, then the number.
+_KEYED = re.compile(r"^\s*[-–•*]?\s*([^:\n]{1,24}?)\s*[:：]\s*(?=[\d½¼¾⅓⅔⅛])")
+
+
+def keyed_variant(value: str) -> bool:
+    """Whether a measured value is keyed by the variant it is for (:data:`_KEYED`): its key names neither
+    a measurement (``Height: 30 cm`` inside a dimensions field is the product's axis) nor the whole
+    product (``Overall: 30 x 20 cm``, ``approx.: 2 kg``)."""
+    m = _KEYED.match(value)
+    if m is None or not re.search(r"[^\W\d_]", m.group(1)) or len(m.group(1).split()) > 3:
+        return False
+    key = m.group(1)
+    if classify_label(key) is not None or classify_other(key) is not None:
+        return False
+    words = [w for w in re.split(r"[\W_]+", fold(key)) if w]
+    return not all(w in QUALIFIERS or w in OVERALL or w in BODY_WORDS for w in words)
+
+
+_ONE = r"(?<![\d.,])1(?:[.,]0+)?(?:\s*[^\W\d_]{0,6}\.?|\s*[\"'″])?\s*"
+#: ``1 × 1 × 1 in``, ``1x1x1 cm``: what a shop system shows when nobody entered a size.
+_PLACEHOLDER = re.compile(rf"{_ONE}x\s*{_ONE}x\s*1(?:[.,]0+)?(?![\d.,])")
+
+
+def placeholder_size(raw: str) -> bool:
+    """Whether a size's text is the shop system's placeholder (:data:`_PLACEHOLDER`), not a measurement."""
+    return _PLACEHOLDER.search(clean_text(raw.split(": ", 1)[-1])) is not None
 
 
 def axis_segments(value: str, unit: str | None, decimal_comma: bool | None) -> list[tuple[str, float]]:

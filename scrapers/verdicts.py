@@ -78,11 +78,24 @@ def _pair_off(got: list[tuple[str, float]], want: list[float]) -> bool:
     return False
 
 
+def _readings(got: list[tuple[str, float]]) -> list[list[tuple[str, float]]]:
+    """``got``, and ``got`` without a diameter that another extent already states (a round knob's
+    ``Width: 13/16"`` and ``Diameter: 13/16"`` are one stated axis; a label lists it once)."""
+    out = [got]
+    for i, (role, value) in enumerate(got):
+        if role == "diameter" and any(within(value, v) for j, (_, v) in enumerate(got) if j != i):
+            out.append(got[:i] + got[i + 1 :])
+            break
+    return out
+
+
 def dims_right(record: ProductRecord | None, want: list[float]) -> bool:
-    got = stated_extents(record)
-    if len(got) > len(want) or len(got) < (len(want) + 1) // 2:
-        return False
-    return _pair_off(sorted(got, key=lambda e: -e[1]), sorted(want, reverse=True))
+    for got in _readings(stated_extents(record)):
+        if len(got) > len(want) or len(got) < (len(want) + 1) // 2:
+            continue
+        if _pair_off(sorted(got, key=lambda e: -e[1]), sorted(want, reverse=True)):
+            return True
+    return False
 
 
 def judge(record: ProductRecord | None, label: dict[str, Any]) -> Verdict:

@@ -11,6 +11,7 @@ from typing import Any, Literal
 
 __all__ = [
     "ACTIVE_FINGERS",
+    "BALL_MAX_ONE_HAND_CM",
     "drapes",
     "sheet_held_cm",
     "FAMILIES",
@@ -71,6 +72,12 @@ THUMB_MAX_FORCE_N = 60.0
 #: Widest opening of a human-sized hand (AR10-like): thumb tip to finger tips about 12 cm, the span that
 #: holds a 12 cm ball in a power sphere grasp. Wider extents cannot be held in one hand.
 HAND_MAX_APERTURE_CM = 12.0
+#: A ball is the exception: a wrap from above holds one wider than the span over its top, its near side
+#: against the thumb and the fingers curled over its far side (sim/hand.py ``ball_center_y_cm`` places it as
+#: near the thumb as its curve clears the metacarpal). That needs the thumb's pad to reach down to the
+#: ball's near equator, and this hand's thumb (a 2.5 cm metacarpal, phalanges 3.2 and 2.6 cm) reaches it up
+#: to a 15.4 cm ball (tests/test_big_balls.py computes it from the hand): 15 cm. Wider balls need two hands.
+BALL_MAX_ONE_HAND_CM = 15.0
 
 #: Fingers each grasp type uses (the thumb always opposes them); types not listed use all four. The
 #: lateral pinch presses the object on the radial side of the index's middle phalanx, a ~2.5 cm long

@@ -3,9 +3,13 @@ picked up at a table edge, against the moment of its weight (sim/PLANNER.md rule
 
 from __future__ import annotations
 
+import math
+
 from sim.grasps import edge_grip_in_cm
 
 __all__ = [
+    "BALL_FINGER_CONTACT_DEG",
+    "ball_over_top_force",
     "EDGE_PAD_LEVER_CM",
     "GRAVITY",
     "MIN_GRIP_FORCE_N",
@@ -35,6 +39,12 @@ WRAP_REACH_CM = 6.0
 #: approach at those heights makes the couple ``2 mu F r``. Calibrated on the trial (the seed catalog's deep
 #: boxes and bowls: at the friction bound alone five of them turned out of both wraps; they held at 2-4 x).
 WRAP_FRICTION_LEVER_CM = 1.6
+#: How far above a ball's far equator (degrees) the fingers press when a wrap from above holds a ball wider
+#: than the hand's span (sim/grasps.py BALL_MAX_ONE_HAND_CM): measured on the mini soccer ball (14 cm),
+#: the distal phalanges at 25-37 deg, the middle ones at 44 (force-weighted 31); 40, calibrated on the
+#: trial: a squeeze of 15 N slipped out in the -z push and 20-30 N held (seeds 0-3), where the balance
+#: below gives 14.5 N for twice the weight at 40 deg (the palm's push on the ball's top is left out).
+BALL_FINGER_CONTACT_DEG = 40.0
 #: Never plan less than this: the fingers must at least hold contact.
 MIN_GRIP_FORCE_N = 1.5
 #: Safety factor on the weight: 2 covers the weight plus the trial's perturbation (a force equal to the
@@ -87,4 +97,20 @@ def wrap_moment_force(mass_g: float, depth_cm: float, friction: float, fragility
         return 0.0
     sf = SAFETY_FACTOR.get(fragility, SAFETY_FACTOR["medium"])
     force = sf * (mass_g / 1000.0) * GRAVITY * d / (2.0 * friction * WRAP_FRICTION_LEVER_CM)
+    return round(max(MIN_GRIP_FORCE_N, force), 2)
+
+
+def ball_over_top_force(mass_g: float, friction: float, fragility: str = "medium") -> float | None:
+    """Squeeze (N) of a wrap from above that holds a ball wider than the hand's span over its top: the thumb
+    at its near equator, the fingers :data:`BALL_FINGER_CONTACT_DEG` (``a``) above its far one, where their
+    press pushes the ball down. Force balance with both contacts at their friction limit ``mu``: per unit of
+    finger force the thumb presses ``cos a + mu sin a`` and the ball is carried by
+    ``2 mu cos a + (mu^2 - 1) sin a``, so ``F = SF m g (cos a + mu sin a) / (2 mu cos a + (mu^2 - 1) sin a)``;
+    ``None`` when that carrying term is not positive (too slippery: no squeeze lifts it)."""
+    a = math.radians(BALL_FINGER_CONTACT_DEG)
+    carried = 2.0 * friction * math.cos(a) + (friction * friction - 1.0) * math.sin(a)
+    if carried <= 0.0:
+        return None
+    sf = SAFETY_FACTOR.get(fragility, SAFETY_FACTOR["medium"])
+    force = sf * (mass_g / 1000.0) * GRAVITY * (math.cos(a) + friction * math.sin(a)) / carried
     return round(max(MIN_GRIP_FORCE_N, force), 2)

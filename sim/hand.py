@@ -99,6 +99,8 @@ PRECISION_OVERSHOOT_CM = 1.0
 #: The fingers of an edge lever hold are nearly extended under the object (PIP 0.3 of MCP, the program's
 #: 0.8 curls them): Feix 2016's parallel extension, fingers straight under a plate, the thumb on top.
 EDGE_LEVER_PIP_PER_MCP = 0.3
+#: A wrapped object keeps this far (cm) off the thumb's hanging metacarpal at the pre-shape.
+WRAP_THUMB_CLEARANCE_CM = 0.5
 
 
 def _solve(fn, target: float, lo: float, hi: float) -> float:
@@ -160,6 +162,7 @@ def grasp_targets(
     *,
     align_pads: bool = False,
     overshoot_cm: float = PRECISION_OVERSHOOT_CM,
+    ball: bool = False,
 ) -> GraspTargets:
     """Pre-shape and closing targets for ``plan``, for an object ``width_cm`` wide along the opposition axis.
 
@@ -174,6 +177,9 @@ def grasp_targets(
     grips from closing too slowly (speed is torque over damping). Unused fingers stay straight and, in
     precision grasps, above the object. ``align_pads``: a pinch's used fingers each get the PIP-per-MCP
     ratio that puts their pads at the thumb's height (off a table edge; sim/world.py asks for it).
+    ``ball``: the object is a sphere ``width_cm`` across (sim/world.py says so): a wrap places it as near
+    the thumb as its curved side clears the thumb's metacarpal (:func:`ball_center_y_cm`), not its widest
+    part.
     """
     if plan.grasp_type not in GRASP_TYPES:
         raise ValueError(f"unknown grasp type {plan.grasp_type!r}")
@@ -184,7 +190,7 @@ def grasp_targets(
     side = min(max(plan.grip_force_n, 0.1), THUMB_MAX_FORCE_N, FINGER_MAX_FORCE_N * len(fingers))
     limits, closing, squeezing = _force_limits(program, side)
     if program.control == "wrap":
-        open_q, close_q, touch_q, center, contact_z, reach = _wrap_posture(program, aperture, width)
+        open_q, close_q, touch_q, center, contact_z, reach = _wrap_posture(program, aperture, width, ball)
     else:
         lead = float(plan.params.get(FINGER_LEAD_PARAM, 0.0))
         if lead:
@@ -227,16 +233,32 @@ def _force_limits(program, side: float) -> tuple[dict[str, float], dict[str, flo
     return limits, closing, squeezing
 
 
-def _wrap_posture(program, aperture: float, width: float):
+def ball_center_y_cm(diameter_cm: float, palm_gap_cm: float) -> float:
+    """The nearest hand-frame y (cm) to the thumb at which a ball ``diameter_cm`` across, its top
+    ``palm_gap_cm`` under the palm face, clears the thumb's metacarpal (a capsule hanging
+    :data:`THUMB` ``metacarpal_cm`` from the CMC) by :data:`WRAP_THUMB_CLEARANCE_CM`. A box's near face is
+    as wide at the palm as below it; a ball's near side curves away under the metacarpal's end, so it can
+    sit that much nearer the thumb, whose phalanges then reach round its near side to its equator."""
+    radius = diameter_cm / 2.0
+    centre_z = -PALM_HALF_CM[2] - palm_gap_cm - radius
+    end_z = THUMB.base_cm[2] - THUMB.metacarpal_cm  # the metacarpal's lower end (the ball's centre is below)
+    reach = radius + THUMB.radius_cm + WRAP_THUMB_CLEARANCE_CM
+    dz = max(0.0, end_z - centre_z)
+    return THUMB.base_cm[1] + math.sqrt(max(0.0, reach * reach - dz * dz))
+
+
+def _wrap_posture(program, aperture: float, width: float, ball: bool = False):
     """A wrap's (open, close, touch, centre y, contact z, thumb reach): the object sits under the palm
     between the hanging thumb and the knuckles, centred between them when it fits; a wider one overhangs
     the knuckles (never the thumb, which hangs from the palm), and the fingers wrap down over its far
-    side, driven to the program's closing targets."""
+    side, driven to the program's closing targets. A ``ball`` sits as near the thumb as its curved side
+    clears the metacarpal (:func:`ball_center_y_cm`)."""
     open_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
     close_q = dict.fromkeys(ACTUATOR_NAMES, 0.0)
-    thumb_clear = THUMB.base_cm[1] + THUMB.radius_cm + 0.5
+    thumb_clear = THUMB.base_cm[1] + THUMB.radius_cm + WRAP_THUMB_CLEARANCE_CM
     knuckle_clear = PALM_HALF_CM[1] - FINGER_BY_NAME["middle"].radius_cm - 0.3
-    center = max(0.5 * (thumb_clear + knuckle_clear), thumb_clear + width / 2.0)
+    near = ball_center_y_cm(width, program.palm_gap_cm) if ball else thumb_clear + width / 2.0
+    center = max(0.5 * (thumb_clear + knuckle_clear), near)
     # Thumb open: its pad (one radius in front of the tip's axis) at least 5 mm off the near side.
     open_q["thumb_flex"] = thumb_flex_for(min(center - aperture / 2.0, center - width / 2.0 - 0.5) - THUMB.radius_cm)
     close_q["thumb_flex"] = math.radians(RANGE_DEG["thumb_flex"][1] + 30.0)

@@ -30,6 +30,7 @@ from typing import Any
 from kb.features import ObjectRecord
 from sim.grasp_rules import HEAVY_MASS_G, candidates
 from sim.grasps import (
+    BALL_MAX_ONE_HAND_CM,
     FINGER_LEAD_PARAM,
     GRASP_TYPES,
     HAND_MAX_APERTURE_CM,
@@ -44,11 +45,13 @@ from sim.grasps import (
     side_force_capacity,
 )
 from sim.grip_force import (
+    BALL_FINGER_CONTACT_DEG,
     EDGE_PAD_LEVER_CM,
     GRAVITY,
     MIN_GRIP_FORCE_N,
     SAFETY_FACTOR,
     WRAP_REACH_CM,
+    ball_over_top_force,
     edge_grip_force,
     required_grip_force,
     wrap_moment_force,
@@ -75,7 +78,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "12"  # 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
+PLANNER_VERSION = "13"  # 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -126,13 +129,31 @@ class _Context:
     base_force: float
     edge_force: float
     wrap_force: float
+    ball_force: float = 0.0  # a wrap from above of a ball wider than the span, held over its top
+
+
+def _over_top_ball_force(o: PlannedObject) -> float | None:
+    """The squeeze of a wrap from above holding ``o`` over its top (sim/grip_force.py ball_over_top_force)
+    when it is a ball (a sphere body) wider than the hand's span and at most :data:`BALL_MAX_ONE_HAND_CM`,
+    whose friction lets a squeeze lift it; else None."""
+    if not HAND_MAX_APERTURE_CM < o.c_cm <= BALL_MAX_ONE_HAND_CM or o.shape != "radial":
+        return None
+    if o.body().form != "sphere":
+        return None
+    return ball_over_top_force(o.mass_g, o.friction, o.fragility)
 
 
 def _context(o: PlannedObject) -> _Context:
     """Feasibility of a one-hand grasp across ``c``, the notes it gives, and the force bounds."""
     width = o.c_cm
     notes = list(o.assumptions)
-    feasible = width <= HAND_MAX_APERTURE_CM
+    ball_force = _over_top_ball_force(o)
+    feasible = width <= HAND_MAX_APERTURE_CM or ball_force is not None
+    if ball_force is not None:
+        notes.append(
+            f"a ball wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span (up to {BALL_MAX_ONE_HAND_CM:g} cm): "
+            "held from above over its top, the thumb at its near side, the fingers curled over its far side"
+        )
     if not feasible:
         notes.append(
             f"every side is wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span (smallest {width:g} cm): "
@@ -147,7 +168,7 @@ def _context(o: PlannedObject) -> _Context:
     edge_force = edge_grip_force(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), o.fragility) if flat else 0.0
     # A side wrap of a deep object (not a flat one: that is taken at a table edge) holds the weight's moment.
     wrap_force = 0.0 if edge_force else wrap_moment_force(o.mass_g, o.b_cm, o.friction, o.fragility)
-    return _Context(o, feasible, tuple(notes), base_force, edge_force, wrap_force)
+    return _Context(o, feasible, tuple(notes), base_force, edge_force, wrap_force, ball_force or 0.0)
 
 
 def _planned_force(ctx: _Context, program: HandProgram, rationale: list[str]) -> tuple[float, float]:
@@ -166,6 +187,13 @@ def _planned_force(ctx: _Context, program: HandProgram, rationale: list[str]) ->
         rationale.append(
             f"flat: picked up at its edge, the pads {edge_grip_in_cm(depth):.3g} cm in and its centre of mass "
             f"{depth / 2:.3g} cm in; the squeeze must hold the moment of its weight: {ctx.edge_force:g} N"
+        )
+    if program.control == "wrap" and program.approach == "top" and ctx.ball_force > force:
+        force = ctx.ball_force
+        rationale.append(
+            f"over its top: the fingers press {BALL_FINGER_CONTACT_DEG:g} deg above its far equator, pushing it "
+            f"down, and the thumb at its near one; the squeeze must carry its weight at both friction limits: "
+            f"{ctx.ball_force:g} N"
         )
     ranked = force
     if program.control == "wrap" and program.approach == "side" and ctx.wrap_force > force:

@@ -31,6 +31,8 @@ from sim.grasps import GRASP_TYPES
 
 __all__ = ["PROGRAMS", "PROGRAMS_VERSION", "HandProgram", "merged_types", "program_for"]
 
+# 10: the slide's thumb hook hangs at most a third of a low rim's height above the table (sim/slide.py);
+# 9: a ball wrapped as near the thumb as its curved side clears the metacarpal (sim/hand.py ball_center_y_cm);
 # 8: a flat object thinner than a pad radius and too shallow to pinch where it lies (coins, a paper clip) is
 # slid out over the table edge by a thumb hook first (sim/slide.py);
 # 7: a stuffed fabric bag laid flat (a pillow) drapes as a sheet (sim/sheet.py, sim/grasps.py drapes);
@@ -38,7 +40,7 @@ __all__ = ["PROGRAMS", "PROGRAMS_VERSION", "HandProgram", "merged_types", "progr
 # 5: an edge lever hold's fingers lead the thumb, extended (sim/hand.py); 4: a floppy object's lateral pinch
 # closes 2 cm past it (sim/world.py); 3: pinch pads aligned at the thumb's height off the table edge;
 # 2: precision circular on three fingers
-PROGRAMS_VERSION = "8"
+PROGRAMS_VERSION = "10"
 
 ALL4 = ("index", "middle", "ring", "little")
 

@@ -28,6 +28,8 @@ from sim.world import TrialWorld
 
 __all__ = [
     "HOOK_CLEARANCE_CM",
+    "HOOK_RIM_FRACTION",
+    "hook_clearance_cm",
     "SLIDE_MARGIN_CM",
     "Slide",
     "hook_pull",
@@ -43,6 +45,11 @@ SLIDE_MARGIN_CM = 0.3
 #: The hooking thumb tip hangs this far above the table top (cm), and starts this far behind the rim.
 HOOK_CLEARANCE_CM = 0.05
 HOOK_BEHIND_CM = 0.1
+#: ... but never higher than this fraction of the rim's height: a round tip must meet a low rim well below
+#: its top to push it along rather than down (programs version 10). At 0.5 mm a paper clip's 1 mm wire met
+#: the tip half-way up (forward over downward push 0.35 against its friction 0.32) and did not move; at a
+#: third of its height (0.33 mm, 0.46: 1.45 times its friction, as the quarter's 0.59 against 0.4) it slides.
+HOOK_RIM_FRACTION = 0.25
 #: Phase durations (s): the thumb lowered behind the rim, then the wrist's pull.
 LOWER_S = 0.3
 PULL_S = 0.6
@@ -129,14 +136,22 @@ def _object_x_m(world: TrialWorld) -> float:
     return float(world.data.xpos[world.object_body][0])
 
 
+def hook_clearance_cm(thickness_cm: float) -> float:
+    """How high (cm) the hooking thumb tip hangs above the table behind a rim ``thickness_cm`` high:
+    :data:`HOOK_CLEARANCE_CM`, at most :data:`HOOK_RIM_FRACTION` of the rim's height."""
+    return min(HOOK_CLEARANCE_CM, HOOK_RIM_FRACTION * thickness_cm)
+
+
 def hook_pull(world: TrialWorld, depth_cm: float, pull_cm: float, runner: Runner | None = None) -> Slide:
     """The thumb tip lowered just behind the object's inner rim (the table side, ``depth_cm`` from its outer
-    one), the wrist pulls ``pull_cm`` along +x, over the edge. Call on a freshly built edge world (the hand
-    starts above the hook point); ``runner``: the trial's, so that it measures as it goes."""
+    one; :func:`hook_clearance_cm` above the table), the wrist pulls ``pull_cm`` along +x, over the edge.
+    Call on a freshly built edge world (the hand starts above the hook point); ``runner``: the trial's, so
+    that it measures as it goes."""
     radius = float(world.model.geom("thumb_distal_geom").size[0]) / H.CM
     _straighten_fingers(world)
     inner = _object_x_m(world) / H.CM - depth_cm / 2.0
-    goal = np.array([inner - radius - HOOK_BEHIND_CM, 0.0, radius + HOOK_CLEARANCE_CM]) * H.CM
+    thickness = 2.0 * float(world.data.xpos[world.object_body][2]) / H.CM
+    goal = np.array([inner - radius - HOOK_BEHIND_CM, 0.0, radius + hook_clearance_cm(thickness)]) * H.CM
     return _lower_and_move(world, goal, pull_cm, runner)
 
 

@@ -288,8 +288,9 @@ def build_world(obj: ObjectRecord | ObjectModel, plan: GraspPlan, *, seed: int =
     approach, axes, signs, flat = lay.approach, lay.axes, lay.signs, lay.flat
     ext, grip_centre, grip_ext, width = lay.ext, lay.grip_centre, lay.grip_ext, lay.width
     program = program_for(plan.grasp_type)
+    ball = model_obj.kind == "sphere" and plan.params.get("hold") is None
     targets = H.grasp_targets(
-        plan, width, align_pads=not flat, overshoot_cm=_overshoot_cm(program, model_obj)
+        plan, width, align_pads=not flat, overshoot_cm=_overshoot_cm(program, model_obj), ball=ball
     )
     wrap = program.control == "wrap"
 

@@ -2,7 +2,9 @@
 and misbehaves in ``mode = "hostile"``, so a test ingests once well, then again hostile, and checks that
 every page gets a recorded reason while the catalog stays as it was.
 
-- :class:`PageStore`: one host whose pages misbehave (:data:`PAGE_KINDS`): a slow drip, endless and
+- :class:`PageStore`: one host whose pages misbehave (:data:`PAGE_KINDS`): a slow drip (of the body, of
+  the status line, of the headers, of a chunk-size line; a byte every 50 ms, each within any read
+  time-out), endless and
   circular redirects, redirects to another port (closed) and another host (``localhost``), gzip and deflate
   bombs, a page of 1 million nested elements, 10,000 JSON-LD blocks, a wrong and a missing charset, a 200
   whose body is an error page;
@@ -27,6 +29,9 @@ from hostile_store import product_page
 #: The hostile page kinds of a :class:`PageStore`, each at ``/p/<kind>``.
 PAGE_KINDS = (
     "drip",
+    "drip-status",
+    "drip-headers",
+    "drip-chunked",
     "redirect-endless",
     "redirect-circle",
     "redirect-other-port",
@@ -39,6 +44,9 @@ PAGE_KINDS = (
     "missing-charset",
     "error-page",
 )
+
+#: The drip's pace: one byte every 50 ms, always within any read time-out.
+DRIP_INTERVAL_S = 0.05
 
 BOMB_BYTES = 64 * 1024 * 1024  # decoded size of the bombs (64 MiB of zeros; ~64 KiB on the wire)
 
@@ -74,6 +82,8 @@ class _Handler(BaseHTTPRequestHandler):
     def do_GET(self) -> None:  # noqa: N802
         store: PageStore = self.server.store  # type: ignore[attr-defined]
         store.requests += 1
+        store.seen.setdefault(self.path, time.monotonic())
+        store.peers.add(self.client_address[1])
         try:
             store.answer(self)
         except OSError:  # the client gave up (a deadline): nothing to do
@@ -87,6 +97,8 @@ class PageStore:
         self.mode = "good"
         self.robots_hang_s, self.sitemap_urls, self.drip_s = robots_hang_s, sitemap_urls, drip_s
         self.requests = 0
+        self.seen: dict[str, float] = {}  # path -> monotonic time of its first request
+        self.peers: set[int] = set()  # the client ports that asked: one per connection
         self.dead_port = closed_port()
         self._server = ThreadingHTTPServer(("127.0.0.1", 0), _Handler)
         self._server.daemon_threads = True
@@ -155,6 +167,29 @@ class PageStore:
             self._huge_sitemap = body
         return body
 
+    def _drip(self, h: _Handler, kind: str) -> None:
+        """Drip a byte every :data:`DRIP_INTERVAL_S` for ``drip_s``: of the body (``drip``), of the status
+        line's reason phrase (``drip-status``: http.client reads the line whole, up to 64 KiB), of header
+        lines after the status line (``drip-headers``), or of a chunk-size line after the headers
+        (``drip-chunked``: leading zeros, which the chunked coding allows)."""
+        h.close_connection = True
+        head = {
+            "drip": b"HTTP/1.1 200 OK\r\nContent-Type: text/html; charset=utf-8\r\n\r\n",
+            "drip-status": b"HTTP/1.1 200 ",
+            "drip-headers": b"HTTP/1.1 200 OK\r\n",
+            "drip-chunked": b"HTTP/1.1 200 OK\r\nContent-Type: text/html\r\nTransfer-Encoding: chunked\r\n\r\n",
+        }[kind]
+        drops = {"drip": b" ", "drip-status": b"O", "drip-chunked": b"0"}
+        lines = b"".join(b"X-Drip-%d: v\r\n" % i for i in range(90))  # under http.client's 100 headers
+        h.wfile.write(head)
+        h.wfile.flush()
+        end, i = time.monotonic() + self.drip_s, 0
+        while time.monotonic() < end:
+            h.wfile.write(lines[i % len(lines) : i % len(lines) + 1] if kind == "drip-headers" else drops[kind])
+            h.wfile.flush()
+            i += 1
+            time.sleep(DRIP_INTERVAL_S)
+
     def _bomb(self, encoding: str) -> bytes:
         if encoding not in self._bombs:
             zeros = b"\0" * BOMB_BYTES
@@ -162,15 +197,8 @@ class PageStore:
         return self._bombs[encoding]
 
     def _hostile(self, h: _Handler, kind: str) -> None:  # noqa: C901 - one branch per hostile page
-        if kind == "drip":
-            h.send_response(200)
-            h.send_header("Content-Type", "text/html; charset=utf-8")
-            h.end_headers()
-            end = time.monotonic() + self.drip_s
-            while time.monotonic() < end:  # one byte every 50 ms: always within any read time-out
-                h.wfile.write(b" ")
-                h.wfile.flush()
-                time.sleep(0.05)
+        if kind.startswith("drip"):
+            self._drip(h, kind)
         elif kind.startswith("redirect-endless"):
             n = int(kind.rsplit("/", 1)[-1]) if "/" in kind else 0
             h._send(302, b"", "", Location=f"/p/redirect-endless/{n + 1}")

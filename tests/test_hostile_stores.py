@@ -24,6 +24,9 @@ from scrapers.sources import parse_sources
 #: right despite its bytes (the wrong and the missing charset; a redirect to another host is followed).
 EXPECTED = {
     "drip": "timeout: page took longer than 1 s (its deadline)",
+    "drip-status": "timeout: page took longer than 1 s (its deadline)",
+    "drip-headers": "timeout: page took longer than 1 s (its deadline)",
+    "drip-chunked": "timeout: page took longer than 1 s (its deadline)",
     "redirect-endless": "too_many_redirects",
     "redirect-circle": "redirect_loop",
     "redirect-other-port": "robots_unavailable",  # the other port's robots.txt cannot be read: disallowed

@@ -213,3 +213,77 @@ def test_geometry_votes_need_a_clear_majority():
     assert MIN_VOTES <= K
     assert overrides("thin", "prism") and overrides("prism", "long") and not overrides("thin", "radial")
     assert not overrides("radial", "compact") and not overrides("compact", "prism")
+
+
+# ----------------------------------------------------------- what the catalog is silent on (issue 23)
+def test_a_category_the_catalog_does_not_hold_is_left_out_of_the_closeness():
+    from recall.fit import closeness_of
+
+    errors = {"mass_g": 0.1, "material": 0.5, "shape": 1.0}
+    assert closeness_of(errors) == pytest.approx(1.6 / 3)
+    assert closeness_of(errors, ("material",)) == pytest.approx(1.1 / 2)  # the record has no material
+    assert closeness_of({"material": 0.5}, ("material",)) is None  # nothing left to compare
+    assert closeness_of({}) is None
+
+
+def test_a_right_match_on_a_catalog_without_categories_fits_whatever_categories_are_stated():
+    # a catalog of sizes and masses only (like the YCB tables): "blue metal, rectangular" says nothing
+    # against its objects; each stated category counted half a mismatch (0.33 > 0.30: not a close match)
+    from kb.features import ObjectRecord
+    from recall.engine import Recaller
+
+    r = Recaller.from_records(
+        [ObjectRecord.create("potted meat can", a_cm=10.7, b_cm=9.9, c_cm=6.2, mass_g=370),
+         ObjectRecord.create("tuna fish can", a_cm=8.6, b_cm=8.6, c_cm=4.2, mass_g=171)]
+    )  # fmt: skip
+    res = r.recall_text("blue metal, rectangular, 370 grams")
+    assert res.best.name == "potted meat can" and res.closeness == pytest.approx(0.0) and not res.open_set
+    assert r.recall_text("blue metal, rectangular, 1500 grams").open_set  # the mass still decides
+    known = Recaller.from_records([ObjectRecord.create("box", a_cm=10, mass_g=370, material="plastic")])
+    assert known.recall_text("metal, 370 grams").closeness == pytest.approx(0.5)  # a held value still counts
+
+
+def test_an_unseen_noun_names_an_object_only_when_a_determiner_introduces_it():
+    from recall.subject import introduced
+
+    assert introduced("A flyswatter, steel, 33 cm long", "flyswatter")
+    assert introduced("the holder for the toilet brush, 15 cm", "holder")
+    assert introduced("I found this toy apple, 7 cm", "apple")
+    assert not introduced("spring-loaded jaws, 11 cm, 60 g", "jaw")
+    assert not introduced("kitchen flipper, nylon, a spatula", "flipper")  # only the first clause counts
+    assert not introduced("small, beeps, 100 g", "beep")
+    r = seed()
+    bare = r.recall_text("spring-loaded jaws, 11 cm, 60 g")
+    assert not bare.not_in_catalog and bare.unknown_noun == "jaw"  # doubted by the features, no verdict
+    assert r.recall_text("A flyswatter, steel, 33 cm long, 600 g.").not_in_catalog
+    # the price: a bare unseen noun is only doubted, so a close match of another object fits (the hammer)
+    price = r.recall_text("Flyswatter with a steel mesh, 33 cm long, 600 g.")
+    assert price.unknown_noun == "flyswatter" and not price.not_in_catalog and price.best.name == "hammer"
+
+
+def test_a_later_phrase_names_the_object_only_when_a_determiner_introduces_it():
+    from recall.subject import introduced, noun_phrase
+
+    assert noun_phrase("Steel, 15 cm long, a nutcracker") == ("nutcracker",)
+    assert noun_phrase("plastic, handset on a base, 700 g") == ("plastic",)  # a part of the thing described
+    assert introduced("steel, 15 cm long, a nutcracker", "nutcracker")  # the clause that has it decides
+    assert not introduced("tiny, two screw caps, 8 g", "cap")
+
+
+def test_a_count_of_a_plural_noun_lists_parts_and_names_no_object():
+    from recall.subject import counted_parts
+
+    assert counted_parts("tiny, two screw caps, 8 g", ("two", "screw", "cap"))
+    assert counted_parts("five fingers, 19 cm long", ("five", "finger"))
+    assert not counted_parts("one screw cap, 8 g", ("one", "screw", "cap"))  # one: the thing itself
+    assert not counted_parts("two screw cap, 8 g", ("two", "screw", "cap"))  # not said in the plural
+    assert not counted_parts("screw caps, 8 g", ("screw", "cap"))  # no count
+    assert not seed().recall_text("tiny, two screw caps, 8 g").not_in_catalog
+
+
+def test_a_bare_word_read_as_a_misspelt_foreign_noun_is_no_verdict():
+    # "five fingers" is one edit from the lexicon's "ginger": in a bare list of features no verdict
+    r = seed()
+    assert not r.recall_text("five fingers, 19 cm long").not_in_catalog
+    slip = r.recall_text("screwdiver, 20 cm long, 90 g")  # bare too, but misspelt for a catalog word
+    assert slip.described is not None and slip.described.noun == "screwdriver" and not slip.not_in_catalog

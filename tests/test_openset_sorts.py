@@ -152,3 +152,38 @@ def test_a_hyphen_between_letters_joins_one_phrases_words(text, phrase):
 def test_a_hyphenated_modifier_no_longer_hides_the_head(tools):
     res = tools.recall_text("a cross-head spoon, 18.6 cm long, 30 g")
     assert res.described is None or res.described.noun != "cross"
+
+
+# ----------------------------------------------- an object named by the head alone (issue 23, helper-desc)
+def test_a_sort_of_an_object_named_by_its_head_alone_beside_other_sorts():
+    # the catalog's "cord" beside its "power cord" is its generic cord: an extension cord is a sort of it;
+    # a head only qualified ("plastic ball") beside sorts ("soccer ball") is not (the volleyball above)
+    cord = noun_in(["extension", "cord"])
+    assert sort_of_catalog_object(cord, {"cord"}, _index(["cord", "power cord"])) == "cord"
+    assert sort_of_catalog_object(cord, {"cord"}, _index(["black cord", "power cord"])) is None
+
+
+def test_a_generic_noun_a_catalog_object_is_named_by_is_no_foreign_thing(tmp_path):
+    # "tube" is a generic noun ("a mailing tube" would name a foreign thing of its kind), but this catalog
+    # calls an object "tube": a mailing tube is a sort of it, judged by the features
+    r = _recaller(tmp_path, [("tube", 60, 7.5, 7.5, 150), ("cup", 9, 8, 8, 300)])
+    res = r.recall_text("a cardboard mailing tube, 60 cm long, 7.5 cm diameter, about 150 g")
+    assert res.best.name == "tube" and not res.not_in_catalog and not res.open_set, res.fit.reason
+    (tmp_path / "other").mkdir()
+    other = _recaller(tmp_path / "other", [("cup", 9, 8, 8, 300)])
+    assert other.recall_text("a cardboard mailing tube, 60 cm long, 7.5 cm diameter, 150 g").not_in_catalog
+
+
+def test_a_noun_of_the_kind_a_catalog_head_names_with_the_same_modifier_is_that_object(tools):
+    from recall.openset import kind_mate
+
+    carton = noun_in(["carton"])
+    assert carton.kind == "box"
+    index = _index(["sugar box", "timer"])
+    assert kind_mate(carton, ("yellow", "sugar", "carton"), index) == "box"
+    assert kind_mate(carton, ("timer", "carton"), index) is None  # a catalog word, but of no box
+    assert kind_mate(carton, ("carton",), index) is None  # no modifier: another object
+    assert kind_mate(carton, ("sugar", "carton"), None) is None
+    res = tools.recall_text("the yellow sugar carton, roughly 7 by 3.5 by 1.5 inches, around 500 g, paperboard")
+    assert res.best.name == "sugar box" and not res.not_in_catalog and not res.open_set, res.fit.reason
+    assert tools.recall_text("a carton, 17.5 x 9 x 4 cm, 514 g").not_in_catalog  # no modifier: not it

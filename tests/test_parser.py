@@ -780,3 +780,31 @@ def test_a_compared_objects_mass_alone_states_no_mass() -> None:
 )
 def test_a_ball_compound_is_a_ball_shape(text: str, shape: str | None) -> None:
     assert parse(text).values().get("shape") == shape
+
+
+# ------------------------------------------------------------ a length restated in parentheses (issue 23)
+def test_a_length_restated_in_parentheses_is_one_extent():
+    chain = parse("a steel chain, a bit over a metre (about 115 cm), 100 grams").values()
+    assert chain["a_cm"] == 100.0 and "b_cm" not in chain  # was 115 and 100: a length and a width
+    box = parse("a box, 10 inches (25 cm) long, 4 in (10 cm) wide").values()
+    assert (box["a_cm"], box["b_cm"]) == pytest.approx((25.4, 10.16)) and "c_cm" not in box
+
+
+@pytest.mark.parametrize("text, b", [
+    ("a rod 30 cm (45 cm) and more", None),  # 1.5x: still the same extent
+    ("a rod 30 cm (46 cm) and more", 30.0),  # over 1.5x: another extent
+    ("a rod 30 cm, (31 cm) and more", 30.0),  # not right after it
+    ("a rod 30 cm (31 cm and more", 30.0),  # not closed right after the value
+])  # fmt: skip
+def test_a_restatement_agrees_within_its_factor_and_follows_at_once(text, b):
+    from recall.parser import RESTATED_FACTOR
+
+    assert RESTATED_FACTOR == 1.5
+    assert parse(text).values().get("b_cm") == b
+
+
+@given(st.floats(min_value=2.0, max_value=200.0))
+def test_a_unit_conversion_in_parentheses_never_adds_an_extent(cm):
+    inches = round(cm / 2.54, 1)
+    values = parse(f"a wooden rod, {cm:g} cm ({inches:g} in), plastic").values()
+    assert values["a_cm"] == pytest.approx(cm, abs=0.01) and "b_cm" not in values

@@ -13,6 +13,8 @@ from sim.world import build_world
 
 COIN = dict(name="one euro coin", a_cm=2.325, b_cm=2.325, c_cm=0.233, mass_g=7.5, shape="thin",
             material="metal", texture="medium", rigidity="rigid")  # fmt: skip
+CLIP = dict(name="paper clip", a_cm=3.3, b_cm=0.8, c_cm=0.1, mass_g=0.5, shape="thin",
+            material="metal", texture="smooth", rigidity="rigid")  # fmt: skip
 
 
 def test_needs_slide_where_the_pads_would_press_nearer_the_rim_than_their_radius_plus_the_margin():
@@ -41,6 +43,30 @@ def test_rim_push_ratio_at_its_limits():
     assert S.rim_push_ratio(1.0, 0.9) == math.inf  # a rim above the tip's centre: a horizontal push
     assert S.rim_push_ratio(0.04, 0.9) == 0.0  # a rim lower than the gap: the tip passes over it
     assert S.rim_push_ratio(0.1, 0.9) < S.rim_push_ratio(0.233, 0.9)  # the paper clip's is lower
+
+
+def test_the_hook_hangs_at_most_a_quarter_of_a_low_rims_height():
+    boundary = S.HOOK_CLEARANCE_CM / S.HOOK_RIM_FRACTION  # a 2 mm rim
+    assert S.hook_clearance_cm(boundary) == pytest.approx(S.HOOK_CLEARANCE_CM)
+    assert S.hook_clearance_cm(boundary + 0.01) == S.HOOK_CLEARANCE_CM  # the euro coin's 2.33 mm: 0.5 mm
+    assert S.hook_clearance_cm(boundary - 0.01) < S.HOOK_CLEARANCE_CM
+    assert S.hook_clearance_cm(0.1) == pytest.approx(0.025)  # the paper clip's 1 mm wire
+    # lower, the tip meets the wire's side: it pushes it along more than down (0.35 at 0.5 mm)
+    r = S.pad_radius_cm()
+    assert S.rim_push_ratio(0.1, r, S.hook_clearance_cm(0.1)) > 1.4 * 0.32 > S.rim_push_ratio(0.1, r, 0.05)
+
+
+def test_a_paper_clip_is_slid_out_and_held_but_not_with_the_hook_at_half_its_height(monkeypatch):
+    import sim.trial as T
+
+    clip = ObjectRecord.create(**CLIP)
+    plan = best_grasp(clip)
+    held = T.run_trial(clip, plan, seed=0)
+    monkeypatch.setattr(S, "HOOK_RIM_FRACTION", 0.5)  # 0.5 mm above the table: half the wire's height
+    high = T.run_trial(clip, plan, seed=0)
+    assert plan.grasp_type == "thumb_index_finger" and S.slides(build_world(clip, plan))
+    assert held.success and held.rotation_deg < 10.0 and len(held.perturbation) == 6
+    assert high.reason == "no contact after closing: the digits pushed the object out of the grasp and off the table"
 
 
 def test_a_hook_behind_the_inner_rim_slides_a_coin_out_and_holds_it_on_the_table():

@@ -278,15 +278,17 @@ def test_render_camera_aims_at_the_hands_contacts_on_the_object():
 
 
 def test_no_contact_says_whether_the_digits_missed_or_pushed_the_object_away():
-    """A paper clip at the table edge (data written here; slid out first, sim/slide.py): the pads pushed it
-    out of the pinch and it fell; a 3 mm bead in the table's middle is pushed 1 cm aside; an object that did
+    """A paper clip at the table edge in a lateral pinch (data written here; slid out first, sim/slide.py;
+    its tip pinch holds): the pads pushed it out of the pinch and it fell; a 3 mm bead in the table's middle is pushed 1 cm aside; an object that did
     not move was missed."""
-    from sim.planner import best_grasp
+    from sim.planner import plan_grasps
     from sim.trial import _no_contact_reason
 
     clip = ObjectRecord.create(name="paper clip", a_cm=3.3, b_cm=0.8, c_cm=0.1, mass_g=0.5,
                                shape="thin", material="metal", texture="smooth", rigidity="rigid")  # fmt: skip
-    r = run_trial(clip, best_grasp(clip), seed=0)
+    lateral = plan_grasps(clip)[1]
+    assert lateral.grasp_type == "lateral_pinch"
+    r = run_trial(clip, lateral, seed=0)
     assert r.reason == "no contact after closing: the digits pushed the object out of the grasp and off the table"
     tiny = ObjectRecord.create(name="bead", a_cm=0.3, b_cm=0.3, c_cm=0.3, mass_g=0.1, shape="compact")
     plan = _plan("thumb_index_finger", aperture=2.0, force=1.5)
@@ -297,12 +299,14 @@ def test_no_contact_says_whether_the_digits_missed_or_pushed_the_object_away():
     assert _no_contact_reason(world, still) == "no contact after closing: the digits missed the object"
 
 
-def test_a_ball_wider_than_the_hand_starts_inside_because_it_needs_two_hands():
+def test_a_ball_wider_than_the_thumb_reaches_round_is_not_lifted_and_needs_two_hands():
     from sim.planner import best_grasp
 
     ball = ObjectRecord.create(name="basketball", a_cm=24.3, b_cm=24.3, c_cm=24.3, mass_g=600, shape="radial",
                                material="rubber", texture="grippy", rigidity="squeezable")  # fmt: skip
-    r = run_trial(ball, best_grasp(ball), seed=0)
-    assert r.reason.startswith("hand starts inside the object") and r.reason.endswith(
-        "its smallest side (24.3 cm) is wider than the hand's 12 cm span, it needs two hands"
-    )
+    plan = best_grasp(ball)
+    r = run_trial(ball, plan, seed=0)
+    # placed as near the thumb as its curve clears the metacarpal (sim/hand.py ball_center_y_cm), the hand no
+    # longer starts inside it; its thumb cannot reach its near equator, so it is not lifted
+    assert plan.params["two_hands"] and r.reason.startswith("not lifted")
+    assert "needs two hands" in " ".join(plan.rationale)

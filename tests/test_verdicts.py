@@ -97,3 +97,15 @@ def test_page_numbers_read_both_decimal_marks_fractions_and_compound_units():
 def test_page_numbers_find_any_decimal_with_either_mark(value, mark):
     text = f"Weight: {str(value).replace('.', mark)} kg"
     assert any(within(float(value), n, 1e-9) for n in page_numbers(text))
+
+
+def test_a_diameter_beside_an_equal_width_is_one_stated_axis():
+    # a round knob's "Width: 13/16"" and "Diameter: 13/16"": the label lists the axis once
+    want = label([2.857, 2.064])
+    assert judge(rec(2.857, 2.064, 2.064, roles=["depth", "width", "diameter"]), want).dims_right
+    # only a diameter collapses, and only onto an equal extent (within 2 %)
+    assert not judge(rec(2.857, 2.064, 2.064, roles=["depth", "width", "height"]), want).dims_right
+    assert not judge(rec(2.857, 2.064, 2.2, roles=["depth", "width", "diameter"]), want).dims_right
+    assert judge(rec(2.857, 2.064, 2.064 * 1.02, roles=["depth", "width", "diameter"]), want).dims_right
+    # nothing collapses when the label states all three
+    assert judge(rec(62.5, 62.5, 39.1, roles=["width", "diameter", "height"]), label([62.5, 62.5, 39.1])).dims_right

@@ -47,7 +47,9 @@ _HEBREW_UNITS = re.compile(
     + "|".join(w.replace('"', '[\"\u05f4]') for w in unit_words() if '"' in w and w != '"')
     + r")(?![\u0590-\u05ff])"
 )
-_TIMES_SIGN = re.compile(r"(\d\s*)([^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)")
+_TIMES_SIGN = re.compile(
+    r"(\d\s*)([\"'″]{1,2}\s*[A-Za-z]\b\.?|[^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)"
+)  # "30 x 20", "30cm × 20", "43'' H X 27'' W": after a number, its unit or inch mark (and an axis letter)
 _SPACES = re.compile(r"[\s\u00a0\u2000-\u200a\u202f\u205f\u3000]+")
 
 
@@ -166,6 +168,7 @@ def _hebrew_unit(m: re.Match) -> str:
 
 def _times(m: re.Match) -> str:
     between = m.group(2) or ""
-    if between and len(between) > 1 and length_unit(between) is None:
+    mark = re.match(r"[\"'″]{1,2}", between)  # an inch mark, maybe with an axis letter ("'' H")
+    if between and len(between) > 1 and mark is None and length_unit(between) is None:
         return m.group(0)  # "max 5": a word, not a unit or an L/W/H letter, before the sign
     return f"{m.group(1)}{between}{m.group(3)} x "

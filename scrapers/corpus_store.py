@@ -1,0 +1,157 @@
+"""A store on loopback that sells the real-page corpus: captured product pages behind a small store's search.
+
+The search page is written here; the product pages are the corpus's own bytes (:mod:`scrapers.corpus`),
+each served at its original address's path on 127.0.0.1 (``/ViewSonic-VX3276-4K-MHD-.../dp/B07SRDX1Z1``),
+so that an extractor reading the URL sees what it would see at the store (a page saved without its
+address is at ``/page/<id>``).
+
+``/search?q=<words>`` is a plain word-overlap search over the pages' titles, like a small store's: a page
+is found when one query word (lower case, plural ``s`` dropped: :func:`scrapers.demo_store.search.query_words`)
+is a word of its title; results are ordered by how many query words the title holds, then the shorter
+title first (more of it is what was asked for), then by title. Only product pages whose labels state a size
+or a mass are sold (a description can state nothing of the others).
+
+>>> with CorpusStore(load_corpus()) as store:                              # doctest: +SKIP
+...     requests.get(store.base_url + "/search?q=walkie+talkie").text
+"""
+
+from __future__ import annotations
+
+import html
+import threading
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
+from urllib.parse import parse_qs, quote, urlsplit
+
+from scrapers.corpus import CorpusPage, load_corpus
+from scrapers.demo_store.search import query_words
+
+__all__ = ["CorpusStore", "StoreItem", "items_of", "search", "sold"]
+
+#: Results listed on the search page (a lookup reads its store's ``search_results`` first ones).
+RESULTS_SHOWN = 10
+
+
+@dataclass(frozen=True)
+class StoreItem:
+    """One corpus page on sale: the page, the path it is served at, and its title's words."""
+
+    page: CorpusPage
+    path: str
+    words: frozenset[str]
+
+    @property
+    def title(self) -> str:
+        return self.page.truth["title"]
+
+
+def sold(page: CorpusPage) -> bool:
+    """Whether the store sells ``page``: a product page whose labels state a size or a mass."""
+    truth = page.truth or {}
+    return truth.get("is_product_page") is not False and bool(truth.get("dims_cm") or truth.get("mass_g"))
+
+
+def _path_of(page: CorpusPage) -> str:
+    parts = urlsplit(page.url or "")
+    path = parts.path if parts.netloc and len(parts.path) > 1 else ""
+    return quote(path, safe="/-._~%!$&'()*+,;=:@") if path else f"/page/{page.id}"
+
+
+def items_of(pages: Iterable[CorpusPage]) -> list[StoreItem]:
+    """The pages the store sells (:func:`sold`), each at its own path (a second page on a path already
+    taken goes to ``/page/<id>``)."""
+    items: list[StoreItem] = []
+    taken: set[str] = set()
+    for page in pages:
+        if not sold(page):
+            continue
+        path = _path_of(page)
+        if path in taken:
+            path = f"/page/{page.id}"
+        taken.add(path)
+        items.append(StoreItem(page, path, frozenset(query_words(page.truth["title"]))))
+    return items
+
+
+def search(items: Sequence[StoreItem], query: str) -> list[StoreItem]:
+    """The items ``query`` finds, best first (module docstring); no words find nothing."""
+    words = set(query_words(query))
+    hits = [(len(words & it.words), it) for it in items if words & it.words]
+    hits.sort(key=lambda h: (-h[0], len(h[1].words), h[1].title))
+    return [it for _, it in hits]
+
+
+def _results_page(query: str, hits: Sequence[StoreItem]) -> bytes:
+    e = html.escape
+    cards = "".join(f'<li class="product"><a href="{e(it.path)}">{e(it.title)}</a></li>\n'
+                    for it in hits[:RESULTS_SHOWN])  # fmt: skip
+    main = (f'<h1>Search results for “{e(query)}”</h1>\n<p>{len(hits)} results</p>\n<ul class="results">\n{cards}</ul>'
+            if hits else f'<h1>No results for “{e(query)}”</h1>')  # fmt: skip
+    return (f'<!doctype html><html lang="en"><head><meta charset="utf-8"><title>Search: {e(query)}</title>'
+            f'<meta name="robots" content="noindex"></head><body><main>{main}</main></body></html>').encode()  # fmt: skip
+
+
+class CorpusStore:
+    """The store, served from a background thread on ``host`` (``port=0``: a free port); ``base_url`` once
+    started. ``log`` holds every path requested."""
+
+    def __init__(self, pages: Iterable[CorpusPage] | None = None, host: str = "127.0.0.1", port: int = 0):
+        self.items = items_of(load_corpus() if pages is None else pages)
+        self.by_path = {it.path: it for it in self.items}
+        self.host, self.requested_port = host, port
+        self.log: list[str] = []
+        self._server: ThreadingHTTPServer | None = None
+
+    @property
+    def base_url(self) -> str:
+        assert self._server is not None, "the store is not started"
+        return f"http://{self.host}:{self._server.server_address[1]}"
+
+    def url_of(self, page_id: str) -> str:
+        """The address the store serves the page ``page_id`` at."""
+        return self.base_url + next(it.path for it in self.items if it.page.id == page_id)
+
+    def sources_toml(self, search_results: int = 3) -> str:
+        """A sources file that reads this store's search (delay 0: loopback)."""
+        return (f'[[stores]]\nname = "corpus"\nbase_url = "{self.base_url}"\n'
+                f'search = "{{base_url}}/search?q={{query}}"\ndelay_s = 0\nsearch_results = {search_results}\n')  # fmt: skip
+
+    def _handler(self):
+        store = self
+
+        class Handler(BaseHTTPRequestHandler):
+            def log_message(self, *args) -> None:
+                pass
+
+            def do_GET(self) -> None:  # noqa: N802
+                parts = urlsplit(self.path)
+                store.log.append(self.path)
+                if parts.path == "/robots.txt":
+                    body, ctype = b"User-agent: *\nAllow: /\n", "text/plain"
+                elif parts.path == "/search":
+                    query = parse_qs(parts.query).get("q", [""])[0]
+                    body, ctype = _results_page(query, search(store.items, query)), "text/html; charset=utf-8"
+                elif parts.path in store.by_path:
+                    body, ctype = store.by_path[parts.path].page.path.read_bytes(), "text/html; charset=utf-8"
+                else:
+                    self.send_error(404)
+                    return
+                self.send_response(200)
+                self.send_header("Content-Type", ctype)
+                self.send_header("Content-Length", str(len(body)))
+                self.end_headers()
+                self.wfile.write(body)
+
+        return Handler
+
+    def __enter__(self) -> CorpusStore:
+        self._server = ThreadingHTTPServer((self.host, self.requested_port), self._handler())
+        threading.Thread(target=self._server.serve_forever, daemon=True, name="corpus-store").start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        assert self._server is not None
+        self._server.shutdown()
+        self._server.server_close()
+        self._server = None

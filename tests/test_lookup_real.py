@@ -1,0 +1,194 @@
+"""The lookup on real store pages (issue 22): a loopback store written here (scrapers.corpus_store) sells the
+real-page corpus behind a word-overlap search; descriptions written here (tests/data/lookup_real/) are
+recalled with a lookup into a real DuckDB catalog. Also the rules the misses were fixed by: when the
+lookup starts (recall.lookup.unnamed_subject), what a product found is called (the description's noun as
+an alias of the best fit; scrapers.product_names.person_name). The store tests skip when the corpus's
+pages are absent (scripts/real_pages.py materialize)."""
+
+from __future__ import annotations
+
+import pytest
+import requests
+from conftest import SEED_CSV
+from hypothesis import given
+from hypothesis import strategies as st
+
+from kb.catalog import KnowledgeBase
+from kb.features import ObjectRecord
+from recall.engine import Recaller
+from recall.lookup import described_names, fits, lookup_reason, unnamed_subject
+from recall.lookup_eval import load_descriptions, run_trial
+from scrapers.corpus import load_corpus
+from scrapers.corpus_store import CorpusStore, search, sold
+from scrapers.product_names import MAX_NAME_WORDS, person_name
+from scrapers.sources import parse_sources
+
+CORPUS = [p for p in load_corpus() if sold(p)]
+needs_corpus = pytest.mark.skipif(len(CORPUS) < 40, reason="the real-page corpus is not materialized")
+
+#: Descriptions (of tests/data/lookup_real) each standing for one class of issue 22's misses: a name that
+#: is a keyword list ("Garlic press KONCIS stainless steel"), a title in Russian, a noun the recall's
+#: match is not ("peanut butter" recalled as a coffee can: found, though its page names no size the
+#: extractor reads), two products that fit (the closer one gets the noun), a held-out store.
+CLASSES = ("ikea-1f6af87aa3", "shared1-peb-a8a8fc6a31", "newegg-f371fc16a9",
+           "shared2-greendb_amazon_de_candy_washer", "yeti-c535fe9e18")  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def seeded(tmp_path_factory):
+    path = tmp_path_factory.mktemp("seed") / "seed.duckdb"
+    KnowledgeBase.open(path).import_csv(SEED_CSV)
+    return path
+
+
+@pytest.fixture(scope="module")
+def store():
+    with CorpusStore(CORPUS) as s:
+        yield s
+
+
+def _trial(seeded, tmp_path, store, row):
+    pages = {p.id: p for p in CORPUS}
+    with requests.Session() as session:
+        sources = parse_sources(store.sources_toml())
+        return run_trial(seeded, tmp_path, row, store, sources, session, pages, budget_s=10.0)
+
+
+def test_the_descriptions_are_data_with_an_expected_page_or_object():
+    rows, catalog = load_descriptions(), load_descriptions("catalog_descriptions.jsonl")
+    assert len(rows) >= 40 and len(catalog) >= 20
+    assert len({r["page"] for r in rows}) == len(rows)
+    seed = {line.split(",")[0] for line in SEED_CSV.read_text(encoding="utf-8").splitlines()[1:]}
+    assert all(r["object"] in seed for r in catalog)
+
+
+@needs_corpus
+def test_the_store_sells_only_pages_that_state_a_size_or_mass_and_finds_them_by_a_title_word(store):
+    assert all(p.truth.get("dims_cm") or p.truth.get("mass_g") for p in CORPUS)
+    hits = search(store.items, "garlic presses")
+    assert hits and hits[0].page.id == "ikea-1f6af87aa3"  # plural s dropped, the most words first
+    assert search(store.items, "zzzz qqqq") == [] and search(store.items, "") == []
+    body = requests.get(store.base_url + "/search?q=garlic+press", timeout=5).text
+    assert f'href="{hits[0].path}"' in body
+    page = requests.get(store.url_of("ikea-1f6af87aa3"), timeout=5).content
+    assert page == hits[0].page.path.read_bytes()  # the real page, byte for byte
+
+
+@needs_corpus
+@pytest.mark.parametrize("page_id", CLASSES)
+def test_a_described_product_the_catalog_lacks_ends_as_the_recalls_match(seeded, tmp_path, store, page_id):
+    row = next(r for r in load_descriptions() if r["page"] == page_id)
+    trial = _trial(seeded, tmp_path, store, row)
+    if page_id == "yeti-c535fe9e18":  # held out: measured, never fixed for; the page reads 16.8 x 8.9 cm
+        assert trial.looked_up
+        return
+    assert trial.looked_up and trial.right, trial
+
+
+@needs_corpus
+def test_catalog_objects_are_recalled_without_searching(seeded, tmp_path, store):
+    asked = len(store.log)
+    for row in load_descriptions("catalog_descriptions.jsonl")[:5]:
+        trial = _trial(seeded, tmp_path, store, row)
+        assert not trial.looked_up and trial.right, trial
+    assert len(store.log) == asked  # the store was never asked
+
+
+@needs_corpus
+def test_the_described_noun_names_the_product_in_later_recalls(seeded, tmp_path, store):
+    row = next(r for r in load_descriptions() if r["page"] == "ikea-1f6af87aa3")
+    _trial(seeded, tmp_path, store, row)
+    again = Recaller.from_db(tmp_path / "trial.duckdb").recall_text("a garlic press")
+    assert again.best is not None and again.best.matched_by_name and not again.open_set
+
+
+def test_the_noun_searched_for_is_given_as_the_alias():
+    r = Recaller.from_csv(SEED_CSV)
+    res = r.recall_text("a garlic press, 16 cm long")
+    assert described_names(res, ("garlic press",)) == ("garlic press",)
+    unknown = r.recall_text("an Asustor NAS, 29 x 23 x 22 cm, 6.2 kg")
+    assert "nas" in described_names(unknown, ("asustor nas", "nas"))
+
+
+# --- when the lookup starts: the recall's match is not the thing the subject names -----------------------
+
+
+@pytest.mark.parametrize(
+    "text, noun",
+    [
+        ("crunchy peanut butter, 1 kg, about 14 x 10 x 10 cm", "butter"),  # a coffee can at 0.93
+        ("an EVGA GeForce graphics card, 27 cm long and 11 cm wide", "card"),  # a knitted glove
+        ("a big YETI tumbler, 20 cm tall and 10 cm wide, about 500 g", "tumbler"),  # a glass vase
+    ],
+)
+def test_a_confident_match_of_another_thing_is_looked_up(text, noun):
+    res = Recaller.from_csv(SEED_CSV).recall_text(text)
+    assert not res.open_set and unnamed_subject(res) == noun
+    assert f"is no {noun}" in lookup_reason(res)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "a tennis ball, 6.5 cm across, 56 g",  # named
+        "a steel bottle, 21 cm tall, 650 g",  # named by its head noun
+        "A plastic kitchen utensil with a wide flat head, about 35 cm long",  # a generic noun
+        "a small round plastic ball-like fruit, about 2 inches across",  # a comparison
+        "Paper, 9 by 4 inches, thin.",  # a material
+        "A round flat ceramic dish, about 27 cm across, 2.5 cm tall, 550 g",  # dish: English 'plate'
+        "It is about 15 cm long and weighs 100 g.",  # no subject
+    ],
+)
+def test_a_match_the_words_allow_starts_no_lookup(text):
+    assert unnamed_subject(Recaller.from_csv(SEED_CSV).recall_text(text)) is None
+
+
+# --- the fit rule: one function, the same for the open-set verdict and a store's product -----------------
+
+
+def test_a_perfect_fit_fits_whatever_the_stores_name_says():
+    text = "a Beko fridge, 184 x 60 x 54 cm, 56 kg"
+    for name in ("холодильник beko rcsk 310m20s", "/products/beko-rcsk-310m20s", "beko " * 35 + "fridge"):
+        ok, why, score = fits(text, ObjectRecord.create(name.strip(), a_cm=184, b_cm=60, c_cm=54, mass_g=56000))
+        assert ok and score == 0.0 and "fits: mean relative error 0.00" in why
+
+
+def test_fits_is_the_open_set_rule_at_its_boundary():
+    from recall.fit import THRESHOLDS, Trust
+
+    edge = 1000 * (1 - THRESHOLDS[Trust.PLAIN])
+    ok, why, score = fits("it weighs exactly 1000 g", ObjectRecord.create("a thing", mass_g=edge))
+    assert ok and score == pytest.approx(1.0) and "at most 0.30" in why
+    ok, why, score = fits("it weighs exactly 1000 g", ObjectRecord.create("a thing", mass_g=edge - 1))
+    assert not ok and score > 1.0 and why.startswith("does not fit")
+
+
+# --- a person's name of a product ------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "title, name",
+    [
+        ("ViewSonic VX3276-4K-MHD 32 Inch 4K Monitor, IPS Display with HDR10 and Eye Care", "ViewSonic VX3276-4K-MHD 32 Inch 4K Monitor"),
+        ("Galaxy Tab S9 FE (Wi-Fi) | Samsung Levant", "Galaxy Tab S9 FE"),
+        ("Microsoft - Surface Laptop - Copilot+ PC - 13.8\" Touchscreen", "Microsoft Surface Laptop"),
+        ("Trane PAN02916 Drain Pan, Evaporator, Condensate", "Trane PAN02916 Drain Pan"),
+        ("Kyocera Klimaschutz-System Ecosys P3145dn Laserdrucker: Schwarz-Weiß, Duplex", "Kyocera Klimaschutz-System Ecosys P3145dn Laserdrucker"),
+        ("iFixit Pro Tech® Toolkit: Computer, Phone, Electronics Repair Kit", "iFixit Pro Tech Toolkit"),
+        ("/products/sleep-sound-therapy-system", "sleep sound therapy system"),
+        ("https://www.amazon.com/ViewSonic-VX3276-Monitor/dp/B07SRDX1Z1", "ViewSonic VX3276 Monitor"),
+        ("Trail 25 Pack", "Trail 25 Pack"),
+        ("x", "x"),
+    ],
+)  # fmt: skip
+def test_a_persons_name_keeps_brand_and_model_and_drops_the_keyword_list(title, name):
+    assert person_name(title) == name
+
+
+@given(st.text(max_size=400))
+def test_a_persons_name_is_short_and_never_empty_for_a_title_with_letters(title):
+    name = person_name(title)
+    assert len(name.split()) <= max(MAX_NAME_WORDS, len(title.split()))
+    if sum(ch.isalnum() for ch in title) >= 2:
+        assert name.strip()
+
