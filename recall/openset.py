@@ -228,7 +228,7 @@ def described_noun(
     english = tuple(words_of(noun.english))
     known = _names_catalog_object(noun.words, phrases, heads) or (
         noun.english != noun.text and bool(english)
-        and (_names_catalog_object(english, phrases, heads) or english[-1] in heads)
+        and (_names_catalog_object(english, phrases, heads) or head_noun(english) in heads)
     )  # a synonym names a sort of its English name's head noun ("puzzle cube" -> rubik's cube: a cube)
     base = None if known else sort_of_catalog_object(noun, heads, kinds_of) or kind_mate(noun, subject, kinds_of)
     return DescribedNoun(noun.text, noun.kind, noun.english, known or base is not None, base)
@@ -244,6 +244,15 @@ def kind_mate(noun: Noun, subject: Sequence[str], kinds_of: KindIndex | None) ->
         return None
     words = kinds_of.words_by_head()
     return noun.kind if subject[-2] in words.get(noun.kind, ()) else None
+
+
+def head_noun(words: Sequence[str]) -> str | None:
+    """The head noun of a phrase as the catalog's names have it: the word before "of" ("*bunch* of keys",
+    "*bottle* of water"), else the last word; None for no words."""
+    words = list(words)
+    if "of" in words[1:]:
+        return words[words.index("of", 1) - 1]
+    return words[-1] if words else None
 
 
 def sort_of_catalog_object(noun: Noun, heads, kinds_of: KindIndex | None) -> str | None:
@@ -358,6 +367,19 @@ def unseen_noun(unknown: str | None, subject: Sequence[str], plural: bool = Fals
     before = subject[-2] if len(subject) > 1 and subject[-1] == unknown else None
     text = f"{before} {unknown}" if before and before not in PLACEHOLDERS and noun_like(before) else unknown
     return DescribedNoun(text, ROOT, unknown, False)
+
+
+def counted_material(text: str, vocabulary: frozenset[str]) -> str | None:
+    """A material word that an indefinite article counts as the subject ("*a walnut*, in the shell", "*a
+    cork*": :func:`recall.subject.counted_head`) and that no catalog name and no lexicon noun has: it
+    names a thing the catalog does not have, as "a glass" names a drinking glass where the catalog has
+    one (RECALL.md, "Compounds"). None otherwise."""
+    from recall.subject import counted_head
+
+    word = counted_head(text)
+    if word is None or word not in _material_words() or word in vocabulary or noun_in([word]) is not None:
+        return None
+    return word
 
 
 def names_inside(noun: DescribedNoun | None, phrases: Sequence[str]) -> bool:
@@ -519,6 +541,9 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     if noun is not None or any(w in names.vocabulary for w in after_of):
         return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
     head = names.unknown_noun(text) or compound_head(subject, names.vocabulary)
+    thing = counted_material(text, names.vocabulary)
+    if head is None and thing is not None:
+        return DescribedNoun(thing, ROOT, thing, False)  # "a walnut, 3.5 cm": a thing, not its material
     if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
         subject, head = after_of, foreign_head(after_of, names.vocabulary)
     bare = head is not None and not introduced(text, head)

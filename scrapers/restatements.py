@@ -56,3 +56,19 @@ def _agrees(a: Any, b: Any, feature: str, agree: Callable[[Any, Any], bool]) -> 
         a, b = tuple(a), tuple(b)
         return len(a) == len(b) and agree(a, b)
     return agree(a, b)
+
+
+#: Shop systems whose weight field is what the merchant entered for shipping (Shopify's variant grams,
+#: WooCommerce's weight): the product's weight only when the page labels none.
+SHOP_SYSTEM_SOURCES = frozenset({"shopify", "woocommerce"})
+
+
+def outranked_shop_weights(valid: Sequence[Any], agree: Callable[[Any, Any], bool]) -> list[tuple[Any, Any]]:
+    """(shop-system mass candidate, the labelled product mass it disagrees with) for every shop-system
+    weight that no labelled product weight on the page agrees with, when the page labels one (Ridge's
+    ``weight: 150`` in its Shopify data beside "WEIGHT: 2 oz")."""
+    labelled = [o for o in valid if o.source in LABELLED_SOURCES]
+    if not labelled:
+        return []
+    return [(c, labelled[0]) for c in valid
+            if c.source in SHOP_SYSTEM_SOURCES and not any(agree(c.value, o.value) for o in labelled)]  # fmt: skip

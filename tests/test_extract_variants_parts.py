@@ -226,3 +226,33 @@ def test_a_shop_systems_placeholder_size_is_refused(size, refused):
     assert placeholder_size(f"dimensions_html: {size}") is refused
     r = _record(f"<dl><dt>Dimensions</dt><dd>{size}</dd><dt>Weight</dt><dd>2 kg</dd></dl>")
     assert r is not None and (not r.dims) is refused
+
+
+# ---------------------------------------------------------------------- a shop system's weight field
+class _Obs:
+    def __init__(self, source: str, value: float):
+        self.source, self.value, self.raw = source, value, f"{source}: {value}"
+
+
+def _agree(a: float, b: float) -> bool:
+    return abs(a - b) <= 0.02 * max(a, b)
+
+
+def test_a_labelled_product_weight_outranks_a_shop_systems_weight_field():
+    from scrapers.restatements import outranked_shop_weights
+
+    shop, label = _Obs("shopify", 150.0), _Obs("spec_table", 56.7)  # Ridge: weight 150 vs "WEIGHT: 2 oz"
+    assert outranked_shop_weights([shop, label], _agree) == [(shop, label)]
+    woo = _Obs("woocommerce", 560.0)
+    assert outranked_shop_weights([woo, _Obs("embedded_json", 500.0)], _agree)[0][0] is woo
+
+
+@pytest.mark.parametrize("others", [
+    [],  # no labelled weight: the field is what there is
+    [_Obs("spec_table", 151.0)],  # a labelled weight agrees (within 2 %)
+    [_Obs("jsonld", 56.7)],  # structured data is no label
+])  # fmt: skip
+def test_a_shop_systems_weight_field_stays_when_no_label_disagrees(others):
+    from scrapers.restatements import outranked_shop_weights
+
+    assert outranked_shop_weights([_Obs("shopify", 150.0), *others], _agree) == []
