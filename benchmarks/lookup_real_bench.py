@@ -6,8 +6,8 @@ Each description (data written here, ``tests/data/lookup_real/``) is recalled wi
 ``recall_with_lookup`` (default time budget) into its own copy of the seeded catalog:
 
 - **right**: the recall's match after the lookup is the object written from the page the description is of;
-- **values right**: and that object's sizes and mass are the page's labelled ones (within 1 %, the
-  corpus's tolerance);
+- **values right**: and that object's sizes and mass are the page's labelled ones (within 2 %, the
+  corpus's tolerance, ``scrapers.verdicts.TOLERANCE``);
 - **over budget**: the lookup's own clock past its time budget;
 - **catalog**: descriptions of seed-catalog objects, which must be recalled without searching.
 
