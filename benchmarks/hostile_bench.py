@@ -231,8 +231,9 @@ def _save(drip: dict[str, Any], rows: list[dict[str, Any]]) -> None:
     text = (
         f"loopback stores written here: the demo store's pages done in {drip['demo_beside_drip_s']:.1f} s beside a "
         f"dripping store vs {drip['demo_alone_s']:.1f} s alone ({drip['ratio']:.2f}×, median of {drip['runs']}), the "
-        f"drip rejected {drip['drip_rejected_s']:.2f} s after its request (`timeout`, deadline 30 s); {len(measured)} hostile "
-        f"stores one at a time: longest {worst_wall['wall_s']:.1f} s ({worst_wall['store']}), peak RSS at most "
+        f"drip rejected {drip['drip_rejected_s']:.2f} s after its request (`timeout`, deadline 30 s; "
+        f"{drip['drip_rejected_from_run_start_s']:.1f} s after the run began, robots.txt and host delay first); "
+        f"{len(measured)} hostile stores one at a time: longest {worst_wall['wall_s']:.1f} s ({worst_wall['store']}), peak RSS at most "
         f"{worst_rss['rss_mb']:.0f} MB ({worst_rss['rss_ratio']:.2f}× one good page, {worst_rss['store']}), "
         f"{crashes} crashes; 2 shared cores, load {load:.0f}"
     )

@@ -26,6 +26,7 @@ of the budget); ``max_pages`` bounds the requests.
 from __future__ import annotations
 
 import math
+import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -129,7 +130,6 @@ def unnamed_subject(result: RecallResult) -> str | None:
     name is a word of the match's name. "crunchy peanut butter, 1 kg" recalled as the master chef can (a
     coffee can) at confidence 0.93: a butter is no can, so the catalog's match, however close its sizes,
     is evidence of nothing and the stores are asked (issue 22). None otherwise."""
-    import re
 
     from recall.names import words_of
     from recall.openset import COLOURS, _material_words, noun_in, noun_like
@@ -140,11 +140,12 @@ def unnamed_subject(result: RecallResult) -> str | None:
     text = result.text or ""
     phrase = _phrase(text, keep_generic=True)
     head = phrase[-1] if phrase else None
-    if head is None or head in GENERIC_NOUNS or head in _material_words() or head in COLOURS:
+    if head is None or head in GENERIC_NOUNS or head in _material_words():
         return None  # "a kitchen tool", "a glass object", "paper, 9 by 4 inches": no noun names a thing
     if re.search(rf"\b{re.escape(head)}s?[- ](?:like|shaped|style|sized)\b", text.lower()):
         return None  # "a ball-like fruit": a comparison
-    if not (noun_in([head]) is not None or noun_like(head) or result.unknown_noun == head):
+    lexicon = noun_in([head]) is not None  # a lexicon noun that is a shade word too: "a tail *light*"
+    if not (lexicon or (head not in COLOURS and (noun_like(head) or result.unknown_noun == head))):
         return None
     words = set(words_of(best.name))
     english = words_of(result.described.english)[-1:] if result.described is not None else []
@@ -176,24 +177,31 @@ def search_terms(result: RecallResult) -> tuple[str, ...]:
 
 def described_names(result: RecallResult, terms: tuple[str, ...]) -> tuple[str, ...]:
     """What the description calls the object, given to the products that fit as aliases: the described
-    noun and its English name (``described``), else the head noun searched for (the last of ``terms``). A
+    noun and its English name (``described``), else the head noun searched for (the last of ``terms``),
+    after the subject phrase searched for first when the text has it as written (a noun modifier the
+    product's names lack would make the recall doubt the match: "a *cabinet* knob" named "knob"). A
     product found by that word whose features fit is one; its store name may not say so (a title in
     another language, a keyword list, a model number), and the recall after the lookup, and later ones,
     must know the object by the word a person used."""
     noun = result.described
-    if noun is not None:
-        return tuple(dict.fromkeys((noun.noun, noun.english)))
-    return terms[-1:]
+    names = [noun.noun, noun.english] if noun is not None else list(terms[-1:])
+    written = " ".join((result.text or "").lower().split())
+    if terms and re.search(rf"(?<!\w){re.escape(terms[0])}(?!\w)", written):
+        names.insert(0, terms[0])  # the whole subject phrase as written: "a black *cabinet* knob" is one
+    return tuple(dict.fromkeys(names))
 
 
 def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float]:
-    """Whether the product ``record`` is the object described, why, and the fit's score (lower is closer;
-    above 1 is no fit): the recall's own fit rule
+    """Whether the product ``record`` is the object described, why, and how close it is (the mean relative
+    error over the features the product states: a feature its page does not state says nothing about
+    which of several products that fit is the one; :func:`scrapers.lookup.search_stores` names the
+    closest by the description's noun): the recall's own fit rule
     (:func:`recall.fit.judge`) on the description recalled over that product alone, with the store's name
     counting as no evidence either way (:attr:`recall.fit.Trust.PLAIN`: a title can be a keyword list, a
     URL path or another language, and the store's search already matched the words); with no stated
     feature, when the description names the product. ``text`` is the description or its parse
     (``recall.parser.parse``), so that many records cost one parse."""
+    record = _judged(record)
     recaller = Recaller.from_records([record])
     if isinstance(text, str):
         result = recaller.recall_text(text, top=1)
@@ -205,7 +213,23 @@ def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float]:
         named = result.matches[0].matched_by_name
         return named, "named by the description" if named else "no stated feature and not named", 1.0
     fit = judge(result.closeness, result.errors, Trust.PLAIN, result.unused)
-    return fit.close, fit.reason, fit.score
+    stated = [e for f, e in result.errors.items() if getattr(record, f, None) is not None]
+    return fit.close, fit.reason, sum(stated) / len(stated) if stated else 1.0
+
+
+def _judged(record: ObjectRecord) -> ObjectRecord:
+    """``record`` as the fit judges it: a shape class that is only what its sizes imply
+    (:func:`scrapers.normalize.shape_from_dims`, used when the page states no shape) is no evidence
+    beyond the sizes, which are compared themselves, and cannot tell a round object from a box ("a knob
+    about 2 cm across", radial, is no misfit of a 2.9 x 2.1 x 2.1 cm knob the sizes call compact)."""
+    from dataclasses import replace
+
+    from scrapers.normalize import shape_from_dims
+
+    dims = [d for d in record.dims_cm if d is not None]
+    if record.shape is not None and record.shape == shape_from_dims(dims):
+        return replace(record, shape=None)
+    return record
 
 
 def recall_with_lookup(

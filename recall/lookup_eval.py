@@ -9,7 +9,7 @@ stores. The pages are real (:mod:`scrapers.corpus`), served by :class:`scrapers.
 of the seeded catalog and says (:class:`Trial`): whether it searched, whether the recall's match after the
 lookup is the object written from the expected page (``right``), and whether that object's values are the
 page's labelled ones within the corpus's tolerance (``values_right``: every labelled extent and the mass
-within :data:`scrapers.labelled_pages.TOLERANCE`).
+within :data:`scrapers.verdicts.TOLERANCE`, 2 %, as the extraction's corpus benchmark counts).
 """
 
 from __future__ import annotations
@@ -71,7 +71,8 @@ def _object_of_page(db: Path, url: str) -> tuple[str | None, dict[str, Any] | No
 
 def values_problems(values: dict[str, Any], truth: dict[str, Any]) -> list[str]:
     """How the object's values differ from the page's labels (empty: right)."""
-    from scrapers.labelled_pages import TOLERANCE, dims_within, within
+    from scrapers.labelled_pages import dims_within, within
+    from scrapers.verdicts import TOLERANCE
 
     problems = []
     dims = [values.get(k) for k in ("a_cm", "b_cm", "c_cm") if values.get(k) is not None]

@@ -55,6 +55,10 @@ def _comparison(words: list[str], start: int, end: int) -> bool:
     )
 
 
+#: How many words after "of" may hold the contents of "<head> of <contents>" (``NameIndex._contents_names``).
+CONTENTS_WINDOW = 4
+
+
 @dataclass(frozen=True)
 class NameEvidence:
     """Catalog rows a description names and the information of the naming, in nats: a phrase that names
@@ -153,6 +157,7 @@ class NameIndex:
         exact: dict[int, float] = {}
         head: dict[int, float] = {}
         phrases = self._whole_names(words, exact, head)
+        phrases += [p for p in self._contents_names(words, exact) if p not in phrases]
         heads = self._head_nouns(words, material, head, counted_head(text))
         if not phrases and not heads:
             heads = self._name_words(list(subject_phrase(text)[-1:]), head)  # the subject's head only
@@ -192,6 +197,26 @@ class NameIndex:
                         exact[row] = max(exact.get(row, 0.0), math.log(n / len(rows)))
                     phrases.append(" ".join(gram))
         return phrases
+
+    def _contents_names(self, words: list[str], exact: dict[int, float]) -> list[str]:
+        """Record in ``exact`` the rows of the catalog names "<contents> <head>" that the text says as
+        "<head> of <contents>" ("squeeze bottle of mustard" -> "mustard bottle", "a can of Campbell's tomato
+        soup" -> "tomato soup can"): one or two words of the :data:`CONTENTS_WINDOW` words after "of",
+        then the word before it; returns the names found."""
+        n = max(self.size, 1)
+        found: list[str] = []
+        for i, word in enumerate(words):
+            if word != "of" or i == 0:
+                continue
+            window = words[i + 1 : i + 1 + CONTENTS_WINDOW]
+            grams = [(*window[j : j + k], words[i - 1]) for k in (2, 1) for j in range(len(window) - k + 1)]
+            for gram in grams:
+                if gram in self.phrases and " ".join(gram) not in found:
+                    rows = self.phrases[gram]
+                    for row in rows:
+                        exact[row] = max(exact.get(row, 0.0), math.log(n / len(rows)))
+                    found.append(" ".join(gram))
+        return found
 
     def _name_words(self, words: list[str], head: dict[int, float]) -> list[str]:
         """When no whole name or head noun is found: record in ``head`` the rows whose names have the

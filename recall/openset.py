@@ -102,6 +102,7 @@ class KindIndex:
         self._rows: dict[str, list[int]] | None = None
         self._heads: dict[str, frozenset[str]] | None = None
         self._english: dict[str, str] | None = None
+        self._words: dict[str, frozenset[str]] | None = None
 
     def kind(self, row: int) -> str | None:
         if row not in self._kinds:
@@ -137,6 +138,20 @@ class KindIndex:
             # an object named by the head alone ("cord" beside "power cord") is the catalog's generic one
             self._heads = {h: frozenset(k) for h, k in out.items() if h not in sorts or h in bare}
         return self._heads
+
+    def words_by_head(self) -> dict[str, frozenset[str]]:
+        """The words before the head noun in the catalog's names, by head ("box" -> {"sugar", "cracker",
+        ...}); empty on a catalog larger than :data:`KIND_SCAN_LIMIT`."""
+        if self._words is None:
+            out: dict[str, set[str]] = {}
+            if len(self._names) <= KIND_SCAN_LIMIT:
+                for name in self._names:
+                    words = words_of(name)
+                    head = head_noun(words)
+                    if len(words) > 1:  # "roll of tape": the head "roll", its words "of" and "tape"
+                        out.setdefault(head, set()).update(w for w in words if w != head)
+            self._words = {h: frozenset(w) for h, w in out.items()}
+        return self._words
 
     def english_names(self) -> dict[str, str]:
         """The English names of the lexicon nouns heading the catalog objects' names and aliases, each with
@@ -214,10 +229,31 @@ def described_noun(
     english = tuple(words_of(noun.english))
     known = _names_catalog_object(noun.words, phrases, heads) or (
         noun.english != noun.text and bool(english)
-        and (_names_catalog_object(english, phrases, heads) or english[-1] in heads)
+        and (_names_catalog_object(english, phrases, heads) or head_noun(english) in heads)
     )  # a synonym names a sort of its English name's head noun ("puzzle cube" -> rubik's cube: a cube)
-    base = None if known else sort_of_catalog_object(noun, heads, kinds_of)
+    base = None if known else sort_of_catalog_object(noun, heads, kinds_of) or kind_mate(noun, subject, kinds_of)
     return DescribedNoun(noun.text, noun.kind, noun.english, known or base is not None, base)
+
+
+def kind_mate(noun: Noun, subject: Sequence[str], kinds_of: KindIndex | None) -> str | None:
+    """Whether a lexicon noun is a sort of the catalog objects named by its kind's name, with the same
+    modifier ("the yellow *sugar carton*": a carton is a box, and the catalog has a "sugar box"): the
+    kind's name (a carton's "box"), when it is the head noun of a catalog name that has the word before
+    the noun in the subject. Without that modifier ("a carton", "a cereal carton") it names another
+    object. Not worked out on catalogs larger than :data:`KIND_SCAN_LIMIT`. Returns the head, or None."""
+    if kinds_of is None or len(noun.words) != 1 or len(subject) < 2 or subject[-1] != noun.words[0]:
+        return None
+    words = kinds_of.words_by_head()
+    return noun.kind if subject[-2] in words.get(noun.kind, ()) else None
+
+
+def head_noun(words: Sequence[str]) -> str | None:
+    """The head noun of a phrase as the catalog's names have it: the word before "of" ("*bunch* of keys",
+    "*bottle* of water"), else the last word; None for no words."""
+    words = list(words)
+    if "of" in words[1:]:
+        return words[words.index("of", 1) - 1]
+    return words[-1] if words else None
 
 
 def sort_of_catalog_object(noun: Noun, heads, kinds_of: KindIndex | None) -> str | None:
@@ -332,6 +368,19 @@ def unseen_noun(unknown: str | None, subject: Sequence[str], plural: bool = Fals
     before = subject[-2] if len(subject) > 1 and subject[-1] == unknown else None
     text = f"{before} {unknown}" if before and before not in PLACEHOLDERS and noun_like(before) else unknown
     return DescribedNoun(text, ROOT, unknown, False)
+
+
+def counted_material(text: str, vocabulary: frozenset[str]) -> str | None:
+    """A material word that an indefinite article counts as the subject ("*a walnut*, in the shell", "*a
+    cork*": :func:`recall.subject.counted_head`) and that no catalog name and no lexicon noun has: it
+    names a thing the catalog does not have, as "a glass" names a drinking glass where the catalog has
+    one (RECALL.md, "Compounds"). None otherwise."""
+    from recall.subject import counted_head
+
+    word = counted_head(text)
+    if word is None or word not in _material_words() or word in vocabulary or noun_in([word]) is not None:
+        return None
+    return word
 
 
 def names_inside(noun: DescribedNoun | None, phrases: Sequence[str]) -> bool:
@@ -478,10 +527,12 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     import re
 
     from recall.names import GENERIC_NOUNS
-    from recall.subject import introduced, noun_phrase, said_in_plural, subject_phrase
+    from recall.subject import counted_parts, introduced, noun_phrase, said_in_plural, subject_phrase
     from recall.typos import corrected
 
     subject = noun_phrase(text)
+    if counted_parts(text, subject):
+        return None  # "tiny, two screw caps, 8 g": the parts the object has, not its name
     after_of: tuple[str, ...] = ()
     if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
         m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
@@ -491,6 +542,9 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     if noun is not None or any(w in names.vocabulary for w in after_of):
         return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
     head = names.unknown_noun(text) or compound_head(subject, names.vocabulary)
+    thing = counted_material(text, names.vocabulary)
+    if head is None and thing is not None:
+        return DescribedNoun(thing, ROOT, thing, False)  # "a walnut, 3.5 cm": a thing, not its material
     if head is None and after_of and subject[-1] in GENERIC_NOUNS:  # "a pair of bifocals"
         subject, head = after_of, foreign_head(after_of, names.vocabulary)
     bare = head is not None and not introduced(text, head)

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import re
+from collections.abc import Sequence
 
 from kb.kinds import singular, words_of
 
@@ -403,3 +404,15 @@ def introduced(text: str, word: str) -> bool:
             elif singular(w) == word or w == word:
                 return seen
     return False
+
+
+def counted_parts(text: str, phrase: Sequence[str]) -> bool:
+    """Whether a subject ``phrase`` (singular words) counts several of its head in the plural ("*two*
+    screw caps", "*five* fingers", "*nine* holes", "*four* legs"): a description lists the parts the
+    object has, it does not name the object (a number word other than "one", the head said in the plural
+    in ``text``; "a two-slice toaster" keeps its hyphen, so "two" is no word of its own there)."""
+    from recall import lexicon as lx
+
+    if len(phrase) < 2 or phrase[0] == "one" or phrase[0] not in lx.NUMBER_WORDS:
+        return False
+    return said_in_plural(phrase[-1], text)

@@ -47,9 +47,10 @@ from scrapers.normalize import (
 from scrapers.page import MAX_LINES, Page
 from scrapers.product_names import choose_name
 from scrapers.records import ProductRecord
-from scrapers.restatements import restated_elsewhere
+from scrapers.restatements import outranked_shop_weights, restated_elsewhere
 from scrapers.sets import set_apart, set_size
 from scrapers.trail import category_trail
+from scrapers.value_forms import placeholder_size
 
 __all__ = ["ADAPTERS", "AGREE_TOLERANCE", "MAX_PAGE_BYTES", "extract_file", "extract_page", "fuse"]
 
@@ -257,7 +258,9 @@ def _valid(
         if feature == "dims":
             extents = sorted(o.extents(), key=lambda e: -e[1])
             o.value, o.roles = tuple(v for _, v in extents), tuple(r for r, _ in extents)
-            reason = check_dims(o.value)
+            reason = check_dims(o.value) or (
+                "a shop system's placeholder size (1 x 1 x 1), not a measurement" if placeholder_size(o.raw) else None
+            )
         else:
             reason = check_mass(o.value)
         if reason and len(decisions) < MAX_CANDIDATES:
@@ -363,8 +366,12 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
         valid = _valid(observations, feature, "product", warnings, decisions, refused[feature])
         for cand, other in restated_elsewhere(valid, observations, feature, agree):
             valid.remove(cand)  # "Pendant measures 5/16 x 3/4" beside "Pendant measures: 0.3125 x 0.75"
-            decisions.append(_candidate(cand, f"not the product's: the page states it as a {other.role}'s "
+            decisions.append(_candidate(cand, f"not the product's: the page states it as a {_whose(other)}'s "
                                               f"({other.raw[:60]!r})"))
+        for cand, other in outranked_shop_weights(valid, agree) if feature == "mass" else []:
+            valid.remove(cand)
+            decisions.append(_candidate(cand, f"not used: a shop system's weight field, the page labels the "
+                                              f"product's ({other.raw[:60]!r})"))
         if not valid:  # a quantity written only in the product's name ("Almonds - 13oz")
             valid = _valid(observations, feature, "name", warnings, decisions, refused[feature])
         chosen[feature] = _choose(valid, agree, feature, warnings, decisions)

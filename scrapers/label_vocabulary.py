@@ -265,7 +265,7 @@ PART_WORDS = {
         "cable cord hose lid cap handle stand base bracket bracked bulb blade strap chain battery seat "
         "leg arm armrest screen display drawer shelf door opening inner interior pipe tube wire plug "
         "cushion mattress pillow heel sole shaft spout nozzle filter bowl cup glass jar tray basket wheel "
-        "pendant lens "
+        "pendant lens ständer standfuß standfuss fuss pied pieds piedistallo "
         "kabel schlauch deckel griff fuß sockel akku câble couvercle poignée pied cable tapa asa pie "
         "cavo coperchio manico piede kablo kapak sap ayak kordon"
     ).split()

@@ -88,6 +88,15 @@ class LabelInfo:
     #: For a product's label that leaves a part out (``Depth Without Handle``, ``Gewicht ohne Akku``), the
     #: words it excludes: a value of another configuration, used when no label states the whole product's.
     excludes: str | None = None
+    #: For a product's label that names a part it includes (``Gewicht mit Ständer``, ``Height including
+    #: stand``, ``Weight (incl. battery)``), the words it includes: the whole product as sold, which wins
+    #: over a label of the same axis that says nothing, or leaves the part out.
+    includes: str | None = None
+
+    @property
+    def configuration(self) -> int:
+        """2 for a label that includes a part, 1 for one that says nothing, 0 for one that leaves it out."""
+        return 2 if self.includes else 0 if self.excludes else 1
 
 
 #: Axis letters of order hints (en, de: B = Breite, T = Tiefe; ru: В высота, Ш ширина, Г глубина, Д длина).
@@ -139,7 +148,7 @@ def _classify(label: object) -> LabelInfo | None:
         return None  # "Weight (maximum)": another configuration's or a rating, see classify_other
     if bracket_part(text) is not None:
         return None  # "Size (Main Display)": the display's size, see classify_other
-    text = _DIRECTION.sub(r"\1", _BRACKETS.sub(" ", text).strip()).strip()
+    text = _DIRECTION.sub(r"\1", _BRACKETS.sub(_bracket_words, text).strip()).strip()
     text = _EN_BOY.sub("width x length", text)  # Turkish "En x Boy" before "en" is read as a preposition
     text = _FROM_WALL.sub(" ", _ORDER_HINT.sub(" ", text))
     folded = fold(text)
@@ -161,6 +170,8 @@ def _classify(label: object) -> LabelInfo | None:
     negated = False
     unknown: list[str] = []
     excluded: list[str] = []
+    including = False
+    included: list[str] = []
     has_body = any(w in BODY_WORDS for w in words)
     for word in words:
         if word in KIND_WORDS:
@@ -169,6 +180,8 @@ def _classify(label: object) -> LabelInfo | None:
             package = package or not negated
         elif word in NEGATIONS:
             negated = True
+        elif word in _INCLUDING and not negated:
+            including = True
         elif word in QUALIFIERS:
             continue
         elif _unit_word(word):
@@ -181,6 +194,9 @@ def _classify(label: object) -> LabelInfo | None:
             compound = _split_compound(word)
             if compound is None and negated:
                 excluded.append(word)  # what the value leaves out: "Weight without the cable"
+                continue
+            if compound is None and including and word in PART_WORDS:
+                included.append(word)  # what the value includes: "Gewicht mit Ständer", "Weight with stand"
                 continue
             if compound is None:
                 unknown.append(word)
@@ -201,20 +217,20 @@ def _classify(label: object) -> LabelInfo | None:
     if len({k for k in kinds if k in AXES}) >= 2:
         # "Width x Height x Depth", "Largo x Ancho x Alto"
         order = _order_of(original, kinds)
-        return _excluding(excluded, LabelInfo("dimensions", package, unit, order, shipping=_ships(package, words)))
+        return _excluding(excluded, included, LabelInfo("dimensions", package, unit, order, shipping=_ships(package, words)))
     for kind in (*AXES, "dimensions", "size", "weight"):
         if kind in kinds:
             if kind in ("dimensions", "size") and "weight" in kinds:
                 # "Weight & Dimensions"
-                return _excluding(excluded, LabelInfo("dimensions", package, unit, shipping=_ships(package, words)))
+                return _excluding(excluded, included, LabelInfo("dimensions", package, unit, shipping=_ships(package, words)))
             order = _order_of(original, kinds) if kind in ("dimensions", "size") else ()
-            return _excluding(excluded, LabelInfo(kind, package, unit, order, shipping=_ships(package, words)))
+            return _excluding(excluded, included, LabelInfo(kind, package, unit, order, shipping=_ships(package, words)))
     return None
 
 
 #: Words in a label's brackets that keep it the whole product's, whatever else they name: what it includes
 #: ("Height (with stand)", "Weight (incl. battery)").
-_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus y und and".split()}
+_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus".split()}
 
 
 def bracket_part(text: str) -> str | None:
@@ -231,8 +247,19 @@ def bracket_part(text: str) -> str | None:
     return None
 
 
-def _excluding(excluded: list[str], info: LabelInfo) -> LabelInfo:
-    return replace(info, excludes=" ".join(excluded)) if excluded else info
+def _excluding(excluded: list[str], included: list[str], info: LabelInfo) -> LabelInfo:
+    """``info`` with the words its label leaves out and the words it includes."""
+    if excluded:
+        info = replace(info, excludes=" ".join(excluded))
+    return replace(info, includes=" ".join(included)) if included else info
+
+
+def _bracket_words(m: re.Match) -> str:
+    """A bracket's text kept as label words when it says what the value includes or leaves out
+    (``Weight (incl. battery)``, ``Höhe (ohne Fuß)``); any other bracket (a unit, an axis order) is dropped."""
+    inner = m.group(0)[1:-1]
+    words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
+    return f" {inner} " if any(w in _INCLUDING or w in NEGATIONS for w in words) else " "
 
 
 _TRAILING_UNIT = re.compile(r"(?<![A-Za-z])([A-Za-z]{2,3})\s*$")

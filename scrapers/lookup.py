@@ -3,7 +3,7 @@
 :func:`search_stores` asks every store of a sources file that declares a ``search`` (see
 :mod:`scrapers.sources`) for the given words, reads the first results (:mod:`scrapers.store_search`,
 ``rel="next"`` pages followed while a store has listed fewer than its ``search_results``), fetches those
-product pages and extracts and validates them exactly as the nightly job does
+product pages (and when none of them fits, the next ``search_results``, :data:`MAX_RESULT_BATCHES`) and extracts and validates them exactly as the nightly job does
 (:func:`scrapers.ingest.process_page`), keeps the pages that ``fits`` accepts, and writes them as one
 small ingestion run through the nightly job's own short write transaction (:func:`scrapers.ingest.write_run`):
 observations with adapter ``lookup:<extractor>`` (provisional under the fusion rule, :mod:`scrapers.fusion`)
@@ -48,6 +48,10 @@ __all__ = ["DEFAULT_MAX_PAGES", "Candidate", "StoreAnswer", "StoresLookup", "sea
 DEFAULT_MAX_PAGES = 12
 #: Stores searched at the same time.
 MAX_PARALLEL_STORES = 4
+#: A store's results are read ``search_results`` at a time; when none of them fits, the next ones, up to
+#: this many batches in all (within the page and time budgets): a vague description ("a computer monitor")
+#: in a store that sells many of the kind lists the described one further down.
+MAX_RESULT_BATCHES = 3
 #: fits(record) -> (fits?, why) or (fits?, why, score): whether a product page is the described object; the
 #: score (lower is closer) says which of several pages that fit fits best.
 FitFn = Callable[[ObjectRecord], "tuple[bool, str] | tuple[bool, str, float]"]
@@ -157,12 +161,14 @@ def _checked(fetcher: PoliteFetcher, budget: _Budget, store: StoreSource) -> Sto
     return bounded
 
 
-def _result_urls(fetcher: PoliteFetcher, budget: _Budget, store: StoreSource, query: str, answer) -> list[str]:
-    """Up to ``store.search_results`` product URLs for ``query``, following ``rel=next`` pages."""
+def _result_urls(
+    fetcher: PoliteFetcher, budget: _Budget, store: StoreSource, query: str, answer, wanted: int
+) -> list[str]:
+    """Up to ``wanted`` product URLs for ``query``, following ``rel=next`` pages."""
     url: str | None = store.search_url(query)
     found: list[str] = []
     seen: set[str] = set()
-    while url and url not in seen and len(found) < store.search_results:
+    while url and url not in seen and len(found) < wanted:
         seen.add(url)
         bounded = _checked(fetcher, budget, store)
         answer.search_pages.append(url)
@@ -176,7 +182,7 @@ def _result_urls(fetcher: PoliteFetcher, budget: _Budget, store: StoreSource, qu
         found += [u for u in page.product_urls if u not in found]
         nxt = page.next_url
         url = nxt if nxt and urlsplit(nxt).netloc == urlsplit(store.base_url).netloc else None
-    return found[: store.search_results]
+    return found[:wanted]
 
 
 def _timed_extractor(budget: _Budget):
@@ -199,22 +205,28 @@ def _search_one(
     store: StoreSource,
     queries: Sequence[str],
     previous: dict[str, dict[str, Any]],
+    fits: FitFn | None = None,
 ) -> tuple[StoreAnswer, list[PageOutcome]]:
-    """One store: the first query that lists products, then its top product pages."""
+    """One store: the first query that lists products, then its top product pages, a batch of
+    ``search_results`` at a time while none fits (:data:`MAX_RESULT_BATCHES`; without ``fits``, one)."""
     answer = StoreAnswer(store.name)
     outcomes: list[PageOutcome] = []
     extract = _timed_extractor(budget)
+    batch = store.search_results
     try:
         urls: list[str] = []
+        wanted = batch * (MAX_RESULT_BATCHES if fits is not None else 1)
         for query in queries:
             answer.queries.append(query)
-            urls = _result_urls(fetcher, budget, store, query, answer)
+            urls = _result_urls(fetcher, budget, store, query, answer, wanted)
             if urls:
                 break
         if not urls:
             return answer, outcomes
         answer.status = "answered"
-        for url in urls:
+        for i, url in enumerate(urls):
+            if i and i % batch == 0 and _any_fits(outcomes, fits):
+                break
             bounded = _checked(fetcher, budget, store)
             answer.product_pages.append(url)
             outcomes.append(process_page(fetcher, bounded, url, previous.get(url), extract))
@@ -223,6 +235,13 @@ def _search_one(
             answer.status = "skipped"
         answer.reason = str(stop)
     return answer, outcomes
+
+
+def _any_fits(outcomes: list[PageOutcome], fits: FitFn | None) -> bool:
+    """Whether a page read fits (or is known from an earlier lookup): then no further results are read."""
+    return fits is None or any(
+        p.outcome == "not_modified" or (p.outcome == "extracted" and fits(p.clean)[0]) for p in outcomes
+    )
 
 
 def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = ()) -> list[Candidate]:
@@ -300,7 +319,7 @@ def search_stores(
     previous = previous_pages(kb)
     t0 = time.perf_counter()
     pool = ThreadPoolExecutor(max_workers=min(MAX_PARALLEL_STORES, len(stores)), thread_name_prefix="lookup")
-    futures = [pool.submit(_search_one, fetcher, budget, s, queries, previous) for s in stores]
+    futures = [pool.submit(_search_one, fetcher, budget, s, queries, previous, fits) for s in stores]
     done, _ = wait(futures, timeout=max(budget.remaining(), 0.0) + 0.25)
     pool.shutdown(wait=False, cancel_futures=True)
     outcomes: list[PageOutcome] = []

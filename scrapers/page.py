@@ -73,6 +73,30 @@ _LD_JSON = re.compile(
 MAX_SCRIPT_CHARS = 2_000_000
 
 
+#: State shipped as a JSON string literal (``window.__DATA__ = JSON.parse("{\\"product\\": ...}")``): the
+#: object is inside the string, escaped.
+_JSON_PARSE = re.compile(r"JSON\.parse\(\s*(?=\")")
+MAX_PARSED_STRINGS = 8
+
+
+def _parsed_strings(body: str, decoder: json.JSONDecoder) -> list[Any]:
+    """The objects of a script's ``JSON.parse("…")`` calls (at most :data:`MAX_PARSED_STRINGS`)."""
+    out: list[Any] = []
+    if "JSON.parse(" not in body:
+        return out
+    for m in _JSON_PARSE.finditer(body):
+        try:
+            literal, _ = decoder.raw_decode(body[m.end() : m.end() + MAX_SCRIPT_CHARS])
+            obj = json.loads(literal) if isinstance(literal, str) and literal.lstrip()[:1] in "{[" else None
+        except (ValueError, RecursionError):
+            continue
+        if obj is not None:
+            out.append(obj)
+            if len(out) >= MAX_PARSED_STRINGS:
+                break
+    return out
+
+
 def _js_object(text: str) -> Any:
     """The first JavaScript object literal of ``text`` (chompjs), or None."""
     if not any(ch in text[:200] for ch in ":'"):
@@ -199,6 +223,7 @@ class Page:
             attrs, body = m.group(1), m.group(2)
             if "ld+json" in attrs.lower() or len(body) < 20:
                 continue
+            payloads.extend(_parsed_strings(body, decoder))
             start = body.find("{")
             if start < 0:
                 continue

@@ -1,9 +1,11 @@
-"""A value a page states twice: once in a sentence, once under a label that says whose it is.
+"""A value a page states twice: once where nothing says whose it is, once under a label that does.
 
 A description's sentence ("Pendant measures 5/16 x 3/4") names no field, so the free-text reader takes it
 for the product's; the same page's spec list says "Pendant measures: 0.3125" x 0.75"", a part's label.
-The labelled statement says whose the value is: a sentence's candidate that agrees with a part's, a
-variant's or a capacity's value stated under a label is that thing's, not the product's.
+Structured data's bare ``weight: 6.34 kg`` (microdata, JSON-LD) is as often the parcel's: the spec table
+says "Versandgewicht: 6,34 kg". The labelled statement says whose the value is: such a candidate that
+agrees with a part's, a variant's, a capacity's, a package's or a shipment's labelled value, and with no
+labelled product value, is that thing's, not the product's.
 """
 
 from __future__ import annotations
@@ -16,9 +18,11 @@ _WORD = re.compile(r"[^\W\d_]{3,}")
 
 #: Adapters that read sentences, not labelled fields.
 SENTENCE_SOURCES = frozenset({"free_text"})
-#: Whose labelled values decide a sentence's (the product's box and the parcel do not: a sentence stating
-#: the box's size beside the product's label is not evidence either way).
-OTHER_THINGS = ("component", "variant", "capacity")
+#: Adapters whose fields say nothing of whose value it is (a bare ``weight``), beside the sentences'.
+UNLABELLED_SOURCES = SENTENCE_SOURCES | {"jsonld", "microdata", "opengraph", "shopify", "woocommerce"}
+#: Adapters that read labels ("Versandgewicht", "Pendant measures:").
+LABELLED_SOURCES = frozenset({"spec_table", "embedded_json"})
+OTHER_THINGS = ("component", "variant", "capacity", "shipping")
 
 
 def restated_elsewhere(
@@ -29,15 +33,20 @@ def restated_elsewhere(
     or a capacity. A "part" named by a word of the product's name is the product itself ("This vase
     weighs approximately: 1.2 kg" on the vase's page), never evidence."""
     name_words = {w for o in observations if o.feature == "name" for w in _WORD.findall(str(o.value).lower())}
-    others = [o for o in observations if o.feature == feature and o.role in OTHER_THINGS
-              and o.source not in SENTENCE_SOURCES
+    labelled = [o for o in observations if o.feature == feature and o.source in LABELLED_SOURCES]
+    others = [o for o in labelled if (o.role in OTHER_THINGS or getattr(o, "package", False))
               and not (set(_WORD.findall((o.part or "").lower())) & name_words)]  # fmt: skip
+    products = [o for o in labelled if o.role == "product" and not getattr(o, "package", False)]
     out = []
     for cand in valid:
-        if cand.source not in SENTENCE_SOURCES:
+        if cand.source not in UNLABELLED_SOURCES:
             continue
-        hit = next((o for o in others if _agrees(cand.value, o.value, feature, agree)), None)
-        if hit is not None:
+        if cand.source not in SENTENCE_SOURCES:  # structured data: a package's or a shipment's only
+            hits = [o for o in others if o.role == "shipping" or getattr(o, "package", False)]
+        else:
+            hits = others
+        hit = next((o for o in hits if _agrees(cand.value, o.value, feature, agree)), None)
+        if hit is not None and not any(_agrees(cand.value, p.value, feature, agree) for p in products):
             out.append((cand, hit))
     return out
 
@@ -47,3 +56,19 @@ def _agrees(a: Any, b: Any, feature: str, agree: Callable[[Any, Any], bool]) -> 
         a, b = tuple(a), tuple(b)
         return len(a) == len(b) and agree(a, b)
     return agree(a, b)
+
+
+#: Shop systems whose weight field is what the merchant entered for shipping (Shopify's variant grams,
+#: WooCommerce's weight): the product's weight only when the page labels none.
+SHOP_SYSTEM_SOURCES = frozenset({"shopify", "woocommerce"})
+
+
+def outranked_shop_weights(valid: Sequence[Any], agree: Callable[[Any, Any], bool]) -> list[tuple[Any, Any]]:
+    """(shop-system mass candidate, the labelled product mass it disagrees with) for every shop-system
+    weight that no labelled product weight on the page agrees with, when the page labels one (Ridge's
+    ``weight: 150`` in its Shopify data beside "WEIGHT: 2 oz")."""
+    labelled = [o for o in valid if o.source in LABELLED_SOURCES]
+    if not labelled:
+        return []
+    return [(c, labelled[0]) for c in valid
+            if c.source in SHOP_SYSTEM_SOURCES and not any(agree(c.value, o.value) for o in labelled)]  # fmt: skip

@@ -155,6 +155,11 @@ _BRACKETED_UNIT = re.compile(rf"(?<=\d)\s*\(\s*({_UNIT})\s*\)")
 _SLASHED = re.compile(rf"(?<![\d/])({_NUMBER})\s*/\s*({_NUMBER})\s*/\s*({_NUMBER})(?![\d/])")
 
 
+# "539.5 x 355.5 (505.5) x 171 mm": another configuration's figure in brackets after one of a size's (a
+# monitor's height at its highest stand position); the size is the figures outside the brackets.
+_ALTERNATIVE = re.compile(rf"(?<=\d)\s*\(\s*{_NUMBER}\s*\)(?=\s*x\s*\d)")
+
+
 def _bracketed_unit(m: re.Match) -> str:
     return f" {m.group(1)}" if length_unit(m.group(1)) is not None else m.group(0)
 
@@ -173,7 +178,7 @@ AXIS_WORD_AFTER = re.compile(
 def _parse_dims(text: str, default_unit: str | None, decimal_comma: bool | None) -> list[Dims]:
     s = clean_text(text[:MAX_TEXT])
     if "(" in s:
-        s = _BRACKETED_UNIT.sub(_bracketed_unit, _BRACKETED_AXIS.sub("", s))
+        s = _BRACKETED_UNIT.sub(_bracketed_unit, _BRACKETED_AXIS.sub("", _ALTERNATIVE.sub("", s)))
     if "/" in s:
         s = _SLASHED.sub(r"\1 x \2 x \3", s)
     if AXIS_WORD_AFTER.search(s):  # "13.3 inches width x 3.4 inches high": the axis letters' places

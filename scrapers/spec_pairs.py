@@ -344,6 +344,10 @@ def _stem(word: str) -> str:
     return word[:-1] if len(word) > 3 and word.endswith("s") else word
 
 
+#: A screen's size is its diagonal, never an extent of the product, even on a monitor's page ("IPS Display").
+_SCREEN = re.compile(r"display|screen|bildschirm|écran|ecran|pantalla|schermo|tela|ekran|экран|panel", re.IGNORECASE)
+
+
 def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
     """Pairs whose part's label names the product itself (``Robot Weight`` on a robot vacuum's page,
     ``Speaker Dimensions`` on a speaker's: every word of the part in the page title) as the product's,
@@ -365,6 +369,7 @@ def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
             and info.part
             and feature(info) not in stated
             and {_stem(w) for w in info.part.split()} <= words
+            and not (feature(info) == "dims" and _SCREEN.search(info.part))
         ):
             p = replace(p, info=replace(info, role="product", part=None))
         out.append(p)

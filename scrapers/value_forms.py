@@ -13,7 +13,8 @@ from scrapers.labels import AXES, classify_label, classify_other
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
 __all__ = [
-    "NARROW_RANGE", "axis_segments", "for_one_size", "keyed_variant", "metric_figure", "one_length", "written_value",
+    "NARROW_RANGE", "axis_segments", "for_one_size", "keyed_variant", "metric_figure", "one_length", "placeholder_size",
+    "written_value",
 ]
 
 #: A range no wider than this ratio is the object's own adjustment or a tolerance (``30-32 cm``, ``1,2 – 1,5
@@ -54,6 +55,16 @@ def keyed_variant(value: str) -> bool:
         return False
     words = [w for w in re.split(r"[\W_]+", fold(key)) if w]
     return not all(w in QUALIFIERS or w in OVERALL or w in BODY_WORDS for w in words)
+
+
+_ONE = r"(?<![\d.,])1(?:[.,]0+)?(?:\s*[^\W\d_]{0,6}\.?|\s*[\"'″])?\s*"
+#: ``1 × 1 × 1 in``, ``1x1x1 cm``: what a shop system shows when nobody entered a size.
+_PLACEHOLDER = re.compile(rf"{_ONE}x\s*{_ONE}x\s*1(?:[.,]0+)?(?![\d.,])")
+
+
+def placeholder_size(raw: str) -> bool:
+    """Whether a size's text is the shop system's placeholder (:data:`_PLACEHOLDER`), not a measurement."""
+    return _PLACEHOLDER.search(clean_text(raw.split(": ", 1)[-1])) is not None
 
 
 def axis_segments(value: str, unit: str | None, decimal_comma: bool | None) -> list[tuple[str, float]]:

@@ -4,13 +4,15 @@ Tables live between marker comments in README.md::
 
     <!-- figures:recall-accuracy -->   ... generated ...   <!-- /figures:recall-accuracy -->
     <!-- figures:benchmarks -->        ... generated ...   <!-- /figures:benchmarks -->
+    <!-- figures:extraction-corpus --> ... generated ...   <!-- /figures:extraction-corpus -->
 
 Sources (committed, so the README can be checked without re-measuring):
 
 * ``benchmarks/results/evaluate.json``: ``objrecall evaluate --json`` on the development set and on the
   hold-out set (``--evaluate`` re-runs it, about a minute);
 * ``benchmarks/results/*.json`` with ``benchmark`` and ``result`` keys, one per benchmark table row,
-  written by a benchmark run through :func:`benchmarks.results.save` (``order`` sorts the rows).
+  written by a benchmark run through :func:`benchmarks.results.save` (``order`` sorts the rows);
+* ``benchmarks/results/corpus_bench.json``'s per-language and per-layout counts, for the extraction table.
 
 Usage::
 
@@ -162,11 +164,44 @@ def replace_block(text: str, name: str, content: str) -> str:
     return pattern.sub(lambda m: m.group(1) + content.rstrip("\n") + "\n" + m.group(3), text)
 
 
+def _merged(groups: dict, key=lambda g: g) -> dict:
+    out: dict = {}
+    for g, c in groups.items():
+        m = out.setdefault(key(g), {"pages": 0, "dims": 0, "mass": 0})
+        for k in m:
+            m[k] += c[k]
+    return out
+
+
+def render_corpus_table(results: Path = RESULTS) -> str:
+    """The extraction figures per language (primary subtag: ``en-US`` counts as ``en``) and per layout
+    class, held-out stores beside development stores, from ``corpus_bench.json`` (``--held-out --save``)."""
+    path = results / "corpus_bench.json"
+    if not path.exists():
+        raise FiguresError(f"{path} is missing: run benchmarks/corpus_bench.py --held-out --save")
+    data = json.loads(path.read_text(encoding="utf-8"))["data"]
+    held, dev = data["held_out"], data["development"]
+
+    def cell(c: dict | None, k: str) -> str:
+        return f"{c[k]}/{c['pages']} ({c[k] / c['pages']:.2f})" if c and c["pages"] else "–"
+
+    lines = ["| group | held-out dims | held-out mass | development dims | development mass |", "|---|---|---|---|---|"]
+    lines.append(f"| **all** ({held['stores']} + {dev['stores']} stores) | {cell(held['all'], 'dims')} | "
+                 f"{cell(held['all'], 'mass')} | {cell(dev['all'], 'dims')} | {cell(dev['all'], 'mass')} |")
+    for kind, key in (("language", lambda g: g.split("-")[0].lower()), ("layout", lambda g: g)):
+        h, d = _merged(held[kind], key), _merged(dev[kind], key)
+        for g in sorted(set(h) | set(d), key=lambda g: (-(h.get(g, {}).get("pages", 0) + d.get(g, {}).get("pages", 0)), g)):
+            lines.append(f"| {kind} {g} | {cell(h.get(g), 'dims')} | {cell(h.get(g), 'mass')} | "
+                         f"{cell(d.get(g), 'dims')} | {cell(d.get(g), 'mass')} |")
+    return "\n".join(lines) + "\n"
+
+
 def render_readme(text: str, results: Path = RESULTS) -> str:
     """The README ``text`` with every figure table regenerated from the saved results."""
     evaluate = json.loads((results / EVALUATE_JSON.name).read_text(encoding="utf-8"))
     text = replace_block(text, "recall-accuracy", render_recall_table(evaluate))
-    return replace_block(text, "benchmarks", render_benchmark_table(load_benchmark_rows(results)))
+    text = replace_block(text, "benchmarks", render_benchmark_table(load_benchmark_rows(results)))
+    return replace_block(text, "extraction-corpus", render_corpus_table(results))
 
 
 def main(argv: list[str] | None = None) -> int:

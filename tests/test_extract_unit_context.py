@@ -3,7 +3,6 @@
 - a number without a unit in a page's state JSON (``"width": "24"``, ``"sizes": "16x16"``: an icon's pixels
   as often as a size) is a measurement only with its unit in a sibling key (a nutrition store's page read
   its icons as 86 x 61 cm);
-- a grocer's ``Size: 275g`` is the product's net weight (it beat the title's ``300g`` only when read);
 - an element whose class names the product's own specification (``pdp-product-specs``) is not another
   product's block because its id says ``FindSimilar`` (an electronics distributor's spec table).
 """
@@ -60,15 +59,11 @@ def test_has_unit(text, unit):
     assert has_unit(text) is unit
 
 
-@pytest.mark.parametrize(("size", "mass"), [("275g", 275.0), ("1,5 kg", 1500.0), ("12 oz", 340.2)])
-def test_a_grocers_size_in_grams_is_its_weight(size, mass):
-    r = _record(f"<dl><dt>Size</dt><dd>{size}</dd></dl>", title="Avocado XL Loose 300g")
-    assert r is not None and r.mass_g == pytest.approx(mass, rel=1e-3)
-
-
-def test_a_size_in_cm_is_still_a_size():
-    r = _record("<dl><dt>Size</dt><dd>45 cm</dd></dl>")
-    assert r is not None and r.mass_g is None and [e["cm"] for e in r.dims] == [45.0]
+def test_a_size_of_a_mass_alone_is_not_read_as_the_weight():
+    # "Größe: 1KG" is as often a variant picker's (a coffee store) as a grocer's net weight ("Size: 275g"),
+    # and a "Product size" heading can pair with a capacity's "220 lb" below it: a size label never gives a mass
+    r = _record("<dl><dt>Product size</dt><dd>Tested for:</dd><dd>220 lb</dd></dl>")
+    assert r is None or r.mass_g is None
 
 
 @pytest.mark.parametrize(("ident", "classes", "foreign"), [
@@ -114,3 +109,17 @@ def test_format_and_one_size_label_the_products_size(row, dims):
 
 def test_a_format_without_a_length_is_no_size():
     assert _record("<dl><dt>Format</dt><dd>16:9</dd></dl>") is None
+
+
+def test_state_shipped_as_a_json_string_literal_is_read():
+    # a large US retailer: window.__DATA__ = JSON.parse("{\"product\": {... \"<B>Weight:</B> 8.5 Pounds\"}}")
+    inner = json.dumps({"product": {"name": "Thing", "bullets": ["<B>Number of Pieces:</B> 1", "<B>Weight:</B> 8.5 Pounds"]}})
+    script = f"<script>function f(o) {{ return o; }}\nwindow.__DATA__ = JSON.parse({json.dumps(inner)});</script>"
+    r = _record(script + "<p>A pan.</p>")
+    assert r is not None and r.mass_g == pytest.approx(3855.5, rel=1e-3)
+
+
+@pytest.mark.parametrize("literal", ['"not json"', '"{broken"', "'single quoted'"])
+def test_a_json_parse_of_something_else_is_skipped(literal):
+    r = _record(f"<script>var x = JSON.parse({literal});</script><dl><dt>Weight</dt><dd>2 kg</dd></dl>")
+    assert r is not None and r.mass_g == 2000.0

@@ -162,3 +162,97 @@ def test_a_sentence_with_its_own_value_is_still_the_products():
 def test_lists_variants_is_symmetric(x, y):
     info = classify_label("Weight")
     assert lists_variants(f"{x:.2f} g", f"{y:.2f} g", info) == lists_variants(f"{y:.2f} g", f"{x:.2f} g", info)
+
+
+# ------------------------------------------------------------- structured data restating the parcel's
+def _microdata(weight: str) -> str:
+    return (f"<div itemscope itemtype='https://schema.org/Product'><span itemprop='name'>Monitor</span>"
+            f"<span itemprop='weight'>{weight}</span></div>")
+
+
+def test_a_bare_structured_weight_equal_to_the_labelled_shipping_weight_is_the_shipments():
+    body = _microdata("6.34 kg") + "<table><tr><td>Versandgewicht</td><td>6,34 kg</td></tr></table>"
+    r = _record(body, "Monitor")
+    assert r is None or r.mass_g is None
+    assert r is None or r.shipping_mass_g == [6340.0]
+
+
+def test_it_stays_the_products_when_a_labelled_product_weight_agrees():
+    body = _microdata("6.34 kg") + ("<table><tr><td>Gewicht</td><td>6,34 kg</td></tr>"
+                                    "<tr><td>Versandgewicht</td><td>6,34 kg</td></tr></table>")
+    assert _record(body, "Monitor").mass_g == 6340.0
+
+
+def test_a_structured_weight_equal_to_a_parts_is_still_the_products():
+    # only the parcel's or the box's labelled value says a structured weight is not the product's
+    body = _microdata("2 kg") + "<table><tr><td>Akkugewicht</td><td>2 kg</td></tr></table>"
+    assert _record(body, "Drill").mass_g == 2000.0
+
+
+def test_a_screens_size_on_a_monitors_page_is_no_extent():
+    body = "<table><tr><td>Displaygröße</td><td>23.8\"</td></tr><tr><td>Gewicht</td><td>3 kg</td></tr></table>"
+    r = _record(body, "Acer CB242YE 23.8 Full HD IPS Display schwarz")
+    assert r is not None and not r.dims and r.mass_g == 3000.0
+    # a part named by the title is still the product's otherwise ("Robot Weight" on a robot's page)
+    r = _record("<table><tr><td>Robot Weight</td><td>3.2 kg</td></tr></table>", "Robot Vacuum R7")
+    assert r is not None and r.mass_g == 3200.0
+
+
+# ------------------------------------------------------------------ variants in state JSON, placeholders
+def _state(obj) -> str:
+    import json
+
+    return f"<script>window.__STATE__ = {json.dumps(obj)};</script><p>A rug.</p>"
+
+
+def test_a_label_with_three_different_values_in_state_json_lists_variants():
+    sizes = [{"title": "Size", "value": v} for v in ("2'x3'", "3'x5'", "5'x7'")]
+    assert _record(_state({"product": {"name": "Thing", "options": sizes}})) is None
+
+
+def test_two_values_or_one_repeated_are_not_a_list():
+    two = [{"title": "Size", "value": v} for v in ("3'x5'", "3' x 5'", "3'x5'")]  # one size, written thrice
+    r = _record(_state({"product": {"name": "Thing", "options": two}}))
+    assert r is not None and sorted(e["cm"] for e in r.dims) == [91.44, 152.4]
+    pair = [{"title": "Size", "value": v} for v in ("2'x3'", "3'x5'")]
+    assert _record(_state({"product": {"name": "Thing", "options": pair}})) is not None
+
+
+@pytest.mark.parametrize(("size", "refused"), [("1 × 1 × 1 in", True), ("1x1x1 cm", True), ("1.0 x 1.0 x 1.0 in", True),
+                                               ("10 x 1 x 1 cm", False), ("1 x 1 x 10 cm", False)])
+def test_a_shop_systems_placeholder_size_is_refused(size, refused):
+    from scrapers.value_forms import placeholder_size
+
+    assert placeholder_size(f"dimensions_html: {size}") is refused
+    r = _record(f"<dl><dt>Dimensions</dt><dd>{size}</dd><dt>Weight</dt><dd>2 kg</dd></dl>")
+    assert r is not None and (not r.dims) is refused
+
+
+# ---------------------------------------------------------------------- a shop system's weight field
+class _Obs:
+    def __init__(self, source: str, value: float):
+        self.source, self.value, self.raw = source, value, f"{source}: {value}"
+
+
+def _agree(a: float, b: float) -> bool:
+    return abs(a - b) <= 0.02 * max(a, b)
+
+
+def test_a_labelled_product_weight_outranks_a_shop_systems_weight_field():
+    from scrapers.restatements import outranked_shop_weights
+
+    shop, label = _Obs("shopify", 150.0), _Obs("spec_table", 56.7)  # Ridge: weight 150 vs "WEIGHT: 2 oz"
+    assert outranked_shop_weights([shop, label], _agree) == [(shop, label)]
+    woo = _Obs("woocommerce", 560.0)
+    assert outranked_shop_weights([woo, _Obs("embedded_json", 500.0)], _agree)[0][0] is woo
+
+
+@pytest.mark.parametrize("others", [
+    [],  # no labelled weight: the field is what there is
+    [_Obs("spec_table", 151.0)],  # a labelled weight agrees (within 2 %)
+    [_Obs("jsonld", 56.7)],  # structured data is no label
+])  # fmt: skip
+def test_a_shop_systems_weight_field_stays_when_no_label_disagrees(others):
+    from scrapers.restatements import outranked_shop_weights
+
+    assert outranked_shop_weights([_Obs("shopify", 150.0), *others], _agree) == []

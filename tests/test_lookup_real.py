@@ -107,7 +107,11 @@ def test_the_noun_searched_for_is_given_as_the_alias():
     res = r.recall_text("a garlic press, 16 cm long")
     assert described_names(res, ("garlic press",)) == ("garlic press",)
     unknown = r.recall_text("an Asustor NAS, 29 x 23 x 22 cm, 6.2 kg")
-    assert "nas" in described_names(unknown, ("asustor nas", "nas"))
+    assert described_names(unknown, ("asustor nas", "nas")) == ("asustor nas", "nas")
+    knob = r.recall_text("a black cabinet knob, about 2 cm across")
+    assert described_names(knob, ("black cabinet knob", "knob")) == ("black cabinet knob", "knob")
+    plural = r.recall_text("guitar patch cables, 50 g")  # the phrase singular is not as written
+    assert described_names(plural, ("guitar patch cable", "cable")) == ("cable",)
 
 
 # --- when the lookup starts: the recall's match is not the thing the subject names -----------------------
@@ -156,11 +160,20 @@ def test_a_perfect_fit_fits_whatever_the_stores_name_says():
 def test_fits_is_the_open_set_rule_at_its_boundary():
     from recall.fit import THRESHOLDS, Trust
 
-    edge = 1000 * (1 - THRESHOLDS[Trust.PLAIN])
-    ok, why, score = fits("it weighs exactly 1000 g", ObjectRecord.create("a thing", mass_g=edge))
-    assert ok and score == pytest.approx(1.0) and "at most 0.30" in why
-    ok, why, score = fits("it weighs exactly 1000 g", ObjectRecord.create("a thing", mass_g=edge - 1))
-    assert not ok and score > 1.0 and why.startswith("does not fit")
+    limit = THRESHOLDS[Trust.PLAIN]
+    edge = 1000 * (1 - limit)
+    ok, why, closeness = fits("it weighs exactly 1000 g", ObjectRecord.create("a thing", mass_g=edge))
+    assert ok and closeness == pytest.approx(limit) and "at most 0.30" in why
+    ok, why, closeness = fits("it weighs exactly 1000 g", ObjectRecord.create("a thing", mass_g=edge - 1))
+    assert not ok and closeness > limit and why.startswith("does not fit")
+
+
+def test_a_feature_the_page_does_not_state_does_not_make_another_product_closer():
+    text = "a chrome lamp, 34 cm across and 22 cm high"
+    exact = fits(text, ObjectRecord.create("mesmeri halo chrome", a_cm=34, b_cm=22.1))
+    near = fits(text, ObjectRecord.create("kinis wall lamp", a_cm=25, b_cm=24, c_cm=18, material="metal"))
+    assert exact[0] and near[0]  # both fit (the rule counts the unstated material as half an error) ...
+    assert exact[2] < near[2]  # ... but the page stating exactly the sizes is the closer one
 
 
 # --- a person's name of a product ------------------------------------------------------------------------
@@ -192,3 +205,11 @@ def test_a_persons_name_is_short_and_never_empty_for_a_title_with_letters(title)
     if sum(ch.isalnum() for ch in title) >= 2:
         assert name.strip()
 
+
+
+def test_a_shape_only_the_sizes_imply_is_no_misfit():
+    text = "a black cabinet knob, about 2 cm across and 2.9 cm deep"  # "across": round
+    derived = ObjectRecord.create("knob bagganäs", a_cm=2.86, b_cm=2.06, c_cm=2.06, shape="compact")
+    assert fits(text, derived)[0]  # compact is what 2.86 x 2.06 x 2.06 implies: the sizes decide
+    stated = ObjectRecord.create("knob bagganäs", a_cm=2.86, b_cm=2.06, c_cm=2.06, shape="thin")
+    assert not fits(text, stated)[0]  # a shape the sizes do not imply was stated by the page: it counts

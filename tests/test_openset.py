@@ -265,10 +265,20 @@ def test_a_later_phrase_names_the_object_only_when_a_determiner_introduces_it():
     from recall.subject import introduced, noun_phrase
 
     assert noun_phrase("Steel, 15 cm long, a nutcracker") == ("nutcracker",)
-    assert noun_phrase("tiny, two screw caps, 8 g") != ("screw", "cap")  # parts of the thing described
-    assert noun_phrase("plastic, handset on a base, 700 g") != ("handset",)
+    assert noun_phrase("plastic, handset on a base, 700 g") == ("plastic",)  # a part of the thing described
     assert introduced("steel, 15 cm long, a nutcracker", "nutcracker")  # the clause that has it decides
     assert not introduced("tiny, two screw caps, 8 g", "cap")
+
+
+def test_a_count_of_a_plural_noun_lists_parts_and_names_no_object():
+    from recall.subject import counted_parts
+
+    assert counted_parts("tiny, two screw caps, 8 g", ("two", "screw", "cap"))
+    assert counted_parts("five fingers, 19 cm long", ("five", "finger"))
+    assert not counted_parts("one screw cap, 8 g", ("one", "screw", "cap"))  # one: the thing itself
+    assert not counted_parts("two screw cap, 8 g", ("two", "screw", "cap"))  # not said in the plural
+    assert not counted_parts("screw caps, 8 g", ("screw", "cap"))  # no count
+    assert not seed().recall_text("tiny, two screw caps, 8 g").not_in_catalog
 
 
 def test_a_bare_word_read_as_a_misspelt_foreign_noun_is_no_verdict():
@@ -277,3 +287,31 @@ def test_a_bare_word_read_as_a_misspelt_foreign_noun_is_no_verdict():
     assert not r.recall_text("five fingers, 19 cm long").not_in_catalog
     slip = r.recall_text("screwdiver, 20 cm long, 90 g")  # bare too, but misspelt for a catalog word
     assert slip.described is not None and slip.described.noun == "screwdriver" and not slip.not_in_catalog
+
+
+def test_a_material_word_an_article_counts_is_a_thing_the_catalog_lacks():
+    from recall.openset import counted_material
+
+    vocabulary = frozenset({"glass", "bottle", "wine"})
+    assert counted_material("a walnut, in the shell, 3.5 cm, 12 grams", vocabulary) == "walnut"
+    assert counted_material("walnut, 3.5 cm, 12 grams", vocabulary) is None  # a material: not counted
+    assert counted_material("a walnut box, 12 cm", vocabulary) is None  # the head is "box"
+    assert counted_material("a glass, 12 cm", vocabulary) is None  # the catalog's glasses
+    assert counted_material("a marble, 1.6 cm", vocabulary) is None  # a lexicon noun: its own rule
+    res = seed().recall_text("A walnut, in the shell, 3.5 cm, 12 grams.")
+    assert res.not_in_catalog and res.described.noun == "walnut"
+
+
+def test_a_synonyms_english_name_is_in_the_catalog_by_its_head_before_of():
+    # "bunch" is the lexicon's synonym of "bunch of keys" (the seed catalog's): its head is "bunch", so a
+    # catalog with keys but no bunch ("chuck key") does not have "a bunch of grapes"
+    from kb.features import ObjectRecord
+    from recall.engine import Recaller
+    from recall.openset import head_noun
+
+    assert head_noun(("bunch", "of", "key")) == "bunch" and head_noun(("mustard", "bottle")) == "bottle"
+    assert head_noun(("of",)) == "of" and head_noun(()) is None
+    keys = Recaller.from_records([ObjectRecord.create("chuck key", a_cm=8, mass_g=60),
+                                  ObjectRecord.create("sugar box", a_cm=18, b_cm=10, c_cm=5, mass_g=514)])
+    assert keys.recall_text("a bunch of grapes, about 20 cm long, a pound").not_in_catalog
+    assert not seed().recall_text("a bunch of keys, 10 cm, 70 g").not_in_catalog

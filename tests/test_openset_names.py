@@ -194,3 +194,17 @@ def test_an_orange_mug_is_the_coffee_mug_and_an_orange_is_still_no_mug():
         res = seed().recall_text(text)
         assert res.best.name == "coffee mug" and not res.open_set and res.confidence > 0.5, text
     assert seed().recall_text("An orange of 7 cm diameter.").not_in_catalog
+
+
+# ------------------------------------------------ "<head> of <contents>" names "<contents> <head>" (issue 23)
+def test_a_head_of_its_contents_names_the_catalog_name_of_contents_and_head():
+    from recall.name_index import CONTENTS_WINDOW, NameIndex
+
+    names = NameIndex(["mustard bottle", "tomato soup can", "windex bottle"], [(), (), ()])
+    found = names.find("squeeze bottle of mustard, plastic, 7 inches high")
+    assert found.phrases == ("mustard bottle",) and set(found.exact) == {0}
+    assert names.find("a can of Campbell's tomato soup, 4 in tall").phrases == ("tomato soup can",)
+    assert names.find("a bottle of ketchup, 19 cm tall").phrases == ()  # no ketchup bottle: heads only
+    assert CONTENTS_WINDOW == 4  # the contents are the four words after "of"
+    assert names.find("a bottle of one two three four mustard").phrases == ()
+    assert names.find("a bottle of one two three mustard").phrases == ("mustard bottle",)

@@ -172,3 +172,18 @@ def test_a_generic_noun_a_catalog_object_is_named_by_is_no_foreign_thing(tmp_pat
     (tmp_path / "other").mkdir()
     other = _recaller(tmp_path / "other", [("cup", 9, 8, 8, 300)])
     assert other.recall_text("a cardboard mailing tube, 60 cm long, 7.5 cm diameter, 150 g").not_in_catalog
+
+
+def test_a_noun_of_the_kind_a_catalog_head_names_with_the_same_modifier_is_that_object(tools):
+    from recall.openset import kind_mate
+
+    carton = noun_in(["carton"])
+    assert carton.kind == "box"
+    index = _index(["sugar box", "timer"])
+    assert kind_mate(carton, ("yellow", "sugar", "carton"), index) == "box"
+    assert kind_mate(carton, ("timer", "carton"), index) is None  # a catalog word, but of no box
+    assert kind_mate(carton, ("carton",), index) is None  # no modifier: another object
+    assert kind_mate(carton, ("sugar", "carton"), None) is None
+    res = tools.recall_text("the yellow sugar carton, roughly 7 by 3.5 by 1.5 inches, around 500 g, paperboard")
+    assert res.best.name == "sugar box" and not res.not_in_catalog and not res.open_set, res.fit.reason
+    assert tools.recall_text("a carton, 17.5 x 9 x 4 cm, 514 g").not_in_catalog  # no modifier: not it

@@ -72,3 +72,18 @@ def test_rows_edited_by_hand_are_adopted(tmp_path):
     assert [(r["benchmark"], r["result"]) for r in rows] == [("alpha", "2 op/s"), ("beta", "3")]
     assert figures.replace_block(text, "benchmarks", figures.render_benchmark_table(rows)) == text
     assert figures.adopt_benchmark_rows(text, results) == 0
+
+
+def test_the_corpus_table_merges_language_tags_and_puts_held_out_first(tmp_path):
+    c = lambda p, d, m: {"pages": p, "dims": d, "mass": m}  # noqa: E731
+    data = {"held_out": {"all": c(3, 2, 1), "stores": 2, "language": {"en": c(1, 1, 0), "en-US": c(2, 1, 1)},
+                         "layout": {"table": c(3, 2, 1)}, "part": {}},
+            "development": {"all": c(4, 4, 3), "stores": 3, "language": {"de": c(4, 4, 3)},
+                            "layout": {"table": c(1, 1, 1), "dl": c(3, 3, 2)}, "part": {}}}  # fmt: skip
+    (tmp_path / "corpus_bench.json").write_text(json.dumps({"data": data}))
+    lines = figures.render_corpus_table(tmp_path).splitlines()
+    assert lines[2] == "| **all** (2 + 3 stores) | 2/3 (0.67) | 1/3 (0.33) | 4/4 (1.00) | 3/4 (0.75) |"
+    assert "| language en | 2/3 (0.67) | 1/3 (0.33) | – | – |" in lines  # en and en-US are one language
+    assert "| language de | – | – | 4/4 (1.00) | 3/4 (0.75) |" in lines
+    assert lines.index("| layout table | 2/3 (0.67) | 1/3 (0.33) | 1/1 (1.00) | 1/1 (1.00) |") < lines.index(
+        "| layout dl | – | – | 3/3 (1.00) | 2/3 (0.67) |")  # the most pages first

@@ -11,6 +11,7 @@ product (a recommendation in the state) are not read.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from typing import Any
 
 from scrapers.adapters import Observation, adapter
@@ -22,6 +23,8 @@ from scrapers.spec_pairs import CODE, DIGIT, Pair, has_unit, split_inline
 __all__ = ["NAME_MATCH", "embedded_json"]
 
 _LABEL_KEYS = ("title", "name", "label", "key", "attributeName", "attribute", "displayName", "property")
+#: Inline markup inside a state string (``"<B>Weight:</B> 8.5 Pounds"``, a store's bullet list): read as text.
+_INLINE_TAG = re.compile(r"</?(?:b|strong|i|em|u|span|br|p|li|small)\b[^<>]{0,40}>", re.IGNORECASE)
 _UNIT_KEYS = ("unit_string", "unit", "unitText", "unitCode", "units", "uom")
 _MAX_NODES = 200_000
 
@@ -126,11 +129,30 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
             and 3 < len(node) < 200
             and ":" in node
             and DIGIT.search(node)
-            and not CODE.search(node)
+            and not CODE.search(node := _INLINE_TAG.sub(" ", node).strip())
         ):
             for label, value, info in split_inline(node):
                 pairs.append(Pair(label, value, info, order=order))
     return pairs
+
+
+#: A label of the product's that states this many different values in one state object lists variants
+#: (a rug store's ``"Size": "2'x3'"``, ``"3'x5'"``, ``"5'x7'"``... one per size sold).
+VARIANT_VALUES = 3
+
+
+def _variants_apart(pairs: list[Pair]) -> list[Pair]:
+    """``pairs`` with the product's labels that state :data:`VARIANT_VALUES` or more different values
+    marked as variants' (none of them is the product's)."""
+    values: dict[str, set[str]] = {}
+    for p in pairs:
+        if p.info.role == "product":
+            values.setdefault(p.label.strip().lower(), set()).add(re.sub(r"\s+", "", p.value.lower()))
+    listed = {label for label, vs in values.items() if len(vs) >= VARIANT_VALUES}
+    if not listed:
+        return pairs
+    return [replace(p, info=replace(p.info, role="variant")) if p.info.role == "product"
+            and p.label.strip().lower() in listed else p for p in pairs]  # fmt: skip
 
 
 @adapter("embedded_json", priority=60, fallback=True)
@@ -138,7 +160,7 @@ def embedded_json(page: Page) -> list[Observation]:
     """Label/value data shipped as JSON inside the page's scripts (tabs rendered by JavaScript)."""
     obs: list[Observation] = []
     for payload in page.script_payloads:
-        pairs = _json_pairs(payload, page.title)
+        pairs = _variants_apart(_json_pairs(payload, page.title))
         if pairs:
             # JSON order is not visual order: group axes only among neighbouring entries.
             obs.extend(observations_from_pairs(pairs, page.decimal_comma, rank=1))

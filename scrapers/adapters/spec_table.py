@@ -16,7 +16,6 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 
 from kb.features import MAX_DIM_CM, MAX_MASS_G
-from kb.measures.units import units_pattern
 from scrapers.adapters import Observation, adapter
 from scrapers.labels import AXES
 from scrapers.normalize import material_from_text
@@ -76,7 +75,7 @@ def observations_from_pairs(
     more than :data:`AXIS_GROUP_GAP` lines apart) give one dims observation per row of two or more."""
     obs: list[Observation] = []
     axes: list[tuple[str, float, Pair, int, str | None]] = []
-    for pair in pairs:
+    for pair in _whole_product_weights(list(pairs)):
         n_axes = len(axes)
         found = _pair_observations(pair, decimal_comma, rank, axes)
         if (note := written_value(pair.value)[1]) is not None:
@@ -209,18 +208,7 @@ def _dims_pair_observations(
         mass, note = _plausible_mass(rest, None, decimal_comma)
         if mass is not None:
             out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
-    elif info.kind == "size" and not out and _ONLY_A_MASS.fullmatch(clean_text(pair.value)):
-        # a grocer's "Size: 275g": the size it is sold in is its net weight
-        mass, note = _plausible_mass(pair.value, None, decimal_comma)
-        if mass is not None:
-            out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
     return out
-
-
-#: A value that is one mass and nothing else (``275g``, ``1,5 kg``, ``approx. 12 oz``).
-_ONLY_A_MASS = re.compile(
-    rf"(?:approx\.?|ca\.?|about)?\s*\d+(?:[.,]\d+)?\s*(?:{units_pattern('mass')})\.?", re.IGNORECASE
-)
 
 
 def _axes_in_one_value(pair: Pair, decimal_comma: bool | None) -> Observation | None:
@@ -280,15 +268,30 @@ def _chosen_rows(rows: list[list]) -> list[tuple[list, bool]]:
     return sorted(chosen, key=lambda item: item[0][0][2].order)
 
 
+def _side(p: Pair) -> bool:
+    return bool(p.package or p.info.package)
+
+
 def _whole_product_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> list:
-    """``axes`` without the fields that leave a part out (``Depth Without Handle``,
-    :attr:`LabelInfo.excludes`) where a field of the same axis and side states the whole product's."""
+    """``axes`` with, per axis and side, only the fields of the most whole configuration stated
+    (:attr:`LabelInfo.configuration`): ``Höhe mit Standfuß`` over ``Höhe``, ``Depth`` over ``Depth Without
+    Handle``."""
+    best: dict[tuple[str, bool], int] = {}
+    for kind, _, p, _, _ in axes:
+        key = (kind, _side(p))
+        best[key] = max(best.get(key, 0), p.info.configuration)
+    return [a for a in axes if a[2].info.configuration == best[(a[0], _side(a[2]))]]
 
-    def side(p: Pair) -> bool:
-        return bool(p.package or p.info.package)
 
-    whole = {(kind, side(p)) for kind, _, p, _, _ in axes if not p.info.excludes}
-    return [a for a in axes if not (a[2].info.excludes and (a[0], side(a[2])) in whole)]
+def _whole_product_weights(pairs: list[Pair]) -> list[Pair]:
+    """``pairs`` without the product's weight fields of a less whole configuration than another weight
+    field of the same side (``Gewicht: 2,9 kg`` beside ``Gewicht mit Standfuß: 3,5 kg``; ``Gewicht ohne
+    Ständer`` beside ``Gewicht mit Ständer``)."""
+    weights = [p for p in pairs if p.info.kind == "weight" and p.info.role == "product"]
+    best: dict[bool, int] = {}
+    for p in weights:
+        best[_side(p)] = max(best.get(_side(p), 0), p.info.configuration)
+    return [p for p in pairs if not (p in weights and p.info.configuration < best[_side(p)])]
 
 
 def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterator[Observation]:
@@ -296,16 +299,24 @@ def _group_axes(axes: list[tuple[str, float, Pair, int, str | None]]) -> Iterato
     of its side (the product's or the package's) has two axes, a lone axis is still that side's one
     stated dimension (``Diameter: 12 cm``), one rank weaker."""
     rows: list[list[tuple[str, float, Pair, int, str | None]]] = []
-    for item in _whole_product_axes(axes):
+    # Each side keeps its open row: a package's fields between the product's ("Höhe mit Verpackung"
+    # between "Breite" and "Höhe mit Standfuß") do not end the product's row, nor the reverse; the gap is
+    # counted from the side's last field, kept or not (a field of a less whole configuration bridges it).
+    current: dict[bool, list] = {}
+    last_order: dict[bool, int] = {}
+    kept = {id(a) for a in _whole_product_axes(axes)}
+    for item in axes:
         kind, _, pair, _, _ = item
-        row = rows[-1] if rows else None
-        if row:
-            last = row[-1][2]
-            package_changed = (last.package or last.info.package) != (pair.package or pair.info.package)
-            if kind in {k for k, *_ in row} or package_changed or pair.order - last.order > AXIS_GROUP_GAP:
-                row = None
+        side, previous = _side(pair), last_order.get(_side(pair))
+        last_order[side] = pair.order
+        if id(item) not in kept:
+            continue
+        row = current.get(side)
+        if row and (kind in {k for k, *_ in row} or pair.order - (previous or 0) > AXIS_GROUP_GAP):
+            row = None
         if row is None:
-            rows.append([item])
+            row = current[side] = [item]
+            rows.append(row)
         else:
             row.append(item)
     for row, multi in _chosen_rows(rows):
