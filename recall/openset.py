@@ -147,8 +147,9 @@ class KindIndex:
             if len(self._names) <= KIND_SCAN_LIMIT:
                 for name in self._names:
                     words = words_of(name)
-                    if len(words) > 1:
-                        out.setdefault(words[-1], set()).update(words[:-1])
+                    head = head_noun(words)
+                    if len(words) > 1:  # "roll of tape": the head "roll", its words "of" and "tape"
+                        out.setdefault(head, set()).update(w for w in words if w != head)
             self._words = {h: frozenset(w) for h, w in out.items()}
         return self._words
 
