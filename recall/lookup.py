@@ -175,20 +175,37 @@ def search_terms(result: RecallResult) -> tuple[str, ...]:
     return tuple(terms)
 
 
-def described_names(result: RecallResult, terms: tuple[str, ...]) -> tuple[str, ...]:
-    """What the description calls the object, given to the products that fit as aliases: the described
-    noun and its English name (``described``), else the head noun searched for (the last of ``terms``),
-    after the subject phrase searched for first when the text has it as written (a noun modifier the
-    product's names lack would make the recall doubt the match: "a *cabinet* knob" named "knob"). A
-    product found by that word whose features fit is one; its store name may not say so (a title in
-    another language, a keyword list, a model number), and the recall after the lookup, and later ones,
-    must know the object by the word a person used."""
+def described_names(result: RecallResult, terms: tuple[str, ...], heads=frozenset()) -> tuple[str, ...]:
+    """What the description calls the object, given to the product that fits best as aliases: the subject
+    phrase searched for first (the first of ``terms``) as the text writes it, then the described noun and
+    its English name (``described``), else the head noun searched for (the last of ``terms``). A product
+    found by those words whose features fit is one; its store name may not say so (a title in another
+    language, a keyword list, a model number), and the recall after the lookup, and later ones, must know
+    the object by the words a person used; the whole phrase too, since a noun modifier the product's names
+    lacked would make the recall doubt the match ("a *cabinet* knob" named "knob"). A one-word noun that
+    is the head noun of catalog names (``heads``: "ball", "light") is not given alone: it would name the
+    product before the catalog's own objects of that noun."""
     noun = result.described
     names = [noun.noun, noun.english] if noun is not None else list(terms[-1:])
-    written = " ".join((result.text or "").lower().split())
-    if terms and re.search(rf"(?<!\w){re.escape(terms[0])}(?!\w)", written):
-        names.insert(0, terms[0])  # the whole subject phrase as written: "a black *cabinet* knob" is one
+    names = [n for n in names if " " in n or n not in heads]
+    written = _as_written(terms[0], result.text or "") if terms else None
+    if written:
+        names.insert(0, written)
     return tuple(dict.fromkeys(names))
+
+
+def _as_written(phrase: str, text: str) -> str | None:
+    """``phrase`` (words made singular, :func:`recall.subject.subject_phrase`) as the text writes it
+    ("mercede tail light" -> "mercedes tail light"), or None when the text does not hold it."""
+    from kb.kinds import singular
+
+    want = phrase.split()
+    words = re.findall(r"[^\W_]+(?:-[^\W_]+)*", text.lower().replace("'", "").replace("\u2019", ""))
+    for i in range(len(words) - len(want) + 1):
+        window = words[i : i + len(want)]
+        if [singular(w) for w in window] == want:
+            return " ".join(window)
+    return None
 
 
 def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float]:
@@ -282,7 +299,7 @@ def recall_with_lookup(
     try:
         out.stores = search_stores(kb, sources, terms, description=text, fits=lambda r: fits(parsed, r),
                                    session=session, deadline=deadline, clock=clock, max_pages=max_pages,
-                                   names=described_names(before, terms))  # fmt: skip
+                                   names=described_names(before, terms, Recaller.from_db(db).names.heads))  # fmt: skip
     finally:
         if own_session:
             session.close()

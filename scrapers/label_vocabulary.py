@@ -96,6 +96,7 @@ QUALIFIERS = {
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
         "one "  # "One size: 2 x 2 x 2 in": the only size there is
+        "i på "  # Nordic prepositions: "Lengde i fot"
         "starting at from per piece each pro stück je unit pièce unidad adet ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
         "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "
         " l b h w d t x х"

@@ -129,8 +129,22 @@ def classify_label(label: object) -> LabelInfo | None:
         return None
 
 
+#: Every label :func:`_classify` accepts holds one of these words (a kind word, the suffix of a compound,
+#: an "overall" word, a short label) or a CJK character: a text with none is no label, decided without
+#: the full reading (most of a page's lines are menus, buttons and prose).
+_ANY_KIND = re.compile("|".join(sorted({re.escape(w) for w in (*KIND_WORDS, *OVERALL, *SHORT_LABELS)}, key=len,
+                                       reverse=True)))  # fmt: skip
+
+
+def _may_be_a_label(label: str) -> bool:
+    folded = fold(label)
+    return _ANY_KIND.search(folded) is not None or _has_cjk(folded)
+
+
 @lru_cache(maxsize=16384)
 def _classify_cached(label: str) -> LabelInfo | None:
+    if not _may_be_a_label(label):
+        return None
     try:
         return _classify(label)
     except Exception:  # noqa: BLE001 - a label we cannot read is simply not a measurement label

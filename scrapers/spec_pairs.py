@@ -275,10 +275,10 @@ def _column_unit(lines: list[Line], i: int) -> tuple[str, str] | None:
     """("length" or "mass", unit) when line ``i`` is a measurement label without a value and the next line
     is a unit alone: a table's header row whose column states the unit (``Dimension | cm | inch`` over
     ``Width | 30 | 11.8``, ``Weight | kg``). The first unit column is the one the values are read in."""
-    if i + 1 >= len(lines) or not _label_line(lines[i]):
+    if i + 1 >= len(lines):
         return None
     unit = lines[i + 1].text.strip("()[] ")
-    if not is_unit(unit):
+    if not is_unit(unit) or not _label_line(lines[i]):  # the cheap test first: most lines are no label
         return None
     if length_unit(unit) is not None:
         return "length", unit

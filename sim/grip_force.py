@@ -13,6 +13,7 @@ __all__ = [
     "EDGE_PAD_LEVER_CM",
     "GRAVITY",
     "MIN_GRIP_FORCE_N",
+    "SQUEEZABLE_WRAP_LEVER_FRACTION",
     "SAFETY_FACTOR",
     "WRAP_FRICTION_LEVER_CM",
     "WRAP_REACH_CM",
@@ -39,6 +40,12 @@ WRAP_REACH_CM = 6.0
 #: approach at those heights makes the couple ``2 mu F r``. Calibrated on the trial (the seed catalog's deep
 #: boxes and bowls: at the friction bound alone five of them turned out of both wraps; they held at 2-4 x).
 WRAP_FRICTION_LEVER_CM = 1.6
+#: ... half that for a squeezable object (planner version 14): its soft contacts (twice the time constant and
+#: a 5 mm impedance ramp, sim/objects.py) let it turn further under the same moment before the couple
+#: builds. Calibrated on the seed catalog's squeezable deep objects (data written here, seed 0): at the rigid
+#: lever the toilet paper and paper towel rolls' medium wraps turned 26-35 deg and the baseball cap's two
+#: wraps 16-22 deg; at half it they held (1.2-14 deg), the bread loaf and the sneaker at both.
+SQUEEZABLE_WRAP_LEVER_FRACTION = 0.5
 #: How far above a ball's far equator (degrees) the fingers press when a wrap from above holds a ball wider
 #: than the hand's span (sim/grasps.py BALL_MAX_ONE_HAND_CM): measured on the mini soccer ball (14 cm),
 #: the distal phalanges at 25-37 deg, the middle ones at 44 (force-weighted 31); 40, calibrated on the
@@ -83,20 +90,24 @@ def edge_grip_force(mass_g: float, depth_cm: float, fragility: str = "medium") -
     return round(max(MIN_GRIP_FORCE_N, force), 2)
 
 
-def wrap_moment_force(mass_g: float, depth_cm: float, friction: float, fragility: str = "medium") -> float:
+def wrap_moment_force(
+    mass_g: float, depth_cm: float, friction: float, fragility: str = "medium", *, squeezable: bool = False
+) -> float:
     """Squeeze (N) a side wrap needs to hold an object ``depth_cm`` deep along the approach against the
     moment of its weight about the grip: ``F = SF m g d / (2 mu r)``, or 0 when it fits in the wrap.
 
     The wrap holds the object from the palm out to :data:`WRAP_REACH_CM`; its centre of mass lies
     ``depth / 2`` from the palm, so the weight acts ``d = depth / 2 - WRAP_REACH_CM / 2`` beyond the grip's
     centre; the trial's downward push doubles that moment and ``SF`` covers both, as in the friction bound.
-    The grip resists by a friction couple of lever ``r`` (:data:`WRAP_FRICTION_LEVER_CM`) on both faces.
+    The grip resists by a friction couple of lever ``r`` (:data:`WRAP_FRICTION_LEVER_CM`) on both faces;
+    a ``squeezable`` object's is :data:`SQUEEZABLE_WRAP_LEVER_FRACTION` of it.
     """
     d = depth_cm / 2.0 - WRAP_REACH_CM / 2.0
     if d <= 0.0:
         return 0.0
     sf = SAFETY_FACTOR.get(fragility, SAFETY_FACTOR["medium"])
-    force = sf * (mass_g / 1000.0) * GRAVITY * d / (2.0 * friction * WRAP_FRICTION_LEVER_CM)
+    lever = WRAP_FRICTION_LEVER_CM * (SQUEEZABLE_WRAP_LEVER_FRACTION if squeezable else 1.0)
+    force = sf * (mass_g / 1000.0) * GRAVITY * d / (2.0 * friction * lever)
     return round(max(MIN_GRIP_FORCE_N, force), 2)
 
 

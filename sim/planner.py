@@ -78,7 +78,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "13"  # 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
+PLANNER_VERSION = "14"  # 14: a squeezable deep object's side wrap squeezed for half the friction lever; 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0
@@ -167,7 +167,9 @@ def _context(o: PlannedObject) -> _Context:
     flat = is_flat_grasp(o.c_cm, o.b_cm)  # across the table edge: its middle side, or its length (a key)
     edge_force = edge_grip_force(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), o.fragility) if flat else 0.0
     # A side wrap of a deep object (not a flat one: that is taken at a table edge) holds the weight's moment.
-    wrap_force = 0.0 if edge_force else wrap_moment_force(o.mass_g, o.b_cm, o.friction, o.fragility)
+    wrap_force = 0.0 if edge_force else wrap_moment_force(
+        o.mass_g, o.b_cm, o.friction, o.fragility, squeezable=o.rigidity == "squeezable"
+    )
     return _Context(o, feasible, tuple(notes), base_force, edge_force, wrap_force, ball_force or 0.0)
 
 

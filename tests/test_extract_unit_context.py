@@ -123,3 +123,25 @@ def test_state_shipped_as_a_json_string_literal_is_read():
 def test_a_json_parse_of_something_else_is_skipped(literal):
     r = _record(f"<script>var x = JSON.parse({literal});</script><dl><dt>Weight</dt><dd>2 kg</dd></dl>")
     assert r is not None and r.mass_g == 2000.0
+
+
+@pytest.mark.parametrize(("text", "grams"), [("Vekt: 4 000 kg", 4_000_000.0), ("1 250 g", 1250.0),
+                                             ("3 500,5 kg", 3_500_500.0), ("2 x 500 g", 500.0)])
+def test_thousands_grouped_with_spaces_before_a_unit(text, grams):
+    # French, Nordic and Slavic stores write "4 000 kg" (a narrow no-break space, NFKC writes a space)
+    from scrapers.quantities import parse_mass
+
+    assert parse_mass(text) == pytest.approx(grams)
+
+
+def test_spaced_groups_without_a_unit_are_left_alone():
+    from kb.measures.text import clean_text
+
+    assert clean_text("price 1 000 EUR") == "price 1 000 EUR" and clean_text("12 34 cm") == "12 34 cm"
+
+
+def test_a_nordic_label_with_a_preposition_and_its_unit():
+    from scrapers.labels import classify_label
+
+    info = classify_label("Lengde i fot")
+    assert info is not None and info.kind == "length" and info.role == "product" and info.unit == "fot"

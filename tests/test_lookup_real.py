@@ -110,8 +110,10 @@ def test_the_noun_searched_for_is_given_as_the_alias():
     assert described_names(unknown, ("asustor nas", "nas")) == ("asustor nas", "nas")
     knob = r.recall_text("a black cabinet knob, about 2 cm across")
     assert described_names(knob, ("black cabinet knob", "knob")) == ("black cabinet knob", "knob")
-    plural = r.recall_text("guitar patch cables, 50 g")  # the phrase singular is not as written
-    assert described_names(plural, ("guitar patch cable", "cable")) == ("cable",)
+    plural = r.recall_text("guitar patch cables, 50 g")  # the phrase as written, not made singular
+    assert described_names(plural, ("guitar patch cable", "cable")) == ("guitar patch cables", "cable")
+    tail = r.recall_text("a Mercedes tail light, 52 x 28 x 19 cm, 920 g")  # "light" heads "light bulb"
+    assert described_names(tail, ("mercede tail light", "light"), r.names.heads) == ("mercedes tail light",)
 
 
 # --- when the lookup starts: the recall's match is not the thing the subject names -----------------------

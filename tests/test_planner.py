@@ -472,3 +472,42 @@ def test_a_ladle_is_a_bowl_on_a_long_handle_held_by_the_handle_like_a_pan():
     assert built.form == "pan" and built.handle.length_cm == 23 and handle < 0.16 - handle  # the bowl end is heavier
     spoon = plan_grasps(dict(ladle, name="serving spoon"))[0]  # no long-handle kind: its box, as before
     assert "hold" not in spoon.params
+
+
+def test_a_squeezable_deep_objects_side_wrap_is_squeezed_for_half_the_friction_lever():
+    from sim.grip_force import SQUEEZABLE_WRAP_LEVER_FRACTION, WRAP_REACH_CM, wrap_moment_force
+
+    mu = friction_coefficient("paper", None)
+    rigid = wrap_moment_force(300, 12.0, mu)
+    assert wrap_moment_force(300, 12.0, mu, squeezable=True) == pytest.approx(
+        rigid / SQUEEZABLE_WRAP_LEVER_FRACTION, rel=1e-2
+    )
+    assert wrap_moment_force(300, WRAP_REACH_CM, mu, squeezable=True) == 0.0  # within the reach: none either way
+    roll = dict(a_cm=28, b_cm=12, c_cm=12, mass_g=150, shape="prism", material="paper", rigidity="squeezable")
+    hard = {**roll, "rigidity": "rigid"}
+    deep = 0
+    for soft_plan, hard_plan in zip(plan_grasps(roll), plan_grasps(hard), strict=True):
+        if soft_plan.approach == "side" and any(r.startswith("deep") for r in soft_plan.rationale):
+            deep += 1
+            assert soft_plan.params["needed_force_n"] == pytest.approx(
+                hard_plan.params["needed_force_n"] / SQUEEZABLE_WRAP_LEVER_FRACTION, rel=2e-2
+            )
+    assert deep == 2  # its two side wraps
+
+
+def test_a_squeezable_rolls_medium_wrap_holds_at_its_bound_and_turns_out_at_the_rigid_one():
+    """A paper towel roll (seed catalog values, written here): its soft contacts let it turn in the wrap."""
+    import dataclasses
+
+    from kb.features import ObjectRecord
+    from sim.grip_force import SQUEEZABLE_WRAP_LEVER_FRACTION
+    from sim.trial import run_trial
+
+    roll = ObjectRecord.create(name="paper towel roll", a_cm=28, b_cm=12, c_cm=12, mass_g=150, shape="prism",
+                               material="paper", fragility="medium", rigidity="squeezable")  # fmt: skip
+    plan = next(p for p in plan_grasps(roll) if p.grasp_type == "medium_wrap")
+    held = run_trial(roll, plan, seed=0)
+    rigid_bound = plan.grip_force_n * SQUEEZABLE_WRAP_LEVER_FRACTION
+    turned = run_trial(roll, dataclasses.replace(plan, grip_force_n=rigid_bound), seed=0)
+    assert held.success and held.rotation_deg < 10.0
+    assert not turned.success and turned.rotation_deg >= 15.0

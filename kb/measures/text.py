@@ -50,6 +50,11 @@ _HEBREW_UNITS = re.compile(
 _TIMES_SIGN = re.compile(
     r"(\d\s*)([\"'″]{1,2}\s*[A-Za-z]\b\.?|[^\W\d_]{1,12}\.?|[\"'″]{1,2})?(\s*)[xX×✕✖*хХ]\s*(?=\d)"
 )  # "30 x 20", "30cm × 20", "43'' H X 27'' W": after a number, its unit or inch mark (and an axis letter)
+#: Thousands grouped with spaces before a mass or length unit, as French, Nordic, Slavic and Swiss stores
+#: write them (``4 000 kg``, ``1 250 g``; NFKC has already written the narrow no-break space as a space).
+_SPACED_THOUSANDS = re.compile(
+    r"(?<![\d.,] )(?<![\d.,])\d{1,3}(?: \d{3})+(?:[.,]\d+)?(?=\s?(?:kg|g|mm|cm|m|lb|lbs|t)\b)"
+)
 _SPACES = re.compile(r"[\s\u00a0\u2000-\u200a\u202f\u205f\u3000]+")
 
 
@@ -80,6 +85,8 @@ def clean_text(text: object) -> str:
     if "\u05f4" in text or '"' in text:
         text = _HEBREW_UNITS.sub(_hebrew_unit, text)
     text = _SPACES.sub(" ", text).strip()
+    if " " in text:
+        text = _SPACED_THOUSANDS.sub(lambda m: m.group(0).replace(" ", ""), text)  # "Vekt: 4 000 kg"
     # Cyrillic х/Х and other times signs after a number (and maybe a unit or letter) and before a number.
     text = _TIMES_SIGN.sub(_times, text)
     if " by " in text:
