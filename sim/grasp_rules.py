@@ -5,6 +5,7 @@ runs them in the table's order. The thresholds are named constants here (their b
 
 from __future__ import annotations
 
+from sim.grasps import edge_depth_cm
 from sim.planned_object import PlannedObject
 
 __all__ = ["Candidates", "HEAVY_MASS_G", "LIGHT_MASS_G", "candidates"]
@@ -202,10 +203,14 @@ def _flat(o: PlannedObject) -> Candidates | None:
             ("thumb_4_finger", "flat: thumb on one face, four fingers under the other"),
             ("power_disk", "palm on the face, fingers round the edge"),
         ]
+    # The finger pads lie along the table edge: along its length, unless it lies by its length across the
+    # edge (too narrow to overhang under the pads, sim/grasps.py edge_depth_cm: a ruler), then its width.
+    along, side = (o.b_cm, "width") if edge_depth_cm(a, o.b_cm) == a else (a, "length")
     return [
         (
-            _fingers_for_length(a, m),
-            f"flat ({w:g} cm thick) and {m:.0f} g: thumb on one face, finger pads on the other, along its {a:g} cm length",
+            _fingers_for_length(along, m),
+            f"flat ({w:g} cm thick) and {m:.0f} g: thumb on one face, finger pads on the other, along its "
+            f"{along:g} cm {side}",
         ),
         ("lateral_pinch", "flat: thumb against the side of the index"),
         ("medium_wrap", "hand wrapped over the edge"),

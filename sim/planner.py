@@ -78,7 +78,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "14"  # 14: a squeezable deep object's side wrap squeezed for half the friction lever; 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
+PLANNER_VERSION = "15"  # 15: a flat object laid by its length across the edge gets fingers by its width; 14: a squeezable deep object's side wrap squeezed for half the friction lever; 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
 TYPICAL_MAX_WIDTH_CM = 7.0

@@ -511,3 +511,20 @@ def test_a_squeezable_rolls_medium_wrap_holds_at_its_bound_and_turns_out_at_the_
     turned = run_trial(roll, dataclasses.replace(plan, grip_force_n=rigid_bound), seed=0)
     assert held.success and held.rotation_deg < 10.0
     assert not turned.success and turned.rotation_deg >= 15.0
+
+
+def test_a_narrow_flat_object_laid_by_its_length_across_the_edge_gets_fingers_by_its_width():
+    """The pads lie along the table edge; a strip too narrow to overhang under them lies by its length
+    across it (sim/grasps.py edge_depth_cm), so only its width is along the pad row (the steel ruler)."""
+    from sim.grasps import EDGE_MIN_GRIP_IN_CM, EDGE_PAD_CLEAR_CM, edge_depth_cm
+
+    boundary = (EDGE_PAD_CLEAR_CM + EDGE_MIN_GRIP_IN_CM) / 0.45  # 2.67 cm: narrower lies lengthwise
+    strip = dict(a_cm=20, c_cm=0.3, mass_g=50, shape="thin", material="metal")
+    narrow, wide = {**strip, "b_cm": boundary - 0.05}, {**strip, "b_cm": boundary + 0.05}
+    assert edge_depth_cm(20, narrow["b_cm"]) == 20 and edge_depth_cm(20, wide["b_cm"]) == wide["b_cm"]
+    assert "thumb_index_finger" in [p.grasp_type for p in plan_grasps(narrow)]  # 2.6 cm: one pad's width
+    assert "thumb_4_finger" not in [p.grasp_type for p in plan_grasps(narrow)]
+    assert plan_grasps(wide)[0].grasp_type == "thumb_4_finger"  # 20 cm along the edge: four pads
+    ruler = plan_grasps(dict(a_cm=30, b_cm=2.5, c_cm=0.1, mass_g=40, shape="thin", material="metal",
+                             texture="smooth", fragility="sturdy"))  # fmt: skip
+    assert ruler[0].grasp_type == "lateral_pinch"  # its tip pinch (15 N) cannot hold the 15.3 N edge moment
