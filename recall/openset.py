@@ -229,10 +229,23 @@ def described_noun(
     english = tuple(words_of(noun.english))
     known = _names_catalog_object(noun.words, phrases, heads) or (
         noun.english != noun.text and bool(english)
-        and (_names_catalog_object(english, phrases, heads) or head_noun(english) in heads)
+        and (_names_catalog_object(english, phrases, heads) or _names_sort_of(noun, english, heads, kinds_of))
     )  # a synonym names a sort of its English name's head noun ("puzzle cube" -> rubik's cube: a cube)
     base = None if known else sort_of_catalog_object(noun, heads, kinds_of) or kind_mate(noun, subject, kinds_of)
     return DescribedNoun(noun.text, noun.kind, noun.english, known or base is not None, base)
+
+
+def _names_sort_of(noun: Noun, english: Sequence[str], heads, kinds_of: KindIndex | None) -> bool:
+    """Whether a lexicon synonym is a sort of the catalog's objects of its English name's head noun: that
+    head is a catalog head, and either the synonym is itself a word of that head ("puzzle *cube*" ->
+    "rubik's cube", "squeeze *bottle*") or the catalog has a plain object of it
+    (:meth:`KindIndex.plain_head_kinds`). A synonym of another head ("cola" -> "soda *can*", the seed
+    catalog's) names that sort only: a catalog that names its cans by other sorts ("chips can", "tomato
+    soup can") does not have it."""
+    head = head_noun(english)
+    if head is None or head not in heads:
+        return False
+    return noun.words[-1] == head or kinds_of is None or head in kinds_of.plain_head_kinds()
 
 
 def kind_mate(noun: Noun, subject: Sequence[str], kinds_of: KindIndex | None) -> str | None:

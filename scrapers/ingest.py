@@ -352,6 +352,7 @@ def run_ingestion(
         progress=progress,
         max_stores=max_hosts,
     )
+    outcomes = _without_duplicate_pages(outcomes, events)
     report.pages = len(outcomes)
     report.fetched = sum(1 for p in outcomes if p.status is not None and 200 <= p.status < 300)
     report.not_modified = sum(1 for p in outcomes if p.outcome == "not_modified")
@@ -366,6 +367,22 @@ def run_ingestion(
     report.duration_s = clock.monotonic() - t0  # the write adds its own time (real clock) in _write
     write_run(kb, outcomes, report, events, clock)
     return report
+
+
+def _without_duplicate_pages(outcomes: list[PageOutcome], events: list[tuple[str, str, str]]) -> list[PageOutcome]:
+    """``outcomes`` with one page per identity (:func:`~scrapers.outcomes.page_identity`): two loopback
+    stores on different ports can list the same path, which is one page identity. The later one is
+    skipped with its reason in ``events`` (stage ``discover``), so the others are written."""
+    first: dict[str, PageOutcome] = {}
+    out = []
+    for p in outcomes:
+        seen = first.setdefault(p.key, p)
+        if seen is p:
+            out.append(p)
+        else:
+            events.append((p.url, "discover", f"duplicate_page: the same page identity ({p.key}) as {seen.url} of "
+                                               f"store {seen.store!r}; skipped"))
+    return out
 
 
 def run_status(report: IngestionReport, events: list[tuple[str, str, str]]) -> str:

@@ -145,3 +145,18 @@ def test_a_nordic_label_with_a_preposition_and_its_unit():
 
     info = classify_label("Lengde i fot")
     assert info is not None and info.kind == "length" and info.role == "product" and info.unit == "fot"
+
+
+@pytest.mark.parametrize(("sentence", "height", "mass"), [
+    ("Il mesure 89 cm de haut et pèse à peine 8 kg.", 89.0, 8000.0),  # a French barbecue store's copy
+    ("The vase is 30 cm tall and glazed by hand.", 30.0, None),
+    ("Das Regal ist 120 cm hoch und wiegt knapp 12 kg.", 120.0, 12000.0),
+])  # fmt: skip
+def test_one_axis_after_a_measuring_verb_and_hedged_weights(sentence, height, mass):
+    r = _record(f"<p>{sentence}</p>")
+    assert r is not None and [(e["role"], e["cm"]) for e in r.dims] == [("height", height)] and r.mass_g == mass
+
+
+def test_one_axis_phrase_without_a_measuring_verb_is_no_size():
+    # "a 5 cm thick base" names a part's extent in passing
+    assert _record("<p>Our lamp has a 5 cm thick base and glows warmly all night.</p>") is None

@@ -187,3 +187,23 @@ def test_a_noun_of_the_kind_a_catalog_head_names_with_the_same_modifier_is_that_
     res = tools.recall_text("the yellow sugar carton, roughly 7 by 3.5 by 1.5 inches, around 500 g, paperboard")
     assert res.best.name == "sugar box" and not res.not_in_catalog and not res.open_set, res.fit.reason
     assert tools.recall_text("a carton, 17.5 x 9 x 4 cm, 514 g").not_in_catalog  # no modifier: not it
+
+
+def test_a_synonym_of_another_head_is_in_the_catalog_only_where_that_head_is_plain(tmp_path):
+    # the lexicon's "cola" is the seed catalog's "soda can": a catalog that names its cans by their sorts
+    # ("tomato soup can", "chips can") has no soda can; one with a plain "can" has it as a sort of that
+    # can. A synonym that is itself a word of the head ("puzzle cube", "squeeze bottle") is a sort of it.
+    from recall.openset import _names_sort_of
+
+    cola = noun_in(["cola"])
+    assert cola.english == "soda can"
+    sorts = _recaller(tmp_path, [("tomato soup can", 11.9, 7.1, 6.8, 349), ("chips can", 24, 8.6, 8.4, 205)])
+    res = sorts.recall_text("a cola, 12 cm tall, 6.6 cm across, aluminium, 370 g")
+    assert res.described.noun == "cola" and res.not_in_catalog
+    (tmp_path / "plain").mkdir()
+    plain = _recaller(tmp_path / "plain", [("can", 12, 6.6, 6.6, 370), ("chips can", 24, 8.6, 8.4, 205)])
+    assert not plain.recall_text("a cola, 12 cm tall, 6.6 cm across, aluminium, 370 g").not_in_catalog
+    cube = noun_in(["puzzle", "cube"])
+    assert _names_sort_of(cube, ("rubik", "cube"), {"cube"}, _index(["rubix cube"]))
+    assert not _names_sort_of(cola, ("soda", "can"), {"can"}, _index(["chips can"]))
+    assert not _names_sort_of(cola, ("soda", "can"), {"cup"}, None)  # no catalog can at all

@@ -109,10 +109,17 @@ _MEASURES = re.compile(
     r"wymiary|rozměry|rozmery|boyutlar[ıi]?|afmetingen)\b",
     re.IGNORECASE,
 )
+#: A measuring verb right before one axis phrase: "It measures 89 cm high", "Il mesure 89 cm de haut".
+_MEASURES_ONE = re.compile(
+    rf"\b(?:measures?|mesure|mide|misura|mede|misst|is|est|ist|es)\s+(?:about |approximately |environ |ca\. |etwa )?"
+    rf"{_QTY}\s+(?:{'|'.join(sorted(map(re.escape, _AXIS_WORDS), key=len, reverse=True))})\b",
+    re.IGNORECASE,
+)
 _WEIGHS = re.compile(
     r"\b(?:weighs?|weighing|weight of|wiegt|pesa|pèse|waży|весит|weegt|váží|váži)\s+(?:just |only |about "
     r"|approx\.? |approximately |roughly |around |ca\.? |nur |etwa |environ |unos |circa |cerca de |около "
-    r"|примерно |około |asi |přibližně |ongeveer )?(?P<q>\d+(?:[.,]\d+)*\s*[^\W\d_]+\.?)",
+    r"|примерно |około |asi |přibližně |ongeveer |à peine |seulement |tout juste |knapp |lediglich |apenas "
+    r"|solo |appena |soltanto )?(?P<q>\d+(?:[.,]\d+)*\s*[^\W\d_]+\.?)",
     re.IGNORECASE,
 )
 _MADE_OF = re.compile(
@@ -161,11 +168,12 @@ def free_text(page: Page) -> list[Observation]:
                 value = -value  # "-30 cm long": stated negative, refused by the limits
             if value is not None and kind not in axes:
                 axes[kind] = value
-        if len(axes) >= 2:
+        if len(axes) >= 2 or (len(axes) == 1 and _MEASURES_ONE.search(text)):
+            # "30 cm long, 6 cm wide"; one axis only after a measuring verb ("Il mesure 89 cm de haut")
             obs.append(
                 Observation(
-                    "dims", tuple(axes.values()), rank=2, order=line.index, raw=raw, note=note,
-                    roles=tuple(axes),
+                    "dims", tuple(axes.values()), rank=2 if len(axes) >= 2 else 3, order=line.index, raw=raw,
+                    note=note, roles=tuple(axes),
                 )
             )  # fmt: skip
         weighs = _WEIGHS.search(text)
