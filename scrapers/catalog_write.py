@@ -222,8 +222,9 @@ def _insert_observations(con, obs_rows: list[dict[str, Any]], run_id: int, now) 
 
 
 def _write_pages(con, outcomes, object_of_page, run_id: int, now) -> None:
-    """Pages: validators for next time (not-modified pages keep their object and hash)."""
-    not_modified, others = plan.page_rows(outcomes, object_of_page, run_id, now)
+    """Pages: validators for next time (not-modified pages keep their object and hash; pages that could
+    not be fetched keep everything but their error)."""
+    not_modified, unfetched, others = plan.page_rows(outcomes, object_of_page, run_id, now)
     bulk_execute(
         con,
         "ingest_seen",
@@ -233,6 +234,16 @@ def _write_pages(con, outcomes, object_of_page, run_id: int, now) -> None:
         "etag = coalesce(s.etag, pages.etag), last_modified = coalesce(s.last_modified, pages.last_modified) "
         "FROM ingest_seen s WHERE pages.url = s.url",
     )
+    bulk_execute(
+        con,
+        "ingest_unfetched",
+        ["url", "fetched_at", "run_id", "error"],
+        unfetched,
+        "UPDATE pages SET fetched_at = s.fetched_at, run_id = s.run_id, error = s.error "
+        "FROM ingest_unfetched s WHERE pages.url = s.url",
+    )
+    known = {r[0] for r in con.execute("SELECT url FROM pages").fetchall()} if unfetched else set()
+    others = others + [r for r in unfetched if r["url"] not in known]  # never seen before: a new row
     page_cols = list(others[0]) if others else []
     bulk_execute(con, "ingest_pages", ["url"], others, "DELETE FROM pages WHERE url IN (SELECT url FROM ingest_pages)")
     bulk_execute(

@@ -303,10 +303,12 @@ def plan_update(
 
 def page_rows(
     outcomes: list[PageOutcome], object_of_page: dict[str, int], run_id: int, now: datetime
-) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
-    """(rows of not-modified pages, rows of the other pages) for the ``pages`` table: validators for next
-    time, keyed by the page's identity (not-modified pages keep their object and hash)."""
-    seen, others = [], []
+) -> tuple[list[dict[str, Any]], list[dict[str, Any]], list[dict[str, Any]]]:
+    """(rows of not-modified pages, rows of pages that could not be fetched, rows of the other pages) for
+    the ``pages`` table: validators for next time, keyed by the page's identity. A not-modified page keeps
+    its object and hash; a page that could not be fetched (a time-out, a spent store budget) keeps its
+    object, hash and validators and gets only its error (nothing was learnt about it)."""
+    seen, unfetched, others = [], [], []
     for p in outcomes:
         row = {
             "url": p.key,
@@ -320,8 +322,13 @@ def page_rows(
             "error": f"{p.reason}: {p.detail}" if p.outcome == "rejected" else None,
             "run_id": run_id,
         }
-        (seen if p.outcome == "not_modified" else others).append(row)
-    return seen, others
+        if p.outcome == "not_modified":
+            seen.append(row)
+        elif p.outcome == "rejected" and p.stage == "fetch":
+            unfetched.append(row)
+        else:
+            others.append(row)
+    return seen, unfetched, others
 
 
 def event_rows(
