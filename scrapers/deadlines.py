@@ -52,11 +52,12 @@ class PageDeadline:
     def _cut_by_budget(self, now: float) -> bool:
         return self.until is not None and self.until <= self.end(now)
 
-    def error(self, url: str, now: float) -> FetchError:
+    def error(self, url: str, now: float, why: str | None = None) -> FetchError:
+        more = f"; {why}" if why else ""
         if self._cut_by_budget(now):
-            return tagged_error(FetchError, url, BUDGET_SPENT, "the store's time budget for this run is spent")
+            return tagged_error(FetchError, url, BUDGET_SPENT, f"the store's time budget for this run is spent{more}")
         return tagged_error(
-            FetchError, url, DEADLINE_PASSED, f"page took longer than {self.limit_s:g} s (its deadline)"
+            FetchError, url, DEADLINE_PASSED, f"page took longer than {self.limit_s:g} s (its deadline){more}"
         )
 
     def left(self, url: str, now: float) -> float:
@@ -66,12 +67,13 @@ class PageDeadline:
             raise self.error(url, now)
         return left
 
-    def may_wait(self, url: str, now: float, wait_s: float) -> None:
+    def may_wait(self, url: str, now: float, wait_s: float, why: str | None = None) -> None:
         """Raise the deadline's error if a pause of ``wait_s`` would end at or after the end: better to
-        give the page up now than to sleep and then give it up."""
+        give the page up now than to sleep and then give it up. ``why`` names the pause in the reason
+        (``the server's Retry-After of 100 s``), so the page's reason says what would have run over."""
         at = now + wait_s if self.started is None else now  # when the page's own clock would start
         if wait_s > 0 and now + wait_s >= self.end(at):
-            raise self.error(url, at)
+            raise self.error(url, at, f"{why} ({wait_s:.3g} s) would end past it" if why else None)
 
 
 @dataclass

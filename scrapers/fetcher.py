@@ -270,6 +270,7 @@ class PoliteFetcher:
             attempts += 1
             self._wait_turn(url, host, delay_s, deadline)
             retry_after: float | None = None
+            status: int | None = None  # of this attempt's answer, for the reason of a pause cut short
             try:
                 result = self._once(url, policy, headers, deadline)
             except FetchError as err:
@@ -300,13 +301,15 @@ class PoliteFetcher:
                     continue
                 if result.status not in RETRY_STATUSES or attempts > policy.max_retries:
                     return result
-                retry_after = self._retry_after(result, policy)
+                retry_after, status = self._retry_after(result, policy), result.status
             backoff = policy.backoff_s * 2 ** (attempts - 1)
             pause = max(backoff, retry_after or 0.0)
             # The host delay is counted from the end of the last request; sleep whatever more the backoff needs.
             extra = pause - self._until_turn(host, delay_s)
             if extra > 0:
-                deadline.may_wait(url, self.clock.monotonic(), extra)
+                after = f" after HTTP {status}" if status is not None else " after a failed attempt"
+                why = ("the server's Retry-After" if retry_after and retry_after >= backoff else "the back-off") + after
+                deadline.may_wait(url, self.clock.monotonic(), extra, why)
                 self.clock.sleep(extra)
 
     def _retry_after(self, result: FetchResult, policy: FetchPolicy) -> float | None:

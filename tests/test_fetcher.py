@@ -362,3 +362,16 @@ def test_gzip_bodies_are_decoded_and_the_cap_counts_decoded_bytes(session):
     finally:
         server.shutdown()
         server.server_close()
+
+
+def test_a_retry_after_past_the_deadline_says_so_in_the_reason(session):
+    # the flaky carafe answers 503 with Retry-After: 1 first; with a 0.5 s deadline the pause would run over
+    with DemoStore(crawl_delay=None) as store:
+        clock = FakeClock()
+        policy = FetchPolicy(delay_s=0, max_retries=2, backoff_s=0.1, max_page_s=0.5)
+        with pytest.raises(FetchError) as info:
+            PoliteFetcher(session, clock=clock, policy=policy).fetch(store.url("/p/flaky-glass-carafe.html"))
+    reason = str(info.value)
+    assert fetch_error_kind(info.value) == "timeout" and "page took longer than 0.5 s" in reason
+    assert "the server's Retry-After after HTTP 503 (1 s) would end past it" in reason
+    assert clock.sleeps == []  # given up at once, not after sleeping
