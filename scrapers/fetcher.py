@@ -211,6 +211,8 @@ class PoliteFetcher:
                 result = self._request(
                     current, host, policy, extra, deadline, delay_s=delay, follow_redirects=False
                 )
+            if result.status in REDIRECT_STATUSES and result.final_url == current:
+                raise tagged_error(FetchError, url, "redirect_loop", f"{current} redirects to itself")
             if result.status in REDIRECT_STATUSES and result.final_url != current:
                 redirects += 1
                 if result.final_url in seen:
@@ -287,6 +289,8 @@ class PoliteFetcher:
             else:
                 host.last_end = self.clock.monotonic()
                 result.attempts = attempts
+                if result.status in REDIRECT_STATUSES and follow_redirects and result.final_url == url:
+                    raise tagged_error(FetchError, url, "redirect_loop", "the page redirects to itself")
                 if result.status in REDIRECT_STATUSES and follow_redirects and result.final_url != url:
                     hops += 1
                     if hops > policy.max_redirects:

@@ -143,6 +143,7 @@ def discover_urls(
     while sitemaps and len(seen_maps) < MAX_SITEMAPS:
         sitemap = sitemaps.pop(0)
         if sitemap in seen_maps:
+            events.append((sitemap, "discover", "sitemap_loop: a sitemap index lists a sitemap already read"))
             continue
         seen_maps.add(sitemap)
         try:
