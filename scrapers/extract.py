@@ -47,7 +47,7 @@ from scrapers.normalize import (
 from scrapers.page import MAX_LINES, Page
 from scrapers.product_names import choose_name
 from scrapers.records import ProductRecord
-from scrapers.restatements import outranked_shop_weights, restated_elsewhere
+from scrapers.restatements import outranked_shop_fields, restated_elsewhere
 from scrapers.sets import set_apart, set_size
 from scrapers.trail import category_trail
 from scrapers.value_forms import placeholder_size
@@ -368,9 +368,9 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
             valid.remove(cand)  # "Pendant measures 5/16 x 3/4" beside "Pendant measures: 0.3125 x 0.75"
             decisions.append(_candidate(cand, f"not the product's: the page states it as a {_whose(other)}'s "
                                               f"({other.raw[:60]!r})"))
-        for cand, other in outranked_shop_weights(valid, agree) if feature == "mass" else []:
+        for cand, other in outranked_shop_fields(valid, agree):
             valid.remove(cand)
-            decisions.append(_candidate(cand, f"not used: a shop system's weight field, the page labels the "
+            decisions.append(_candidate(cand, f"not used: a shop system's shipping field, the page labels the "
                                               f"product's ({other.raw[:60]!r})"))
         if not valid:  # a quantity written only in the product's name ("Almonds - 13oz")
             valid = _valid(observations, feature, "name", warnings, decisions, refused[feature])

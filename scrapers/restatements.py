@@ -58,15 +58,16 @@ def _agrees(a: Any, b: Any, feature: str, agree: Callable[[Any, Any], bool]) -> 
     return agree(a, b)
 
 
-#: Shop systems whose weight field is what the merchant entered for shipping (Shopify's variant grams,
-#: WooCommerce's weight): the product's weight only when the page labels none.
+#: Shop systems whose weight and dimension fields are what the merchant entered for shipping (Shopify's
+#: variant grams, WooCommerce's shipping tab): the product's values only when the page labels none.
 SHOP_SYSTEM_SOURCES = frozenset({"shopify", "woocommerce"})
 
 
-def outranked_shop_weights(valid: Sequence[Any], agree: Callable[[Any, Any], bool]) -> list[tuple[Any, Any]]:
-    """(shop-system mass candidate, the labelled product mass it disagrees with) for every shop-system
-    weight that no labelled product weight on the page agrees with, when the page labels one (Ridge's
-    ``weight: 150`` in its Shopify data beside "WEIGHT: 2 oz")."""
+def outranked_shop_fields(valid: Sequence[Any], agree: Callable[[Any, Any], bool]) -> list[tuple[Any, Any]]:
+    """(shop-system candidate, the labelled product value it disagrees with) for every shop-system weight
+    or size that no labelled product value of the feature on the page agrees with, when the page labels
+    one (Ridge's ``weight: 150`` in its Shopify data beside "WEIGHT: 2 oz"; a WooCommerce shipping size
+    ``7.2 × 7.2 × 9.6 cm`` beside "Overall height (with lid) 86mm")."""
     labelled = [o for o in valid if o.source in LABELLED_SOURCES]
     if not labelled:
         return []

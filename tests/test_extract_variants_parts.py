@@ -239,12 +239,12 @@ def _agree(a: float, b: float) -> bool:
 
 
 def test_a_labelled_product_weight_outranks_a_shop_systems_weight_field():
-    from scrapers.restatements import outranked_shop_weights
+    from scrapers.restatements import outranked_shop_fields
 
     shop, label = _Obs("shopify", 150.0), _Obs("spec_table", 56.7)  # Ridge: weight 150 vs "WEIGHT: 2 oz"
-    assert outranked_shop_weights([shop, label], _agree) == [(shop, label)]
+    assert outranked_shop_fields([shop, label], _agree) == [(shop, label)]
     woo = _Obs("woocommerce", 560.0)
-    assert outranked_shop_weights([woo, _Obs("embedded_json", 500.0)], _agree)[0][0] is woo
+    assert outranked_shop_fields([woo, _Obs("embedded_json", 500.0)], _agree)[0][0] is woo
 
 
 @pytest.mark.parametrize("others", [
@@ -253,6 +253,15 @@ def test_a_labelled_product_weight_outranks_a_shop_systems_weight_field():
     [_Obs("jsonld", 56.7)],  # structured data is no label
 ])  # fmt: skip
 def test_a_shop_systems_weight_field_stays_when_no_label_disagrees(others):
-    from scrapers.restatements import outranked_shop_weights
+    from scrapers.restatements import outranked_shop_fields
 
-    assert outranked_shop_weights([_Obs("shopify", 150.0), *others], _agree) == []
+    assert outranked_shop_fields([_Obs("shopify", 150.0), *others], _agree) == []
+
+
+def test_a_shop_systems_size_field_is_outranked_by_a_labelled_size_too():
+    from scrapers.extract import _dims_agree
+    from scrapers.restatements import outranked_shop_fields
+
+    woo, label = _Obs("woocommerce", (9.6, 7.2, 7.2)), _Obs("spec_table", (8.6,))
+    assert outranked_shop_fields([woo, label], _dims_agree) == [(woo, label)]
+    assert outranked_shop_fields([woo, _Obs("spec_table", (9.6, 7.2))], _dims_agree) == []  # agrees
