@@ -35,6 +35,7 @@ import hashlib
 import re
 from collections import Counter
 from collections.abc import Callable
+from contextlib import AbstractContextManager, nullcontext
 from typing import Any
 from urllib.parse import urlsplit
 
@@ -49,7 +50,7 @@ from kb.features import (
     normalize_name,
 )
 from scrapers.catalog_write import PAUSE_ENV, write
-from scrapers.crawl import crawl_stores
+from scrapers.crawl import MAX_CRAWLING, MAX_WORKING, crawl_stores
 from scrapers.fetcher import Clock, PoliteFetcher, SystemClock, Validators, fetch_error_kind
 from scrapers.normalize import impossible_value
 from scrapers.outcomes import LOCAL_HOSTS, IngestionReport, PageOutcome, page_identity
@@ -78,8 +79,6 @@ Extractor = Callable[[bytes, str, "str | None"], ProductRecord]
 MAX_SITEMAPS = 50
 #: URLs read from one sitemap (the sitemaps protocol's own limit); the rest are left with a reason.
 MAX_SITEMAP_URLS = 50_000
-#: Stores crawled at the same time (each host still gets one request at a time).
-DEFAULT_MAX_HOSTS = 4
 _SHOPIFY_PRODUCT = re.compile(r"^/products/[^/.]+/?$")
 
 
@@ -124,11 +123,13 @@ def discover_urls(
     events: list[tuple[str, str, str]],
     *,
     until: float | None = None,
+    work: AbstractContextManager | None = None,
 ) -> list[str]:
     """The page URLs to fetch for ``store``, in order, de-duplicated, filtered and capped.
 
     Problems (an unreadable sitemap) are appended to ``events`` as (url, stage, reason) and skipped. Every
     fetch ends by ``until`` (the store's budget end, a monotonic time of the fetcher's clock) if given.
+    ``work`` (a :class:`~scrapers.crawl.WorkSlots`) is held while a sitemap is parsed, not while fetched.
     """
     urls: list[str] = list(store.urls)
     sitemaps = list(store.sitemaps)
@@ -148,7 +149,8 @@ def discover_urls(
         seen_maps.add(sitemap)
         try:
             result = fetcher.fetch(sitemap, policy=store.policy, until=until)
-            kind, locs, more = _sitemap_locs(result.body or b"")
+            with work or nullcontext():
+                kind, locs, more = _sitemap_locs(result.body or b"")
         except FetchError as err:
             events.append((sitemap, "discover", f"{fetch_error_kind(err)}: {err.reason}"))
             continue
@@ -264,7 +266,11 @@ def _process_page(
     extract: Extractor,
     *,
     until: float | None = None,
+    work: AbstractContextManager | None = None,
 ) -> PageOutcome:
+    """Fetch, extract and validate one page. ``work`` (a :class:`~scrapers.crawl.WorkSlots`) is held
+    while the page is extracted and validated, not while it is fetched."""
+    with_work = work or nullcontext()
     page = PageOutcome(url=url, store=store.name)
     good_before = prev is not None and prev.get("error") is None and prev.get("object_id") is not None
     validators = Validators(prev.get("etag"), prev.get("last_modified")) if good_before else None
@@ -288,6 +294,12 @@ def _process_page(
     if good_before and prev.get("content_sha256") == page.content_sha256:
         page.outcome = "not_modified"  # same bytes as last time: nothing to parse
         return page
+    with with_work:
+        return _extract_page(page, body, result, extract)
+
+
+def _extract_page(page: PageOutcome, body: bytes, result, extract: Extractor) -> PageOutcome:
+    """Stages 3-4 for a fetched body: ``page`` filled in as extracted or rejected."""
     try:
         record = extract(body, result.final_url, result.content_type)
     except ImpossibleValues as err:  # every value refused: the same reasons as _validate's
@@ -320,13 +332,16 @@ def run_ingestion(
     clock: Clock | None = None,
     progress: ProgressFn | None = None,
     extract: Extractor | None = None,
-    max_hosts: int = DEFAULT_MAX_HOSTS,
+    max_crawling: int = MAX_CRAWLING,
+    max_working: int = MAX_WORKING,
 ) -> IngestionReport:
     """Run the whole job (see the module docstring) and return its report.
 
     ``kb`` is a :class:`kb.catalog.KnowledgeBase` opened for writing. The network (``session``) and the
-    clock are passed in. Up to ``max_hosts`` stores are crawled at the same time, each on its own thread
-    under its own budget (:mod:`scrapers.crawl`; each host still one request at a time, with its delay). Pages that fail are recorded and skipped; only a failure of the run as a whole
+    clock are passed in. Up to ``max_crawling`` stores are crawled at the same time, each on its own thread
+    under its own budget, and up to ``max_working`` of them parse a page at once (:mod:`scrapers.crawl`:
+    a store waiting on the network holds no work slot; each host still one request at a time, with its
+    delay). Pages that fail are recorded and skipped; only a failure of the run as a whole
     (the database cannot be written) raises :class:`~kb.errors.IngestionError`, and then the catalog is
     left exactly as it was.
     """
@@ -340,8 +355,8 @@ def run_ingestion(
     except Exception as err:
         raise IngestionError(f"cannot read the catalog's pages table: {err}") from None
 
-    def process(fetcher, store, url, prev, *, until):
-        return _process_page(fetcher, store, url, prev, extract, until=until)
+    def process(fetcher, store, url, prev, *, until, work):
+        return _process_page(fetcher, store, url, prev, extract, until=until, work=work)
 
     outcomes, events = crawl_stores(
         fetcher,
@@ -351,7 +366,8 @@ def run_ingestion(
         process=process,
         clock=clock,
         progress=progress,
-        max_stores=max_hosts,
+        max_crawling=max_crawling,
+        max_working=max_working,
     )
     outcomes = _without_duplicate_pages(outcomes, events)
     report.pages = len(outcomes)

@@ -26,15 +26,17 @@ from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
 from hostile_store import product_page
 
-#: The hostile page kinds of a :class:`PageStore`, each at ``/p/<kind>``.
+#: The hostile page kinds of a :class:`PageStore`, each at ``/p/<kind>``. No two drips in a row: a store
+#: whose pages time out twice in a row gives up its other pages (``store_unresponsive``,
+#: ``scrapers/crawl.py``), and here every kind is to be read for its own reason.
 PAGE_KINDS = (
     "drip",
-    "drip-status",
-    "drip-headers",
-    "drip-chunked",
     "redirect-endless",
+    "drip-status",
     "redirect-circle",
+    "drip-headers",
     "redirect-other-port",
+    "drip-chunked",
     "redirect-other-host",
     "gzip-bomb",
     "deflate-bomb",
@@ -137,6 +139,7 @@ class PageStore:
     # -- answers --------------------------------------------------------------------------------------
     def answer(self, h: _Handler) -> None:
         path = h.path
+        kind = path[3:].split("?", 1)[0]  # a query (``?n=2``) names another page of the same kind
         if path == "/robots.txt":
             if self.mode == "hostile" and self.robots_hang_s:
                 time.sleep(self.robots_hang_s)
@@ -144,9 +147,9 @@ class PageStore:
         elif path == "/sitemap.xml":
             h._send(200, self._sitemap(), "application/xml")
         elif path.startswith("/p/") and self.mode == "hostile" and not path.startswith("/p/s"):
-            self._hostile(h, path[3:])
+            self._hostile(h, kind)
         elif path.startswith("/p/") or path == "/moved":
-            h._send(200, good_page("redirect-other-host" if path == "/moved" else path[3:]))
+            h._send(200, good_page("redirect-other-host" if path == "/moved" else kind))
         else:
             h._send(404, b"nope", "text/plain")
 
