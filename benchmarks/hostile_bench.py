@@ -13,7 +13,14 @@ at a time, each ingested by a fresh child process (so its peak RSS is its own): 
 (``VmHWM`` of the child, MB) and the reason recorded, against the same child reading one good page (the
 baseline, same run). Default policy (page deadline 30 s, max_bytes 10 MiB); the robots.txt hangs 40 s.
 
-Run: ``python benchmarks/hostile_bench.py [--runs N] [--skip-drip] [--skip-stores] [--save]``.
+Part 3, :func:`bench_drips_before_good`: four dripping stores (each page a byte every 50 ms; 4 pages each)
+listed *before* a good store (5 pages, 0.2 s host delay), page deadline 5 s (a blind tester's case: the
+crawl's 4 threads were all held by the drips). Reported: when the good store's first and last page were
+done, alone and beside the drips, and their ratio against the good store alone (same run, median of
+``--runs``); and the same run with the old limit of 4 stores crawling at once (``max_crawling=4``), to
+show what the store giving up after 2 time-outs in a row bounds when more stores wait than threads.
+
+Run: ``python benchmarks/hostile_bench.py [--runs N] [--skip-drip] [--skip-stores] [--skip-queue] [--save]``.
 All figures come from stores written here (loopback), not from real stores.
 """
 
@@ -202,12 +209,80 @@ def bench_each_store() -> list[dict[str, Any]]:
     return rows
 
 
+# ---------------------------------------------------------------------------------------------- part 3
+QUEUE_DEADLINE_S = 5.0
+DRIP_KINDS = ("drip", "drip-status", "drip-headers", "drip-chunked")
+GOOD_KINDS = ("nested", "error-page", "jsonld-10000", "wrong-charset", "missing-charset")  # good in good mode
+
+
+def _queue_sources(drips: list[Any], good: Any):
+    from scrapers.sources import parse_sources
+
+    text = f"[defaults]\nread_timeout_s = 30.0\nmax_retries = 1\nbackoff_s = 0\nmax_page_s = {QUEUE_DEADLINE_S}\n"
+    listed = [(f"drip-{i}", d, DRIP_KINDS, 0.0) for i, d in enumerate(drips)] + [("good", good, GOOD_KINDS, 0.2)]
+    for name, store, kinds, delay in listed:
+        urls = ", ".join(f'"{store.base_url}/p/{k}?n={name}"' for k in kinds)
+        text += f'[[stores]]\nname = "{name}"\nbase_url = "{store.base_url}"\ndelay_s = {delay}\nurls = [{urls}]\n'
+    return parse_sources(text)
+
+
+def _queue_run(db: Path, sources, good_base: str, **limits: int) -> dict[str, float]:
+    """One run: the good store's first and last page done, the run's total (s from its start)."""
+    import requests
+
+    from kb.catalog import KnowledgeBase
+    from scrapers.ingest import run_ingestion
+
+    good: list[float] = []
+    start = time.monotonic()
+
+    def progress(_done: int, _total: int, url: str) -> None:
+        if url.startswith(good_base):
+            good.append(time.monotonic() - start)
+
+    with requests.Session() as session:
+        report = run_ingestion(KnowledgeBase.open(db), sources, session=session, progress=progress, **limits)
+    return {"first": min(good), "last": max(good), "total": time.monotonic() - start,
+            "reasons": report.rejected_reasons}  # fmt: skip
+
+
+def bench_drips_before_good(runs: int = 3) -> dict[str, Any]:
+    from dataclasses import replace
+
+    from hostile_stores import PageStore
+
+    tmp = Path(tempfile.mkdtemp(prefix="hostile-bench-"))
+    rows: dict[str, list[dict[str, float]]] = {"alone": [], "beside": [], "beside, 4 crawling": []}
+    with PageStore() as good, PageStore(drip_s=60.0) as d0, PageStore(drip_s=60.0) as d1, \
+            PageStore(drip_s=60.0) as d2, PageStore(drip_s=60.0) as d3:  # fmt: skip
+        drips = [d0, d1, d2, d3]
+        for d in drips:
+            d.mode = "hostile"
+        both = _queue_sources(drips, good)
+        alone = replace(both, stores=tuple(s for s in both.stores if s.name == "good"))
+        for i in range(runs):  # a fresh catalog each: every good page read and extracted
+            rows["alone"].append(_queue_run(tmp / f"a{i}.duckdb", alone, good.base_url))
+            rows["beside"].append(_queue_run(tmp / f"b{i}.duckdb", both, good.base_url))
+            rows["beside, 4 crawling"].append(_queue_run(tmp / f"c{i}.duckdb", both, good.base_url, max_crawling=4))
+    med = statistics.median
+    result: dict[str, Any] = {"runs": runs, "deadline_s": QUEUE_DEADLINE_S}
+    base_last = med(r["last"] for r in rows["alone"])
+    for label, rs in rows.items():
+        first, last, total = (med(r[k] for r in rs) for k in ("first", "last", "total"))
+        result[label] = {"good_first_s": first, "good_last_s": last, "ratio": last / base_last, "total_s": total,
+                         "reasons": rs[-1]["reasons"]}  # fmt: skip
+        print(f"four dripping stores before a good one ({label:18}): good store's first page {first:6.2f} s, "
+              f"last {last:6.2f} s = {last / base_last:5.2f}x alone; run {total:5.1f} s; {rs[-1]['reasons']}")  # fmt: skip
+    return result
+
+
 # ---------------------------------------------------------------------------------------------- main
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=3, help="nightly runs with and without the drip (median)")
     parser.add_argument("--skip-drip", action="store_true")
     parser.add_argument("--skip-stores", action="store_true")
+    parser.add_argument("--skip-queue", action="store_true", help="skip part 3 (drips listed before a good store)")
     parser.add_argument("--save", action="store_true", help="save the figures as the README row")
     parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
@@ -216,11 +291,12 @@ def main(argv: list[str] | None = None) -> None:
         return
     drip = None if args.skip_drip else bench_drip_beside_demo(args.runs)
     rows = None if args.skip_stores else bench_each_store()
+    queue = None if args.skip_queue else bench_drips_before_good(args.runs)
     if args.save and drip and rows:
-        _save(drip, rows)
+        _save(drip, rows, queue)
 
 
-def _save(drip: dict[str, Any], rows: list[dict[str, Any]]) -> None:
+def _save(drip: dict[str, Any], rows: list[dict[str, Any]], queue: dict[str, Any] | None = None) -> None:
     from saved import save_result
 
     measured = [r for r in rows[1:] if r["wall_s"] is not None]
@@ -237,7 +313,7 @@ def _save(drip: dict[str, Any], rows: list[dict[str, Any]]) -> None:
         f"{worst_rss['rss_mb']:.0f} MB ({worst_rss['rss_ratio']:.2f}× one good page, {worst_rss['store']}), "
         f"{crashes} crashes; 2 shared cores, load {load:.0f}"
     )
-    data = {"drip": drip, "stores": rows, "load_average": round(load, 1)}
+    data = {"drip": drip, "stores": rows, "queue": queue, "load_average": round(load, 1)}
     path = save_result("hostile_bench", benchmark="hostile stores, nightly job", result=text, data=data, order=45)
     print(f"saved {path}")
 
