@@ -160,3 +160,14 @@ def test_one_axis_after_a_measuring_verb_and_hedged_weights(sentence, height, ma
 def test_one_axis_phrase_without_a_measuring_verb_is_no_size():
     # "a 5 cm thick base" names a part's extent in passing
     assert _record("<p>Our lamp has a 5 cm thick base and glows warmly all night.</p>") is None
+
+
+@pytest.mark.parametrize(("entry", "grams"), [
+    ({"name": "Weight", "displayValue": "2 kg"}, 2000.0),
+    ({"label": "Weight", "values": ["2 kg"]}, 2000.0),
+    ({"key": "Weight", "formattedValue": "2 kg"}, 2000.0),
+    ({"label": "Weight", "values": ["2 kg", "3 kg"]}, None),  # several values: options, not the product's
+])  # fmt: skip
+def test_a_state_entrys_value_under_other_keys(entry, grams):
+    r = _record(_state({"product": {"name": "Thing", "specs": [entry]}}))
+    assert (r.mass_g if r is not None else None) == grams

@@ -56,6 +56,23 @@ def _text_of(x: Any) -> str | None:
     return None
 
 
+#: Keys holding a label's value in a state object (``{"name": "Weight", "displayValue": "2 kg"}``,
+#: ``{"label": "Width", "values": ["30 cm"]}``), in order of preference.
+_VALUE_KEYS = ("value", "displayValue", "formattedValue", "valueText", "attributeValue", "values")
+
+
+def _value_of(node: dict) -> Any:
+    """The value of a label/value entry: the first value key present; a list only when it holds one value
+    (several are variants' or a list of options, not the product's)."""
+    for k in _VALUE_KEYS:
+        v = node.get(k)
+        if isinstance(v, list):
+            v = v[0] if len(v) == 1 else None
+        if v is not None:
+            return v
+    return None
+
+
 def _keyed_value(node: dict, key: str, value: Any) -> str | None:
     """The value text of a measurement key: a string as it is, a number with its unit from a sibling key
     (``weightUnit``, ``unit``) or a ``{"value": 1.2, "unit": "kg"}`` object; None without a unit."""
@@ -107,7 +124,7 @@ def _json_pairs(data: Any, title: str | None = None) -> list[Pair]:
         order += 1
         if isinstance(node, dict):
             label = next((text for k in _LABEL_KEYS if (text := _text_of(node.get(k)))), None)
-            value = node.get("value")
+            value = _value_of(node) if label else None
             if isinstance(value, dict):
                 value = _text_of(value)  # {"key": {"name": "Boyut/Ebat"}, "value": {"name": "140 x 180 cm"}}
             if label and isinstance(value, (str, int, float)) and not isinstance(value, bool):
