@@ -15,11 +15,12 @@ only itself: the other stores' pages go on. Two limits, because waiting and work
 So four dripping stores listed before a good store hold four of the 16 threads and none of the work
 slots: the good store starts at once (it waited for the four before, issue 25's blind tester: 11.5 s for
 its first page instead of 0.8 s). And a store whose pages keep timing out gives its thread up: after
-:data:`UNRESPONSIVE_AFTER` (2) pages in a row cut by their deadline (reason ``timeout``), its remaining
-pages are not fetched this run, each a rejected page with the reason ``store_unresponsive`` (a
-``page_events`` row). One time-out can be one slow page; two in a row mean the store gave nothing for two
-whole deadlines (a minute by default), and the next night reads every such page again in full. A page that
-is read resets the count. So a store no longer holds the job for its budget (3600 s by default) by
+:data:`UNRESPONSIVE_AFTER` (2) fetches in a row cut by their deadline (reason ``timeout``: its sitemaps
+count, then its pages), its remaining sitemaps are not read (a discovery error) and its remaining pages are
+not fetched this run, each a rejected page with the reason ``store_unresponsive`` (a ``page_events``
+row). One time-out can be one slow page; two in a row mean the store gave nothing for two
+whole deadlines (a minute by default), and the next night reads every such page again in full. A fetch the
+store answers (read, or refused for another reason: ``http_503``, ``connection_failed``) resets the count. So a store no longer holds the job for its budget (3600 s by default) by
 dripping every page: at most two deadlines after its discovery, however many pages it lists.
 
 The politeness rule is the fetcher's and unchanged: one request at a time per host, with its delay, even
@@ -54,18 +55,19 @@ __all__ = [
     "budget_spent_page",
     "crawl_stores",
     "unresponsive_page",
+    "unresponsive_reason",
 ]
 
 #: Stores crawled at once: threads that mostly wait on a socket or their host's delay.
 MAX_CRAWLING = 16
 #: Stores parsing a page (or a sitemap) at once: the CPU-bound work, on 2-4 cores.
 MAX_WORKING = 4
-#: Pages in a row cut by their deadline after which a store's other pages are not fetched this run.
+#: Fetches in a row that timed out after which a store's other sitemaps and pages are not fetched this run.
 UNRESPONSIVE_AFTER = 2
 #: The reason (``page_events.reason`` prefix) of a page not fetched because its store stopped answering.
 STORE_UNRESPONSIVE = "store_unresponsive"
 
-#: discover(fetcher, store, events, until, work) -> the store's page URLs.
+#: discover(fetcher, store, events, until, work, streak) -> the store's page URLs.
 Discover = Callable[..., list[str]]
 #: process(fetcher, store, url, previous_row, until, work) -> the page's outcome.
 Process = Callable[..., PageOutcome]
@@ -95,16 +97,21 @@ class WorkSlots:
 
 
 class TimeoutStreak:
-    """Pages of one store in a row cut by their deadline; :attr:`gave_up` from ``limit`` on."""
+    """Fetches of one store in a row (its sitemaps, then its pages) that timed out; :attr:`gave_up` from
+    ``limit`` on."""
 
     def __init__(self, limit: int = UNRESPONSIVE_AFTER):
         self.limit, self.count = limit, 0
 
-    def record(self, page: PageOutcome) -> None:
-        if page.outcome == "rejected" and page.stage == "fetch" and page.reason == DEADLINE_PASSED:
+    def record(self, failure: str | None) -> None:
+        """Count one fetch: ``failure`` is its failure's kind (``fetch_error_kind``), None if it was read."""
+        if failure == DEADLINE_PASSED:
             self.count += 1
         else:
             self.count = 0  # read, not modified, or failed for another reason: the store answers
+
+    def record_page(self, page: PageOutcome) -> None:
+        self.record(page.reason if page.outcome == "rejected" and page.stage == "fetch" else None)
 
     @property
     def gave_up(self) -> bool:
@@ -123,18 +130,23 @@ def budget_spent_page(store: StoreSource, url: str) -> PageOutcome:
     )
 
 
+def unresponsive_reason(store: StoreSource, streak: int, what: str = "pages") -> str:
+    """Why a page (or a sitemap) is not fetched: its store's last ``streak`` fetches all timed out."""
+    return (
+        f"not fetched: the store's last {streak} fetches in a row each took longer than their deadline "
+        f"({store.policy.max_page_s:g} s); its other {what} wait for the next run"
+    )
+
+
 def unresponsive_page(store: StoreSource, url: str, streak: int) -> PageOutcome:
-    """The outcome of a page not fetched because its store's last ``streak`` pages all timed out."""
+    """The outcome of a page not fetched because its store's last ``streak`` fetches all timed out."""
     return PageOutcome(
         url=url,
         store=store.name,
         outcome="rejected",
         stage="fetch",
         reason=STORE_UNRESPONSIVE,
-        detail=(
-            f"not fetched: the store's last {streak} pages in a row each took longer than their deadline "
-            f"({store.policy.max_page_s:g} s); its other pages wait for the next run"
-        ),
+        detail=unresponsive_reason(store, streak),
     )
 
 
@@ -174,7 +186,7 @@ def crawl_stores(
     """Crawl every store (see the module docstring); returns the page outcomes (stores in order, each
     store's pages in its order) and the discovery problems as (url, stage, reason). ``discover`` and
     ``process`` get the :class:`WorkSlots` (``work``: made of ``max_working`` unless passed) to hold
-    while they parse."""
+    while they parse; ``discover`` gets the store's :class:`TimeoutStreak` to count its sitemaps in."""
     claimed: set[str] = set()
     claim_lock = threading.Lock()
     tracker = _Progress(progress)
@@ -184,13 +196,13 @@ def crawl_stores(
         budget = StoreBudget(store.budget_s)
         until = budget.start(clock.monotonic())
         events: list[tuple[str, str, str]] = []
-        urls = discover(fetcher, store, events, until=until, work=slots)
+        streak = TimeoutStreak()
+        urls = discover(fetcher, store, events, until=until, work=slots, streak=streak)
         with claim_lock:
             mine = [u for u in urls if u not in claimed]
             claimed.update(mine)
         tracker.planned(len(mine))
         outcomes: list[PageOutcome] = []
-        streak = TimeoutStreak()
         for url in mine:
             if budget.spent(clock.monotonic()):
                 outcomes.append(budget_spent_page(store, url))
@@ -198,7 +210,7 @@ def crawl_stores(
                 outcomes.append(unresponsive_page(store, url, streak.count))
             else:
                 page = process(fetcher, store, url, previous.get(url), until=until, work=slots)
-                streak.record(page)
+                streak.record_page(page)
                 outcomes.append(page)
             tracker.page(url)
         return outcomes, events

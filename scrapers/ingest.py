@@ -50,7 +50,14 @@ from kb.features import (
     normalize_name,
 )
 from scrapers.catalog_write import PAUSE_ENV, write
-from scrapers.crawl import MAX_CRAWLING, MAX_WORKING, crawl_stores
+from scrapers.crawl import (
+    MAX_CRAWLING,
+    MAX_WORKING,
+    STORE_UNRESPONSIVE,
+    TimeoutStreak,
+    crawl_stores,
+    unresponsive_reason,
+)
 from scrapers.fetcher import Clock, PoliteFetcher, SystemClock, Validators, fetch_error_kind
 from scrapers.normalize import impossible_value
 from scrapers.outcomes import LOCAL_HOSTS, IngestionReport, PageOutcome, page_identity
@@ -124,13 +131,17 @@ def discover_urls(
     *,
     until: float | None = None,
     work: AbstractContextManager | None = None,
+    streak: TimeoutStreak | None = None,
 ) -> list[str]:
     """The page URLs to fetch for ``store``, in order, de-duplicated, filtered and capped.
 
     Problems (an unreadable sitemap) are appended to ``events`` as (url, stage, reason) and skipped. Every
     fetch ends by ``until`` (the store's budget end, a monotonic time of the fetcher's clock) if given.
     ``work`` (a :class:`~scrapers.crawl.WorkSlots`) is held while a sitemap is parsed, not while fetched.
+    Each sitemap fetch counts in ``streak`` (the store's time-outs in a row): once it has given up, the
+    other sitemaps are not read (an event ``store_unresponsive`` each).
     """
+    streak = streak or TimeoutStreak()
     urls: list[str] = list(store.urls)
     sitemaps = list(store.sitemaps)
     if not sitemaps and not urls:
@@ -147,13 +158,20 @@ def discover_urls(
             events.append((sitemap, "discover", "sitemap_loop: a sitemap index lists a sitemap already read"))
             continue
         seen_maps.add(sitemap)
+        if streak.gave_up:
+            why = unresponsive_reason(store, streak.count, "sitemaps and pages")
+            events.append((sitemap, "discover", f"{STORE_UNRESPONSIVE}: {why}"))
+            continue
         try:
             result = fetcher.fetch(sitemap, policy=store.policy, until=until)
-            with work or nullcontext():
-                kind, locs, more = _sitemap_locs(result.body or b"")
         except FetchError as err:
+            streak.record(fetch_error_kind(err))
             events.append((sitemap, "discover", f"{fetch_error_kind(err)}: {err.reason}"))
             continue
+        streak.record(None)
+        try:
+            with work or nullcontext():
+                kind, locs, more = _sitemap_locs(result.body or b"")
         except Exception as err:  # noqa: BLE001 - lxml's XMLSyntaxError and friends: a bad sitemap is skipped
             events.append((sitemap, "discover", f"bad_sitemap: {type(err).__name__}: {err}"))
             continue

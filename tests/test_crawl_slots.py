@@ -56,15 +56,18 @@ def _page(reason: str | None, stage: str = "fetch", url: str = "u", store: str =
 def test_a_store_gives_up_after_two_pages_in_a_row_cut_by_their_deadline(pages, gave_up):
     streak = TimeoutStreak()
     for reason in pages:
-        streak.record(_page(reason))
+        streak.record_page(_page(reason))
     assert UNRESPONSIVE_AFTER == 2 and streak.gave_up is gave_up
 
 
 def test_only_a_fetch_timeout_counts():
     streak = TimeoutStreak()
-    streak.record(_page(DEADLINE_PASSED))
-    streak.record(_page(DEADLINE_PASSED, stage="extract"))  # (no such page today; not a time-out of the store)
+    streak.record_page(_page(DEADLINE_PASSED))
+    streak.record_page(_page(DEADLINE_PASSED, stage="extract"))  # (no such page today; not a time-out of the store)
     assert not streak.gave_up
+    streak.record(DEADLINE_PASSED)  # a sitemap's fetch counts the same
+    streak.record(DEADLINE_PASSED)
+    assert streak.gave_up
 
 
 # ---------------------------------------------------------------------------------------------- crawl_stores
@@ -76,7 +79,7 @@ def _stores(*names: str, pages: int = 4):
     return parse_sources(text).stores
 
 
-def _discover(fetcher, store, events, *, until, work):
+def _discover(fetcher, store, events, *, until, work, streak):
     return list(store.urls)
 
 
@@ -95,7 +98,7 @@ def test_after_two_time_outs_in_a_row_the_stores_other_pages_are_not_fetched():
     assert [o.reason for o in slow] == [DEADLINE_PASSED, DEADLINE_PASSED, STORE_UNRESPONSIVE, STORE_UNRESPONSIVE]
     assert [u for u in asked if "slow" in u] == ["http://slow.example/p/0", "http://slow.example/p/1"]
     assert all(o.stage == "fetch" and o.outcome == "rejected" for o in slow)
-    assert "last 2 pages in a row each took longer than their deadline (7 s)" in slow[2].detail
+    assert "last 2 fetches in a row each took longer than their deadline (7 s)" in slow[2].detail
     assert [o.outcome for o in outcomes if o.store == "fine"] == ["extracted"] * 4 and not events
 
 
@@ -195,7 +198,7 @@ def test_each_dripping_store_gives_up_after_two_time_outs_with_the_reason_in_pag
         assert by_page[f"drip-{i}:drip"][1].startswith("timeout: page took longer than 3 s (its deadline)")
         assert by_page[f"drip-{i}:drip-status"][1].startswith("timeout: page took longer than 3 s")
         stage, reason = by_page[f"drip-{i}:drip-headers"]
-        assert stage == "fetch" and reason.startswith(f"{STORE_UNRESPONSIVE}: not fetched: the store's last 2 pages")
+        assert stage == "fetch" and reason.startswith(f"{STORE_UNRESPONSIVE}: not fetched: the store's last 2 fetches")
     assert not [e for e in events if e[0].startswith(good.base_url)]
     assert report.rejected_reasons == {"timeout": 8, STORE_UNRESPONSIVE: 4}
     assert report.not_modified == 3 and report.status == "ok"
@@ -215,3 +218,22 @@ def test_the_catalog_stays_as_it_was_for_every_page_not_fetched(four_drips_first
     for url, row in drip_rows.items():
         assert rows_after[url][:-1] == row[:-1] and row[-1] is None  # object, hash, validators: as they were
         assert rows_after[url][-1].startswith(("timeout", STORE_UNRESPONSIVE))
+
+
+def test_a_store_whose_sitemaps_time_out_twice_in_a_row_reads_no_other_sitemap_nor_page(tmp_path):
+    kb = KnowledgeBase.open(tmp_path / "catalog.duckdb")
+    with PageStore(drip_s=10.0) as store, requests.Session() as session:
+        store.mode = "hostile"
+        maps = ", ".join(f'"{{base_url}}/p/drip?map={i}"' for i in range(4))  # sitemaps that drip
+        text = (
+            "[defaults]\ndelay_s = 0\nmax_retries = 0\nmax_page_s = 1\n"
+            f'[[stores]]\nname = "s"\nbase_url = "{store.base_url}"\nsitemaps = [{maps}]\n'
+            'urls = ["{base_url}/p/nested"]\n'
+        )
+        report = run_ingestion(kb, parse_sources(text), session=session)
+        asked = sorted(p for p in store.seen if p.startswith("/p/"))
+    reasons = [e["reason"] for e in report.errors]
+    assert [r.split(":")[0] for r in reasons] == ["timeout", "timeout", STORE_UNRESPONSIVE, STORE_UNRESPONSIVE]
+    assert "its other sitemaps and pages wait for the next run" in reasons[2]
+    assert asked == ["/p/drip?map=0", "/p/drip?map=1"]  # neither the other sitemaps nor the listed page
+    assert report.rejected_reasons == {STORE_UNRESPONSIVE: 1} and report.status == "failed"
