@@ -144,9 +144,14 @@ class WatchedAdapter(HTTPAdapter):
         return manager
 
 
+#: Hosts a session keeps connections to at once (the nightly job crawls up to 16 stores side by side).
+HOSTS_AT_ONCE = 16
+
+
 def watch_session(session: requests.Session) -> None:
     """Mount :class:`WatchedAdapter` for http:// and https:// on ``session`` where its adapter is requests'
-    stock one (keeping its pool sizes and retries); any other adapter is left as it is."""
+    stock one (keeping its pool sizes, at least :data:`HOSTS_AT_ONCE` pools, and its retries); any other
+    adapter is left as it is."""
     for prefix in ("http://", "https://"):
         adapter = session.adapters.get(prefix)
         if type(adapter) is not HTTPAdapter:
@@ -154,7 +159,9 @@ def watch_session(session: requests.Session) -> None:
         session.mount(
             prefix,
             WatchedAdapter(
-                pool_connections=adapter._pool_connections,
+                # one pool per host the nightly job crawls at once (scrapers.crawl.MAX_CRAWLING), so no
+                # store loses its kept-alive connection to another's
+                pool_connections=max(adapter._pool_connections, HOSTS_AT_ONCE),
                 pool_maxsize=adapter._pool_maxsize,
                 max_retries=adapter.max_retries,
                 pool_block=adapter._pool_block,

@@ -295,3 +295,16 @@ def test_the_cli_options_reach_every_store(tmp_path):
         ["ingest", "--sources", str(sources), "--db", str(tmp_path / "c.duckdb"), "--page-deadline", "-1", "--json"],
     )
     assert result.exit_code == 1 and "--page-deadline" in result.stderr
+
+
+def test_the_watched_adapter_keeps_a_pool_per_store_crawled_at_once():
+    from scrapers.crawl import MAX_CRAWLING
+    from scrapers.fetch_watchdog import HOSTS_AT_ONCE
+
+    assert HOSTS_AT_ONCE >= MAX_CRAWLING
+    with requests.Session() as session:
+        PoliteFetcher(session)
+        assert session.adapters["http://"]._pool_connections == HOSTS_AT_ONCE
+        session.mount("http://", requests.adapters.HTTPAdapter(pool_connections=32))
+        PoliteFetcher(session)
+        assert session.adapters["http://"]._pool_connections == 32  # a larger pool is kept
