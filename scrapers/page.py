@@ -20,6 +20,7 @@ from typing import Any
 from kb.measures.units import units_pattern
 from scrapers.encodings import decode_body
 from scrapers.quantities import decimal_comma_for
+from scrapers.script_state import script_objects
 
 __all__ = [
     "FOREIGN_CONTAINER",
@@ -69,48 +70,6 @@ _LD_JSON = re.compile(
     r"<script\b[^>]*\btype\s*=\s*[\"']?application/ld\+json[\"']?[^>]*>(.*?)</script\s*>",
     re.IGNORECASE | re.DOTALL,
 )
-#: A JavaScript object literal longer than this is not read (page state of that size is a catalogue).
-MAX_SCRIPT_CHARS = 2_000_000
-
-
-#: State shipped as a JSON string literal (``window.__DATA__ = JSON.parse("{\\"product\\": ...}")``): the
-#: object is inside the string, escaped.
-_JSON_PARSE = re.compile(r"JSON\.parse\(\s*(?=\")")
-MAX_PARSED_STRINGS = 8
-
-
-def _parsed_strings(body: str, decoder: json.JSONDecoder) -> list[Any]:
-    """The objects of a script's ``JSON.parse("…")`` calls (at most :data:`MAX_PARSED_STRINGS`)."""
-    out: list[Any] = []
-    if "JSON.parse(" not in body:
-        return out
-    for m in _JSON_PARSE.finditer(body):
-        try:
-            literal, _ = decoder.raw_decode(body[m.end() : m.end() + MAX_SCRIPT_CHARS])
-            obj = json.loads(literal) if isinstance(literal, str) and literal.lstrip()[:1] in "{[" else None
-        except (ValueError, RecursionError):
-            continue
-        if obj is not None:
-            out.append(obj)
-            if len(out) >= MAX_PARSED_STRINGS:
-                break
-    return out
-
-
-def _js_object(text: str) -> Any:
-    """The first JavaScript object literal of ``text`` (chompjs), or None."""
-    if not any(ch in text[:200] for ch in ":'"):
-        return None
-    try:
-        import chompjs
-
-        obj = chompjs.parse_js_object(text)
-    except Exception:  # noqa: BLE001 - chompjs raises ValueError and others on what is not an object
-        return None
-    return obj if isinstance(obj, (dict, list)) and obj else None
-
-
-_SCRIPT = re.compile(r"<script\b([^>]*)>(.*?)</script\s*>", re.IGNORECASE | re.DOTALL)
 _WS = re.compile(r"\s+")
 #: Only the first this many visible text lines are read. The real pages measured have at most ~1,500
 #: (a 1.8 MiB Amazon page); a page with tens of thousands is a catalogue or a spec dump, and walking all
@@ -216,25 +175,9 @@ class Page:
         ``<script type="application/json">``): the first object literal of each script that parses, as
         JSON, else as a JavaScript object literal (unquoted keys, single quotes, trailing commas:
         ``chompjs``, which reads 316 of the 1,525 object-bearing scripts of the real development pages
-        against 239 for JSON alone)."""
-        payloads = []
-        decoder = json.JSONDecoder()
-        for m in _SCRIPT.finditer(self.text):
-            attrs, body = m.group(1), m.group(2)
-            if "ld+json" in attrs.lower() or len(body) < 20:
-                continue
-            payloads.extend(_parsed_strings(body, decoder))
-            start = body.find("{")
-            if start < 0:
-                continue
-            try:
-                obj, _ = decoder.raw_decode(body, start)
-            except (ValueError, RecursionError):
-                obj = _js_object(body[start : start + MAX_SCRIPT_CHARS])
-                if obj is None:
-                    continue
-            payloads.append(obj)
-        return payloads
+        against 239 for JSON alone), and the objects of ``JSON.parse("…")`` calls
+        (:mod:`scrapers.script_state`)."""
+        return script_objects(self.text)
 
     @cached_property
     def title(self) -> str | None:
