@@ -6,6 +6,7 @@ job calls it (and :func:`bulk_execute`) inside the one write transaction of a ru
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -177,5 +178,10 @@ def bulk_execute(
     con.register(view, pa.Table.from_arrays(arrays, schema=pa.schema(fields)))
     try:
         con.execute(sql)
-    finally:
-        con.unregister(view)
+    except BaseException:
+        # inside a failed transaction the unregister fails too ("Current transaction is aborted"): the
+        # statement's own error is the one to raise
+        with contextlib.suppress(Exception):
+            con.unregister(view)
+        raise
+    con.unregister(view)
