@@ -9,19 +9,27 @@
   only a stated value *below* it as a difference (``recall.metrics.relative_errors``); the ranking keeps
   the stored value (no row of such a catalog is larger, so it is the closest anyway).
 
-Both files are optional; a folder without them has no ids and no floors. Malformed files are refused with
+* ``bins.csv`` (``feature,below,above``): a data set that records classes, not measurements (the Yale
+  grasping data's size and mass classes), declares what a stored value x stands for: the class
+  [x / below, x * above], each factor at least 1; ``above`` may be ``inf``, a lower bound (a data set
+  that records the size of the part grasped, not of the whole object: the whole is at least as large).
+  The closeness and the 4x rule then count only the distance outside the class (:func:`read_bins`); the
+  ranking keeps the stored value, as with the floors.
+
+The files are optional; a folder without them has no ids, no floors and no bins. Malformed files are refused with
 the file, row and reason (:class:`kb.errors.RecallError`).
 """
 
 from __future__ import annotations
 
 import csv
+import math
 from pathlib import Path
 
 from kb.errors import RecallError
 from kb.features import NUMERIC_FEATURES, normalize_name
 
-__all__ = ["read_floors", "read_ids"]
+__all__ = ["read_bins", "read_floors", "read_ids"]
 
 
 def _rows(path: Path, columns: tuple[str, str]) -> list[tuple[int, str, str]]:
@@ -77,4 +85,34 @@ def read_floors(catalog_csv: str | Path) -> dict[str, float]:
         if not floor > 0 or feature in out:
             raise RecallError(f"{path} row {row}: {feature} needs one positive floor, not {value!r}")
         out[feature] = floor
+    return out
+
+
+def read_bins(catalog_csv: str | Path) -> dict[str, tuple[float, float]]:
+    """feature -> (below, above) from ``bins.csv`` beside ``catalog_csv`` ({} when there is none): a stored
+    value x stands for [x / below, x * above]. Only numeric features, each once, with factors of at least 1
+    (``above`` may be ``inf``)."""
+    path = Path(catalog_csv).with_name("bins.csv")
+    if not path.is_file():
+        return {}
+    out: dict[str, tuple[float, float]] = {}
+    rows = _rows(path, ("feature", "below"))
+    above = {n: a for n, _, a in _rows(path, ("feature", "above"))}
+    for row, feature, below in rows:
+        if feature not in NUMERIC_FEATURES:
+            raise RecallError(
+                f"{path} row {row}: {feature!r} is no numeric feature ({', '.join(NUMERIC_FEATURES)})"
+            )
+        try:
+            factors = (float(below), float(above[row]))
+        except ValueError:
+            raise RecallError(
+                f"{path} row {row}: below {below!r} and above {above[row]!r} must be numbers"
+            ) from None
+        if feature in out or not all(f >= 1.0 for f in factors) or math.isinf(factors[0]):
+            raise RecallError(
+                f"{path} row {row}: {feature} needs one class, factors of at least 1 (below finite), "
+                f"not {below!r}, {above[row]!r}"
+            )
+        out[feature] = factors
     return out

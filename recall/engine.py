@@ -119,6 +119,9 @@ class Recaller:
         #: catalog's value is a lower bound ("15 cm or more"); the closeness and the disagreement rule read
         #: them, the ranking does not.
         self.floors: dict[str, float] = {}
+        #: Classes of a binned catalog (:mod:`recall.catalog_folder`, ``bins.csv``): feature -> (below, above),
+        #: a stored value x stands for [x / below, x * above]; read like the floors, by the verdict only.
+        self.bins: dict[str, tuple[float, float]] = {}
         from kb.features import CATEGORICAL_FEATURES, CATEGORIES
 
         material = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
@@ -274,13 +277,15 @@ class Recaller:
                 matches=[], confidence=0.0, open_set=not_in_catalog, not_in_catalog=not_in_catalog,
                 described=noun, fit=fit, **base,
             )  # fmt: skip
-        rows, dist = self._candidates(query, named, top, metric, soft)
+        ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
+        rows, dist = self._candidates(ranked, named, top, metric, soft)
         score, parts = _ranking_scores(rows, dist, names, soft, metric)
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
-        matches = self._matches(rows, score, parts, query, metric, set(names.exact))
+        matches = self._matches(rows, score, parts, ranked, metric, set(names.exact))
+        best = int(rows[0])
         errors = relative_errors(
-            self.snapshot.num_rows(int(rows[0])), self.snapshot.cat_rows(int(rows[0])), query, self.floors
+            self.snapshot.num_rows(best), self.snapshot.cat_rows(best), query, self.floors, self.bins
         )
         errors.update(soft.errors_of(int(rows[0])) if soft is not None else {})
         closeness = closeness_of(errors, self._silent_categories(int(rows[0])))
@@ -316,7 +321,7 @@ class Recaller:
             margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
             soft_only=len(query) == 0 and not named,
         )  # fmt: skip
-        same_kind_as, same_kind = self._same_kind(noun, query, metric) if not_in_catalog else (None, [])
+        same_kind_as, same_kind = self._same_kind(noun, ranked, metric) if not_in_catalog else (None, [])
         return RecallResult(
             matches=matches[:top],
             confidence=confidence,

@@ -208,7 +208,7 @@ def evaluate(
     ``open_set_csv`` (a ``description`` column of objects not in the catalog) also how many of those are
     flagged open-set."""
     from kb.features import ObjectRecord
-    from recall.catalog_folder import read_floors, read_ids
+    from recall.catalog_folder import read_bins, read_floors, read_ids
     from recall.parse_eval import score_parses
     from recall.parser import parse
 
@@ -216,6 +216,7 @@ def evaluate(
     with tempfile.TemporaryDirectory(prefix="objrecall-eval-") as tmp:
         recaller = _recaller_from_catalog(Path(catalog_csv), Path(tmp))
     recaller.floors = read_floors(catalog_csv)
+    recaller.bins = read_bins(catalog_csv)
     snap = recaller.snapshot
     label, index = _labeller(snap, read_ids(catalog_csv))
     tally = _Tally()

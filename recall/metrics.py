@@ -172,6 +172,19 @@ class FeatureQuery:
     def __len__(self) -> int:
         return len(self.numeric) + len(self.categorical)
 
+    def within_classes(self, bins: Mapping[str, tuple[float, float]]) -> FeatureQuery:
+        """The query a binned catalog ranks by (``bins``: feature -> (below, above), a stored x standing for
+        the class [x / below, x * above], :mod:`recall.catalog_folder`): each stated interval [low, high]
+        widened to [low / above, high * below], the stored values whose class meets it. In log units
+        (``jplog``) the distance is exactly the distance between the stated interval and the class; in raw
+        units (``jp``) the zero region is, the distance outside it is measured to the widened ends."""
+        conds = []
+        for c in self.numeric:
+            below, above = bins.get(c.feature, (1.0, 1.0))
+            low = 0.0 if math.isinf(above) else c.low / above
+            conds.append(_condition(c.feature, c.value, low, c.high * below, c.qualifier, c.unknown))
+        return FeatureQuery(tuple(conds), self.categorical)
+
     def log_scaled(self) -> FeatureQuery:
         """The query for ``jplog``: numeric conditions in log units, categories unchanged. The same
         values as :meth:`NumericCondition.log_scaled` (tested), in one NumPy pass over every stated
@@ -291,7 +304,11 @@ def feature_terms(num: np.ndarray, cat: np.ndarray, query: FeatureQuery) -> dict
 
 
 def relative_errors(
-    num_row: np.ndarray, cat_row: np.ndarray, query: FeatureQuery, floors: Mapping[str, float] | None = None
+    num_row: np.ndarray,
+    cat_row: np.ndarray,
+    query: FeatureQuery,
+    floors: Mapping[str, float] | None = None,
+    bins: Mapping[str, tuple[float, float]] | None = None,
 ) -> dict[str, float]:
     """How far one catalog object is from the description, per stated feature, on one scale-free [0, 1]
     scale (the open-set closeness and the confidence use it; the ranking does not):
@@ -300,7 +317,10 @@ def relative_errors(
       the stated value, ``x`` the object's (30 % too long and 30 % too heavy count the same for a coin
       and a sofa); an unknown value counts as the unknown penalty, 1/3 (``0.5 v / 1.5 v``); a value at or
       above the catalog's floor for that feature (``floors``, :mod:`recall.catalog_folder`: "15 cm or more") is a
-      lower bound, so only a stated value below it differs;
+      lower bound, so only a stated value below it differs; a catalog that records classes, not
+      measurements (``bins``, :mod:`recall.catalog_folder`: feature -> (below, above)), has each value
+      stand for the class [x / below, x * above] (above infinite: a lower bound, the size of the part
+      the data set measured), and only a stated value or interval outside it differs;
     * categorical: 0 match, 1 mismatch, 0.5 unknown.
     """
     out: dict[str, float] = {}
@@ -309,15 +329,24 @@ def relative_errors(
         if math.isnan(x):
             out[cond.feature] = UNKNOWN_NUMERIC_FRACTION / (1.0 + UNKNOWN_NUMERIC_FRACTION)
             continue
+        low, high = _class_of(x, bins.get(cond.feature) if bins else None)
         floor = floors.get(cond.feature) if floors else None
-        above = floor is not None and x >= floor
-        d = max(0.0 if above else cond.low - x, x - cond.high, 0.0)  # above the floor: never too small
+        high = math.inf if floor is not None and x >= floor else high  # the open top bin: never too small
+        d = max(cond.low - high, low - cond.high, 0.0)
         scale = max(abs(cond.value), abs(x))
         out[cond.feature] = min(d / scale, 1.0) if scale > 0 else 0.0
     for feat, value in query.categorical:
         code = int(cat_row[CATEGORICAL_FEATURES.index(feat)])
         out[feat] = 0.0 if code == CATEGORY_CODES[feat][value] else (0.5 if code < 0 else 1.0)
     return out
+
+
+def _class_of(x: float, factors: tuple[float, float] | None) -> tuple[float, float]:
+    """The interval a catalog value stands for: [x / below, x * above] (``factors``), [x, x] without."""
+    if factors is None:
+        return x, x
+    below, above = factors
+    return x / below, (math.inf if math.isinf(above) else x * above)
 
 
 def _masked_columns(query: FeatureQuery) -> list[int]:

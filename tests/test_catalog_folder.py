@@ -5,7 +5,7 @@ from pathlib import Path
 import pytest
 
 from kb.errors import RecallError
-from recall.catalog_folder import read_floors, read_ids
+from recall.catalog_folder import read_bins, read_floors, read_ids
 
 DATA = Path(__file__).parent / "data"
 
@@ -18,7 +18,7 @@ def _folder(tmp_path, **files):
 
 def test_absent_files_mean_no_ids_and_no_floors(tmp_path):
     catalog = _folder(tmp_path)
-    assert read_ids(catalog) == {} and read_floors(catalog) == {}
+    assert read_ids(catalog) == {} and read_floors(catalog) == {} and read_bins(catalog) == {}
 
 
 def test_ids_map_to_normalized_names(tmp_path):
@@ -53,6 +53,33 @@ def test_floors_read_and_bad_floors_refused(tmp_path):
             read_floors(_folder(tmp_path, floors=text))
 
 
+def test_bins_read_and_bad_bins_refused(tmp_path):
+    import math
+
+    text = "feature,below,above\na_cm,1,inf\nmass_g,2,2\n"
+    assert read_bins(_folder(tmp_path, bins=text)) == {"a_cm": (1.0, math.inf), "mass_g": (2.0, 2.0)}
+    assert read_bins(_folder(tmp_path, bins="feature,below,above\nb_cm,1,1\n")) == {"b_cm": (1.0, 1.0)}
+    for text, reason in [
+        ("feature,below,above\nshape,1,1\n", "no numeric feature"),
+        ("feature,below,above\na_cm,1,wide\n", "must be numbers"),
+        ("feature,below,above\na_cm,0.99,2\n", "at least 1"),  # a class narrower than its value
+        ("feature,below,above\na_cm,2,0.99\n", "at least 1"),
+        ("feature,below,above\na_cm,inf,2\n", "below finite"),
+        ("feature,below,above\na_cm,2,2\na_cm,3,3\n", "one class"),
+        ("feature,below\na_cm,2\n", "needs the columns"),
+    ]:
+        with pytest.raises(RecallError, match=reason):
+            read_bins(_folder(tmp_path, bins=text))
+
+
+def test_the_yale_catalog_declares_its_classes():
+    import math
+
+    bins = read_bins(DATA / "catalog_yale" / "catalog.csv")
+    assert bins["a_cm"] == bins["b_cm"] == bins["c_cm"] == (1.0, math.inf) and bins["mass_g"] == (1.5, 1.5)
+    assert read_bins(DATA / "catalog_ycb" / "catalog.csv") == {}  # measured extents and masses
+
+
 @pytest.mark.parametrize("name", ["catalog_ycb", "catalog_yale"])
 def test_the_real_catalogs_name_every_id_and_their_sources(name):
     import csv
@@ -73,3 +100,20 @@ def test_description_sets_may_label_objects_by_the_data_sets_id(tmp_path):
     path = tmp_path / "d.csv"
     path.write_text('id,description\n003_cracker_box,"a box, 21 cm"\n', encoding="utf-8")
     assert read_descriptions(path) == [("003_cracker_box", "a box, 21 cm")]
+
+
+def test_the_verdict_reads_a_binned_catalogs_classes(tmp_path):
+    """On the real Yale catalog, whose sizes are those of the part grasped (a drawer's: 15 x 8 x 1.5 cm):
+    once the catalog's classes are read, the whole drawer's sizes rank the drawer first and fit it;
+    without them the drawer is ranked below other objects and nothing fits."""
+    from recall.evaluation import _recaller_from_catalog
+
+    catalog = DATA / "catalog_yale" / "catalog.csv"
+    recaller = _recaller_from_catalog(catalog, tmp_path)
+    recaller.floors = read_floors(catalog)
+    text = "a drawer out of a dresser, 40 cm wide, 35 cm deep, 15 cm high, about 3 kg"
+    plain = recaller.recall_text(text, top=3)
+    assert plain.matches[0].name != "drawer" and plain.open_set
+    recaller.bins = read_bins(catalog)
+    binned = recaller.recall_text(text, top=3)
+    assert binned.matches[0].name == "drawer" and not binned.open_set

@@ -1,6 +1,8 @@
 """The fit rule (recall.fit.judge): one rule for the open-set verdict and the store lookup, pinned at
 each threshold and each condition on its own."""
 
+import math
+
 import pytest
 
 from recall.fit import DISAGREE_FACTOR, THRESHOLDS, Trust, disagreeing_features, judge
@@ -61,7 +63,7 @@ def test_lookup_and_open_set_share_the_threshold():
     assert OPEN_SET_UNKNOWN_NOUN_THRESHOLD == THRESHOLDS[Trust.DOUBTED]
 
 
-def _errors(stated_cm: float, catalog_cm: float, floors=None):
+def _errors(stated_cm: float, catalog_cm: float, floors=None, bins=None):
     import numpy as np
 
     from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
@@ -71,7 +73,7 @@ def _errors(stated_cm: float, catalog_cm: float, floors=None):
     num[NUMERIC_FEATURES.index("a_cm")] = catalog_cm
     cat = np.full(len(CATEGORICAL_FEATURES), -1)
     query = FeatureQuery.from_values({"a_cm": stated_cm})
-    return relative_errors(num, cat, query, floors)["a_cm"]
+    return relative_errors(num, cat, query, floors, bins)["a_cm"]
 
 
 def test_a_floor_makes_the_catalog_value_a_lower_bound():
@@ -80,3 +82,24 @@ def test_a_floor_makes_the_catalog_value_a_lower_bound():
     assert _errors(10.0, 15.0, floors) == pytest.approx(5 / 15)  # below the floor still differs
     assert _errors(40.0, 14.99, floors) == pytest.approx((40 - 14.99) / 40)  # under the floor: a value
     assert _errors(40.0, 15.0) == pytest.approx(25 / 40)  # no floor: a value
+
+
+def test_a_binned_value_stands_for_its_class_and_only_the_distance_outside_it_counts():
+    bins = {"a_cm": (2.0, 2.0)}  # a stored 10 cm stands for [5, 20]
+    assert _errors(20.0, 10.0, bins=bins) == 0.0 and _errors(5.0, 10.0, bins=bins) == 0.0  # at both ends
+    assert _errors(20.2, 10.0, bins=bins) == pytest.approx(0.2 / 20.2, rel=1e-4)  # just above the class
+    assert _errors(4.9, 10.0, bins=bins) == pytest.approx(0.1 / 10.0, rel=1e-4)  # just below it
+    assert _errors(20.2, 10.0) == pytest.approx(10.2 / 20.2, rel=1e-4)  # no bins: a measurement
+
+
+def test_an_open_class_is_a_lower_bound_and_the_4x_rule_counts_outside_the_class():
+    from recall.fit import disagreeing_features
+
+    part = {"a_cm": (1.0, math.inf)}  # the size of the part measured: the whole is at least as large
+    assert _errors(180.0, 15.0, bins=part) == 0.0 and _errors(14.0, 15.0, bins=part) == pytest.approx(1 / 15)
+    bins = {"a_cm": (2.0, 2.0)}  # 4x outside [5, 20] is 80 cm: 79 agrees, 81 disagrees
+    assert not disagreeing_features({"a_cm": _errors(79.0, 10.0, bins=bins)})
+    assert disagreeing_features({"a_cm": _errors(81.0, 10.0, bins=bins)}) == ("a_cm",)
+    assert disagreeing_features({"a_cm": _errors(41.0, 10.0)}) == ("a_cm",)  # without bins: 4x of 10
+    floors = {"a_cm": 15.0}  # the open top bin wins over the class's upper end
+    assert _errors(400.0, 15.0, floors, {"a_cm": (2.0, 2.0)}) == 0.0
