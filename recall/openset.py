@@ -539,6 +539,7 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     slip from a catalog or lexicon word read as that word (:mod:`recall.typos`)."""
     import re
 
+    from recall.contents import foreign_contents
     from recall.names import GENERIC_NOUNS
     from recall.subject import counted_parts, introduced, noun_phrase, said_in_plural, subject_phrase
     from recall.typos import corrected
@@ -550,6 +551,10 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
     if subject:  # "a bar of soap", "a pair of scissors": the noun after "of"
         m = re.search(rf"\b{re.escape(subject[-1])}s?\s+of\s+(.*)", text.lower())
         after_of = subject_phrase(m.group(1)) if m else ()
+    held_elsewhere = foreign_contents(text, subject, after_of, names)
+    if held_elsewhere is not None:  # "a box of Cheerios" where the catalog's boxes hold other things
+        container = noun_in([subject[-1]])
+        return DescribedNoun(held_elsewhere, container.kind if container else ROOT, subject[-1], False)
     args = (names.phrases, names.heads, names.vocabulary, GENERIC_NOUNS, after_of, kinds_of)
     noun = described_noun(subject, *args)
     if noun is not None or any(w in names.vocabulary for w in after_of):

@@ -1,0 +1,75 @@
+"""Contents of a container (recall/contents.py): where the catalog names every object of a container noun
+by what it holds, a container of other contents is not in the catalog; contents a name has, a container
+the catalog also holds plainly, or no "<container> of" at all keep the old rules. Catalogs written here,
+each condition pinned on its own."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import pytest
+
+from recall.contents import foreign_contents
+from recall.engine import Recaller
+from recall.subject import noun_phrase
+
+HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity,aliases,source".split(",")
+BY_CONTENTS = [
+    ("cracker box", 21, 16, 7, 411), ("tissue box", 24, 12, 9, 250), ("mustard bottle", 19, 9, 6, 600),
+    ("roll of tape", 11, 11, 5, 300), ("hammer", 33, 13, 3, 600), ("cereal box", 30, 20, 7, 500),
+]  # fmt: skip
+PLAIN = [*BY_CONTENTS, ("small bottle", 11, 3, 3, 120), ("plastic box", 20, 15, 10, 300)]
+
+
+def _recaller(path: Path, rows) -> Recaller:
+    with path.open("w", encoding="utf-8", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(HEADER)
+        for name, a, b, c, g in rows:
+            w.writerow([name, a, b, c, g, "", "", "", "", "", "", "written here"])
+    return Recaller.from_csv(path)
+
+
+@pytest.fixture(scope="module")
+def catalogs(tmp_path_factory):
+    tmp = tmp_path_factory.mktemp("contents")
+    return _recaller(tmp / "a.csv", BY_CONTENTS), _recaller(tmp / "b.csv", PLAIN)
+
+
+def _contents(recaller: Recaller, text: str) -> str | None:
+    import re
+
+    from recall.subject import subject_phrase
+
+    subject = noun_phrase(text)
+    m = re.search(rf"\b{subject[-1]}s?\s+of\s+(.*)", text.lower())
+    return foreign_contents(text, subject, subject_phrase(m.group(1)) if m else (), recaller.names)
+
+
+def test_other_contents_of_a_container_held_only_by_its_contents_are_not_in_the_catalog(catalogs):
+    by_contents, _ = catalogs
+    assert _contents(by_contents, "a box of Cheerios, 28 x 19 x 7 cm, 340 g") == "cheerio box"
+    assert _contents(by_contents, "a roll of toilet paper, 11 cm across") == "toilet paper roll"
+    assert _contents(by_contents, "a bottle of ketchup, 20 cm tall") == "ketchup bottle"
+    result = by_contents.recall_text("a box of Cheerios, 21 x 16 x 7 cm, 411 g", top=3)
+    assert result.open_set and result.not_in_catalog  # the cracker box's own sizes: still another box
+
+
+def test_contents_a_name_holds_stay_in_the_catalog(catalogs):
+    by_contents, _ = catalogs
+    assert _contents(by_contents, "a box of Kleenex tissues, 24 x 12 x 9 cm") is None  # "tissue box"
+    assert _contents(by_contents, "a box of crackers, 21 cm") is None
+    # the lexicon's "cornflakes box" has the English name "cereal box", a catalog name
+    assert _contents(by_contents, "a box of cornflakes, 30 by 20 by 7 cm") is None
+    result = by_contents.recall_text("a box of crackers, 21 x 16 x 7 cm, 411 g", top=3)
+    assert result.matches[0].name == "cracker box" and not result.open_set
+
+
+def test_a_plainly_held_container_or_no_container_keeps_the_old_rules(catalogs):
+    by_contents, plain = catalogs
+    assert _contents(plain, "a bottle of ketchup, 20 cm tall") is None  # "small bottle": any bottle
+    assert _contents(plain, "a box of Cheerios, 28 x 19 x 7 cm") is None  # "plastic box": any box
+    assert _contents(by_contents, "a Cheerios box, 28 x 19 x 7 cm") is None  # no "box of"
+    assert _contents(by_contents, "a hammer of steel, 33 cm") is None  # no container noun
+    assert _contents(by_contents, "a can of Cheerios, 12 cm") is None  # no catalog object of "can"
