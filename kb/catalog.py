@@ -28,18 +28,13 @@ from typing import Any, Literal
 
 import duckdb
 
+from kb.connections import CATALOG_READ_CONFIG, SANDBOX_CONFIG, open_connection, retry_while_locked
 from kb.csvio import read_catalog_csv, write_catalog_csv
 from kb.errors import DatabaseError, ObjectNotFound, QueryFailed
 from kb.features import CATEGORICAL_FEATURES, FEATURES, ObjectRecord, normalize_name
 from kb.locks import lock_for
-from kb.sandbox import (
-    ALLOWED_STATEMENTS,
-    CATALOG_READ_CONFIG,
-    SANDBOX_CONFIG,
-    open_connection,
-    retry_while_locked,
-    run_user_sql,
-)
+from kb.sandbox import run_user_sql
+from kb.sql_policy import ALLOWED_STATEMENTS
 from kb.upserts import ARROW_TYPES, OBJECT_COLUMNS, ImportReport, bulk_execute, features_hash, upsert_records
 from kb.versions import CatalogVersion, catalog_version
 

@@ -13,7 +13,7 @@ in the caller's process. A small pool of worker processes (``python -m kb.sandbo
   worker is killed, so no query outlives its caller's deadline, and a new worker starts on the next call;
 * only plain reads run: an allow-list of statement types (SELECT, and EXPLAIN of a SELECT); any other
   type, including one this DuckDB version cannot name (``UPDATE EXTENSIONS``), is refused; so are the
-  table functions that reveal the server's files (:data:`HIDDEN_FUNCTIONS`);
+  table functions that reveal the server's files (:data:`kb.sql_policy.HIDDEN_FUNCTIONS`);
 * a refused statement is named by the word the user wrote (INSTALL, RESET, TRUNCATE, where DuckDB's types
   say LOAD, SET, DELETE), and a write inside a SELECT (``WITH x AS (DELETE ... RETURNING *) SELECT ...``),
   which the read-only connection stops before it runs, is refused in the sandbox's words (DuckDB's name the
@@ -28,79 +28,31 @@ from __future__ import annotations
 import atexit
 import os
 import pickle
-import re
 import select
 import struct
 import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from kb.connections import SANDBOX_CONFIG, open_connection, retry_while_locked
 from kb.errors import DatabaseBusy, DatabaseError, ObjrecallError, QueryFailed, QueryRefused, QueryTimeout
+from kb.sql_policy import check_query, first_line, write_refusal
 
 __all__ = [
-    "ALLOWED_STATEMENTS",
-    "HIDDEN_FUNCTIONS",
-    "CATALOG_READ_CONFIG",
-    "DYNAMIC_SQL_FUNCTIONS",
     "MAX_ROWS",
     "MAX_TIMEOUT_S",
-    "SANDBOX_CONFIG",
     "USER_SQL_CONFIG",
     "WORKER_MEMORY_BYTES",
     "SqlAnswer",
-    "is_lock_conflict",
-    "open_connection",
-    "retry_while_locked",
     "run_user_sql",
     "unique_columns",
     "warm_up",
 ]
-
-#: Settings of every read connection: read-only, no file or network access, no extensions, configuration
-#: locked so a query cannot undo any of it, and a memory cap.
-SANDBOX_CONFIG: dict[str, Any] = {
-    "enable_external_access": False,
-    "autoinstall_known_extensions": False,
-    "autoload_known_extensions": False,
-    "allow_community_extensions": False,
-    "allow_unsigned_extensions": False,
-    "max_memory": "2GB",
-    "lock_configuration": True,
-}
-#: Settings of the catalog's own read connections (:meth:`kb.catalog.KnowledgeBase.connect`): the sandbox
-#: without the configuration lock. Only the project's own statements run on them (user SQL runs in a worker
-#: process, :func:`run_user_sql`), and a lock set after connecting would make every later connection to the
-#: file in this process differ from the first one's settings, which DuckDB refuses.
-CATALOG_READ_CONFIG: dict[str, Any] = {k: v for k, v in SANDBOX_CONFIG.items() if k != "lock_configuration"}
-
-def open_connection(path: Path | str, *, read_only: bool, config: dict[str, Any] | None = None):
-    """A DuckDB connection to ``path`` that never draws DuckDB's progress bar, then ``config``.
-
-    DuckDB draws a progress bar on stdout for any statement over 2 s, terminal or not, which corrupts the
-    output of ``--json`` and CSV commands. The bar can only be turned off per connection (not as a connect
-    setting), so the configuration lock of ``config`` is applied after turning it off. A locked connection
-    must be the process's only one to the file (as in a user-SQL worker): DuckDB refuses a second connection
-    whose settings differ from the first's, and the lock changed them.
-    """
-    import duckdb
-
-    settings = dict(config or {})
-    lock = settings.pop("lock_configuration", False)
-    con = duckdb.connect(str(path), read_only=read_only, config=settings)
-    try:
-        con.execute("SET enable_progress_bar = false")
-        if lock:
-            con.execute("SET lock_configuration = true")
-    except BaseException:
-        con.close()
-        raise
-    return con
-
 
 #: Address-space cap of a user-SQL worker process (python + DuckDB need about 0.1 GB of it).
 WORKER_MEMORY_BYTES = 1536 * 1024 * 1024
@@ -112,21 +64,6 @@ USER_SQL_CONFIG: dict[str, Any] = {
     "threads": 1,
     "max_temp_directory_size": "0KB",
 }
-#: Statement types user SQL may run (EXPLAIN only of a statement that is itself allowed).
-ALLOWED_STATEMENTS = frozenset({"SELECT", "EXPLAIN"})
-#: Table functions refused in user SQL because they reveal the server's file paths or settings.
-HIDDEN_FUNCTIONS: tuple[str, ...] = (
-    "duckdb_databases", "duckdb_settings", "current_setting", "duckdb_extensions", "duckdb_temporary_files",
-    "duckdb_secrets", "which_secret", "duckdb_logs", "duckdb_log_contexts", "duckdb_external_file_cache",
-    "duckdb_memory", "pragma_[a-z_]+", "pg_settings",
-)
-#: Functions refused when called because they run SQL built from a string at run time, which no check of
-#: the query's text can see into (``query('select * from duckdb_' || 'settings()')``).
-DYNAMIC_SQL_FUNCTIONS: tuple[str, ...] = ("query", "query_table", "json_execute_serialized_sql")
-_HIDDEN_RE = re.compile(r"(?<![a-z0-9_])(" + "|".join(HIDDEN_FUNCTIONS) + r")(?![a-z0-9_])", re.IGNORECASE)
-_DYNAMIC_RE = re.compile(
-    r"(?<![a-z0-9_])(" + "|".join(DYNAMIC_SQL_FUNCTIONS) + r")\"?\s*\(", re.IGNORECASE
-)
 #: The longest time limit user SQL may ask for (a day; the HTTP service caps it far lower). A longer one is
 #: refused with a reason: past about 10**9 s the operating system's timers cannot represent it.
 MAX_TIMEOUT_S = 86_400.0
@@ -151,31 +88,6 @@ class SqlAnswer:
 
 
 # ---------------------------------------------------------------------------------------------- shared
-def is_lock_conflict(err: Exception) -> bool:
-    """True when ``err`` says another process holds the database file."""
-    text = str(err).lower()
-    return "lock" in text and ("conflict" in text or "could not set" in text)
-
-
-def retry_while_locked(fn: Callable[[], Any], *, path: Path, busy_timeout: float) -> Any:
-    """``fn()``, retried with a short backoff while another process holds the database file, for up to
-    ``busy_timeout`` seconds; then :class:`~kb.errors.DatabaseBusy`."""
-    deadline = time.monotonic() + busy_timeout
-    delay = 0.01
-    while True:
-        try:
-            return fn()
-        except Exception as err:  # duckdb.IOException, or wrapped by SQLAlchemy / MigrationError
-            if not is_lock_conflict(err):
-                raise
-            if time.monotonic() >= deadline:
-                raise DatabaseBusy(
-                    f"{path}: another process has held the database for over {busy_timeout:g} s"
-                ) from None
-            time.sleep(delay)
-            delay = min(delay * 2, 0.25)
-
-
 def unique_columns(names: Sequence[str]) -> list[str]:
     """Column names with repeats renamed ``name (2)``, ``name (3)``, ... so that no column is lost."""
     seen: set[str] = set()
@@ -191,74 +103,11 @@ def unique_columns(names: Sequence[str]) -> list[str]:
 
 
 # ---------------------------------------------------------------------------------------------- worker side
-def _statement_kind(con, query: str) -> str:
-    """The one statement's type name; refuses several statements and any type not allowed."""
-    import duckdb
-
-    try:
-        statements = con.extract_statements(query)
-    except duckdb.Error as err:
-        raise QueryFailed(f"SQL error: {_first_line(err)}") from None
-    if len(statements) != 1:
-        raise QueryRefused(f"one statement at a time, got {len(statements)}")
-    try:
-        kind = statements[0].type.name
-    except ValueError:  # a statement type this DuckDB's Python API cannot name (UPDATE EXTENSIONS, ...)
-        kind = "UNKNOWN"  # refused below like any other type not on the allow-list
-    if kind == "EXPLAIN":
-        inner = re.sub(r"^\s*explain(\s+analy[sz]e)?\s", "", query, count=1, flags=re.IGNORECASE)
-        if inner != query and _statement_kind(con, inner) == "SELECT":
-            return kind
-        kind = "EXPLAIN (of a statement that is not a SELECT)"
-    if kind not in ALLOWED_STATEMENTS:
-        said = _leading_keyword(query)
-        if said and not kind.startswith("EXPLAIN"):  # the user's word: INSTALL, not DuckDB's type LOAD
-            what = f"{said} statements are"
-        else:
-            what = "statements of this type are" if kind == "UNKNOWN" else f"{kind} statements are"
-        raise QueryRefused(f"refused: {what} not allowed; the catalog is read-only (SELECT only)")
-    return kind
-
-
-#: Comments and white space before a statement's first word.
-_LEAD = r"(?:\s|--[^\n]*(?:\n|\Z)|/\*.*?\*/)*"
-#: The first word (two for FORCE INSTALL and UPDATE EXTENSIONS) of a statement, as the user wrote it.
-_LEADING_WORD = re.compile(_LEAD + r"(force\s+install|update\s+extensions|[a-z_]+)", re.IGNORECASE | re.DOTALL)
-#: Statement words that change data or schema, looked for when a query inside a SELECT tried to write.
-_WRITE_WORD = re.compile(r"(?<![a-z0-9_])(insert|update|delete|merge|truncate|copy|create|drop|alter)(?![a-z0-9_])", re.I)
-
-
-def _leading_keyword(query: str) -> str | None:
-    """The statement's first word as the user wrote it (DuckDB names INSTALL and LOAD both ``LOAD``, RESET
-    ``SET``, TRUNCATE ``DELETE``), upper case; None for WITH (its statement's type names it better)."""
-    m = _LEADING_WORD.match(query)
-    if not m or m.group(1).lower() == "with":
-        return None
-    return " ".join(m.group(1).upper().split())
-
-
-def _write_refusal(query: str) -> str:
-    """The sandbox's own words for a write inside a SELECT (``WITH x AS (DELETE ... RETURNING *) SELECT ...``),
-    which DuckDB's read-only connection stops before it runs."""
-    bare = re.sub(r"'(?:[^']|'')*'|\"(?:[^\"]|\"\")*\"|--[^\n]*|/\*.*?\*/", " ", query, flags=re.DOTALL)
-    word = _WRITE_WORD.search(bare)
-    inside = f" ({word.group(1).upper()} inside the query)" if word else ""
-    return f"refused: the query writes{inside}; the catalog is read-only (SELECT only)"
-
-
 def _execute(con, request: dict[str, Any]) -> SqlAnswer:
     import duckdb
 
     query = request["query"]
-    _statement_kind(con, query)
-    hidden = _HIDDEN_RE.search(query)
-    if hidden:
-        raise QueryRefused(f"refused: {hidden.group(1)} reveals server settings and is not available")
-    dynamic = _DYNAMIC_RE.search(query)
-    if dynamic:
-        raise QueryRefused(
-            f"refused: {dynamic.group(1)}() runs SQL built at run time, which cannot be checked; write the query itself"
-        )
+    check_query(con, query)
     timer = threading.Timer(request["timeout_s"], con.interrupt)
     timer.start()
     try:
@@ -266,17 +115,17 @@ def _execute(con, request: dict[str, Any]) -> SqlAnswer:
         columns = unique_columns([d[0] for d in cur.description])
         rows = cur.fetchmany(request["max_rows"] + 1)
     except duckdb.PermissionException as err:
-        raise QueryRefused(f"refused: {_first_line(err)}") from None
+        raise QueryRefused(f"refused: {first_line(err)}") from None
     except duckdb.InterruptException:
         raise QueryTimeout(f"query interrupted after the {request['timeout_s']:g} s time limit") from None
     except (duckdb.OutOfMemoryException, MemoryError):
         raise QueryRefused(_memory_refusal()) from None
     except duckdb.Error as err:
         if "read-only" in str(err).lower():  # DuckDB's text names the database file: never passed on
-            raise QueryRefused(_write_refusal(query)) from None
+            raise QueryRefused(write_refusal(query)) from None
         if "out of memory" in str(err).lower() or "bad allocation" in str(err).lower():
             raise QueryRefused(_memory_refusal()) from None
-        raise QueryFailed(f"SQL error: {_first_line(err)}") from None
+        raise QueryFailed(f"SQL error: {first_line(err)}") from None
     finally:
         timer.cancel()
     max_rows = request["max_rows"]
@@ -301,7 +150,7 @@ def _answer(request: dict[str, Any]) -> tuple:
         try:
             data = pickle.dumps(("ok", (answer.columns, answer.rows, answer.truncated)), protocol=pickle.HIGHEST_PROTOCOL)
         except (TypeError, AttributeError, pickle.PicklingError) as err:
-            raise QueryFailed(f"a result value cannot be returned: {_first_line(err)}") from None
+            raise QueryFailed(f"a result value cannot be returned: {first_line(err)}") from None
     except ObjrecallError as err:
         return ("error", type(err).__name__, _mask(str(err), path))
     except (MemoryError, duckdb.OutOfMemoryException):
@@ -344,7 +193,7 @@ def _worker_main() -> None:
         try:
             reply = _answer(request)
         except Exception as err:  # a bug, not the user's query: say so instead of dying
-            reply = ("error", "QueryFailed", f"SQL worker error: {type(err).__name__}: {_first_line(err)}")
+            reply = ("error", "QueryFailed", f"SQL worker error: {type(err).__name__}: {first_line(err)}")
         _write_frame(out, reply[1] if reply[0] == "raw" else pickle.dumps(reply))
 
 
@@ -498,7 +347,3 @@ def run_user_sql(
     if reply[0] == "ok":
         return SqlAnswer(*reply[1])
     raise _ERRORS.get(reply[1], QueryFailed)(reply[2])
-
-
-def _first_line(err: Exception) -> str:
-    return str(err).strip().splitlines()[0] if str(err).strip() else type(err).__name__

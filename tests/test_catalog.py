@@ -148,7 +148,8 @@ def test_hundred_row_csv(tmp_path, db_path):
 def test_no_connection_draws_a_progress_bar_and_the_lock_still_holds(tmp_path):
     """DuckDB draws a progress bar on stdout for any statement over 2 s (it corrupted ``--json`` output):
     every connection the catalog opens has it off, and user SQL's configuration lock still holds."""
-    from kb.sandbox import USER_SQL_CONFIG, open_connection
+    from kb.connections import open_connection
+    from kb.sandbox import USER_SQL_CONFIG
 
     kb = KnowledgeBase.open(tmp_path / "c.duckdb")
     for write in (False, True):
