@@ -13,6 +13,7 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -179,6 +180,7 @@ class Recaller:
             query, soft = with_alternatives(query, soft, alternatives(query, parsed), self.snapshot.cat_cols)
             subject = noun_phrase(text)
             noun = self.described(text)
+            names = self._with_sorts(names, noun)
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun,
             subject=subject, unused=nothing_compared(parsed.refused, bool(query.numeric)),
@@ -234,6 +236,19 @@ class Recaller:
         if ev is None or ev.value != "other":
             return None
         return self._submaterials.penalty(ev.words or "")
+
+    def _with_sorts(self, names: NameEvidence, noun: DescribedNoun | None) -> NameEvidence:
+        """``names`` with the rows of the catalog head the described noun is a sort of (``noun.sort_of``:
+        "a hacksaw" -> the saws), so that the ranking offers the objects the verdict holds it in the
+        catalog as (:attr:`NameEvidence.sorts`); unchanged when it is no such sort or the text names them."""
+        if noun is None or not noun.in_catalog or noun.sort_of is None:
+            return names
+        rows = self.names.heads.get(noun.sort_of) or set()
+        rows = {r for r in rows if words_of(self.snapshot.names[r])[-1:] == [noun.sort_of]} - set(names.exact)
+        if not rows:
+            return names
+        info = math.log(max(len(self.snapshot), 1) / len(rows))
+        return dataclasses.replace(names, sorts=dict.fromkeys(sorted(rows), info))
 
     def described(self, text: str) -> DescribedNoun | None:
         """The noun the description names, and whether the catalog has it (:func:`recall.openset.describe`)."""
@@ -443,7 +458,7 @@ def _ranking_scores(
 ) -> tuple[np.ndarray, dict[int, tuple[float, float, float]]]:
     """The ranking score of each candidate row (distance - name part + vague part) and the parts by row:
     row -> (distance, name part, vague part)."""
-    named = bool(names.exact or names.head)
+    named = bool(names.exact or names.head or names.sorts)
     bonus = np.array([names.bonus(int(r)) for r in rows]) if named else np.zeros(len(rows))
     vague = soft.penalty[rows] if soft is not None else np.zeros(len(rows))
     if metric in JP_METRICS:

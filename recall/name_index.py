@@ -72,13 +72,18 @@ class NameEvidence:
     heads: tuple[str, ...] = ()
     #: The subject's head noun when the catalog does not know it (:meth:`NameIndex.unknown_noun`).
     unknown_noun: str | None = None
+    #: The rows of the catalog head the described noun is a sort of (``DescribedNoun.sort_of``: "a
+    #: hacksaw" -> every "saw"), with the information of that head: ranked as a head noun is, yet no name
+    #: of the object (the verdict does not trust it as named).
+    sorts: dict[int, float] = field(default_factory=dict)
 
     def rows(self) -> list[int]:
-        return sorted(set(self.exact) | set(self.head))
+        return sorted(set(self.exact) | set(self.head) | set(self.sorts))
 
     def bonus(self, row: int) -> float:
         """Nats subtracted from the row's JP distance (see RECALL.md)."""
-        return max(NAME_WEIGHT * self.exact.get(row, 0.0), HEAD_WEIGHT * self.head.get(row, 0.0))
+        named = max(NAME_WEIGHT * self.exact.get(row, 0.0), HEAD_WEIGHT * self.head.get(row, 0.0))
+        return max(named, HEAD_WEIGHT * self.sorts.get(row, 0.0)) if self.sorts else named
 
 
 class NameIndex:
