@@ -28,6 +28,7 @@ __all__ = [
     "DISAGREE_FACTOR",
     "DescribedNoun",
     "KindIndex",
+    "bare_part",
     "compound_head",
     "describe",
     "disagreeing_features",
@@ -360,6 +361,24 @@ PART_NOUNS = frozenset(
     "blade handle head headband band strap lid tip base body shell casing housing grip cover top bottom "
     "edge face side end rim neck cap spout knob button wheel leg arm frame panel surface".split()
 )
+#: Solid shapes a list of features can start with ("hollow *cylinder*, 60 cm long"): with
+#: :data:`SHAPE_NOUNS`, a shape, not an object's name, when no article introduces them.
+SOLID_NOUNS = frozenset("cylinder sphere cube cuboid prism dome wedge".split())
+
+
+def bare_part(text: str, subject: Sequence[str]) -> bool:
+    """Whether the subject's head is a part of a thing (:data:`PART_NOUNS`, a screen too) or a shape
+    (:data:`SHAPE_NOUNS`, :data:`SOLID_NOUNS`) that no determiner introduces (:func:`recall.subject.
+    introduced`): "glass screen, 170 grams, thin", "C-shaped steel frame, 250 g", "hollow cylinder, 60 cm
+    long" list what the object has or looks like; "a frame", "the screen" name the thing itself."""
+    from recall.subject import introduced
+
+    head = subject[-1] if subject else None
+    if head is None or head not in PART_NOUNS | SHAPE_NOUNS | SOLID_NOUNS | {"screen"}:
+        return False
+    return not introduced(text, head)
+
+
 #: ... nor are the abbreviations of a listing's notes ("*dims* 8.5 x 3 in, wt 1.5 lbs").
 NOTE_WORDS = frozenset("dim dims dimension measurement approx wt weight size spec specs pic photo".split())
 
@@ -557,6 +576,8 @@ def describe(text: str, names, kinds_of: KindIndex) -> DescribedNoun | None:
         return DescribedNoun(held_elsewhere, container.kind if container else ROOT, subject[-1], False)
     args = (names.phrases, names.heads, names.vocabulary, GENERIC_NOUNS, after_of, kinds_of)
     noun = described_noun(subject, *args)
+    if noun is not None and not noun.in_catalog and bare_part(text, subject):
+        return None  # "glass screen, 170 grams, thin": a list of features names a part or a shape
     if noun is not None or any(w in names.vocabulary for w in after_of):
         return noun  # "a pint of milk": a measure of something the catalog knows is no unseen object
     head = names.unknown_noun(text) or compound_head(subject, names.vocabulary)

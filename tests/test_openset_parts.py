@@ -1,0 +1,45 @@
+"""A list of features that starts with a part or a shape (recall.openset.bare_part): "glass screen, 170 g,
+thin" names no object the catalog lacks; introduced by an article ("a glass screen") it still does.
+Catalog written here."""
+
+from __future__ import annotations
+
+import csv
+
+import pytest
+
+from recall.engine import Recaller
+from recall.openset import bare_part
+
+HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity,aliases,source".split(",")
+
+
+@pytest.fixture(scope="module")
+def recaller(tmp_path_factory) -> Recaller:
+    path = tmp_path_factory.mktemp("parts") / "catalog.csv"
+    with path.open("w", encoding="utf-8", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(HEADER)
+        for name, a, b, c, g in [("cell phone", 10, 5.5, 1, 100), ("micrometer", 11.5, 1.75, 1.75, 170)]:
+            w.writerow([name, a, b, c, g, "", "", "", "", "", "", "written here"])
+    return Recaller.from_csv(path)
+
+
+@pytest.mark.parametrize(
+    "text", ["glass screen, 170 grams, thin", "C-shaped steel frame, 250 g", "hollow cylinder, 60 cm long"]
+)
+def test_a_bare_part_or_shape_names_no_foreign_object(recaller, text):
+    assert recaller.described(text) is None
+    assert not recaller.recall_text(text).not_in_catalog
+
+
+@pytest.mark.parametrize("text", ["a glass screen, 170 grams", "the steel frame of a bed, 250 g"])
+def test_an_introduced_part_still_names_the_thing(recaller, text):
+    noun = recaller.described(text)
+    assert noun is not None and not noun.in_catalog
+
+
+def test_only_parts_and_shapes_are_read_so():
+    assert bare_part("glass screen, 170 grams", ("glass", "screen"))
+    assert not bare_part("kitchen tongs, metal, 12 inches", ("kitchen", "tong"))  # a name, bare
+    assert not bare_part("a frame, 250 g", ("frame",)) and not bare_part("", ())
