@@ -117,8 +117,9 @@ def bench_end_to_end(runs: int = 3) -> dict[str, Any]:
 
     from kb.catalog import KnowledgeBase
     from scrapers.demo_store import DemoStore
+    from scrapers.discovery import discover_urls
     from scrapers.fetcher import FetchPolicy, PoliteFetcher
-    from scrapers.ingest import discover_urls, run_ingestion
+    from scrapers.ingest import run_ingestion
     from scrapers.sources import parse_sources
 
     seed = Path(__file__).resolve().parents[1] / "kb" / "data" / "seed_catalog.csv"

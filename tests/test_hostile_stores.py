@@ -17,7 +17,8 @@ from hostile_store import HostileStore, product_page
 from hostile_stores import PAGE_KINDS, PageStore, sources_text
 
 from kb.catalog import KnowledgeBase
-from scrapers.ingest import MAX_SITEMAP_URLS, run_ingestion
+from scrapers.discovery import MAX_SITEMAP_URLS
+from scrapers.ingest import run_ingestion
 from scrapers.sources import parse_sources
 
 #: What each hostile page of a PageStore is rejected with (reason prefix), or "extracted" when it is read
@@ -150,14 +151,14 @@ def _urlset(n: int) -> bytes:
 
 @pytest.mark.parametrize(("n", "more"), [(4, False), (5, False), (6, True)])
 def test_a_sitemap_is_read_up_to_its_cap_and_says_when_more_were_left(n, more):
-    from scrapers.ingest import _sitemap_locs
+    from scrapers.discovery import sitemap_locs
 
-    kind, locs, left = _sitemap_locs(_urlset(n), cap=5)
+    kind, locs, left = sitemap_locs(_urlset(n), cap=5)
     assert kind == "urlset" and locs == [f"http://s.example/p/{i}" for i in range(min(n, 5))] and left is more
 
 
 def test_a_sitemap_index_keeps_its_kind():
-    from scrapers.ingest import _sitemap_locs
+    from scrapers.discovery import sitemap_locs
 
     body = b'<sitemapindex><sitemap><loc>http://s.example/a.xml</loc></sitemap></sitemapindex>'
-    assert _sitemap_locs(body) == ("sitemapindex", ["http://s.example/a.xml"], False)
+    assert sitemap_locs(body) == ("sitemapindex", ["http://s.example/a.xml"], False)

@@ -9,8 +9,8 @@ from hypothesis import strategies as st
 
 from kb.errors import SourcesError
 from scrapers.demo_store import DemoStore
+from scrapers.discovery import discover_urls
 from scrapers.fetcher import FetchPolicy, PoliteFetcher
-from scrapers.ingest import discover_urls
 from scrapers.sources import StoreSource, load_sources, parse_sources
 
 GOOD = """
