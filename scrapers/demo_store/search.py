@@ -19,8 +19,8 @@ import re
 from collections.abc import Iterable
 from urllib.parse import quote_plus
 
+from scrapers.demo_store.page_parts import STORE_NAME, furnished_page, price_text
 from scrapers.demo_store.products import DemoProduct
-from scrapers.demo_store.templates import STORE_NAME, _page, _price
 
 __all__ = ["PAGE_SIZE", "find", "query_words", "render_results", "render_results_json"]
 
@@ -70,10 +70,10 @@ def render_results(hits: list[DemoProduct], query: str, page: int, base: str) ->
             '<p class="no-results">Check the spelling or try fewer words. Popular searches: '
             '<a href="/search?q=mug">mug</a>, <a href="/search?q=board">board</a>.</p>'
         )
-        return _page(f"Search: {query}", "en", canonical, '<meta name="robots" content="noindex">\n', main)
+        return furnished_page(f"Search: {query}", "en", canonical, '<meta name="robots" content="noindex">\n', main)
     cards = "".join(
         f'<li class="product-card"><a class="product-card__link" href="{_E(p.path)}">{_E(p.title)}</a> '
-        f'<span class="price">€{_price(p)}</span> '
+        f'<span class="price">€{price_text(p)}</span> '
         f'<span class="product-card__note">{_E(p.material_text or "")}</span></li>\n'
         for p in shown
     )
@@ -89,13 +89,13 @@ def render_results(hits: list[DemoProduct], query: str, page: int, base: str) ->
         f'<ul class="search-results">\n{cards}</ul>\n<nav class="pagination">{" ".join(nav)}</nav>'
     )
     head = '<meta name="robots" content="noindex">\n'
-    return _page(f"Search: {query} | page {page}", "en", canonical, head, main)
+    return furnished_page(f"Search: {query} | page {page}", "en", canonical, head, main)
 
 
 def render_results_json(hits: list[DemoProduct], query: str, base: str) -> str:
     """The results as Shopify's search suggestions JSON (every hit, no pagination)."""
     products = [
-        {"title": p.title, "handle": p.handle, "url": base + p.path, "price": _price(p), "vendor": STORE_NAME}
+        {"title": p.title, "handle": p.handle, "url": base + p.path, "price": price_text(p), "vendor": STORE_NAME}
         for p in hits
     ]
     return json.dumps({"resources": {"results": {"products": products}}, "query": query}, ensure_ascii=False)

@@ -27,7 +27,7 @@ from datetime import UTC, datetime
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from urllib.parse import parse_qs, urlsplit
 
-from scrapers.demo_store import search, templates
+from scrapers.demo_store import search, store_pages, templates
 from scrapers.demo_store.products import (
     BROKEN_PAGES,
     DUPLICATE_ROUTES,
@@ -270,13 +270,13 @@ class DemoStore:
             return "\n".join(lines).encode(), "text/plain; charset=utf-8", _EPOCH
         if path == "/sitemap.xml":
             entries = [(p, "2026-11-02") for p in self.sitemap_paths()]
-            return templates.render_sitemap(entries, base).encode(), "application/xml; charset=utf-8", _EPOCH
+            return store_pages.render_sitemap(entries, base).encode(), "application/xml; charset=utf-8", _EPOCH
         if path == "/":
             links = [(p, prod.title) for p, prod in pages.items()]
-            return templates.render_home(links, base).encode(), "text/html; charset=utf-8", _EPOCH
+            return store_pages.render_home(links, base).encode(), "text/html; charset=utf-8", _EPOCH
         broken = self.broken.get(path)
         if broken is not None and broken.kind in ("malformed_jsonld", "absurd", "not_product", "disallowed"):
-            return templates.render_broken(broken, base).encode(), "text/html; charset=utf-8", _EPOCH
+            return store_pages.render_broken(broken, base).encode(), "text/html; charset=utf-8", _EPOCH
         return None
 
     def searchable(self) -> list[DemoProduct]:
@@ -313,7 +313,7 @@ class DemoStore:
             return _send(h, 500, b"<h1>Internal Server Error</h1>", "text/html", head=head)
         if broken is not None and broken.kind == "slow":
             time.sleep(self.slow_s)
-            body = templates.render_broken(broken, self.base_url).encode()
+            body = store_pages.render_broken(broken, self.base_url).encode()
             return _send(h, 200, body, "text/html; charset=utf-8", head=head)
         if broken is not None and broken.kind == "huge":
             return self._send_huge(h, head=head)

@@ -2,97 +2,33 @@
 
 Every function takes a :class:`~scrapers.demo_store.products.DemoProduct` and the store's base URL and
 returns the HTML text (or JSON text for Shopify's ``.json`` endpoint). The pages carry the furniture real
-pages carry (navigation, price, breadcrumbs, an Organization JSON-LD block, a "you may also like" widget with
-other products' sizes) so extractors meet the same traps as on the web.
+pages carry (:mod:`scrapers.demo_store.page_parts`: navigation, price, breadcrumbs, an Organization JSON-LD
+block, a "you may also like" widget with other products' sizes) so extractors meet the same traps as on the
+web. The store's other pages (broken pages, home, sitemap) are :mod:`scrapers.demo_store.store_pages`.
 """
 
 from __future__ import annotations
 
-import html
 import json
 
-from scrapers.demo_store.products import PRODUCTS, BrokenPage, DemoProduct
+from scrapers.demo_store.page_parts import (
+    AMAZON_UNITS,
+    LABELS,
+    UNECE,
+    escape,
+    furnished_page,
+    num,
+    price_text,
+    quantitative_value,
+    related_widget,
+    spec_label,
+)
+from scrapers.demo_store.products import DemoProduct
 
-__all__ = ["render_broken", "render_home", "render_product", "render_shopify_json", "render_sitemap"]
-
-STORE_NAME = "Demo Home Store"
-UNECE = {"cm": "CMT", "mm": "MMT", "m": "MTR", "in": "INH", "g": "GRM", "kg": "KGM", "oz": "ONZ", "lb": "LBR"}
-DECIMAL_COMMA = {"de", "fr", "es", "it", "pt"}
-
-# fmt: off
-#: Labels of spec tables, per language.
-LABELS: dict[str, dict[str, str]] = {
-    "en": {"width": "Width", "depth": "Depth", "height": "Height", "length": "Length", "weight": "Weight",
-           "material": "Material", "specs": "Specifications", "price": "Price"},
-    "de": {"width": "Breite", "depth": "Tiefe", "height": "Höhe", "length": "Länge", "weight": "Gewicht",
-           "material": "Material", "specs": "Produktdetails", "price": "Preis"},
-    "fr": {"width": "Largeur", "depth": "Profondeur", "height": "Hauteur", "length": "Longueur", "weight": "Poids",
-           "material": "Matière", "specs": "Caractéristiques", "price": "Prix"},
-    "es": {"width": "Ancho", "depth": "Fondo", "height": "Alto", "length": "Largo", "weight": "Peso",
-           "material": "Material", "specs": "Especificaciones", "price": "Precio"},
-    "it": {"width": "Larghezza", "depth": "Profondità", "height": "Altezza", "length": "Lunghezza",
-           "weight": "Peso", "material": "Materiale", "specs": "Caratteristiche", "price": "Prezzo"},
-    "pt": {"width": "Largura", "depth": "Profundidade", "height": "Altura", "length": "Comprimento",
-           "weight": "Peso", "material": "Material", "specs": "Especificações", "price": "Preço"},
-}
-# fmt: on
-_AMAZON_UNITS = {"in": "inches", "cm": "cm", "oz": "Ounces", "lb": "Pounds", "g": "g", "kg": "Kilograms"}
-_E = html.escape
-
-
-def num(value: float, lang: str = "en") -> str:
-    """A number as the page's language writes it (decimal comma where usual, no trailing zeros)."""
-    text = f"{value:.4f}".rstrip("0").rstrip(".")
-    return text.replace(".", ",") if lang in DECIMAL_COMMA else text
-
-
-def _price(prod: DemoProduct) -> str:
-    cents = 499 + (sum(map(ord, prod.handle)) * 37) % 6000
-    return f"{cents // 100}.{cents % 100:02d}"
-
-
-def _related(prod: DemoProduct) -> str:
-    """A comparison widget with two other products' sizes: a trap for extractors reading all text."""
-    others = [p for p in PRODUCTS if p.handle != prod.handle][sum(map(ord, prod.handle)) % 10 :][:2]
-    items = "".join(
-        f'<li class="related-item"><a href="{p.path}">{_E(p.title)}</a> '
-        f'<span class="related-size">{" x ".join(num(d, prod.lang) for d in p.dims)} {p.dim_unit}</span></li>'
-        for p in others
-    )
-    return f'<aside class="related-products"><h2>You may also like</h2><ul>{items}</ul></aside>'
-
-
-def _page(prod_title: str, lang: str, canonical: str, head: str, main: str, aside: str = "") -> str:
-    org = json.dumps(
-        {
-            "@context": "https://schema.org",
-            "@type": "Organization",
-            "name": STORE_NAME,
-            "url": canonical.split("/", 3)[0] + "//" + canonical.split("/", 3)[2],
-        }
-    )
-    return (
-        f'<!DOCTYPE html>\n<html lang="{lang}">\n<head>\n<meta charset="utf-8">\n'
-        f"<title>{_E(prod_title)} | {STORE_NAME}</title>\n"
-        f'<link rel="canonical" href="{_E(canonical)}">\n'
-        f'<meta property="og:title" content="{_E(prod_title)}">\n<meta property="og:type" content="product">\n'
-        f'<meta property="og:url" content="{_E(canonical)}">\n'
-        f'<script type="application/ld+json">{org}</script>\n{head}</head>\n<body>\n'
-        f'<header><nav><a href="/">{STORE_NAME}</a> <a href="/about.html">About</a> '
-        f'<a href="/cart">Cart (0)</a></nav></header>\n<main>\n{main}\n</main>\n{aside}\n'
-        f"<footer><p>&copy; 2026 {STORE_NAME}. Free shipping over 50.</p></footer>\n</body>\n</html>\n"
-    )
-
-
-def _label(prod: DemoProduct, i: int) -> str:
-    return LABELS[prod.lang][prod.dim_labels[i]]
+__all__ = ["RENDERERS", "render_product", "render_shopify_json"]
 
 
 # -------------------------------------------------------------------------------- schema.org formats
-def _qv(value: float, unit: str) -> dict:
-    return {"@type": "QuantitativeValue", "value": value, "unitCode": UNECE[unit]}
-
-
 def _schema_product(prod: DemoProduct, url: str) -> dict:
     data: dict = {
         "@type": "Product",
@@ -104,7 +40,7 @@ def _schema_product(prod: DemoProduct, url: str) -> dict:
         "brand": {"@type": "Brand", "name": "Demo Home"},
         "offers": {
             "@type": "Offer",
-            "price": _price(prod),
+            "price": price_text(prod),
             "priceCurrency": "EUR",
             "availability": "https://schema.org/InStock",
         },
@@ -115,9 +51,9 @@ def _schema_product(prod: DemoProduct, url: str) -> dict:
         data["material"] = prod.material_text
     props = {"width": "width", "depth": "depth", "length": "depth", "height": "height"}
     for label, value in zip(prod.dim_labels, prod.dims, strict=True):
-        data[props[label]] = _qv(value, prod.dim_unit)
+        data[props[label]] = quantitative_value(value, prod.dim_unit)
     if prod.mass is not None:
-        data["weight"] = _qv(prod.mass, prod.mass_unit)
+        data["weight"] = quantitative_value(prod.mass, prod.mass_unit)
     return data
 
 
@@ -125,8 +61,8 @@ def _visible_basics(prod: DemoProduct) -> str:
     lab = LABELS[prod.lang]
     return (
         f'<nav class="breadcrumbs"><a href="/">Home</a> / <a href="/kitchen">Kitchen</a></nav>\n'
-        f'<h1 class="product-title">{_E(prod.title)}</h1>\n'
-        f'<p class="price">{lab["price"]}: €{_price(prod)}</p>\n'
+        f'<h1 class="product-title">{escape(prod.title)}</h1>\n'
+        f'<p class="price">{lab["price"]}: €{price_text(prod)}</p>\n'
         f'<button class="add-to-cart">Add to cart</button>\n'
     )
 
@@ -163,16 +99,16 @@ def jsonld(prod: DemoProduct, base: str) -> str:
         )
     main = (
         _visible_basics(prod)
-        + f'<div class="description"><p>{_E(prod.title)} in {_E(prod.material_text or "")}.</p></div>'
+        + f'<div class="description"><p>{escape(prod.title)} in {escape(prod.material_text or "")}.</p></div>'
     )
-    return _page(prod.title, prod.lang, url, "\n".join(blocks) + "\n", main, _related(prod))
+    return furnished_page(prod.title, prod.lang, url, "\n".join(blocks) + "\n", main, related_widget(prod))
 
 
 def microdata(prod: DemoProduct, base: str) -> str:
     url = base + prod.path
     props = {"width": "width", "depth": "depth", "length": "depth", "height": "height"}
     dims = "".join(
-        f'<li>{_label(prod, i)}: <span itemprop="{props[label]}" itemscope '
+        f'<li>{spec_label(prod, i)}: <span itemprop="{props[label]}" itemscope '
         f'itemtype="https://schema.org/QuantitativeValue"><span itemprop="value">{num(v)}</span> '
         f'<meta itemprop="unitCode" content="{UNECE[prod.dim_unit]}">{prod.dim_unit}</span></li>'
         for i, (label, v) in enumerate(zip(prod.dim_labels, prod.dims, strict=True))
@@ -186,15 +122,15 @@ def microdata(prod: DemoProduct, base: str) -> str:
     )
     main = (
         f'<div itemscope itemtype="https://schema.org/Product">\n'
-        f'<h1 itemprop="name">{_E(prod.title)}</h1>\n<link itemprop="url" href="{url}">\n'
+        f'<h1 itemprop="name">{escape(prod.title)}</h1>\n<link itemprop="url" href="{url}">\n'
         + (f'<meta itemprop="gtin13" content="{prod.gtin}">\n' if prod.gtin else "")
         + f'<div itemprop="offers" itemscope itemtype="https://schema.org/Offer"><span itemprop="price" '
-        f'content="{_price(prod)}">€{_price(prod)}</span><meta itemprop="priceCurrency" content="EUR"></div>\n'
-        f'<p itemprop="description">A {_E(prod.title.lower())} for every day.</p>\n'
+        f'content="{price_text(prod)}">€{price_text(prod)}</span><meta itemprop="priceCurrency" content="EUR"></div>\n'
+        f'<p itemprop="description">A {escape(prod.title.lower())} for every day.</p>\n'
         f'<h2>Specifications</h2><ul class="specs">{dims}{weight}'
-        f'<li>Material: <span itemprop="material">{_E(prod.material_text or "")}</span></li></ul>\n</div>'
+        f'<li>Material: <span itemprop="material">{escape(prod.material_text or "")}</span></li></ul>\n</div>'
     )
-    return _page(prod.title, prod.lang, url, "", main, _related(prod))
+    return furnished_page(prod.title, prod.lang, url, "", main, related_widget(prod))
 
 
 # -------------------------------------------------------------------------------- Shopify
@@ -207,7 +143,7 @@ def _shopify_grams(prod: DemoProduct) -> int:
 def _shopify_body(prod: DemoProduct) -> str:
     dims = " x ".join(num(d) for d in prod.dims)
     body = (
-        f"<p>{_E(prod.title)}, made of {_E(prod.material_text or '')}.</p><p>Size: {dims} {prod.dim_unit}</p>"
+        f"<p>{escape(prod.title)}, made of {escape(prod.material_text or '')}.</p><p>Size: {dims} {prod.dim_unit}</p>"
     )
     if prod.extra.get("grams_zero") and prod.mass is not None:
         body += f"<p>Weight: {num(prod.mass)} {prod.mass_unit}</p>"
@@ -232,7 +168,7 @@ def shopify_product_json(prod: DemoProduct, base: str) -> dict:
                 "id": pid + 1,
                 "product_id": pid,
                 "title": "Default Title",
-                "price": _price(prod),
+                "price": price_text(prod),
                 "sku": prod.handle.upper()[:12],
                 "barcode": prod.gtin or "",
                 "grams": grams,
@@ -253,12 +189,12 @@ def shopify(prod: DemoProduct, base: str) -> str:
     url = base + prod.path
     pj = json.dumps(shopify_product_json(prod, base), ensure_ascii=False).replace("</", "<\\/")
     main = (
-        f'<div class="product-single">\n<h1 class="product-single__title">{_E(prod.title)}</h1>\n'
-        f'<span class="product-single__price">€{_price(prod)}</span>\n'
+        f'<div class="product-single">\n<h1 class="product-single__title">{escape(prod.title)}</h1>\n'
+        f'<span class="product-single__price">€{price_text(prod)}</span>\n'
         f'<div class="product-single__description rte">{_shopify_body(prod)}</div>\n'
         f'<script type="application/json" id="ProductJson-product-template">{pj}</script>\n</div>'
     )
-    return _page(prod.title, prod.lang, url, "", main, _related(prod))
+    return furnished_page(prod.title, prod.lang, url, "", main, related_widget(prod))
 
 
 # -------------------------------------------------------------------------------- WooCommerce
@@ -270,7 +206,7 @@ def woocommerce(prod: DemoProduct, base: str) -> str:
     variation = {
         "variation_id": 100 + len(prod.handle),
         "attributes": {"attribute_pa_finish": "natural"},
-        "display_price": float(_price(prod)),
+        "display_price": float(price_text(prod)),
         "is_in_stock": True,
         "sku": prod.handle.upper()[:12],
         "weight": num(prod.mass) if prod.mass is not None else "",
@@ -278,11 +214,11 @@ def woocommerce(prod: DemoProduct, base: str) -> str:
         "dimensions": {keys[label]: num(v) for label, v in zip(prod.dim_labels, prod.dims, strict=True)},
         "dimensions_html": dims_html.replace("&times;", "\u00d7"),
     }
-    variations = _E(json.dumps([variation], ensure_ascii=False), quote=True)
+    variations = escape(json.dumps([variation], ensure_ascii=False), quote=True)
     rows = [
         ("weight", "Weight", weight_html),
         ("dimensions", "Dimensions", dims_html),
-        ("attribute_pa_material", "Material", f"<p>{_E(prod.material_text or '')}</p>"),
+        ("attribute_pa_material", "Material", f"<p>{escape(prod.material_text or '')}</p>"),
     ]
     table = "".join(
         f'<tr class="woocommerce-product-attributes-item woocommerce-product-attributes-item--{key}">'
@@ -293,15 +229,15 @@ def woocommerce(prod: DemoProduct, base: str) -> str:
     )
     main = (
         f'<div id="product-{len(prod.handle)}" class="product type-product status-publish has-weight has-dimensions">\n'
-        f'<h1 class="product_title entry-title">{_E(prod.title)}</h1>\n'
-        f'<p class="price"><span class="woocommerce-Price-amount amount">€{_price(prod)}</span></p>\n'
+        f'<h1 class="product_title entry-title">{escape(prod.title)}</h1>\n'
+        f'<p class="price"><span class="woocommerce-Price-amount amount">€{price_text(prod)}</span></p>\n'
         f'<form class="variations_form cart" action="{url}" method="post" '
         f'data-product_id="{len(prod.handle)}" data-product_variations="{variations}">\n'
         f'<select name="attribute_pa_finish"><option value="natural">Natural</option></select></form>\n'
         f'<div class="woocommerce-tabs"><div id="tab-additional_information"><h2>Additional information</h2>\n'
         f'<table class="woocommerce-product-attributes shop_attributes">{table}</table></div></div>\n</div>'
     )
-    return _page(prod.title, prod.lang, url, "", main, _related(prod))
+    return furnished_page(prod.title, prod.lang, url, "", main, related_widget(prod))
 
 
 # -------------------------------------------------------------------------------- Amazon
@@ -316,17 +252,17 @@ def _amazon_bullet(label: str, value: str) -> str:
 def amazon(prod: DemoProduct, base: str) -> str:
     url = base + prod.path
     es = prod.lang == "es"
-    dims = " x ".join(num(d, prod.lang) for d in prod.dims) + " " + _AMAZON_UNITS[prod.dim_unit]
-    mass = f"{num(prod.mass, prod.lang)} {_AMAZON_UNITS[prod.mass_unit]}" if prod.mass is not None else ""
+    dims = " x ".join(num(d, prod.lang) for d in prod.dims) + " " + AMAZON_UNITS[prod.dim_unit]
+    mass = f"{num(prod.mass, prod.lang)} {AMAZON_UNITS[prod.mass_unit]}" if prod.mass is not None else ""
     bullets = []
     if prod.package:
         # Product dimensions alone, weight as its own bullet, package values separately.
         bullets.append(_amazon_bullet("Product Dimensions", dims))
         bullets.append(_amazon_bullet("Item Weight", mass))
         for pdims, pmass in prod.package:
-            pd = " x ".join(num(d, prod.lang) for d in pdims) + " " + _AMAZON_UNITS[prod.dim_unit]
+            pd = " x ".join(num(d, prod.lang) for d in pdims) + " " + AMAZON_UNITS[prod.dim_unit]
             bullets.append(
-                _amazon_bullet("Package Dimensions", f"{pd}; {num(pmass)} {_AMAZON_UNITS[prod.mass_unit]}")
+                _amazon_bullet("Package Dimensions", f"{pd}; {num(pmass)} {AMAZON_UNITS[prod.mass_unit]}")
             )
     else:
         label = "Dimensiones del producto" if es else "Product Dimensions"
@@ -336,14 +272,14 @@ def amazon(prod: DemoProduct, base: str) -> str:
     if prod.gtin:
         bullets.append(_amazon_bullet("UPC", prod.gtin[-12:]))
     main = (
-        f'<div id="centerCol"><h1 id="title"><span id="productTitle">{_E(prod.title)}</span></h1>\n'
-        f'<div id="corePrice_feature_div"><span class="a-price">€{_price(prod)}</span></div>\n'
-        f'<div id="feature-bullets"><ul><li>Made of {_E(prod.material_text or "")}</li>'
+        f'<div id="centerCol"><h1 id="title"><span id="productTitle">{escape(prod.title)}</span></h1>\n'
+        f'<div id="corePrice_feature_div"><span class="a-price">€{price_text(prod)}</span></div>\n'
+        f'<div id="feature-bullets"><ul><li>Made of {escape(prod.material_text or "")}</li>'
         f"<li>Easy to clean</li></ul></div></div>\n"
         f'<div id="detailBullets_feature_div"><ul class="a-unordered-list a-nostyle a-vertical detail-bullet-list">'
         f"{''.join(bullets)}</ul></div>"
     )
-    return _page(prod.title, prod.lang, url, "", main)
+    return furnished_page(prod.title, prod.lang, url, "", main)
 
 
 # -------------------------------------------------------------------------------- IKEA
@@ -370,19 +306,19 @@ def ikea(prod: DemoProduct, base: str) -> str:
             f"<p>Weight: {num(pmass)} kg</p><p>Package(s): 1</p></div>"
         )
     main = (
-        f'<div class="pip-header-section"><h1><span class="pip-header-section__title--big">{_E(prod.title)}'
-        f'</span></h1><span class="pip-price">€{_price(prod)}</span></div>\n'
-        f'<div class="pip-product-details"><h3>Materials</h3><p>{_E(prod.material_text or "")}</p></div>\n'
+        f'<div class="pip-header-section"><h1><span class="pip-header-section__title--big">{escape(prod.title)}'
+        f'</span></h1><span class="pip-price">€{price_text(prod)}</span></div>\n'
+        f'<div class="pip-product-details"><h3>Materials</h3><p>{escape(prod.material_text or "")}</p></div>\n'
         f'<div class="pip-product-dimensions"><h3>Product size</h3>{meas}</div>\n'
         f'<div class="pip-product-dimensions__packaging"><h3>Packaging</h3>{"".join(packages)}</div>'
     )
-    return _page(prod.title, prod.lang, url, "", main)
+    return furnished_page(prod.title, prod.lang, url, "", main)
 
 
 # -------------------------------------------------------------------------------- spec tables, lists, text
 def _spec_rows(prod: DemoProduct) -> list[tuple[str, str]]:
     lab = LABELS[prod.lang]
-    rows = [(_label(prod, i), f"{num(v, prod.lang)} {prod.dim_unit}") for i, v in enumerate(prod.dims)]
+    rows = [(spec_label(prod, i), f"{num(v, prod.lang)} {prod.dim_unit}") for i, v in enumerate(prod.dims)]
     if prod.mass is not None:
         rows.append((lab["weight"], f"{num(prod.mass, prod.lang)} {prod.mass_unit}"))
     if prod.material_text:
@@ -392,28 +328,28 @@ def _spec_rows(prod: DemoProduct) -> list[tuple[str, str]]:
 
 def spec_table(prod: DemoProduct, base: str) -> str:
     url = base + prod.path
-    rows = "".join(f"<tr><th>{_E(k)}</th><td>{_E(v)}</td></tr>" for k, v in _spec_rows(prod))
+    rows = "".join(f"<tr><th>{escape(k)}</th><td>{escape(v)}</td></tr>" for k, v in _spec_rows(prod))
     main = (
         _visible_basics(prod) + f'<section class="product-specs"><h2>{LABELS[prod.lang]["specs"]}</h2>'
         f'<table class="specs">{rows}</table></section>'
     )
-    return _page(prod.title, prod.lang, url, "", main, _related(prod))
+    return furnished_page(prod.title, prod.lang, url, "", main, related_widget(prod))
 
 
 def spec_dl(prod: DemoProduct, base: str) -> str:
     url = base + prod.path
-    items = "".join(f"<dt>{_E(k)}</dt><dd>{_E(v)}</dd>" for k, v in _spec_rows(prod))
+    items = "".join(f"<dt>{escape(k)}</dt><dd>{escape(v)}</dd>" for k, v in _spec_rows(prod))
     main = (
         _visible_basics(prod) + f'<section class="product-specs"><h2>{LABELS[prod.lang]["specs"]}</h2>'
         f'<dl class="specs">{items}</dl></section>'
     )
-    return _page(prod.title, prod.lang, url, "", main, _related(prod))
+    return furnished_page(prod.title, prod.lang, url, "", main, related_widget(prod))
 
 
 def free_text(prod: DemoProduct, base: str) -> str:
     url = base + prod.path
-    main = _visible_basics(prod) + f'<div class="description"><p>{_E(prod.description)}</p></div>'
-    return _page(prod.title, prod.lang, url, "", main)
+    main = _visible_basics(prod) + f'<div class="description"><p>{escape(prod.description)}</p></div>'
+    return furnished_page(prod.title, prod.lang, url, "", main)
 
 
 RENDERERS = {
@@ -433,67 +369,3 @@ RENDERERS = {
 def render_product(prod: DemoProduct, base: str, *, canonical_path: str | None = None) -> str:
     page = RENDERERS[prod.fmt](prod, base)
     return page
-
-
-# -------------------------------------------------------------------------------- the rest of the store
-def render_broken(page: BrokenPage, base: str) -> str:
-    """The body of a broken page that is served with status 200 (the others are produced by the server)."""
-    url = base + page.path
-    if page.kind == "malformed_jsonld":
-        head = (
-            '<script type="application/ld+json">{"@context": "https://schema.org", "@type": "Product", '
-            '"name": "Broken Jar", "weight": {"@type": "QuantitativeValue", "value": 1,, "unitCode": "KGM"}'
-            "</script>\n"
-        )
-        return _page("Broken Jar", "en", url, head, "<p>This page's product data is broken.</p>")
-    if page.kind == "absurd":
-        data = {
-            "@context": "https://schema.org",
-            "@type": "Product",
-            "name": "Giant Mug",
-            "url": url,
-            "height": _qv(40, "m"),
-            "width": _qv(12, "cm"),
-            "depth": _qv(9, "cm"),
-            "weight": _qv(350, "g"),
-        }
-        head = f'<script type="application/ld+json">{json.dumps(data)}</script>\n'
-        return _page("Giant Mug", "en", url, head, "<h1>Giant Mug</h1><p>Height: 40 m. Weight: 350 g.</p>")
-    if page.kind == "not_product":
-        return _page(
-            "About us",
-            "en",
-            url,
-            "",
-            "<h1>About us</h1><p>We have sold kitchen and home goods since 2011. "
-            "Our warehouse is 40 x 25 m and ships 300 parcels a day.</p>",
-        )
-    if page.kind in ("disallowed", "slow"):
-        name = "Staff Desk Lamp" if page.kind == "disallowed" else "Slow Teapot"
-        data = {
-            "@context": "https://schema.org",
-            "@type": "Product",
-            "name": name,
-            "url": url,
-            "height": _qv(20, "cm"),
-            "width": _qv(15, "cm"),
-            "depth": _qv(12, "cm"),
-            "weight": _qv(800, "g"),
-        }
-        head = f'<script type="application/ld+json">{json.dumps(data)}</script>\n'
-        return _page(name, "en", url, head, f"<h1>{name}</h1>")
-    raise ValueError(f"{page.kind} pages are not rendered as HTML")
-
-
-def render_home(paths: list[tuple[str, str]], base: str) -> str:
-    links = "".join(f'<li><a href="{p}">{_E(t)}</a></li>' for p, t in paths)
-    return _page(STORE_NAME, "en", base + "/", "", f"<h1>{STORE_NAME}</h1><ul>{links}</ul>")
-
-
-def render_sitemap(paths: list[tuple[str, str]], base: str) -> str:
-    """``paths``: (path, lastmod date) pairs."""
-    urls = "".join(f"<url><loc>{_E(base + p)}</loc><lastmod>{d}</lastmod></url>\n" for p, d in paths)
-    return (
-        '<?xml version="1.0" encoding="UTF-8"?>\n'
-        f'<urlset xmlns="http://www.sitemaps.org/schemas/sitemap/0.9">\n{urls}</urlset>\n'
-    )
