@@ -18,14 +18,9 @@ from collections.abc import Sequence
 
 from kb.kinds import words_of
 from recall.lexicon import CONTAINER_NOUNS
+from recall.words import COLOURS, SIZE_WORDS, head_noun, material_of_word
 
 __all__ = ["foreign_contents"]
-
-
-def _head(words: Sequence[str]) -> str | None:
-    from recall.openset import head_noun
-
-    return head_noun(words)
 
 
 def _material_adjective(word: str, material_of_word) -> bool:
@@ -54,8 +49,6 @@ def foreign_contents(text: str, subject: Sequence[str], after_of: Sequence[str],
     one of :data:`recall.lexicon.CONTAINER_NOUNS`), ``after_of`` the phrase after its "of" (the contents),
     ``names`` the catalog's :class:`recall.name_index.NameIndex`. None otherwise (also when the contents
     are no word at all, or a container noun the catalog's names do not head)."""
-    from recall.openset import COLOURS, SIZE_WORDS, material_of_word
-
     if not subject or not after_of or subject[-1] not in CONTAINER_NOUNS:
         return None
     container = subject[-1]
@@ -68,7 +61,7 @@ def foreign_contents(text: str, subject: Sequence[str], after_of: Sequence[str],
     for row in rows:
         for phrase in (names._names[row], *names._aliases[row]):
             words = words_of(phrase)
-            if _head(words) != container:
+            if head_noun(words) != container:
                 continue
             if all(w in SIZE_WORDS or w in COLOURS or _material_adjective(w, material_of_word) for w in words[:-1]):
                 return None  # "small bottle", "bottle": the catalog holds a bottle of anything

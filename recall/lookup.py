@@ -132,7 +132,9 @@ def unnamed_subject(result: RecallResult) -> str | None:
     is evidence of nothing and the stores are asked (issue 22). None otherwise."""
 
     from recall.names import words_of
-    from recall.openset import COLOURS, _material_words, noun_in, noun_like
+    from recall.openset import noun_in, noun_like
+    from recall.words import COLOURS
+    from recall.words import material_words as _material_words
 
     best = result.best
     if best is None or best.matched_by_name or best.name_part > 0:

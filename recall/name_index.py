@@ -276,6 +276,6 @@ def _colour_only(word: str) -> bool:
     """Whether ``word`` is a colour and nothing else: no lexicon noun ("red", "purple"; "orange", "plum"
     and "lime" are fruit). A subject of colour words alone is a list of adjectives, not an object."""
     from recall.lexicon import COLOUR_WORDS
-    from recall.openset import COLOURS
+    from recall.words import COLOURS
 
     return (word in COLOURS or word in COLOUR_WORDS) and noun_in([word]) is None

@@ -11,7 +11,6 @@ objects). Rules and figures: ``recall/RECALL.md``.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -19,6 +18,8 @@ from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_
 from recall.fit import DISAGREE_FACTOR, THRESHOLDS, Trust, disagreeing_features, judge
 from recall.reading import NEGATED_REASON
 from recall.subject import feature_words, is_adjective, is_participle
+from recall.words import COLOURS, SIZE_WORDS, head_noun, material_of_word
+from recall.words import material_words as _material_words
 
 __all__ = [
     "KIND_SCAN_LIMIT",
@@ -261,15 +262,6 @@ def kind_mate(noun: Noun, subject: Sequence[str], kinds_of: KindIndex | None) ->
     return noun.kind if subject[-2] in words.get(noun.kind, ()) else None
 
 
-def head_noun(words: Sequence[str]) -> str | None:
-    """The head noun of a phrase as the catalog's names have it: the word before "of" ("*bunch* of keys",
-    "*bottle* of water"), else the last word; None for no words."""
-    words = list(words)
-    if "of" in words[1:]:
-        return words[words.index("of", 1) - 1]
-    return words[-1] if words else None
-
-
 def sort_of_catalog_object(noun: Noun, heads, kinds_of: KindIndex | None) -> str | None:
     """Whether a lexicon noun the catalog's names do not hold names a sort of an object the catalog holds
     under a plain name (RECALL.md, "Sorts of a catalog object"): a compound or closed compound on the head
@@ -339,14 +331,6 @@ def is_qualifier(word: str) -> bool:
     if word in _material_words() or word in COLOURS or word in SIZE_WORDS:
         return True
     return noun_in([word]) is None and not noun_like(word)
-
-
-#: Size and degree words, which qualify a name ("*small* clamp", "*extra* large clamp") and never make a
-#: compound.
-SIZE_WORDS = frozenset(
-    "small big large little tiny mini medium extra huge giant jumbo xl xxl short long tall thin thick wide "
-    "narrow heavy light biggest smallest largest".split()
-)
 
 
 #: Words that hold the place of an object without naming one ("something", "a whatsit"): never an
@@ -487,25 +471,7 @@ SHAPE_NOUNS = frozenset(
     "plate board bar stick tube ring panel tile plank rod strip slab sheet disc disk loop coil spiral hoop "
     "cone pyramid triangle oval".split()
 )
-#: Colour words, which never name an object as modifiers ("a white stick").
-COLOURS = frozenset(
-    "white black grey gray silver gold golden red green blue yellow orange pink purple brown beige tan "
-    "clear transparent dark light bright pale navy cream ivory".split()
-)
 
-
-@functools.cache
-def _material_words() -> frozenset[str]:
-    from recall.lexicon import MATERIAL_WORDS
-
-    return frozenset(w for w in MATERIAL_WORDS if " " not in w)
-
-
-def material_of_word(word: str) -> str | None:
-    """The catalog material a single word states ("wooden" -> wood), or None."""
-    from recall.lexicon import MATERIAL_WORDS
-
-    return MATERIAL_WORDS.get(word)
 
 
 def _plural_noun(word: str) -> bool:
