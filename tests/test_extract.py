@@ -63,6 +63,7 @@ CASES = [
     ("shopify_product.json", "shopify", (9.0, 9.0, 8.5), 310.0, [], []),
     # WooCommerce attributes table (L × W × H) beats the variations JSON; related products ignored
     ("woocommerce_product.html", "woocommerce", (20.0, 20.0, 18.0), 1800.0, [], []),
+    # the variations differ: the preselected one's values (WooCommerce's default attributes)
     ("woocommerce_variations_only.html", "woocommerce", (45.0, 45.0, 12.0), 450.0, [], []),
     # a page that contradicts itself: item dims agree in two units, the weights do not
     ("amazon_de_conflict.html", "spec_table", (18.7, 5.7, 4.1), 190.51, [(19.0, 5.6, 3.8)], [240.0]),

@@ -4,8 +4,11 @@ The "Additional information" attributes table (``table.woocommerce-product-attri
 ``table.shop_attributes``): its weight row (``1.2 kg``) and dimensions row (``L × W × H unit``, e.g.
 ``20 × 10 × 5 cm``), plus any other row whose label the spec vocabulary knows. Variable products carry
 a variations JSON (``form.variations_form[data-product_variations]``) with ``weight_html`` and
-``dimensions_html`` per variation; it is read when the table states nothing (first variation, with a
-note when variations differ).
+``dimensions_html`` per variation; it is read when the table states nothing. When the variations'
+values differ, the product's are the selected variation's (the options the form preselects, WooCommerce's
+default attributes); with none selected each is a variant's value, never the product's (a seed shop's
+``500g``, ``1kg``, ... ``25kg`` bags, "Choose an option"), the rule of the selected size in
+``spec_table.selected_variant``.
 """
 
 from __future__ import annotations
@@ -19,6 +22,9 @@ from scrapers.labels import LabelInfo, classify_label
 from scrapers.page import Page, text_content
 
 __all__ = ["woocommerce"]
+
+#: Variations listed as variants' values at most (a store may sell dozens).
+MAX_VARIATIONS = 12
 
 _TABLES = (
     "//table[contains(concat(' ', normalize-space(@class), ' '), ' woocommerce-product-attributes ')"
@@ -62,7 +68,7 @@ def woocommerce(page: Page) -> list[Observation]:
             continue
         if not isinstance(variations, list):
             continue
-        found: list[list[Observation]] = []
+        found: list[tuple[dict, list[Observation]]] = []
         for v in variations:
             if not isinstance(v, dict):
                 continue
@@ -74,16 +80,54 @@ def woocommerce(page: Page) -> list[Observation]:
                 text = v.get(key)
                 if isinstance(text, str) and text.strip() and "n/a" not in text.lower():
                     vp.append(Pair(key, html.unescape(text), info))
-            found.append(observations_from_pairs(vp, page.decimal_comma, rank=1))
-        found = [f for f in found if f]
+            found.append((v, observations_from_pairs(vp, page.decimal_comma, rank=1)))
+        found = [(v, f) for v, f in found if f]
         if found:
-            first = found[0]
-            differ = any(
-                sorted((o.feature, o.value) for o in f) != sorted((o.feature, o.value) for o in first)
-                for f in found[1:]
-            )
-            for o in first:
-                o.note = "variations differ; took the first" if differ else "from the variations JSON"
-            obs.extend(first)
+            obs.extend(_variation_values(form, found))
         break
     return obs
+
+
+def _selected_options(form) -> dict[str, str]:
+    """The option each of the form's pickers preselects (``attribute_pa_size`` -> ``50-x-70``)."""
+    out = {}
+    for select in form.xpath(".//select[@name]"):
+        chosen = select.xpath(".//option[@selected]/@value")
+        if chosen and chosen[0].strip():
+            out[select.get("name")] = chosen[0].strip()
+    return out
+
+
+def _selected(variation: dict, options: dict[str, str]) -> bool:
+    """Whether the form's preselected options pick ``variation`` (an empty attribute means "any")."""
+    attributes = variation.get("attributes")
+    if not isinstance(attributes, dict) or not attributes or not options:
+        return False
+    return all(not v or options.get(k) == str(v) for k, v in attributes.items()) and any(
+        options.get(k) == str(v) for k, v in attributes.items() if v
+    )
+
+
+def _variation_values(form, found: list[tuple[dict, list[Observation]]]) -> list[Observation]:
+    """The product's values among the variations' (see the module doc): all alike, the first's; else the
+    selected variation's; else every variation's value as a variant's."""
+    def key(obs: list[Observation]) -> list:
+        return sorted((o.feature, o.value) for o in obs)
+
+    first = found[0][1]
+    if all(key(f) == key(first) for _, f in found[1:]):
+        for o in first:
+            o.note = "from the variations JSON"
+        return first
+    options = _selected_options(form)
+    picked = next((f for v, f in found if _selected(v, options)), None)
+    if picked is not None:
+        for o in picked:
+            o.note = "the selected variation's (the variations differ)"
+        return picked
+    out = []
+    for _, f in found[:MAX_VARIATIONS]:
+        for o in f:
+            o.role, o.note = "variant", "one variation's; the variations differ and none is selected"
+            out.append(o)
+    return out

@@ -1,0 +1,70 @@
+"""Whose value it is, classes of the real corpus's development stores pinned on pages written here:
+
+- a WooCommerce variable product whose variations state different weights or sizes and preselect none
+  sells several sizes: each variation's value is a variant's, never the product's (a seed shop's 500 g ...
+  25 kg bags); the preselected variation's values are the product's; identical variations are one value.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+
+import pytest
+
+from kb.errors import ExtractionError
+from scrapers.extract import extract_page
+
+
+def _record(body: str, title: str = "Thing"):
+    page = (f"<html lang='en'><head><title>{title}</title></head>"
+            f"<body class='woocommerce'><h1>{title}</h1>{body}</body></html>")  # fmt: skip
+    try:
+        return extract_page(page, "https://shop.test/p", "text/html")
+    except ExtractionError:
+        return None
+
+
+# ---------------------------------------------------------------------- WooCommerce variations
+def _variations_form(weights: list[str], selected: int | None) -> str:
+    variations = [
+        {"variation_id": i, "attributes": {"attribute_pa_sizes": f"s{i}"}, "weight_html": w, "dimensions_html": "N/A"}
+        for i, w in enumerate(weights)
+    ]
+    options = "".join(
+        f"<option value='s{i}'{' selected' if i == selected else ''}>{w}</option>" for i, w in enumerate(weights)
+    )
+    return (f"<form class='variations_form cart' data-product_variations='{html.escape(json.dumps(variations))}'>"
+            f"<select name='attribute_pa_sizes'><option value=''>Choose an option</option>{options}</select></form>")  # fmt: skip
+
+
+def _whose_mass(record) -> list[tuple[float, str]]:
+    return [(round(c["value"], 1), c["decision"]) for c in record.candidates if c["feature"] == "mass"]
+
+
+def test_differing_variations_with_none_selected_are_variants_not_the_product():
+    r = _record(_variations_form(["0.560 kg", "1.06 kg", "2.06 kg"], None) + "<p>Width: 30 cm</p>")
+    assert r is not None and r.mass_g is None
+    decisions = _whose_mass(r)
+    assert len(decisions) == 3 and all("variant's value" in d for _, d in decisions)
+
+
+@pytest.mark.parametrize("selected", [0, 2])
+def test_the_selected_variations_value_is_the_products(selected):
+    weights = ["0.560 kg", "1.06 kg", "2.06 kg"]
+    r = _record(_variations_form(weights, selected))
+    assert r is not None and r.mass_g == pytest.approx(float(weights[selected].split()[0]) * 1000)
+
+
+def test_identical_variations_state_one_value_even_with_none_selected():
+    r = _record(_variations_form(["450 g", "450 g"], None))
+    assert r is not None and r.mass_g == pytest.approx(450.0)
+
+
+def test_a_selection_on_another_attribute_picks_no_variation():
+    # the preselected option belongs to another picker: no variation is selected
+    form = _variations_form(["450 g", "600 g"], None).replace(
+        "</form>", "<select name='attribute_pa_colour'><option value='red' selected>Red</option></select></form>"
+    )
+    r = _record(form + "<p>Width: 30 cm</p>")
+    assert r is not None and r.mass_g is None
