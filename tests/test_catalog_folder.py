@@ -76,7 +76,7 @@ def test_the_yale_catalog_declares_its_classes():
     import math
 
     bins = read_bins(DATA / "catalog_yale" / "catalog.csv")
-    assert bins["a_cm"] == bins["b_cm"] == bins["c_cm"] == (1.0, math.inf) and bins["mass_g"] == (1.5, 1.5)
+    assert bins["a_cm"] == bins["b_cm"] == bins["c_cm"] == (1.25, math.inf) and bins["mass_g"] == (1.5, 1.5)
     assert read_bins(DATA / "catalog_ycb" / "catalog.csv") == {}  # measured extents and masses
 
 

@@ -103,3 +103,15 @@ def test_an_open_class_is_a_lower_bound_and_the_4x_rule_counts_outside_the_class
     assert disagreeing_features({"a_cm": _errors(41.0, 10.0)}) == ("a_cm",)  # without bins: 4x of 10
     floors = {"a_cm": 15.0}  # the open top bin wins over the class's upper end
     assert _errors(400.0, 15.0, floors, {"a_cm": (2.0, 2.0)}) == 0.0
+
+
+def test_the_yale_size_classes_reach_a_quarter_below_their_value():
+    """The Yale catalog's sizes (real: the data set's size classes of the part grasped) stand for
+    [x / 1.25, inf): a stated 8 cm against a class value of 10 is inside, 7.9 cm just outside."""
+    from pathlib import Path
+
+    from recall.catalog_folder import read_bins
+
+    bins = read_bins(Path(__file__).parent / "data" / "catalog_yale" / "catalog.csv")
+    assert _errors(8.0, 10.0, bins=bins) == 0.0 and _errors(400.0, 10.0, bins=bins) == 0.0
+    assert _errors(7.9, 10.0, bins=bins) == pytest.approx(0.1 / 10.0, rel=1e-4)  # outside, of the value
