@@ -2,7 +2,9 @@
 
 - a WooCommerce variable product whose variations state different weights or sizes and preselect none
   sells several sizes: each variation's value is a variant's, never the product's (a seed shop's 500 g ...
-  25 kg bags); the preselected variation's values are the product's; identical variations are one value.
+  25 kg bags); the preselected variation's values are the product's; identical variations are one value;
+- a vessel's rim, brim or waist is its own outline, not a part (a potter's ``rim diameter 9 cm``, a cup
+  maker's ``Waist width 65mm``), while its base, lid or handle stay parts.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import pytest
 
 from kb.errors import ExtractionError
 from scrapers.extract import extract_page
+from scrapers.labels import classify_label, classify_other
 
 
 def _record(body: str, title: str = "Thing"):
@@ -68,3 +71,37 @@ def test_a_selection_on_another_attribute_picks_no_variation():
     )
     r = _record(form + "<p>Width: 30 cm</p>")
     assert r is not None and r.mass_g is None
+
+
+# ---------------------------------------------------------------------- a vessel's outline
+@pytest.mark.parametrize("label, kind, product", [
+    ("rim diameter", "diameter", True),
+    ("Rim Diameter", "diameter", True),
+    ("Brim width", "width", True),
+    ("Waist width", "width", True),
+    ("Base Width", "width", False),  # a part: the base
+    ("Lid diameter", "diameter", False),
+    ("Handle length", "length", False),
+])  # fmt: skip
+def test_a_vessels_outline_is_its_own_extent_a_part_is_not(label, kind, product):
+    info = classify_label(label)
+    if product:
+        assert info is not None and info.kind == kind and info.role == "product"
+    else:
+        assert info is None and classify_other(label).role == "component"
+
+
+def _extents(body: str) -> list[tuple[str, float]] | None:
+    r = _record(body, "Stoneware Mug")
+    return None if r is None else sorted(((e["role"], e["cm"]) for e in r.dims), reverse=True)
+
+
+def test_a_mugs_rim_diameter_and_height_are_its_two_extents():
+    body = "<p>rim diameter 9 cm</p><p>height 9.5 cm</p><p>weight 280 g</p>"
+    assert _extents(body) == [("height", 9.5), ("diameter", 9.0)]
+
+
+def test_a_cups_waist_width_beside_its_base_width():
+    body = "<div><span>Waist width</span><span>65mm</span></div><div><span>Base Width</span><span>47mm</span></div>" \
+        "<div><span>Overall height</span><span>86mm</span></div>"
+    assert _extents(body) == [("width", 6.5), ("height", 8.6)]
