@@ -4,7 +4,10 @@
   sells several sizes: each variation's value is a variant's, never the product's (a seed shop's 500 g ...
   25 kg bags); the preselected variation's values are the product's; identical variations are one value;
 - a vessel's rim, brim or waist is its own outline, not a part (a potter's ``rim diameter 9 cm``, a cup
-  maker's ``Waist width 65mm``), while its base, lid or handle stay parts.
+  maker's ``Waist width 65mm``), while its base, lid or handle stay parts;
+- a single length in a round pan's name is its diameter (``SKÄNKA Frying pan - gray, 11"``, ``Lodge 12"
+  Cast Iron Skillet``), used only when the page states no product size; in any other name (a screen's
+  ``27"``, a sheet pan's ``18"``) it is no extent.
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ import json
 import pytest
 
 from kb.errors import ExtractionError
+from scrapers.adapters.text import _title_diameter
 from scrapers.extract import extract_page
 from scrapers.labels import classify_label, classify_other
 
@@ -105,3 +109,31 @@ def test_a_cups_waist_width_beside_its_base_width():
     body = "<div><span>Waist width</span><span>65mm</span></div><div><span>Base Width</span><span>47mm</span></div>" \
         "<div><span>Overall height</span><span>86mm</span></div>"
     assert _extents(body) == [("width", 6.5), ("height", 8.6)]
+
+
+# ---------------------------------------------------------------------- a round pan's name
+@pytest.mark.parametrize("title, cm", [
+    ('Lodge 12" Cast Iron Skillet', 30.48),
+    ('Lodge 12" Cast Iron Skillet: Preseasoned, 12 Inch, Gas & Induction Compatible', 30.48),  # restated
+    ('SKÄNKA Frying pan - gray, 11"', 27.94),
+    ("Bratpfanne Edelstahl 28 cm", 28.0),
+    ("Poêle inox 24 cm", 24.0),
+    ("Carbon Steel Wok 30cm", 30.0),
+    ('Skillet 10" and 12"', None),  # two lengths: which one is not said
+    ('Half Sheet Pan 18"', None),  # a bare pan: a sheet pan's length
+    ('MSI 27" Monitor', None),  # a screen's diagonal
+    ("Panasonic 32 cm speaker", None),
+])  # fmt: skip
+def test_a_single_length_in_a_round_pans_name_is_its_diameter(title, cm):
+    found = _title_diameter(title, None)
+    if cm is None:
+        assert found == []
+    else:
+        assert [(o.value, o.roles, o.role) for o in found] == [((pytest.approx(cm),), ("diameter",), "name")]
+
+
+def test_the_pages_own_size_beats_the_pans_name():
+    r = _record("<table><tr><th>Diameter</th><td>26 cm</td></tr></table>", 'Frying pan, 11"')
+    assert r is not None and [e["cm"] for e in r.dims] == [26.0]
+    r = _record("<p>Handle length: 6 in</p><p>Weight: 1.2 kg</p>", 'Frying pan, 11"')
+    assert r is not None and [(e["role"], e["cm"]) for e in r.dims] == [("diameter", pytest.approx(27.94))]

@@ -45,6 +45,8 @@ def text(page: Page) -> list[Observation]:
                     note=f"dimensions read from the product name ({title!r})",
                 )
             )
+        else:
+            obs.extend(_title_diameter(title, page.decimal_comma))
         obs.extend(_title_mass(title, page.decimal_comma))
     for line in page.lines[:MAX_PROSE_LINES]:
         if len(line.text) > 600:
@@ -92,6 +94,29 @@ def _title_mass(title: str, decimal_comma: bool | None) -> list[Observation]:
 
 
 _QTY = rf"\d+(?:[.,]\d+)*\s*(?:{units_pattern('length')}|\"|'')"  # a length, its unit from the one table
+
+#: Round pans, named so in any of the supported languages: a single length in such a name is the pan's
+#: diameter (``SKÄNKA Frying pan - gray, 11"``, ``Lodge 12" Cast Iron Skillet``). A bare "pan" is not
+#: enough (a sheet pan's 18" is its length), nor is any other name: a screen's 27" is its diagonal.
+_ROUND_PAN = re.compile(
+    r"\b(?:skillets?|(?:frying|fry|saut[ée]|crepe|crêpe|omelette?|grill|paella) pans?|woks?|(?:brat|grill|wok)?pfannen?|"
+    r"po[êe]les?|sart[ée]n(?:es)?|padell[ae])\b",
+    re.IGNORECASE,
+)
+
+
+def _title_diameter(title: str, decimal_comma: bool | None) -> list[Observation]:
+    """A round pan's diameter written in its name (see :data:`_ROUND_PAN`): every length the name states is
+    that one value; the lowest-ranked size, used only when nothing on the page states the product's."""
+    if not _ROUND_PAN.search(title):
+        return []
+    lengths = [parse_length(m.group(0), None, decimal_comma) for m in re.finditer(_QTY, title, re.IGNORECASE)]
+    lengths = [v for v in lengths if v is not None]
+    if not lengths or any(abs(v - lengths[0]) > 0.02 * lengths[0] for v in lengths):
+        return []
+    note = f"a round pan's diameter read from the product name ({title!r})"
+    return [Observation("dims", (lengths[0],), rank=2, raw=title, note=note, roles=("diameter",), role="name")]
+
 _AXIS_WORDS = {
     "long": "length", "in length": "length", "de long": "length", "de largo": "length", "lang": "length",
     "wide": "width", "in width": "width", "de large": "width", "de ancho": "width", "breit": "width",
