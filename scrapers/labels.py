@@ -31,6 +31,7 @@ from scrapers.label_vocabulary import (
     CJK_TOKENS,
     COMPOUND_PREFIXES,
     COMPOUND_SUFFIXES,
+    INCLUDING,
     KIND_WORDS,
     NEGATIONS,
     OVERALL,
@@ -194,7 +195,7 @@ def _classify(label: object) -> LabelInfo | None:
             package = package or not negated
         elif word in NEGATIONS:
             negated = True
-        elif word in _INCLUDING and not negated:
+        elif word in INCLUDING and not negated:
             including = True
         elif word in QUALIFIERS:
             continue
@@ -242,9 +243,6 @@ def _classify(label: object) -> LabelInfo | None:
     return None
 
 
-#: Words in a label's brackets that keep it the whole product's, whatever else they name: what it includes
-#: ("Height (with stand)", "Weight (incl. battery)").
-_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus".split()}
 
 
 def bracket_part(text: str) -> str | None:
@@ -254,7 +252,7 @@ def bracket_part(text: str) -> str | None:
     for m in _BRACKETS.finditer(text):
         inner = m.group(0)[1:-1].strip()
         words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
-        if any(w in _INCLUDING or w in NEGATIONS or w in BODY_WORDS for w in words):
+        if any(w in INCLUDING or w in NEGATIONS or w in BODY_WORDS for w in words):
             continue
         if any(w in PART_WORDS for w in words):
             return inner
@@ -273,7 +271,7 @@ def _bracket_words(m: re.Match) -> str:
     (``Weight (incl. battery)``, ``Höhe (ohne Fuß)``); any other bracket (a unit, an axis order) is dropped."""
     inner = m.group(0)[1:-1]
     words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
-    return f" {inner} " if any(w in _INCLUDING or w in NEGATIONS for w in words) else " "
+    return f" {inner} " if any(w in INCLUDING or w in NEGATIONS for w in words) else " "
 
 
 _TRAILING_UNIT = re.compile(r"(?<![A-Za-z])([A-Za-z]{2,3})\s*$")
