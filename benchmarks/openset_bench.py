@@ -91,14 +91,12 @@ def _unknown_rows(path: Path) -> list[tuple[str, str]]:
 
 
 def bench(catalog: Path, sets: dict[str, Path], unknown: Path) -> dict:
-    from recall.catalog_folder import read_bins, read_floors, read_ids
+    from recall.catalog_folder import read_ids
     from recall.evaluation import _labeller, _recaller_from_catalog, read_descriptions
     from recall.openset_scores import auroc, fpr_at_tpr
 
     with tempfile.TemporaryDirectory(prefix="objrecall-openset-") as tmp:
         recaller = _recaller_from_catalog(catalog, Path(tmp))
-    recaller.floors = read_floors(catalog)
-    recaller.bins = read_bins(catalog)
     label, index = _labeller(recaller.snapshot, read_ids(catalog))
     out: dict = {"catalog": str(catalog.relative_to(ROOT)), "objects": len(index)}
     known_scores: list[float] = []

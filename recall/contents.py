@@ -23,7 +23,7 @@ from recall.words import COLOURS, SIZE_WORDS, head_noun, material_of_word
 __all__ = ["foreign_contents"]
 
 
-def _material_adjective(word: str, material_of_word) -> bool:
+def _material_adjective(word: str) -> bool:
     """A material named as such ("plastic", "glass") or by its adjective ("wooden", "metallic"); not a
     material word that is a thing's name too ("tissue" -> paper: a "tissue box" holds tissues)."""
     material = material_of_word(word)
@@ -54,16 +54,16 @@ def foreign_contents(text: str, subject: Sequence[str], after_of: Sequence[str],
     container = subject[-1]
     if not re.search(rf"\b{re.escape(container)}s?\s+of\b", text.lower()):
         return None
-    rows = names.heads.get(container) if hasattr(names.heads, "get") else None
+    rows = names.heads.get(container)
     if not rows:
         return None
     held: set[str] = set()
     for row in rows:
-        for phrase in (names._names[row], *names._aliases[row]):
+        for phrase in names.names_of(row):
             words = words_of(phrase)
             if head_noun(words) != container:
                 continue
-            if all(w in SIZE_WORDS or w in COLOURS or _material_adjective(w, material_of_word) for w in words[:-1]):
+            if all(w in SIZE_WORDS or w in COLOURS or _material_adjective(w) for w in words[:-1]):
                 return None  # "small bottle", "bottle": the catalog holds a bottle of anything
             held.update(w for w in words if w != container)
     if any(w in held for w in after_of) or _lexicon_names_it(after_of, container, names.phrases):

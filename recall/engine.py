@@ -302,24 +302,24 @@ class Recaller:
         errors = relative_errors(
             self.snapshot.num_rows(best), self.snapshot.cat_rows(best), query, self.floors, self.bins
         )
-        errors.update(soft.errors_of(int(rows[0])) if soft is not None else {})
-        closeness = closeness_of(errors, self._silent_categories(int(rows[0])))
+        errors.update(soft.errors_of(best) if soft is not None else {})
+        closeness = closeness_of(errors, self._silent_categories(best))
         # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
         # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)
         named_whole = matches[0].matched_by_name and not names_inside(noun, names.phrases)
         not_in_catalog = not_in_catalog and not named_whole
         if noun is not None and noun.sort_of is not None and not named_whole:
             # a sort of a catalog object ("a spring clamp"): in the catalog only as an object of that head
-            not_in_catalog = words_of(self.snapshot.names[int(rows[0])])[-1:] != [noun.sort_of]
+            not_in_catalog = words_of(self.snapshot.names[best])[-1:] != [noun.sort_of]
         # a lexicon synonym of a catalog object ("cellphone", "pen drive": smartphone, usb stick) is no
         # unknown noun, and names it with all its words
         unknown = None if noun is not None and noun.in_catalog else names.unknown_noun
-        synonym = int(rows[0]) in synonym_rows(noun, self.names.phrases)
-        modifier = self._foreign_modifier(subject, int(rows[0]), names)
+        synonym = best in synonym_rows(noun, self.names.phrases)
+        modifier = self._foreign_modifier(subject, best, names)
         modifier = None if synonym and modifier in noun.noun.split() else modifier
         # a noun before the head of an object named by its head alone says which sort ("a *table* knife" of
         # the catalog's "knife"): neither doubt nor a name's evidence
-        narrows = modifier is not None and plain_name(words_of(self.snapshot.names[int(rows[0])]))
+        narrows = modifier is not None and plain_name(words_of(self.snapshot.names[best]))
         modifier = None if narrows else modifier
         trusted = (
             (matches[0].matched_by_name or synonym)

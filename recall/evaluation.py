@@ -177,8 +177,10 @@ def _loose_labels(names: list[str], aliases: list[tuple[str, ...]]) -> dict[str,
 
 
 def _recaller_from_catalog(catalog_csv: Path, workdir: Path) -> Recaller:
-    """A temporary knowledge base (DuckDB file) holding the catalog, and a recaller over it."""
+    """A temporary knowledge base (DuckDB file) holding the catalog, and a recaller over it that reads what
+    the catalog's folder declares of its values (:mod:`recall.catalog_folder`: floors and bins)."""
     from kb.catalog import KnowledgeBase
+    from recall.catalog_folder import read_bins, read_floors
 
     kb = KnowledgeBase.open(workdir / "evaluation.duckdb")
     kb.import_csv(catalog_csv)
@@ -189,7 +191,10 @@ def _recaller_from_catalog(catalog_csv: Path, workdir: Path) -> Recaller:
             install_macros(con)
     except Exception:  # noqa: BLE001 - the macros are a convenience here
         pass
-    return Recaller.from_db(workdir / "evaluation.duckdb")
+    recaller = Recaller.from_db(workdir / "evaluation.duckdb")
+    recaller.floors = read_floors(catalog_csv)
+    recaller.bins = read_bins(catalog_csv)
+    return recaller
 
 
 #: The two modes whose misses and open-set flags are reported: the paper's method and the default hybrid.
@@ -208,15 +213,13 @@ def evaluate(
     ``open_set_csv`` (a ``description`` column of objects not in the catalog) also how many of those are
     flagged open-set."""
     from kb.features import ObjectRecord
-    from recall.catalog_folder import read_bins, read_floors, read_ids
+    from recall.catalog_folder import read_ids
     from recall.parse_eval import score_parses
     from recall.parser import parse
 
     pairs = read_descriptions(descriptions_csv)
     with tempfile.TemporaryDirectory(prefix="objrecall-eval-") as tmp:
         recaller = _recaller_from_catalog(Path(catalog_csv), Path(tmp))
-    recaller.floors = read_floors(catalog_csv)
-    recaller.bins = read_bins(catalog_csv)
     snap = recaller.snapshot
     label, index = _labeller(snap, read_ids(catalog_csv))
     tally = _Tally()

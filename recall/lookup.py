@@ -133,8 +133,7 @@ def unnamed_subject(result: RecallResult) -> str | None:
 
     from recall.names import words_of
     from recall.openset import noun_in, noun_like
-    from recall.words import COLOURS
-    from recall.words import material_words as _material_words
+    from recall.words import COLOURS, material_words
 
     best = result.best
     if best is None or best.matched_by_name or best.name_part > 0:
@@ -142,7 +141,7 @@ def unnamed_subject(result: RecallResult) -> str | None:
     text = result.text or ""
     phrase = _phrase(text, keep_generic=True)
     head = phrase[-1] if phrase else None
-    if head is None or head in GENERIC_NOUNS or head in _material_words():
+    if head is None or head in GENERIC_NOUNS or head in material_words():
         return None  # "a kitchen tool", "a glass object", "paper, 9 by 4 inches": no noun names a thing
     if re.search(rf"\b{re.escape(head)}s?[- ](?:like|shaped|style|sized)\b", text.lower()):
         return None  # "a ball-like fruit": a comparison

@@ -120,7 +120,11 @@ class NameIndex:
         self.vocabulary = tables.vocabulary
         self.longest = tables.longest
         self.size = len(names)
-        self._names, self._aliases = names, aliases  # for compounds (recall.compounds)
+        self._names, self._aliases = names, aliases  # names_of: compounds, contents
+
+    def names_of(self, row: int) -> tuple[str, ...]:
+        """The row's name and its aliases."""
+        return (self._names[row], *self._aliases[row])
 
     def unknown_noun(self, text: str) -> str | None:
         """The head noun of the description's subject (:func:`subject_head`) when the catalog does not know
@@ -296,8 +300,7 @@ class NameIndex:
         modifier = modifier_noun(words, i)
         if modifier is None or len(rows) > COMPOUND_CHECK_LIMIT:
             return rows
-        names, aliases = self._names, self._aliases
-        return {r for r in rows if compound_agrees(modifier, words[i], (names[r], *aliases[r]))}
+        return {r for r in rows if compound_agrees(modifier, words[i], self.names_of(r))}
 
 
 def _colour_only(word: str) -> bool:

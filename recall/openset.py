@@ -18,8 +18,7 @@ from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_
 from recall.fit import DISAGREE_FACTOR, THRESHOLDS, Trust, disagreeing_features, judge
 from recall.reading import NEGATED_REASON
 from recall.subject import feature_words, is_adjective, is_participle
-from recall.words import COLOURS, SIZE_WORDS, head_noun, material_of_word
-from recall.words import material_words as _material_words
+from recall.words import COLOURS, SIZE_WORDS, head_noun, material_of_word, material_words
 
 __all__ = [
     "KIND_SCAN_LIMIT",
@@ -219,7 +218,7 @@ def described_noun(
             return DescribedNoun(f"{before} {noun.text}", noun.kind, f"{before} {noun.english}", False)
     if (
         noun is not None and noun.words[-1] in SHAPE_NOUNS and noun.words[-1] not in heads
-        and before is not None and (before in _material_words() or before in COLOURS)
+        and before is not None and (before in material_words() or before in COLOURS)
     ):  # fmt: skip
         return None  # "a wood plate", "a white stick": a material or colour and a shape, no object's name
     if (noun is None or _generic(noun, generic) or _hypernym(noun, kinds_of, heads)) and after_of:
@@ -328,7 +327,7 @@ def is_qualifier(word: str) -> bool:
     multi-word one: "*cast* iron", "*stainless* steel") or colour, or a feature word or adjective that is
     no lexicon noun ("heavy", "non-stick", "pre-seasoned"). A noun ("*egg* cup", "*bottle* warmer") makes
     a compound: another object."""
-    if word in _material_words() or word in COLOURS or word in SIZE_WORDS:
+    if word in material_words() or word in COLOURS or word in SIZE_WORDS:
         return True
     return noun_in([word]) is None and not noun_like(word)
 
@@ -394,7 +393,7 @@ def counted_material(text: str, vocabulary: frozenset[str]) -> str | None:
     from recall.subject import counted_head
 
     word = counted_head(text)
-    if word is None or word not in _material_words() or word in vocabulary or noun_in([word]) is not None:
+    if word is None or word not in material_words() or word in vocabulary or noun_in([word]) is not None:
         return None
     return word
 

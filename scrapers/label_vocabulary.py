@@ -84,6 +84,10 @@ PACKAGE_WORDS = {
 NEGATIONS = {
     fold(w) for w in "without ohne sans sin senza sem без bez zonder excl exkl excluding not".split()
 }
+#: Words that say a value includes what follows: in a label's brackets they keep it the whole product's
+#: ("Height (with stand)", "Weight (incl. battery)"); after a value, with a package word, they make it the
+#: package's (``scrapers.value_forms.packed_value``).
+INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus".split()}
 QUALIFIERS = {
     fold(w)
     for w in (

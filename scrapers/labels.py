@@ -22,15 +22,14 @@ import re
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
+from scrapers.label_forms import cjk_component, cjk_kinds, compound_kind, has_cjk, split_compound
 from scrapers.label_vocabulary import (
     BODY_WORDS,
     CAPACITY_WORDS,
     CJK_CAPACITY,
     CJK_LABELS,
-    CJK_TOKEN_LENGTHS,
-    CJK_TOKENS,
-    COMPOUND_PREFIXES,
     COMPOUND_SUFFIXES,
+    INCLUDING,
     KIND_WORDS,
     NEGATIONS,
     OVERALL,
@@ -138,7 +137,7 @@ _ANY_KIND = re.compile("|".join(sorted({re.escape(w) for w in (*KIND_WORDS, *OVE
 
 def _may_be_a_label(label: str) -> bool:
     folded = fold(label)
-    return _ANY_KIND.search(folded) is not None or _has_cjk(folded)
+    return _ANY_KIND.search(folded) is not None or has_cjk(folded)
 
 
 @lru_cache(maxsize=16384)
@@ -170,7 +169,7 @@ def _classify(label: object) -> LabelInfo | None:
     if squashed in CJK_LABELS:
         kind, package = CJK_LABELS[squashed]
         return LabelInfo(kind, package, unit, shipping=_ships(package, [squashed]))
-    if _has_cjk(squashed):
+    if has_cjk(squashed):
         if unit is None and (m := _TRAILING_UNIT.search(text)) and (length_unit(m.group(1)) or mass_unit(m.group(1))):
             unit = m.group(1)  # "本体サイズ（H×W×D） mm"
         return _classify_cjk(squashed, unit)
@@ -194,7 +193,7 @@ def _classify(label: object) -> LabelInfo | None:
             package = package or not negated
         elif word in NEGATIONS:
             negated = True
-        elif word in _INCLUDING and not negated:
+        elif word in INCLUDING and not negated:
             including = True
         elif word in QUALIFIERS:
             continue
@@ -205,7 +204,7 @@ def _classify(label: object) -> LabelInfo | None:
         elif _ORDER_WORD.fullmatch(word):
             continue  # "LxWxH", "ВхШхГ" written as one word
         else:
-            compound = _split_compound(word)
+            compound = split_compound(word)
             if compound is None and negated:
                 excluded.append(word)  # what the value leaves out: "Weight without the cable"
                 continue
@@ -242,9 +241,6 @@ def _classify(label: object) -> LabelInfo | None:
     return None
 
 
-#: Words in a label's brackets that keep it the whole product's, whatever else they name: what it includes
-#: ("Height (with stand)", "Weight (incl. battery)").
-_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus".split()}
 
 
 def bracket_part(text: str) -> str | None:
@@ -254,7 +250,7 @@ def bracket_part(text: str) -> str | None:
     for m in _BRACKETS.finditer(text):
         inner = m.group(0)[1:-1].strip()
         words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
-        if any(w in _INCLUDING or w in NEGATIONS or w in BODY_WORDS for w in words):
+        if any(w in INCLUDING or w in NEGATIONS or w in BODY_WORDS for w in words):
             continue
         if any(w in PART_WORDS for w in words):
             return inner
@@ -273,7 +269,7 @@ def _bracket_words(m: re.Match) -> str:
     (``Weight (incl. battery)``, ``Höhe (ohne Fuß)``); any other bracket (a unit, an axis order) is dropped."""
     inner = m.group(0)[1:-1]
     words = [w for w in re.split(r"[\W_]+", fold(inner)) if w]
-    return f" {inner} " if any(w in _INCLUDING or w in NEGATIONS for w in words) else " "
+    return f" {inner} " if any(w in INCLUDING or w in NEGATIONS for w in words) else " "
 
 
 _TRAILING_UNIT = re.compile(r"(?<![A-Za-z])([A-Za-z]{2,3})\s*$")
@@ -308,38 +304,11 @@ def _ships(package: bool, words: list[str]) -> bool:
 
 
 
-#: Kana, CJK ideographs, Hangul syllables and jamo: labels written without spaces.
-_CJK = re.compile("[\u3040-\u30ff\u4e00-\u9fff\uac00-\ud7af\u1100-\u11ff]")
-
-
-def _has_cjk(text: str) -> bool:
-    return _CJK.search(text) is not None
-
-
 def _classify_cjk(squashed: str, unit: str | None) -> LabelInfo | None:
-    kinds: list[str] = []
-    package = False
-    i = 0
-    while i < len(squashed):
-        for n in CJK_TOKEN_LENGTHS:
-            hit = CJK_TOKENS.get(squashed[i : i + n])
-            if hit is not None:
-                break
-        else:
-            if squashed[i].isascii() and squashed[i].isalpha():  # "W×D×H" order letters
-                i += 1
-                continue
-            return None
-        role, value = hit
-        if role == "kind":
-            kinds.append(value)
-        elif role == "package":
-            package = True
-            if value:
-                kinds.append(value)
-        i += n
-    if not kinds:
+    read = cjk_kinds(squashed)
+    if read is None or not read[0]:
         return None
+    kinds, package = read
     shipping = _ships(package, [squashed])
     if len({k for k in kinds if k in AXES}) >= 2 or "dimensions" in kinds:
         return LabelInfo("dimensions", package, unit, shipping=shipping)
@@ -360,18 +329,18 @@ def classify_other(label: object) -> LabelInfo | None:
         folded = fold(_BRACKETS.sub(" ", text))
         if any(token in folded for token in CJK_CAPACITY):
             return LabelInfo("weight", role="capacity")
-        if _has_cjk(folded):
+        if has_cjk(folded):
             return _cjk_component(re.sub(r"[\W_]+", "", folded))
         words = [w for w in re.split(r"[\W_]+", folded) if w]
         if not words or len(words) > _MAX_WORDS:
             return None
         kinds = [KIND_WORDS[w] for w in words if w in KIND_WORDS]
-        kinds += [k for w in words if w not in KIND_WORDS for k in [_compound_kind(w)] if k]
+        kinds += [k for w in words if w not in KIND_WORDS for k in [compound_kind(w)] if k]
         if any(w in CAPACITY_WORDS for w in words) or _names_a_capacity(text):
             kind = kinds[0] if kinds else "weight"
             return LabelInfo("dimensions" if kind == "size" else kind, role="capacity")
         if kinds:
-            part = " ".join(w for w in words if w not in KIND_WORDS and w not in QUALIFIERS and not _compound_kind(w))
+            part = " ".join(w for w in words if w not in KIND_WORDS and w not in QUALIFIERS and not compound_kind(w))
             part = part or next((w[: -len(s)] for w in words for s in COMPOUND_SUFFIXES if w.endswith(s)), "")
             part = bracket_part(text) or part
             return LabelInfo("dimensions" if kinds[0] == "size" else kinds[0], role="component", part=part or None)
@@ -385,38 +354,6 @@ def _names_a_capacity(text: str) -> bool:
 
 
 def _cjk_component(squashed: str) -> LabelInfo | None:
-    """A CJK label ending in a measurement token after a part's name (``電源コードの長さ``: the cord's
-    length, ``取っ手の高さ``): a component's value naming that part."""
-    for n in CJK_TOKEN_LENGTHS:
-        if len(squashed) <= n:
-            continue
-        hit = CJK_TOKENS.get(squashed[-n:])
-        if hit is not None and hit[0] == "kind":
-            part = squashed[:-n].rstrip("の的")
-            if part and part not in CJK_TOKENS:
-                return LabelInfo(hit[1], role="component", part=part)
-    return None
-
-
-_SUFFIXES = tuple(COMPOUND_SUFFIXES)
-
-
-def _compound_kind(word: str) -> str | None:
-    """The kind a compound's measurement suffix names, whatever its prefix (``schlauchlänge`` -> length)."""
-    if not word.endswith(_SUFFIXES):
-        return None
-    for suffix in COMPOUND_SUFFIXES:
-        if word.endswith(suffix) and len(word) > len(suffix) + 2:
-            return KIND_WORDS[suffix]
-    return None
-
-
-def _split_compound(word: str) -> tuple[str, bool] | None:
-    if not word.endswith(_SUFFIXES):
-        return None
-    for suffix in COMPOUND_SUFFIXES:
-        if word.endswith(suffix) and len(word) > len(suffix):
-            prefix = word[: -len(suffix)].rstrip("-")
-            if prefix in COMPOUND_PREFIXES:
-                return KIND_WORDS[suffix], COMPOUND_PREFIXES[prefix]
-    return None
+    """A CJK label naming a part's extent (:func:`scrapers.label_forms.cjk_component`): a component's value."""
+    found = cjk_component(squashed)
+    return None if found is None else LabelInfo(found[0], role="component", part=found[1])

@@ -8,7 +8,15 @@ from __future__ import annotations
 import re
 
 from kb.measures.units import units_pattern
-from scrapers.label_vocabulary import BODY_WORDS, NEGATIONS, OVERALL, PACKAGE_WORDS, QUALIFIERS, fold
+from scrapers.label_vocabulary import (
+    BODY_WORDS,
+    INCLUDING,
+    NEGATIONS,
+    OVERALL,
+    PACKAGE_WORDS,
+    QUALIFIERS,
+    fold,
+)
 from scrapers.labels import AXES, classify_label, classify_other
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
@@ -41,8 +49,8 @@ def for_one_size(value: str) -> bool:
 #: A bracket after a measured number with no figure inside: a qualifier of that value (``5,197 kg [inkl.
 #: Verpackung]``, ``1.65 lb (Body Only)``, ``5.60kg (mit Standfuß)``), not another value.
 _VALUE_BRACKET = re.compile(r"\d[^(\[（]*?[(\[（]([^)\]）\d]{1,80})[)\]）]")
-#: Words that say a value includes what follows (the label's ``Gewicht inkl. Verpackung``).
-_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus einschl einschließlich".split()}
+#: Words that say a value includes what follows (the labels' words, and German's written-out forms).
+_INCLUDING = INCLUDING | {fold(w) for w in ("einschl", "einschließlich")}
 
 
 def packed_value(value: str) -> bool:

@@ -23,3 +23,20 @@ def seed() -> Recaller:
 def catalog2() -> Recaller:
     """The second catalog's (tests/data/catalog2) recaller."""
     return Recaller.from_csv(CATALOG2_CSV)
+
+
+#: The header of a catalog CSV with aliases and a source (``Recaller.from_csv`` reads it).
+CATALOG_HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity,aliases,source".split(",")
+
+
+def from_sizes(path: Path, rows) -> Recaller:
+    """A recaller over a small catalog written here to ``path``: ``rows`` of (name, a_cm, b_cm, c_cm,
+    mass_g), every other feature unknown, source "written here"."""
+    import csv
+
+    with path.open("w", encoding="utf-8", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(CATALOG_HEADER)
+        for name, a, b, c, g in rows:
+            w.writerow([name, a, b, c, g, "", "", "", "", "", "", "written here"])
+    return Recaller.from_csv(path)

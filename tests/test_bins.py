@@ -23,7 +23,7 @@ def yale(tmp_path_factory):
 
     tmp = tmp_path_factory.mktemp("bins")
     recaller = _recaller_from_catalog(CATALOG, tmp)
-    recaller.bins = read_bins(CATALOG)
+    assert recaller.bins == read_bins(CATALOG)  # the folder's classes, read with the catalog
     return KnowledgeBase.open(tmp / "evaluation.duckdb"), recaller
 
 

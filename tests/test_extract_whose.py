@@ -7,7 +7,9 @@
   maker's ``Waist width 65mm``), while its base, lid or handle stay parts;
 - a single length in a round pan's name is its diameter (``SKÄNKA Frying pan - gray, 11"``, ``Lodge 12"
   Cast Iron Skillet``), used only when the page states no product size; in any other name (a screen's
-  ``27"``, a sheet pan's ``18"``) it is no extent.
+  ``27"``, a sheet pan's ``18"``) it is no extent;
+- a weight a sentence states followed by a comparison (``weighs 30g, or ~5% lighter than the LCD model``,
+  ``wiegt 300 g weniger als``) is a difference from another model, never the product's weight.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ import json
 import pytest
 
 from kb.errors import ExtractionError
-from scrapers.adapters.text import _title_diameter
+from scrapers.adapters.text import _COMPARED, _WEIGHS, _title_diameter
 from scrapers.extract import extract_page
 from scrapers.labels import classify_label, classify_other
 
@@ -137,3 +139,23 @@ def test_the_pages_own_size_beats_the_pans_name():
     assert r is not None and [e["cm"] for e in r.dims] == [26.0]
     r = _record("<p>Handle length: 6 in</p><p>Weight: 1.2 kg</p>", 'Frying pan, 11"')
     assert r is not None and [(e["role"], e["cm"]) for e in r.dims] == [("diameter", pytest.approx(27.94))]
+
+
+# ---------------------------------------------------------------------- a weight compared with another's
+@pytest.mark.parametrize("sentence, difference", [
+    ("It also weighs 30g, or ~5% lighter than the LCD model.", True),
+    ("The new model weighs 200 g less than the old one.", True),
+    ("Das Gerät wiegt 300 g weniger als das Vorgängermodell.", True),
+    ("It weighs 2 kg more.", True),
+    ("This lamp weighs 1.2 kg, more stable than ever before.", False),  # "more" modifies another word
+    ("It weighs 1.2 kg and stands 40 cm tall.", False),
+])  # fmt: skip
+def test_a_weight_followed_by_a_comparison_is_a_difference(sentence, difference):
+    m = _WEIGHS.search(sentence)
+    assert m is not None and bool(_COMPARED.match(sentence, m.end())) is difference
+
+
+def test_a_compared_weight_is_not_the_products():
+    r = _record("<p>Thanks to a bigger fan it also weighs 30g, or ~5% lighter than the LCD model.</p>"
+                "<p>Width: 30 cm</p>")  # fmt: skip
+    assert r is not None and r.mass_g is None

@@ -5,16 +5,13 @@ each condition pinned on its own."""
 
 from __future__ import annotations
 
-import csv
-from pathlib import Path
-
 import pytest
+from recallers import from_sizes
 
 from recall.contents import foreign_contents
 from recall.engine import Recaller
 from recall.subject import noun_phrase
 
-HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity,aliases,source".split(",")
 BY_CONTENTS = [
     ("cracker box", 21, 16, 7, 411), ("tissue box", 24, 12, 9, 250), ("mustard bottle", 19, 9, 6, 600),
     ("roll of tape", 11, 11, 5, 300), ("hammer", 33, 13, 3, 600), ("cereal box", 30, 20, 7, 500),
@@ -22,19 +19,10 @@ BY_CONTENTS = [
 PLAIN = [*BY_CONTENTS, ("small bottle", 11, 3, 3, 120), ("plastic box", 20, 15, 10, 300)]
 
 
-def _recaller(path: Path, rows) -> Recaller:
-    with path.open("w", encoding="utf-8", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(HEADER)
-        for name, a, b, c, g in rows:
-            w.writerow([name, a, b, c, g, "", "", "", "", "", "", "written here"])
-    return Recaller.from_csv(path)
-
-
 @pytest.fixture(scope="module")
 def catalogs(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("contents")
-    return _recaller(tmp / "a.csv", BY_CONTENTS), _recaller(tmp / "b.csv", PLAIN)
+    return from_sizes(tmp / "a.csv", BY_CONTENTS), from_sizes(tmp / "b.csv", PLAIN)
 
 
 def _contents(recaller: Recaller, text: str) -> str | None:

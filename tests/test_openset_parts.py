@@ -4,25 +4,17 @@ Catalog written here."""
 
 from __future__ import annotations
 
-import csv
-
 import pytest
+from recallers import from_sizes
 
 from recall.engine import Recaller
 from recall.openset import bare_part
 
-HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity,aliases,source".split(",")
-
 
 @pytest.fixture(scope="module")
 def recaller(tmp_path_factory) -> Recaller:
-    path = tmp_path_factory.mktemp("parts") / "catalog.csv"
-    with path.open("w", encoding="utf-8", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(HEADER)
-        for name, a, b, c, g in [("cell phone", 10, 5.5, 1, 100), ("micrometer", 11.5, 1.75, 1.75, 170)]:
-            w.writerow([name, a, b, c, g, "", "", "", "", "", "", "written here"])
-    return Recaller.from_csv(path)
+    rows = [("cell phone", 10, 5.5, 1, 100), ("micrometer", 11.5, 1.75, 1.75, 170)]
+    return from_sizes(tmp_path_factory.mktemp("parts") / "catalog.csv", rows)
 
 
 @pytest.mark.parametrize(

@@ -6,26 +6,18 @@ written here, each rule's conditions pinned one at a time."""
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import pytest
+from recallers import from_sizes
 
 from kb.kinds import Noun, noun_in
 from recall.engine import Recaller
 from recall.openset import KindIndex, is_qualifier, plain_name, sort_of_catalog_object
 
-HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity,aliases,source".split(",")
-
 
 def _recaller(tmp_path: Path, rows: list[tuple]) -> Recaller:
-    path = tmp_path / "catalog.csv"
-    with path.open("w", encoding="utf-8", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(HEADER)
-        for name, a, b, c, g in rows:
-            w.writerow([name, a, b, c, g, "", "", "", "", "", "", "written here"])
-    return Recaller.from_csv(path)
+    return from_sizes(tmp_path / "catalog.csv", rows)
 
 
 TOOLS = [

@@ -5,14 +5,12 @@ written here; each condition pinned on its own."""
 
 from __future__ import annotations
 
-import csv
-
 import pytest
+from recallers import from_sizes
 
 from recall.engine import Recaller
 from recall.name_index import HEAD_WEIGHT
 
-HEADER = "name,a_cm,b_cm,c_cm,mass_g,shape,texture,fragility,material,rigidity,aliases,source".split(",")
 ROWS = [
     ("saw", 30, 10, 2.5, 450), ("dremel", 40, 5.5, 5.5, 450), ("hammer", 33, 13, 3, 600),
     ("spoon", 18, 4, 2, 30), ("timer", 12, 12, 4, 100),
@@ -21,13 +19,7 @@ ROWS = [
 
 @pytest.fixture(scope="module")
 def recaller(tmp_path_factory) -> Recaller:
-    path = tmp_path_factory.mktemp("sorts") / "catalog.csv"
-    with path.open("w", encoding="utf-8", newline="") as fh:
-        w = csv.writer(fh)
-        w.writerow(HEADER)
-        for name, a, b, c, g in ROWS:
-            w.writerow([name, a, b, c, g, "", "", "", "", "", "", "written here"])
-    return Recaller.from_csv(path)
+    return from_sizes(tmp_path_factory.mktemp("sorts") / "catalog.csv", ROWS)
 
 
 def test_a_sort_of_a_catalog_head_gives_its_objects_that_heads_evidence(recaller):

@@ -147,6 +147,16 @@ _WEIGHS = re.compile(
     r"|solo |appena |soltanto )?(?P<q>\d+(?:[.,]\d+)*\s*[^\W\d_]+\.?)",
     re.IGNORECASE,
 )
+#: A comparison right after the weight a sentence states: the weight is a difference from another model's
+#: ("weighs 30g, or ~5% lighter than the LCD model", "weighs 200 g less than", "wiegt 300 g weniger"), never
+#: the product's own.
+_COMPARED = re.compile(
+    r"[\s,;]{0,3}(?:or\s+|oder\s+|soit\s+|ou\s+)?(?:~|about\s+|around\s+|roughly\s+|ca\.?\s+|etwa\s+)?"
+    r"(?:\d+(?:[.,]\d+)?\s*%\s*)?(?:(?:lighter|heavier|leichter|schwerer|plus\s+l[ée]g[eè]re?s?|plus\s+lourde?s?)\b|"
+    r"(?:less|more|weniger|mehr|de\s+moins|de\s+plus|en\s+moins|en\s+plus|menos|más|in\s+meno|in\s+più)"
+    r"(?=\s*(?:than|als|que|di)\b|\s*[.!;]|\s*$))",
+    re.IGNORECASE,
+)
 _MADE_OF = re.compile(
     r"\b(?:made (?:of|from|out of)|crafted (?:of|from)|carved (?:from|out of)|cut from|cast in|constructed (?:of|from)|"
     r"aus|hergestellt aus|fabricado en|realizzato in|feito de|fait en|en)\s+"
@@ -202,6 +212,8 @@ def free_text(page: Page) -> list[Observation]:
                 )
             )  # fmt: skip
         weighs = _WEIGHS.search(text)
+        if weighs and _COMPARED.match(text, weighs.end()):
+            weighs = None  # "weighs 30g, or ~5% lighter than the LCD model": a difference, not its weight
         if weighs:
             mass = parse_mass(weighs.group("q"), None, dc)
             if mass is not None:
