@@ -167,7 +167,6 @@ class NameIndex:
         head: dict[int, float] = {}
         phrases = self._whole_names(words, exact, head)
         phrases += [p for p in self._contents_names(words, exact) if p not in phrases]
-        phrases += [p for p in self._measure_names(words, exact) if p not in phrases]
         heads = self._head_nouns(words, material, head, counted_head(text))
         if not phrases and not heads:
             heads = self._name_words(list(subject_phrase(text)[-1:]), head)  # the subject's head only
@@ -226,33 +225,6 @@ class NameIndex:
                     for row in rows:
                         exact[row] = max(exact.get(row, 0.0), math.log(n / len(rows)))
                     found.append(" ".join(gram))
-        return found
-
-    def _measure_names(self, words: list[str], exact: dict[int, float]) -> list[str]:
-        """Record in ``exact`` the rows of the catalog names of a measure or container noun before its
-        contents ("bar soap", "roll of tape": :data:`recall.lexicon.MEASURE_NOUNS`, ``CONTAINER_NOUNS``)
-        that the text says in another of the three orders: "<contents> <noun>" ("soap bar", "masking tape
-        roll") or "<noun> of <contents>" with up to :data:`CONTENTS_WINDOW` words after "of" ("bar of
-        soap", "roll of duct tape"); returns the names found. ("<contents> <noun>" names said as "<noun>
-        of <contents>" are :meth:`_contents_names`'.)"""
-        from recall.lexicon import CONTAINER_NOUNS, MEASURE_NOUNS
-
-        n = max(self.size, 1)
-        found: list[str] = []
-        for i, word in enumerate(words):
-            if word not in CONTAINER_NOUNS and word not in MEASURE_NOUNS:
-                continue
-            if i + 1 < len(words) and words[i + 1] == "of":
-                contents = words[i + 2 : i + 2 + CONTENTS_WINDOW]
-            else:
-                contents = words[i - 1 : i] if i > 0 else []
-            for other in contents:
-                for gram in ((word, other), (word, "of", other)):
-                    if gram in self.phrases and " ".join(gram) not in found and not _comparison(words, i, i + 1):
-                        rows = self.phrases[gram]
-                        for row in rows:
-                            exact[row] = max(exact.get(row, 0.0), math.log(n / len(rows)))
-                        found.append(" ".join(gram))
         return found
 
     def _name_words(self, words: list[str], head: dict[int, float]) -> list[str]:
