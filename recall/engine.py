@@ -371,7 +371,9 @@ class Recaller:
             return None
         snap = self.snapshot
         words = frozenset(w for name in (snap.names[row], *snap.aliases[row]) for w in words_of(name))
-        return foreign_modifier(subject, words)
+        # a phrase of the text that names the row (a synonym: "cross head screwdriver") holds its modifier
+        said = [p.split() for p in names.phrases if row in (self.names.phrases.get(tuple(p.split())) or ())]
+        return foreign_modifier(subject, words | frozenset(w for p in said for w in p))
 
     def _candidates(
         self, query: FeatureQuery, named: list[int], top: int, metric: str, soft: SoftEvidence | None
