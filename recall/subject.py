@@ -42,6 +42,8 @@ _PHRASE_ENDS = frozenset(
     "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
 )
 _PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: An article before a request word makes it a noun ("a *can* of WD-40", "the *pick* of the bunch").
+_ARTICLES = frozenset({"a", "an", "the"})
 #: A past participle ("shaped", "filled", "covered"), which after the head noun and before a function word
 #: ends the subject phrase.
 _ADJECTIVE_PARTICIPLE = re.compile(r"..ed$")
@@ -110,7 +112,7 @@ def _sentence_phrases(sentence: str):
             if i in negated or word in _negations():
                 if phrase:
                     break  # "a mug not a glass"
-            elif not phrase and _request_word(word, words[i + 1 : i + 2]):
+            elif not phrase and previous not in _ARTICLES and _request_word(word, words[i + 1 : i + 2]):
                 pass  # "Could you pass the salt shaker", "Where is the scoop", "Hand me the hammer"
             elif (word in _PHRASE_ENDS or _size_words(words, i)) and not (
                 phrase and _compound_verb(word, words[i + 1 : i + 2])

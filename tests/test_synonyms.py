@@ -80,3 +80,22 @@ def test_a_closed_compound_of_a_catalog_name_is_no_unknown_noun(tmp_path):
     assert r.names.unknown_noun("a headband, 20 cm across") is None
     assert r.names.unknown_noun("a flyswatter, 33 cm long") == "flyswatter"
     assert set(r.names.find("a headband, 20 cm across").exact) == {0}
+
+
+def test_a_synonym_holds_its_own_modifier(tmp_path):
+    """The modifier of a synonym the text names the object by ("cross-head" of "cross-head screwdriver")
+    is no foreign modifier of that object; a modifier no phrase naming it holds still doubts the match."""
+    r = from_sizes(tmp_path / "c.csv", [("phillips screwdriver", 20, 3, 3, 100), ("hammer", 33, 13, 3, 600)])
+    named = r.recall_text("a cross-head screwdriver, 30 cm long, 100 g")  # closeness 0.17
+    assert named.matches[0].name == "phillips screwdriver" and not named.open_set
+    assert named.fit.reason.endswith("named)")
+    # the same words without the synonym phrase found: "head" is foreign to the object's own names
+    import dataclasses
+
+    from recall.subject import noun_phrase
+
+    text = "a cross-head screwdriver, 30 cm long, 100 g"
+    found = r.names.find(text)
+    assert found.phrases == ("cross head screwdriver",)
+    assert r._foreign_modifier(noun_phrase(text), 0, found) is None
+    assert r._foreign_modifier(noun_phrase(text), 0, dataclasses.replace(found, phrases=())) == "head"
