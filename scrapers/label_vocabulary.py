@@ -99,6 +99,7 @@ QUALIFIERS = {
         "i på "  # Nordic prepositions: "Lengde i fot"
         "starting at from per piece each pro stück je unit pièce unidad adet ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
         "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "
+        "rim brim waist "  # a vessel's own outline: "rim diameter 9 cm" (a mug), "Waist width 65mm" (a cup)
         " l b h w d t x х"
     ).split()
 }

@@ -8,13 +8,13 @@ from __future__ import annotations
 import re
 
 from kb.measures.units import units_pattern
-from scrapers.label_vocabulary import BODY_WORDS, OVERALL, QUALIFIERS, fold
+from scrapers.label_vocabulary import BODY_WORDS, NEGATIONS, OVERALL, PACKAGE_WORDS, QUALIFIERS, fold
 from scrapers.labels import AXES, classify_label, classify_other
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
 __all__ = [
-    "NARROW_RANGE", "axis_segments", "for_one_size", "keyed_variant", "metric_figure", "one_length", "placeholder_size",
-    "written_value",
+    "NARROW_RANGE", "axis_segments", "for_one_size", "keyed_variant", "metric_figure", "one_length", "packed_value",
+    "placeholder_size", "written_value",
 ]
 
 #: A range no wider than this ratio is the object's own adjustment or a tolerance (``30-32 cm``, ``1,2 – 1,5
@@ -36,6 +36,34 @@ _FOR_ONE_SIZE = re.compile(
 def for_one_size(value: str) -> bool:
     """Whether a measured value says it is for one size of the article (:data:`_FOR_ONE_SIZE`)."""
     return len(value) < 200 and _FOR_ONE_SIZE.search(value) is not None
+
+
+#: A bracket after a measured number with no figure inside: a qualifier of that value (``5,197 kg [inkl.
+#: Verpackung]``, ``1.65 lb (Body Only)``, ``5.60kg (mit Standfuß)``), not another value.
+_VALUE_BRACKET = re.compile(r"\d[^(\[（]*?[(\[（]([^)\]）\d]{1,80})[)\]）]")
+#: Words that say a value includes what follows (the label's ``Gewicht inkl. Verpackung``).
+_INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus einschl einschließlich".split()}
+
+
+def packed_value(value: str) -> bool:
+    """Whether a measured value says in a bracket after its number that it includes the packaging
+    (``5.197kg [Eigenmessung inkl. Verpackung & Beilagen]``, ``2 kg (incl. packaging)``, ``(with box)``):
+    the label's package rule (``Gewicht inkl. Verpackung``) read where the store writes it after the value.
+    A negation first (``(ohne Verpackung)``, ``(without packaging)``) keeps it the product's, and so does a
+    part it includes (``(mit Standfuß)``)."""
+    if len(value) > 200:
+        return False
+    for m in _VALUE_BRACKET.finditer(value):
+        words = [w for w in re.split(r"[\W_]+", fold(m.group(1))) if w]
+        including = False
+        for w in words:
+            if w in NEGATIONS:
+                break
+            if w in _INCLUDING:
+                including = True
+            elif including and w in PACKAGE_WORDS:
+                return True
+    return False
 
 
 #: A value that starts with the name of the variant it is for (``1-inch: 71"L x 24"W``, ``Queen: 60 x 80 in``,

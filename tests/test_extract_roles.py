@@ -74,6 +74,29 @@ def test_a_single_item_page_has_no_set():
     assert record.mass_g == 2400.0 and record.set_count is None and record.set_mass_g is None
 
 
+# ------------------------------------------------ a qualifier in a bracket after the value (packaging)
+@pytest.mark.parametrize(
+    ("value", "packed"),
+    [("5.197kg [Eigenmessung inkl. Verpackung & Beilagen]", True), ("2 kg (incl. packaging)", True),
+     ("3 kg (with box)", True), ("2 kg (ohne Verpackung)", False), ("2 kg (without packaging)", False),
+     ("5.60kg (mit Standfuß)", False), ("1.65 lb / 750 g (Body Only)", False),
+     ("2 kg (inkl. Verpackung 2,5 kg)", False),  # a figure inside: another value, not a qualifier
+     ("2 kg inkl. Verpackung", False), ("(inkl. Verpackung) 2 kg", False)],  # no bracket after the number
+)  # fmt: skip
+def test_a_bracket_after_the_value_saying_it_includes_the_packaging(value, packed):
+    from scrapers.value_forms import packed_value
+
+    assert packed_value(value) is packed
+
+
+def test_a_weight_including_the_packaging_is_a_package_value_wherever_the_store_writes_it():
+    body = ("<table><tr><td>Breite</td><td>54 cm</td></tr><tr><td>Gewicht</td>"
+            "<td>5,2 kg [inkl. Verpackung]</td></tr></table>")  # fmt: skip
+    record = extract_page(_page(body, lang="de"), "https://s.example/p")
+    assert record.mass_g is None and record.package_mass_g == [5200.0]
+    kept = extract_page(_page(body.replace("inkl.", "ohne"), lang="de"), "https://s.example/p")
+    assert kept.mass_g == 5200.0 and not kept.package_mass_g
+
 def test_a_set_page_stating_only_the_sets_weight_is_still_a_record():
     record = extract_page(_page("<ul><li>Weight: 2.4 kg</li></ul>", "Mugs, Set of 4"), "https://s.example/p")
     assert record.mass_g is None and record.set_mass_g == 2400.0 and record.dims_cm is None

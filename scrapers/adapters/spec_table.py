@@ -38,6 +38,7 @@ from scrapers.value_forms import (
     for_one_size,
     keyed_variant,
     one_length,
+    packed_value,
     written_value,
 )
 
@@ -105,7 +106,7 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
     out: list[Observation] = []
     info = pair.info
     raw = f"{pair.label}: {pair.value}"[:200]
-    package = pair.package or info.package
+    package = pair.package or info.package or packed_value(pair.value)
     value, written = written_value(pair.value)
     if value != pair.value:
         pair = replace(pair, value=value)

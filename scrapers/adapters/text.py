@@ -45,6 +45,8 @@ def text(page: Page) -> list[Observation]:
                     note=f"dimensions read from the product name ({title!r})",
                 )
             )
+        else:
+            obs.extend(_title_diameter(title, page.decimal_comma))
         obs.extend(_title_mass(title, page.decimal_comma))
     for line in page.lines[:MAX_PROSE_LINES]:
         if len(line.text) > 600:
@@ -92,6 +94,29 @@ def _title_mass(title: str, decimal_comma: bool | None) -> list[Observation]:
 
 
 _QTY = rf"\d+(?:[.,]\d+)*\s*(?:{units_pattern('length')}|\"|'')"  # a length, its unit from the one table
+
+#: Round pans, named so in any of the supported languages: a single length in such a name is the pan's
+#: diameter (``SKÄNKA Frying pan - gray, 11"``, ``Lodge 12" Cast Iron Skillet``). A bare "pan" is not
+#: enough (a sheet pan's 18" is its length), nor is any other name: a screen's 27" is its diagonal.
+_ROUND_PAN = re.compile(
+    r"\b(?:skillets?|(?:frying|fry|saut[ée]|crepe|crêpe|omelette?|grill|paella) pans?|woks?|(?:brat|grill|wok)?pfannen?|"
+    r"po[êe]les?|sart[ée]n(?:es)?|padell[ae])\b",
+    re.IGNORECASE,
+)
+
+
+def _title_diameter(title: str, decimal_comma: bool | None) -> list[Observation]:
+    """A round pan's diameter written in its name (see :data:`_ROUND_PAN`): every length the name states is
+    that one value; the lowest-ranked size, used only when nothing on the page states the product's."""
+    if not _ROUND_PAN.search(title):
+        return []
+    lengths = [parse_length(m.group(0), None, decimal_comma) for m in re.finditer(_QTY, title, re.IGNORECASE)]
+    lengths = [v for v in lengths if v is not None]
+    if not lengths or any(abs(v - lengths[0]) > 0.02 * lengths[0] for v in lengths):
+        return []
+    note = f"a round pan's diameter read from the product name ({title!r})"
+    return [Observation("dims", (lengths[0],), rank=2, raw=title, note=note, roles=("diameter",), role="name")]
+
 _AXIS_WORDS = {
     "long": "length", "in length": "length", "de long": "length", "de largo": "length", "lang": "length",
     "wide": "width", "in width": "width", "de large": "width", "de ancho": "width", "breit": "width",
@@ -120,6 +145,16 @@ _WEIGHS = re.compile(
     r"|approx\.? |approximately |roughly |around |ca\.? |nur |etwa |environ |unos |circa |cerca de |около "
     r"|примерно |około |asi |přibližně |ongeveer |à peine |seulement |tout juste |knapp |lediglich |apenas "
     r"|solo |appena |soltanto )?(?P<q>\d+(?:[.,]\d+)*\s*[^\W\d_]+\.?)",
+    re.IGNORECASE,
+)
+#: A comparison right after the weight a sentence states: the weight is a difference from another model's
+#: ("weighs 30g, or ~5% lighter than the LCD model", "weighs 200 g less than", "wiegt 300 g weniger"), never
+#: the product's own.
+_COMPARED = re.compile(
+    r"[\s,;]{0,3}(?:or\s+|oder\s+|soit\s+|ou\s+)?(?:~|about\s+|around\s+|roughly\s+|ca\.?\s+|etwa\s+)?"
+    r"(?:\d+(?:[.,]\d+)?\s*%\s*)?(?:(?:lighter|heavier|leichter|schwerer|plus\s+l[ée]g[eè]re?s?|plus\s+lourde?s?)\b|"
+    r"(?:less|more|weniger|mehr|de\s+moins|de\s+plus|en\s+moins|en\s+plus|menos|más|in\s+meno|in\s+più)"
+    r"(?=\s*(?:than|als|que|di)\b|\s*[.!;]|\s*$))",
     re.IGNORECASE,
 )
 _MADE_OF = re.compile(
@@ -177,6 +212,8 @@ def free_text(page: Page) -> list[Observation]:
                 )
             )  # fmt: skip
         weighs = _WEIGHS.search(text)
+        if weighs and _COMPARED.match(text, weighs.end()):
+            weighs = None  # "weighs 30g, or ~5% lighter than the LCD model": a difference, not its weight
         if weighs:
             mass = parse_mass(weighs.group("q"), None, dc)
             if mass is not None:
