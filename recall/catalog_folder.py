@@ -6,15 +6,16 @@
 * ``floors.csv`` (``feature,at_least``): a data set that records values in bins whose top bin is open
   ("15 cm or more") stores the bin's value, and declares it here: a catalog value at or above the floor
   is a lower bound (:func:`read_floors`). The recall's closeness and the 4x disagreement rule then count
-  only a stated value *below* it as a difference (``recall.metrics.relative_errors``); the ranking keeps
-  the stored value (no row of such a catalog is larger, so it is the closest anyway).
+  only a stated value *below* it as a difference (``recall.metrics.relative_errors``); the ranking reads
+  a stated value above the floor as the floor (``FeatureQuery.within_floors``: "7 kg" against a top bin
+  "1000 g or more"), so that the top bin is not ranked below an object whose value is unknown.
 
 * ``bins.csv`` (``feature,below,above``): a data set that records classes, not measurements (the Yale
   grasping data's size and mass classes), declares what a stored value x stands for: the class
   [x / below, x * above], each factor at least 1; ``above`` may be ``inf``, a lower bound (a data set
   that records the size of the part grasped, not of the whole object: the whole is at least as large).
   The closeness and the 4x rule then count only the distance outside the class (:func:`read_bins`); the
-  ranking keeps the stored value, as with the floors.
+  ranking ranks by the stated interval widened to the classes (``FeatureQuery.within_classes``).
 
 The files are optional; a folder without them has no ids, no floors and no bins. Malformed files are refused with
 the file, row and reason (:class:`kb.errors.RecallError`).

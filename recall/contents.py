@@ -31,10 +31,18 @@ def _material_adjective(word: str) -> bool:
 
 
 def _lexicon_names_it(after_of: Sequence[str], container: str, phrases) -> bool:
-    """Whether "<contents> <container>" is a lexicon noun that is a catalog name or has one as its English
-    name ("a box of cornflakes": the lexicon's "cornflakes box", English "cereal box")."""
+    """Whether "<contents> <container>" is a catalog name (or a synonym of one, ``phrases``) or a lexicon
+    noun that is one or has one as its English name ("a box of cornflakes": the lexicon's "cornflakes box",
+    English "cereal box"), or the contents are a lexicon noun whose English name is a catalog name on the
+    container ("a can of spam": English "potted meat can")."""
     from kb.kinds import noun_in
 
+    if (*after_of, container) in phrases:
+        return True
+    contents = noun_in(list(after_of))
+    english = tuple(words_of(contents.english or "")) if contents is not None else ()
+    if english[-1:] == (container,) and english in phrases:
+        return True
     for words in ([*after_of, container], [*after_of[:-1], f"{after_of[-1]}s", container]):
         noun = noun_in(words)
         if noun is not None and noun.words[-1] == container:

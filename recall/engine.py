@@ -118,7 +118,7 @@ class Recaller:
         self._kdtrees: dict = {}
         #: Floors of a binned catalog (:mod:`recall.catalog_folder`): feature -> the value at or above which the
         #: catalog's value is a lower bound ("15 cm or more"); the closeness and the disagreement rule read
-        #: them, the ranking does not.
+        #: them, and the ranking reads a stated value above one as the floor (``within_floors``).
         self.floors: dict[str, float] = {}
         #: Classes of a binned catalog (:mod:`recall.catalog_folder`, ``bins.csv``): feature -> (below, above),
         #: a stored value x stands for [x / below, x * above]; read like the floors, by the verdict only.
@@ -293,6 +293,7 @@ class Recaller:
                 described=noun, fit=fit, **base,
             )  # fmt: skip
         ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
+        ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
         rows, dist = self._candidates(ranked, named, top, metric, soft)
         score, parts = _ranking_scores(rows, dist, names, soft, metric)
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
@@ -371,7 +372,9 @@ class Recaller:
             return None
         snap = self.snapshot
         words = frozenset(w for name in (snap.names[row], *snap.aliases[row]) for w in words_of(name))
-        return foreign_modifier(subject, words)
+        # a phrase of the text that names the row (a synonym: "cross head screwdriver") holds its modifier
+        said = [p.split() for p in names.phrases if row in (self.names.phrases.get(tuple(p.split())) or ())]
+        return foreign_modifier(subject, words | frozenset(w for p in said for w in p))
 
     def _candidates(
         self, query: FeatureQuery, named: list[int], top: int, metric: str, soft: SoftEvidence | None

@@ -219,20 +219,46 @@ def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float]:
     URL path or another language, and the store's search already matched the words); with no stated
     feature, when the description names the product. ``text`` is the description or its parse
     (``recall.parser.parse``), so that many records cost one parse."""
-    record = _judged(record)
+    judged = [_fit_of(text, placed) for placed in placements(_judged(record))]
+    return min(judged, key=lambda j: (j[3], j[2]))[:3]
+
+
+def _fit_of(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float, float]:
+    """:func:`fits` for one placement of the record's extents, with the fit's score last (to choose)."""
     recaller = Recaller.from_records([record])
     if isinstance(text, str):
         result = recaller.recall_text(text, top=1)
     else:
         result = recaller.recall_parsed(text, top=1)
     if not result.matches:
-        return False, "the description states nothing to compare", math.inf
+        return False, "the description states nothing to compare", math.inf, math.inf
     if result.closeness is None:
         named = result.matches[0].matched_by_name
-        return named, "named by the description" if named else "no stated feature and not named", 1.0
+        return named, "named by the description" if named else "no stated feature and not named", 1.0, 0.0
     fit = judge(result.closeness, result.errors, Trust.PLAIN, result.unused)
     stated = [e for f, e in result.errors.items() if getattr(record, f, None) is not None]
-    return fit.close, fit.reason, sum(stated) / len(stated) if stated else 1.0
+    return fit.close, fit.reason, sum(stated) / len(stated) if stated else 1.0, fit.score
+
+
+def placements(record: ObjectRecord) -> list[ObjectRecord]:
+    """``record`` with the extents its page states (fewer than three) in each of the size slots they can
+    take, largest first as always: a page that states two extents does not say which two ("Width: 62 cm,
+    Depth: 60 cm" of a chair 129 cm tall), and compared as the largest two they are off by the missing
+    one (the chair's 62 cm against its 129 cm height). The fit takes the placement that fits best; the
+    record written stays the page's. A record with three extents or none has one placement, itself."""
+    from dataclasses import replace
+    from itertools import combinations
+
+    known = [d for d in record.dims_cm if d is not None]
+    if not known or len(known) >= 3:
+        return [record]
+    out = []
+    for slots in combinations(range(3), len(known)):
+        dims: list[float | None] = [None, None, None]
+        for slot, value in zip(slots, sorted(known, reverse=True), strict=True):
+            dims[slot] = value
+        out.append(replace(record, a_cm=dims[0], b_cm=dims[1], c_cm=dims[2]))
+    return out
 
 
 def _judged(record: ObjectRecord) -> ObjectRecord:

@@ -185,6 +185,22 @@ class FeatureQuery:
             conds.append(_condition(c.feature, c.value, low, c.high * below, c.qualifier, c.unknown))
         return FeatureQuery(tuple(conds), self.categorical)
 
+    def within_floors(self, floors: Mapping[str, float]) -> FeatureQuery:
+        """The query a catalog with open top bins ranks by (``floors``: feature -> the value at or above
+        which a stored value is a lower bound, :mod:`recall.catalog_folder`): a stated interval's ends
+        above the floor are read as the floor, the top bin ("7 kg" against a top mass bin "1000 g or
+        more"), so that the top bin's objects are not ranked below an object whose value is unknown. The
+        verdict's errors read the floors themselves (:func:`relative_errors`)."""
+        conds = []
+        for c in self.numeric:
+            f = floors.get(c.feature)
+            if f is None or c.high <= f:
+                conds.append(c)
+                continue
+            low = min(c.low, f)
+            conds.append(_condition(c.feature, min(c.value, f), low, f, c.qualifier, c.unknown))
+        return FeatureQuery(tuple(conds), self.categorical)
+
     def log_scaled(self) -> FeatureQuery:
         """The query for ``jplog``: numeric conditions in log units, categories unchanged. The same
         values as :meth:`NumericCondition.log_scaled` (tested), in one NumPy pass over every stated

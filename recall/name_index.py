@@ -24,6 +24,7 @@ from recall.subject import (
     negated_spans,
     subject_phrase,
 )
+from recall.synonyms import SynonymPhrases
 
 __all__ = ["HEAD_WEIGHT", "NAME_WEIGHT", "NameEvidence", "NameIndex"]
 
@@ -110,15 +111,17 @@ class NameIndex:
         # ("wood cylinder" -> wood; None: some name states none)
         if tables is None:
             tables = name_tables(names, aliases, materials, self.MIN_SUFFIX)
-        self.phrases = tables.phrases
+        # the catalog's phrases, answered also for their synonyms and closed-compound spellings
+        self.phrases = SynonymPhrases(tables.phrases)
         self.generic = tables.generic
         self.by_material = tables.by_material
         self.heads = tables.heads
         self.head_materials = tables.head_materials
         # material words name what a thing is made of, not the thing ("made of glass")
         self.not_heads = frozenset(singular(w) for w in MATERIAL_WORDS if " " not in w)
-        self.vocabulary = tables.vocabulary
-        self.longest = tables.longest
+        self.vocabulary = tables.vocabulary | frozenset(p[-1] for p in self.phrases.extra)  # synonyms' heads
+        # one word more: a name said with a closed compound split ("toilet brush holder")
+        self.longest = max(tables.longest + 1, self.phrases.longest)
         self.size = len(names)
         self._names, self._aliases = names, aliases  # names_of: compounds, contents
 
@@ -141,6 +144,8 @@ class NameIndex:
         ):
             return None  # a compound on a known noun: "remote control" (tv remote), "bottle cap"
         if head is None or head in self.vocabulary or head in GENERIC_NOUNS or is_participle(head):
+            return None
+        if (head,) in self.phrases:  # a catalog name written as one word ("headband" for "head band")
             return None
         if head in feature_words() or _colour_only(head):
             return None
@@ -234,7 +239,7 @@ class NameIndex:
         n = max(self.size, 1)
         found: list[str] = []
         for word in name_words(words, self.vocabulary):
-            rows = rows_with_word(self.phrases, word)
+            rows = rows_with_word(self.phrases.base, word)
             for row in rows:
                 head[row] = max(head.get(row, 0.0), math.log(n / len(rows)))
             if rows:

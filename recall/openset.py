@@ -17,7 +17,8 @@ from dataclasses import dataclass
 from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_of
 from recall.fit import DISAGREE_FACTOR, THRESHOLDS, Trust, disagreeing_features, judge
 from recall.reading import NEGATED_REASON
-from recall.subject import feature_words, is_adjective, is_participle
+from recall.subject import feature_words, is_participle
+from recall.unheld import PLACEHOLDERS, noun_like, unheld_pair
 from recall.words import COLOURS, SIZE_WORDS, head_noun, material_of_word, material_words
 
 __all__ = [
@@ -207,15 +208,13 @@ def described_noun(
     hypernym whenever it is no catalog head, and a compound never agrees by kind)."""
     noun: Noun | None = noun_in(list(subject))
     before = subject[-len(noun.words) - 1] if noun is not None and len(subject) > len(noun.words) else None
-    if (
-        noun is not None and len(noun.words) == 1 and noun.words[-1] in generic and before is not None
-        and noun.words not in phrases
-    ):  # fmt: skip
-        # "a plush dinosaur toy": a generic noun after a noun the catalog does not know names a thing of
-        # the generic noun's kind that the catalog does not have; not where a catalog object is called by
-        # the generic noun alone ("tube": "a mailing tube" is a sort of it, judged below)
-        if before not in vocabulary and before not in generic and noun_like(before):
-            return DescribedNoun(f"{before} {noun.text}", noun.kind, f"{before} {noun.english}", False)
+    pair = (before, *noun.words) if noun is not None and before is not None else subject[-2:]
+    if (noun is None or len(noun.words) == 1) and unheld_pair(pair, vocabulary, phrases, generic):
+        # "a plush dinosaur toy", "an RF development kit": a generic noun after a noun the catalog does not
+        # know names a thing of the generic noun's kind (a lexicon noun's, else none) it does not have
+        if noun is None:
+            return DescribedNoun(" ".join(pair), ROOT, " ".join(pair), False)
+        return DescribedNoun(f"{before} {noun.text}", noun.kind, f"{before} {noun.english}", False)
     if (
         noun is not None and noun.words[-1] in SHAPE_NOUNS and noun.words[-1] not in heads
         and before is not None and (before in material_words() or before in COLOURS)
@@ -332,12 +331,6 @@ def is_qualifier(word: str) -> bool:
     return noun_in([word]) is None and not noun_like(word)
 
 
-#: Words that hold the place of an object without naming one ("something", "a whatsit"): never an
-#: unseen noun (the generic nouns of :data:`recall.names.GENERIC_NOUNS` never are either).
-PLACEHOLDERS = frozenset(
-    "something anything everything nothing thing stuff whatsit whatchamacallit thingy thingamajig thingamabob "
-    "doohickey gizmo widget".split()
-)
 #: Nouns that name a part of a thing ("a steel *blade* with a handle", "a padded *headband* with two ear
 #: cups"): a description can name an object by its part, so they are never an unseen noun ...
 PART_NOUNS = frozenset(
@@ -479,19 +472,6 @@ def _plural_noun(word: str) -> bool:
     return len(word) >= 3 and word.isalpha() and word not in COLOURS and word not in COLOUR_WORDS and (
         word not in feature_words()
     )
-
-
-def noun_like(word: str) -> bool:
-    """Whether a word of a subject phrase can be a noun modifier ("salad" in "salad plate", "garlic",
-    "dinosaur"): a lexicon noun, or a word of three letters or more that is no feature word (material,
-    texture, unit, number, colour, ...) and does not look like an adjective."""
-    from recall.lexicon import COLOUR_WORDS
-
-    if word in COLOURS or word in COLOUR_WORDS or word in feature_words():
-        return False
-    if noun_in([word]) is not None:
-        return True
-    return len(word) >= 3 and word.isalpha() and not is_adjective(word)
 
 
 def foreign_modifier(subject: Sequence[str], object_words: frozenset[str]) -> str | None:

@@ -42,6 +42,8 @@ _PHRASE_ENDS = frozenset(
     "cut worn bent broken torn split built found bought kept held sewn woven spun".split()
 )
 _PRONOUNS = frozenset({"i", "we", "you", "he", "she", "they"})
+#: An article before a request word makes it a noun ("a *can* of WD-40", "the *pick* of the bunch").
+_ARTICLES = frozenset({"a", "an", "the"})
 #: A past participle ("shaped", "filled", "covered"), which after the head noun and before a function word
 #: ends the subject phrase.
 _ADJECTIVE_PARTICIPLE = re.compile(r"..ed$")
@@ -103,13 +105,14 @@ def _sentence_phrases(sentence: str):
     for chunk in re.split(r"[,:()\[\]\d\"/&+*=-]", sentence):
         phrase: list[str] = []
         previous = ""
+        counted = False
         words = _WORD.findall(chunk)
         negated = negated_words(words)
         for i, word in enumerate(words):
             if i in negated or word in _negations():
                 if phrase:
                     break  # "a mug not a glass"
-            elif not phrase and _request_word(word, words[i + 1 : i + 2]):
+            elif not phrase and previous not in _ARTICLES and _request_word(word, words[i + 1 : i + 2]):
                 pass  # "Could you pass the salt shaker", "Where is the scoop", "Hand me the hammer"
             elif (word in _PHRASE_ENDS or _size_words(words, i)) and not (
                 phrase and _compound_verb(word, words[i + 1 : i + 2])
@@ -123,10 +126,13 @@ def _sentence_phrases(sentence: str):
             elif not phrase and previous == "of" and word in _material_words():
                 pass  # "made of glass, ...": a material, not the subject
             elif word not in _PHRASE_SKIP:
+                counted = counted or (not phrase and previous in ("a", "an"))
                 phrase.append(word)
             previous = word
         if phrase and not all(w in _amount_words() for w in phrase):  # "A two-slice toaster": past the "two"
             yield tuple(singular(w) for w in phrase)
+        elif counted and len(phrase) == 1 and _hedge_start_only(phrase[0]):
+            yield (singular(phrase[0]),)  # "a lighter, 20 g": no "than" follows, an article counts it
 
 
 def counted_head(text: str) -> str | None:
@@ -313,6 +319,17 @@ def _amount_words() -> frozenset[str]:
 
     tables = (lx.NUMBER_WORDS, lx.MAGNITUDE_WORDS, lx.FRACTION_WORDS, lx.HEDGES)
     return frozenset(w for table in tables for phrase in table for w in words_of(phrase))
+
+
+def _hedge_start_only(word: str) -> bool:
+    """Whether ``word`` is an amount word only as the first word of a hedge of several words ("lighter"
+    of "lighter than", "heavier" of "heavier than"), no number, fraction or one-word hedge: alone, after an
+    indefinite article and before the end of its chunk ("a lighter, Bic, 20 g"), it is a noun."""
+    from recall import lexicon as lx
+
+    single, sequences, _ = _size_vocabulary()
+    numbers = (lx.NUMBER_WORDS, lx.MAGNITUDE_WORDS, lx.FRACTION_WORDS)
+    return word in sequences and word not in single and not any(word in t for t in numbers)
 
 
 @functools.cache

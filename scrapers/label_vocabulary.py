@@ -15,7 +15,7 @@ import unicodedata
 def fold(text: str) -> str:
     if text.isascii():
         return text.lower()  # NFKD leaves ASCII as it is, and it has no combining marks
-    decomposed = unicodedata.normalize("NFKD", text.lower())
+    decomposed = unicodedata.normalize("NFKD", text.lower().replace("ł", "l"))  # NFKD keeps ł: głębokość/glebokosc
     return "".join(ch for ch in decomposed if not unicodedata.combining(ch))
 
 
@@ -100,6 +100,7 @@ QUALIFIERS = {
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
         "one "  # "One size: 2 x 2 x 2 in": the only size there is
+        "all alle tous toutes todas todos tutte tutti wszystkie "  # a unit note: "All measurements in cm"
         "i på "  # Nordic prepositions: "Lengde i fot"
         "starting at from per piece each pro stück je unit pièce unidad adet ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
         "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "

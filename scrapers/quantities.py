@@ -50,7 +50,7 @@ def unit_hint(label: str) -> str | None:
     ``Width in cm``, ``Dimension (HxWxD, mm)``. Returns the unit token or None."""
     text = clean_text(label[:MAX_TEXT]).lower()
     for pattern in (
-        r"[\[(]\s*(?:w|in|en|em|in\s+)?\s*([^\W\d_]+\.?|''|\")\s*[\])]",
+        r"[\[(]\s*(?:(?:w|in|en|em)\s+)?([^\W\d_]+\.?|''|\")\s*[\])]",  # "(w mm)", "(inches)": not in + "ches"
         # one item of a bracketed list: "(HxWxD, mm)", "(mm; W x H x D)"
         r"[\[(][^\])]{0,30}[,;]\s*([^\W\d_]+\.?)\s*[\])]",
         r"[\[(]\s*([^\W\d_]+\.?)\s*[,;][^\])]{0,30}[\])]",

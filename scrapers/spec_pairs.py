@@ -20,7 +20,7 @@ from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 from scrapers.sizes import parse_dims
 
 __all__ = [
-    "DIGIT", "MAX_PAIRS", "Pair", "has_unit", "is_unit", "lists_variants", "own_part_pairs", "pairs_from_lines",
+    "DIGIT", "LENGTH_KINDS", "MAX_PAIRS", "Pair", "has_unit", "is_unit", "lists_variants", "own_part_pairs", "pairs_from_lines",
     "split_inline",
 ]
 
@@ -189,6 +189,7 @@ def _pairs_at(lines: list[Line], i: int, pairs: list[Pair], column_values: set[i
         if header:
             pairs.extend(header)
             column_values.update(p.order for p in header)
+            column_values.update(range(i + 1, i + len(header)))  # its other labels: no label/value pair of their own
             return
     if info is not None:
         j = i + 1
@@ -251,7 +252,7 @@ def lists_variants(value: str, following: str, info: LabelInfo) -> bool:
 
 #: A heading's unit applies to the pairs of the next this many lines (one spec block).
 HEADING_SCOPE = 40
-_LENGTH_KINDS = frozenset({"length", "width", "height", "depth", "diameter", "thickness", "dimensions", "size"})
+LENGTH_KINDS = frozenset({"length", "width", "height", "depth", "diameter", "thickness", "dimensions", "size"})
 
 
 #: What a label stating its unit has (``(mm)``, ``, см``, ``in cm``): a cheap test before :func:`unit_hint`.
@@ -264,11 +265,21 @@ def _heading_unit(text: str) -> tuple[str, str] | None:
     if len(text) > 60 or DIGIT.search(text) or not _UNIT_HINT_MARK.search(text):
         return None
     unit = unit_hint(text)
-    if unit is None or classify_label(text) is None:
+    if unit is None or (classify_label(text) is None and not _value_heading(text)):
         return None
     if length_unit(unit) is not None:
         return "length", unit
     return ("mass", unit) if mass_unit(unit) is not None else None
+
+
+#: Column headings that name a table's values, not a measurement: ``Value (cm)``, ``Wert [mm]``.
+_VALUE_HEADINGS = frozenset("value values wert werte valeur valeurs valor valores valore valori wartość wartosc waarde".split())
+
+
+def _value_heading(text: str) -> bool:
+    """Whether ``text`` is a value column's heading with a unit in brackets (``Value (cm)``, ``Wert [mm]``)."""
+    head = re.split(r"[(\[（]", text, maxsplit=1)[0].strip(" :").lower()
+    return head in _VALUE_HEADINGS and head != text.strip().lower()
 
 
 def _column_unit(lines: list[Line], i: int) -> tuple[str, str] | None:
@@ -290,7 +301,7 @@ def _with_heading_unit(pair: Pair, headings: dict[str, tuple[str, str, int]], i:
     ``Dimensions (mm)`` block of ``Width: 923`` rows)."""
     if pair.info.unit is not None or pair.info.role != "product":
         return pair
-    family = "length" if pair.info.kind in _LENGTH_KINDS else "mass"
+    family = "length" if pair.info.kind in LENGTH_KINDS else "mass"
     found = headings.get(family)
     if found is None or i - found[2] > HEADING_SCOPE or found[2] == pair.order:
         return pair

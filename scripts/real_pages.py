@@ -8,7 +8,8 @@
 ``materialize`` copies every page of ``tests/data/real_pages/manifest*.jsonl`` out of its snapshot
 (``<mirror>/<owner>+<name>/repo``, a bare git directory that the search tool's ``fetch`` brings) at the
 manifest's commit, unpacks it (``container``: gzip, ``json:<key>`` for a page stored inside a JSON
-document, ``zip:<member>``, ``tar:<member>``), checks its sha256 and writes ``<cache>/<id>.html``.
+document, ``zip:<member>``, ``tar:<member>``, ``jstemplate:<n>`` for the n-th backtick template literal
+of a JavaScript file, ``pystr:<name>`` for a string a Python module assigns to ``name``), checks its sha256 and writes ``<cache>/<id>.html``.
 Nothing fetched is committed: only the manifest and the labels are.
 
 ``add`` appends one page to a manifest shard (``manifest-<shard>.jsonl``): it reads the page from the
@@ -19,10 +20,12 @@ from ``--url`` (``scrapers.corpus.store_group``); give ``--store`` when the page
 from __future__ import annotations
 
 import argparse
+import ast
 import gzip
 import hashlib
 import io
 import json
+import re
 import subprocess
 import sys
 import tarfile
@@ -57,6 +60,33 @@ def _head(git_dir: Path) -> str:
                           text=True, check=True).stdout.strip()
 
 
+_JS_ESCAPES = {"n": "\n", "t": "\t", "r": "\r", "\n": ""}  # a backslash-newline continues the line
+
+
+def js_template(source: str, index: int) -> str:
+    """The ``index``-th backtick template literal of a JavaScript ``source``, cooked as JavaScript does.
+
+    A literal with a ``${...}`` substitution is refused: its text is not the stored page.
+    """
+    literals = re.findall(r"`((?:[^`\\]|\\.)*)`", source, flags=re.S)
+    if index >= len(literals):
+        raise SystemExit(f"no template literal {index}: the file has {len(literals)}")
+    raw = literals[index]
+    if re.search(r"(?<!\\)\$\{", raw):
+        raise SystemExit(f"template literal {index} has a ${{...}} substitution")
+    return re.sub(r"\\(.)", lambda m: _JS_ESCAPES.get(m.group(1), m.group(1)), raw, flags=re.S)
+
+
+def py_string(source: str, name: str) -> str:
+    """The string literal a Python module's top level assigns to ``name``."""
+    for node in ast.parse(source).body:
+        if isinstance(node, ast.Assign) and isinstance(node.value, ast.Constant) \
+                and isinstance(node.value.value, str) \
+                and any(isinstance(t, ast.Name) and t.id == name for t in node.targets):
+            return node.value.value
+    raise SystemExit(f"no string assigned to {name!r}")
+
+
 def unpack(data: bytes, path: str, container: str | None) -> bytes:
     """The page's own bytes from the stored file (see the module doc for ``container``)."""
     if container is None and path.endswith(".gz"):
@@ -77,6 +107,10 @@ def unpack(data: bytes, path: str, container: str | None) -> bytes:
     if kind == "tar":
         with tarfile.open(fileobj=io.BytesIO(data)) as archive:
             return archive.extractfile(member).read()
+    if kind == "jstemplate":
+        return js_template(data.decode("utf-8"), int(member)).encode("utf-8")
+    if kind == "pystr":
+        return py_string(data.decode("utf-8"), member).encode("utf-8")
     raise SystemExit(f"unknown container {container!r}")
 
 
@@ -154,8 +188,8 @@ def main(argv=None) -> int:
     a.add_argument("repo")
     a.add_argument("path")
     a.add_argument("--commit")
-    a.add_argument("--container", help="gzip, json, zip or tar (with --member)")
-    a.add_argument("--member", help="json key path (a.b.0), zip or tar member")
+    a.add_argument("--container", help="gzip, json, zip, tar, jstemplate or pystr (with --member)")
+    a.add_argument("--member", help="json key path (a.b.0), zip or tar member, template literal index, Python name")
     a.add_argument("--url", default="")
     a.add_argument("--store", default="")
     a.add_argument("--language", default="")

@@ -61,3 +61,26 @@ def test_a_plainly_held_container_or_no_container_keeps_the_old_rules(catalogs):
     assert _contents(by_contents, "a Cheerios box, 28 x 19 x 7 cm") is None  # no "box of"
     assert _contents(by_contents, "a hammer of steel, 33 cm") is None  # no container noun
     assert _contents(by_contents, "a can of Cheerios, 12 cm") is None  # no catalog object of "can"
+
+
+CANS = [("potted meat can", 10, 10, 6, 370), ("chips can", 24, 8, 8, 205), ("trash can", 60, 38, 28, 4000)]
+
+
+def test_a_can_after_an_article_is_the_subject_not_a_request():
+    """ "can" is a request word ("can you find the hammer"), but never after an article: "a can of WD-40"
+    is a can, whose contents the contents rule judges."""
+    assert noun_phrase("a can of WD-40, 18 cm tall, 11 oz") == ("can",)
+    assert noun_phrase("the can of paint, 1 litre") == ("can",)
+    assert noun_phrase("can you find the hammer, 300 g") == ("hammer",)
+
+
+def test_contents_named_by_a_synonym_or_the_lexicon_stay_in_the_catalog(tmp_path):
+    r = from_sizes(tmp_path / "cans.csv", CANS)
+    # "potato crisps can" (no lexicon noun) is a synonym of the catalog's "chips can" (kb/data/synonyms.csv)
+    assert _contents(r, "a can of potato crisps, 25 cm tall") is None
+    # the lexicon's "spam" has the English name "potted meat can", a catalog name on "can"
+    assert _contents(r, "a can of Spam, 10 cm long, 12 ounces") is None
+    assert not r.recall_text("a can of Spam, 10 x 10 x 6 cm, 370 g").open_set
+    # contents no name, synonym or lexicon noun holds: another can
+    assert _contents(r, "a can of WD-40, 5 cm across, 18 cm tall, 11 oz") == "wd can"
+    assert r.recall_text("a can of WD-40, 24 x 8 x 8 cm, 205 g").open_set

@@ -46,3 +46,30 @@ def test_a_ball_between_6_and_7_cm_is_a_ball_of_the_catalog():
     assert result.unknown_noun is None and not result.not_in_catalog and not result.open_set
     assert "ball" in result.matches[0].name
     assert result.matches[0].features["a_cm"] == pytest.approx(6.5, abs=0.6)
+
+
+# A word that is an amount word only as the start of a hedge of several words ("lighter" of "lighter
+# than"), counted by an indefinite article and alone in its chunk, is a noun: "a lighter, Bic, 20 g".
+@pytest.mark.parametrize(
+    ("text", "subject"),
+    [
+        ("a lighter, Bic, 8 x 2.5 x 1.2 cm, 20 g", ("lighter",)),
+        ("A lighter. 20 g", ("lighter",)),
+        ("lighter, 20 g", ("g",)),  # no article: the comparative of a list of features, as before
+        ("the lighter, 20 g", ("g",)),  # only an indefinite article counts it
+        ("a lighter than usual pen, 20 g", ("than", "usual", "pen")),  # not alone in its chunk: as before
+        ("a mug, lighter than 300 g", ("mug",)),
+        ("a half, 20 g", ("g",)),  # a fraction is an amount whatever counts it
+    ],
+)
+def test_a_counted_hedge_start_alone_is_a_noun(text, subject):
+    assert subject_phrase(text) == subject
+
+
+def test_a_lighter_is_not_in_a_catalog_without_one(tmp_path):
+    from recallers import from_sizes
+
+    r = from_sizes(tmp_path / "c.csv", [("allen wrench", 8, 2.5, 1.2, 20), ("mug", 10, 8, 8, 300)])
+    res = r.recall_text("a lighter, Bic, 8 x 2.5 x 1.2 cm, 20 g")
+    assert res.open_set and res.described.noun == "lighter" and not res.described.in_catalog
+    assert not r.recall_text("an allen wrench, 8 x 2.5 x 1.2 cm, 20 g").open_set

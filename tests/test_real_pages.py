@@ -1,0 +1,47 @@
+"""scripts/real_pages.py's containers: a page stored inside a JavaScript template literal or a Python string."""
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+_SPEC = importlib.util.spec_from_file_location("real_pages", Path(__file__).parents[1] / "scripts" / "real_pages.py")
+real_pages = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(real_pages)
+
+
+def test_a_template_literal_is_cooked_as_javascript_does():
+    source = "const a = `first`;\nconst $ = cheerio.load(`<p>l\\'utilisation \\`x\\` \\\\ \\$5</p>\\\n<b>`);"
+    assert real_pages.js_template(source, 0) == "first"
+    assert real_pages.js_template(source, 1) == "<p>l'utilisation `x` \\ $5</p><b>"
+
+
+def test_a_template_literal_with_a_substitution_or_past_the_last_is_refused():
+    with pytest.raises(SystemExit, match="substitution"):
+        real_pages.js_template("x = `<p>${name}</p>`", 0)
+    assert real_pages.js_template("x = `<p>\\${name}</p>`", 0) == "<p>${name}</p>"
+    with pytest.raises(SystemExit, match="has 1"):
+        real_pages.js_template("x = `<p></p>`", 1)
+
+
+def test_a_python_string_is_the_one_assigned_to_the_name():
+    source = 'OTHER = "<p>no</p>"\nPAGE = """<html>\\n<p>yes</p></html>"""\nPAGE_2 = "<p>no</p>"\n'
+    assert real_pages.py_string(source, "PAGE") == "<html>\n<p>yes</p></html>"
+    with pytest.raises(SystemExit, match="PAGE_3"):
+        real_pages.py_string(source, "PAGE_3")
+
+
+def test_unpack_reads_the_container_kind_and_member():
+    js = "x = `<html>é</html>`;".encode()
+    assert real_pages.unpack(js, "test.js", "jstemplate:0") == "<html>é</html>".encode()
+    assert real_pages.unpack(b'P = "<html></html>"', "f.py", "pystr:P") == b"<html></html>"
+    with pytest.raises(SystemExit, match="unknown container"):
+        real_pages.unpack(b"", "f", "rar:x")
+
+
+@given(st.text(alphabet=st.characters(blacklist_characters="`\\$", blacklist_categories=("Cs",))))
+def test_text_without_escapes_comes_back_unchanged(text):
+    assert real_pages.js_template(f"load(`{text}`)", 0) == text
+    assert real_pages.py_string(f"PAGE = {text!r}", "PAGE") == text
