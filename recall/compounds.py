@@ -63,10 +63,10 @@ def _name_parts(phrase: str) -> tuple[frozenset[str], str, bool]:
     COMPOUND_CHECK_LIMIT rows' names are read per head noun, ~10 µs a name): its words, its head word in
     :func:`recall.names.name_core` (the word before "of", else the last; "" without one) and whether its
     other words, also after "of" ("bottle of *water*"), only qualify the head (a material, colour or
-    adjective: "*plastic* mug"; :func:`recall.openset.is_qualifier`)."""
+    adjective: "*plastic* mug"; :func:`recall.catalog_kinds.is_qualifier`)."""
     from kb.kinds import words_of
+    from recall.catalog_kinds import is_qualifier
     from recall.names import name_core
-    from recall.openset import is_qualifier
 
     core = name_core(phrase)
     if not core:

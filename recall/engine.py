@@ -5,9 +5,9 @@ Probability distance (or a baseline metric) over the stated features, and return
 :class:`~recall.results.RecallResult`: ranked matches with their distance and per-feature contributions,
 a calibrated confidence, and an open-set flag. The parts live in their own modules: names in the text
 (:mod:`recall.name_index`, :mod:`recall.subject`), confidence (:mod:`recall.confidence`), the open-set
-rule and kinds (:mod:`recall.openset`), vague words (:mod:`recall.vague`) and the result records
-(:mod:`recall.results`); this module re-exports their public names. The rules are documented with their
-numbers in ``recall/RECALL.md``.
+rule (:mod:`recall.openset`) and kinds (:mod:`recall.catalog_kinds`), vague words (:mod:`recall.vague`)
+and the result records (:mod:`recall.results`); this module re-exports their public names. The rules are
+documented with their numbers in ``recall/RECALL.md``.
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ from kb.errors import RecallError
 from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES
 from kb.kinds import ROOT, words_of
 from recall.alternatives import alternatives, with_alternatives
+from recall.catalog_kinds import KindIndex, plain_name
 from recall.confidence import (
     COMPETITOR_POOL,
     CONFIDENCE_COEF,
@@ -45,14 +46,12 @@ from recall.openset import (
     OPEN_SET_THRESHOLD,
     OPEN_SET_UNKNOWN_NOUN_THRESHOLD,
     DescribedNoun,
-    KindIndex,
     describe,
     foreign_modifier,
     is_open_set,
     material_agrees,
     names_inside,
     nothing_compared,
-    plain_name,
     synonym_rows,
     trust_of,
 )

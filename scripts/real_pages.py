@@ -43,6 +43,8 @@ MIRROR = Path("/work/.mirror")
 
 def _git_dir(mirror: Path, repo: str) -> Path:
     path = mirror / repo.replace("/", "+") / "repo"
+    if (path / ".git").is_dir():  # a snapshot fetched with a work tree keeps its git directory inside
+        path = path / ".git"
     if not path.is_dir():
         raise SystemExit(f"no snapshot of {repo} at {path}: fetch it first (search tool: fetch github:{repo})")
     return path

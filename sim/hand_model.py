@@ -354,16 +354,39 @@ def configure_options(spec: mujoco.MjSpec) -> None:
 # Kinematics (planar, in the hand's y-z plane) and pre-shapes
 # ---------------------------------------------------------------------------------------------------------
 def finger_tip(finger: str, mcp: float, pip: float) -> tuple[float, float]:
-    """(y, z) in cm, hand frame, of ``finger``'s tip at joint angles ``mcp``, ``pip`` (radians)."""
-    f = FINGER_BY_NAME[finger]
-    p1, p2, p3 = f.lengths_cm
-    y, z = PALM_HALF_CM[1], -PALM_HALF_CM[2] + f.radius_cm
-    angle = 0.0
-    for length, turn in ((p1, mcp), (p2, pip), (p3, math.radians(DISTAL_BEND_DEG))):
-        angle += turn
-        y += length * math.cos(angle)
-        z -= length * math.sin(angle)
+    """(y, z) in cm, hand frame, of ``finger``'s tip at joint angles ``mcp``, ``pip`` (radians).
+
+    The posture solvers call this some 3000 times per pinch trial, so the chain is unrolled over constants
+    taken once (:data:`_TIP_CHAIN`); the operations and their order are those of a loop over the phalanges."""
+    p1, p2, p3, y, z = _TIP_CHAIN[finger]
+    angle = 0.0 + mcp
+    y += p1 * math.cos(angle)
+    z -= p1 * math.sin(angle)
+    angle += pip
+    y += p2 * math.cos(angle)
+    z -= p2 * math.sin(angle)
+    angle += _DISTAL_BEND
+    y += p3 * math.cos(angle)
+    z -= p3 * math.sin(angle)
     return y, z
+
+
+def finger_tip_y(finger: str, mcp: float, pip: float) -> float:
+    """The y of :func:`finger_tip` alone (the same operations), for solvers that need only it."""
+    p1, p2, p3, y, _ = _TIP_CHAIN[finger]
+    angle = 0.0 + mcp
+    y += p1 * math.cos(angle)
+    angle += pip
+    y += p2 * math.cos(angle)
+    y += p3 * math.cos(angle + _DISTAL_BEND)
+    return y
+
+
+#: Per finger: its three phalanx lengths and the (y, z) of its MCP axis (cm, hand frame).
+_TIP_CHAIN = {
+    f.name: (*f.lengths_cm, PALM_HALF_CM[1], -PALM_HALF_CM[2] + f.radius_cm) for f in FINGERS
+}
+_DISTAL_BEND = math.radians(DISTAL_BEND_DEG)
 
 
 def thumb_tip(flex: float) -> tuple[float, float]:

@@ -62,12 +62,14 @@ PERTURBATION_DIRECTIONS: dict[str, tuple[float, float, float]] = {
 def check_physics(model: mujoco.MjModel, data: mujoco.MjData, where: str = "") -> None:
     """Raise :class:`PhysicsError` if the state holds NaN/Inf or any MuJoCo warning fired (after
     dm_control's ``Physics.check_invalid_state``)."""
-    if not np.isfinite(data.qpos.sum() + data.qvel.sum() + data.qacc.sum()):
+    qpos, qvel, qacc = data.qpos, data.qvel, data.qacc
+    # A sum of squares is NaN or Inf whenever an element is (and may overflow: the loop then decides).
+    if not math.isfinite(qpos.dot(qpos) + qvel.dot(qvel) + qacc.dot(qacc)):
         for arr, name in ((data.qpos, "qpos"), (data.qvel, "qvel"), (data.qacc, "qacc")):
             if not np.all(np.isfinite(arr)):
                 raise PhysicsError(f"simulation diverged{where}: non-finite {name} at t={data.time:.3f} s")
     counts = data.warning.number
-    if counts.any():
+    if np.count_nonzero(counts):
         name = mujoco.mjtWarning(int(np.flatnonzero(counts)[0])).name
         raise PhysicsError(f"simulation diverged{where}: MuJoCo warning {name} at t={data.time:.3f} s")
 
@@ -103,20 +105,22 @@ class Runner:
         mujoco.mj_step(self.m, self.d, nstep=n_steps)
         check_physics(self.m, self.d, where)
 
-    def _measure(self, record_force: bool = False) -> float:
-        forces, _ = self.w.hand_contacts()
+    def _measure(self, record_force: bool = False) -> np.ndarray | None:
+        """Record the contact forces and the object's motion relative to the palm since the reference;
+        returns the object's position in the palm (None before the reference is taken)."""
+        forces = self.w.contact_forces()
         total = float(forces.sum())
         if forces.size:
             self.max_force = max(self.max_force, float(forces.max()))
         if record_force:
             self.hold_forces.append(total / 2.0)  # the squeeze: contact forces from both sides, halved
-        if self.ref_pos is not None:
-            pos, rot = self.w.object_in_palm()
-            self.slip = max(self.slip, float(np.linalg.norm(pos - self.ref_pos)) / H.CM)
-            rel = self.ref_rot.T @ rot
-            cos = min(1.0, max(-1.0, (np.trace(rel) - 1.0) / 2.0))
-            self.turn = max(self.turn, math.degrees(math.acos(cos)))
-        return total
+        if self.ref_pos is None:
+            return None
+        pos, rot = self.w.object_in_palm()
+        self.slip = max(self.slip, _norm(pos - self.ref_pos) / H.CM)
+        cos = min(1.0, max(-1.0, ((self.ref_rot.T @ rot).trace() - 1.0) / 2.0))
+        self.turn = max(self.turn, math.degrees(math.acos(cos)))
+        return pos
 
     def _phase(self, duration: float, where: str, control=None, record_force: bool = False) -> None:
         chunks = max(1, int(round(duration / (self.m.opt.timestep * CONTROL_EVERY))))
@@ -263,10 +267,17 @@ class Runner:
         d.xfrc_applied[w.object_body, :3] = force
         worst = 0.0
         chunks = max(1, int(round(PUSH_S / (self.m.opt.timestep * CONTROL_EVERY))))
+        where = f" while pushing {direction}"
         for _ in range(chunks):
-            self._step(CONTROL_EVERY, f" while pushing {direction}")
-            self._measure()
-            pos, _ = w.object_in_palm()
-            worst = max(worst, float(np.linalg.norm(pos - before)) / H.CM)
+            self._step(CONTROL_EVERY, where)
+            pos = self._measure()
+            if pos is None:
+                pos, _ = w.object_in_palm()
+            worst = max(worst, _norm(pos - before) / H.CM)
         d.xfrc_applied[w.object_body, :3] = 0.0
         return worst
+
+
+def _norm(v: np.ndarray) -> float:
+    """``np.linalg.norm`` of a 3-vector by its own operations (sqrt of the dot product), without its checks."""
+    return math.sqrt(v.dot(v))

@@ -9,6 +9,7 @@ along the approach; :class:`TrialWorld` holds the compiled model and the indices
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import mujoco
 import numpy as np
@@ -60,17 +61,30 @@ class TrialWorld:
     digit_qpos: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))  # qpos index per digit joint
     is_object: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))  # per geom: the object's
 
-    def object_contacts(self) -> tuple[np.ndarray, np.ndarray]:
-        """Indices of the active hand-object contacts, and for each the hand geom it involves."""
+    @cached_property
+    def touches(self) -> np.ndarray:
+        """Per geom pair (either order): is one the object's and the other the hand's (taken once)."""
+        obj, hand = self.is_object, self.is_hand
+        return (obj[:, None] & hand[None, :]) | (hand[:, None] & obj[None, :])
+
+    def _contact_rows(self) -> np.ndarray:
+        """Indices of the active hand-object contacts (the trial reads them every control tick)."""
         d = self.data
         n = d.ncon
         if n == 0:
-            return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
-        g1, g2 = d.contact.geom1[:n], d.contact.geom2[:n]
-        obj1, obj2 = self.is_object[g1], self.is_object[g2]
-        mask = ((obj1 & self.is_hand[g2]) | (obj2 & self.is_hand[g1])) & (d.contact.efc_address[:n] >= 0)
-        idx = np.flatnonzero(mask)
-        return idx, np.where(obj1[idx], g2[idx], g1[idx])
+            return _EMPTY_IDX
+        c = d.contact
+        mask = self.touches[c.geom1[:n], c.geom2[:n]] & (c.efc_address[:n] >= 0)
+        return np.flatnonzero(mask)
+
+    def object_contacts(self) -> tuple[np.ndarray, np.ndarray]:
+        """Indices of the active hand-object contacts, and for each the hand geom it involves."""
+        idx = self._contact_rows()
+        if not idx.size:
+            return idx, _EMPTY_IDX
+        c = self.data.contact
+        g1, g2 = c.geom1[idx], c.geom2[idx]
+        return idx, np.where(self.is_object[g1], g2, g1)
 
     def palm_pose(self) -> tuple[np.ndarray, np.ndarray]:
         return self.data.xpos[self.palm_body].copy(), self.data.xmat[self.palm_body].reshape(3, 3).copy()
@@ -99,14 +113,23 @@ class TrialWorld:
         With elliptic cones a contact's first constraint row is its normal force (what
         ``mj_contactForce`` returns as force[0]); reading ``efc_force`` directly avoids a Python loop.
         """
-        d = self.data
-        idx, _ = self.object_contacts()
+        idx = self._contact_rows()
         if not idx.size:
             return _EMPTY, _EMPTY
+        d = self.data
         return d.efc_force[d.contact.efc_address[idx]], d.contact.dist[idx]
+
+    def contact_forces(self) -> np.ndarray:
+        """The normal forces of :meth:`hand_contacts` alone (what the trial measures every control tick)."""
+        idx = self._contact_rows()
+        if not idx.size:
+            return _EMPTY
+        d = self.data
+        return d.efc_force[d.contact.efc_address[idx]]
 
 
 _EMPTY = np.zeros(0)
+_EMPTY_IDX = np.zeros(0, dtype=int)
 
 
 def _placement(obj: ObjectModel, plan: GraspPlan) -> dict[str, int]:

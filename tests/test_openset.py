@@ -307,7 +307,7 @@ def test_a_synonyms_english_name_is_in_the_catalog_by_its_head_before_of():
     # catalog with keys but no bunch ("chuck key") does not have "a bunch of grapes"
     from kb.features import ObjectRecord
     from recall.engine import Recaller
-    from recall.openset import head_noun
+    from recall.words import head_noun
 
     assert head_noun(("bunch", "of", "key")) == "bunch" and head_noun(("mustard", "bottle")) == "bottle"
     assert head_noun(("of",)) == "of" and head_noun(()) is None

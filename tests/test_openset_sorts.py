@@ -12,8 +12,8 @@ import pytest
 from recallers import from_sizes
 
 from kb.kinds import Noun, noun_in
+from recall.catalog_kinds import KindIndex, is_qualifier, plain_name, sort_of_catalog_object
 from recall.engine import Recaller
-from recall.openset import KindIndex, is_qualifier, plain_name, sort_of_catalog_object
 
 
 def _recaller(tmp_path: Path, rows: list[tuple]) -> Recaller:
@@ -167,7 +167,7 @@ def test_a_generic_noun_a_catalog_object_is_named_by_is_no_foreign_thing(tmp_pat
 
 
 def test_a_noun_of_the_kind_a_catalog_head_names_with_the_same_modifier_is_that_object(tools):
-    from recall.openset import kind_mate
+    from recall.catalog_kinds import kind_mate
 
     carton = noun_in(["carton"])
     assert carton.kind == "box"
@@ -185,7 +185,7 @@ def test_a_synonym_of_another_head_is_in_the_catalog_only_where_that_head_is_pla
     # the lexicon's "cola" is the seed catalog's "soda can": a catalog that names its cans by their sorts
     # ("tomato soup can", "chips can") has no soda can; one with a plain "can" has it as a sort of that
     # can. A synonym that is itself a word of the head ("puzzle cube", "squeeze bottle") is a sort of it.
-    from recall.openset import _names_sort_of
+    from recall.catalog_kinds import names_sort_of
 
     cola = noun_in(["cola"])
     assert cola.english == "soda can"
@@ -196,6 +196,6 @@ def test_a_synonym_of_another_head_is_in_the_catalog_only_where_that_head_is_pla
     plain = _recaller(tmp_path / "plain", [("can", 12, 6.6, 6.6, 370), ("chips can", 24, 8.6, 8.4, 205)])
     assert not plain.recall_text("a cola, 12 cm tall, 6.6 cm across, aluminium, 370 g").not_in_catalog
     cube = noun_in(["puzzle", "cube"])
-    assert _names_sort_of(cube, ("rubik", "cube"), {"cube"}, _index(["rubix cube"]))
-    assert not _names_sort_of(cola, ("soda", "can"), {"can"}, _index(["chips can"]))
-    assert not _names_sort_of(cola, ("soda", "can"), {"cup"}, None)  # no catalog can at all
+    assert names_sort_of(cube, ("rubik", "cube"), {"cube"}, _index(["rubix cube"]))
+    assert not names_sort_of(cola, ("soda", "can"), {"can"}, _index(["chips can"]))
+    assert not names_sort_of(cola, ("soda", "can"), {"cup"}, None)  # no catalog can at all

@@ -11,10 +11,11 @@ import pytest
 from recallers import catalog2, seed
 
 from kb.kinds import nouns, words_of
+from recall.catalog_kinds import KindIndex
 from recall.confidence import confidence_of
 from recall.engine import NOT_IN_CATALOG_CONFIDENCE, Recaller
 from recall.names import GENERIC_NOUNS
-from recall.openset import KindIndex, compound_head, described_noun, names_inside, synonym_rows
+from recall.openset import compound_head, described_noun, names_inside, synonym_rows
 from recall.subject import feature_words, is_adjective, said_in_plural, subject_phrase
 
 
@@ -70,7 +71,7 @@ def test_kind_index_has_kind_counts_kinds_below():
 
 
 def test_a_large_catalog_is_not_scanned_for_its_kinds_to_tell_a_hypernym():
-    from recall.openset import KIND_SCAN_LIMIT
+    from recall.catalog_kinds import KIND_SCAN_LIMIT
 
     names = ["apple"] * (KIND_SCAN_LIMIT + 1)
     kinds = KindIndex(names, [()] * len(names))

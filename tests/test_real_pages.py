@@ -45,3 +45,14 @@ def test_unpack_reads_the_container_kind_and_member():
 def test_text_without_escapes_comes_back_unchanged(text):
     assert real_pages.js_template(f"load(`{text}`)", 0) == text
     assert real_pages.py_string(f"PAGE = {text!r}", "PAGE") == text
+
+
+def test_a_snapshot_with_a_work_tree_is_read_from_its_git_directory(tmp_path):
+    bare = tmp_path / "owner+bare" / "repo"
+    bare.mkdir(parents=True)
+    inner = tmp_path / "owner+tree" / "repo" / ".git"
+    inner.mkdir(parents=True)
+    assert real_pages._git_dir(tmp_path, "owner/bare") == bare
+    assert real_pages._git_dir(tmp_path, "owner/tree") == inner
+    with pytest.raises(SystemExit, match="fetch it first"):
+        real_pages._git_dir(tmp_path, "owner/absent")

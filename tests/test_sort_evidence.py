@@ -1,5 +1,5 @@
 """A sort of a catalog object is offered by the ranking (NameEvidence.sorts): "a hacksaw" is in the
-catalog only as its "saw" (recall.openset.sort_of_catalog_object), so the saws get the evidence of that
+catalog only as its "saw" (recall.catalog_kinds.sort_of_catalog_object), so the saws get the evidence of that
 head noun, as "a saw" would give them, without being named (the verdict's trust is unchanged). Catalog
 written here; each condition pinned on its own."""
 
