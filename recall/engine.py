@@ -5,9 +5,10 @@ Probability distance (or a baseline metric) over the stated features, and return
 :class:`~recall.results.RecallResult`: ranked matches with their distance and per-feature contributions,
 a calibrated confidence, and an open-set flag. The parts live in their own modules: names in the text
 (:mod:`recall.name_index`, :mod:`recall.subject`), confidence (:mod:`recall.confidence`), the open-set
-rule (:mod:`recall.openset`) and kinds (:mod:`recall.catalog_kinds`), vague words (:mod:`recall.vague`)
-and the result records (:mod:`recall.results`); this module re-exports their public names. The rules are
-documented with their numbers in ``recall/RECALL.md``.
+rule (:mod:`recall.openset`) and kinds (:mod:`recall.catalog_kinds`), vague words (:mod:`recall.vague`),
+the candidate rows and their match records (:mod:`recall.shortlist`) and the result records
+(:mod:`recall.results`); this module re-exports their public names. The rules are documented with their
+numbers in ``recall/RECALL.md``.
 """
 
 from __future__ import annotations
@@ -21,12 +22,11 @@ from typing import Any
 import numpy as np
 
 from kb.errors import RecallError
-from kb.features import CATEGORICAL_FEATURES, FEATURES, NUMERIC_FEATURES
+from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
 from kb.kinds import ROOT, words_of
 from recall.alternatives import alternatives, with_alternatives
 from recall.catalog_kinds import KindIndex, plain_name
 from recall.confidence import (
-    COMPETITOR_POOL,
     CONFIDENCE_COEF,
     JP_METRICS,
     MAX_MARGIN,
@@ -38,7 +38,7 @@ from recall.confidence import (
 )
 from recall.fit import Trust, closeness_of, disagreeing_features, judge
 from recall.geometry import ShapeGeometry, overrides
-from recall.metrics import METRICS, FeatureQuery, distances, feature_terms, relative_errors
+from recall.metrics import METRICS, FeatureQuery, relative_errors
 from recall.name_index import HEAD_WEIGHT, NAME_WEIGHT, NameEvidence, NameIndex
 from recall.names import GENERIC_NOUNS, name_core
 from recall.openset import (
@@ -56,7 +56,8 @@ from recall.openset import (
     trust_of,
 )
 from recall.results import Match, RecallResult
-from recall.search import score_rows, select_top_k, top_k
+from recall.search import select_top_k
+from recall.shortlist import Shortlist, ranking_scores
 from recall.snapshot import CatalogSnapshot, load_snapshot
 from recall.subject import noun_phrase, subject_head, subject_phrase
 from recall.submaterials import SubmaterialIndex, with_submaterial
@@ -114,7 +115,7 @@ class Recaller:
         self.names = NameIndex(snapshot.names, snapshot.aliases, tables=tables)
         self.kinds = KindIndex(snapshot.names, snapshot.aliases)
         self._geometry: ShapeGeometry | None = None
-        self._kdtrees: dict = {}
+        self.shortlist = Shortlist(snapshot, self.kinds)
         #: Floors of a binned catalog (:mod:`recall.catalog_folder`): feature -> the value at or above which the
         #: catalog's value is a lower bound ("15 cm or more"); the closeness and the disagreement rule read
         #: them, and the ranking reads a stated value above one as the floor (``within_floors``).
@@ -254,13 +255,6 @@ class Recaller:
         return describe(text, self.names, self.kinds)
 
     # -- the ranking
-    def _distances_of(self, query: FeatureQuery, rows: np.ndarray, metric: str) -> np.ndarray:
-        if metric == "jp":
-            return score_rows(self.snapshot, query, rows)
-        if metric == "jplog":
-            return score_rows(self.snapshot.log_scaled, query.log_scaled(), rows)
-        return distances(metric, self.snapshot.matrix, query, kdtree_cache=self._kdtrees)[rows]
-
     def _recall(
         self,
         query: FeatureQuery,
@@ -293,11 +287,11 @@ class Recaller:
             )  # fmt: skip
         ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
         ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
-        rows, dist = self._candidates(ranked, named, top, metric, soft)
-        score, parts = _ranking_scores(rows, dist, names, soft, metric)
+        rows, dist = self.shortlist.candidates(ranked, named, top, metric, soft)
+        score, parts = ranking_scores(rows, dist, names, soft, metric)
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
-        matches = self._matches(rows, score, parts, ranked, metric, set(names.exact))
+        matches = self.shortlist.matches(rows, score, parts, ranked, metric, set(names.exact))
         best = int(rows[0])
         errors = relative_errors(
             self.snapshot.num_rows(best), self.snapshot.cat_rows(best), query, self.floors, self.bins
@@ -336,7 +330,7 @@ class Recaller:
             margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
             soft_only=len(query) == 0 and not named,
         )  # fmt: skip
-        same_kind_as, same_kind = self._same_kind(noun, ranked, metric) if not_in_catalog else (None, [])
+        same_kind_as, same_kind = self.shortlist.same_kind(noun, ranked, metric) if not_in_catalog else (None, [])
         return RecallResult(
             matches=matches[:top],
             confidence=confidence,
@@ -375,76 +369,6 @@ class Recaller:
         said = [p.split() for p in names.phrases if row in (self.names.phrases.get(tuple(p.split())) or ())]
         return foreign_modifier(subject, words | frozenset(w for p in said for w in p))
 
-    def _candidates(
-        self, query: FeatureQuery, named: list[int], top: int, metric: str, soft: SoftEvidence | None
-    ) -> tuple[np.ndarray, np.ndarray]:
-        """Rows that can rank in the first ``top`` and their distances: the pruned top-k plus the named
-        rows; every row when soft evidence can reorder them (vague words: one scan); for category
-        alternatives alone the union of each variant's pruned top-k (``SoftEvidence.variants``)."""
-        snap = self.snapshot
-        if soft is not None and (soft.scan or metric not in JP_METRICS):
-            rows = np.arange(len(snap), dtype=np.int64)
-            return rows, self._distances_of(query, rows, metric) if len(query) else np.zeros(len(rows))
-        want = min(len(snap), max(top + 1, COMPETITOR_POOL) + len(named))
-        if soft is not None:
-            found = [top_k(snap, v, want, metric=metric)[0] for v in soft.variants]
-            rows = np.unique(np.concatenate([*found, np.asarray(named, dtype=np.int64)]))
-            return rows, self._distances_of(query, rows, metric) if len(query) else np.zeros(len(rows))
-        rows, dist = top_k(snap, query, want, metric=metric, kdtree_cache=self._kdtrees)
-        extra = np.setdiff1d(np.asarray(named, dtype=np.int64), rows)
-        if len(extra):
-            rows = np.concatenate((rows, extra))
-            dist = np.concatenate((dist, self._distances_of(query, extra, metric)))
-        return rows, dist
-
-    def _matches(
-        self,
-        rows: np.ndarray,
-        score: np.ndarray,
-        parts: Mapping[int, tuple[float, float, float]],
-        query: FeatureQuery,
-        metric: str,
-        named_exact: set[int],
-    ) -> list[Match]:
-        """:class:`Match` es of ``rows`` in order; ``parts``: row -> (distance, name part, vague part)."""
-        snap = self.snapshot
-        if metric == "jplog":
-            terms = feature_terms(snap.log_scaled.num_rows(rows), snap.cat_rows(rows), query.log_scaled())
-        else:  # the paper's JP terms (also shown for the baselines: why this object, in nats)
-            terms = feature_terms(snap.num_rows(rows), snap.cat_rows(rows), query)
-        out = []
-        for i, row in enumerate(rows.tolist()):
-            rec = snap.record(row)
-            dist, name_part, vague_part = parts[row]
-            out.append(
-                Match(
-                    name=snap.names[row],
-                    distance=dist,
-                    score=float(score[i]),
-                    contributions={f: float(terms[f][i]) for f in query.stated},
-                    matched_by_name=row in named_exact,
-                    features={f: getattr(rec, f) for f in FEATURES},
-                    name_part=name_part,
-                    vague_part=vague_part,
-                    kind=self.kinds.kind(row),
-                )
-            )
-        return out
-
-    def _same_kind(
-        self, noun: DescribedNoun, query: FeatureQuery, metric: str, k: int = 3
-    ) -> tuple[str | None, list[Match]]:
-        """The ``k`` objects of the described noun's kind (or nearest ancestor) closest by features."""
-        kind, rows = self.kinds.rows_of_kind(noun.kind)
-        if not rows:
-            return None, []
-        arr = np.asarray(rows, dtype=np.int64)
-        dist = self._distances_of(query, arr, metric) if len(query) else np.zeros(len(arr))
-        arr, dist = select_top_k(arr, dist, min(k, len(arr)))
-        parts = {int(r): (float(d), 0.0, 0.0) for r, d in zip(arr, dist, strict=True)}
-        return kind, self._matches(arr, dist, parts, query, metric, set())
-
-
 def _checked(metric: str | None, features_only: bool, top: int) -> str:
     """The metric to use (:func:`resolve_metric`), refusing an unknown one and a ``top`` below 1."""
     metric = resolve_metric(metric, features_only)
@@ -453,19 +377,3 @@ def _checked(metric: str | None, features_only: bool, top: int) -> str:
     if top < 1:
         raise RecallError(f"--top must be at least 1, not {top}")
     return metric
-
-
-def _ranking_scores(
-    rows: np.ndarray, dist: np.ndarray, names: NameEvidence, soft: SoftEvidence | None, metric: str
-) -> tuple[np.ndarray, dict[int, tuple[float, float, float]]]:
-    """The ranking score of each candidate row (distance - name part + vague part) and the parts by row:
-    row -> (distance, name part, vague part)."""
-    named = bool(names.exact or names.head or names.sorts)
-    bonus = np.array([names.bonus(int(r)) for r in rows]) if named else np.zeros(len(rows))
-    vague = soft.penalty[rows] if soft is not None else np.zeros(len(rows))
-    if metric in JP_METRICS:
-        score = dist - bonus + vague
-    else:  # other metrics have no probabilistic scale: named objects rank first, by their evidence
-        score = dist - (dist.max() + 1.0) * bonus + vague
-    parts = {int(r): (float(d), float(b), float(v)) for r, d, b, v in zip(rows, dist, bonus, vague, strict=True)}
-    return score, parts

@@ -204,7 +204,7 @@ def test_alternatives_search_the_union_of_the_variants_and_equal_a_full_scan(tex
     stripped, soft = with_alternatives(query, None, alternatives(query, parsed), r.snapshot.cat_cols)
     assert soft is not None and not soft.scan and len(soft.variants) >= 2
     rows = np.arange(len(r.snapshot), dtype=np.int64)
-    score = r._distances_of(stripped, rows, "jplog") + soft.penalty
+    score = r.shortlist.distances_of(stripped, rows, "jplog") + soft.penalty
     best = np.argsort(score, kind="stable")[:10]
     assert [m.score for m in res.matches] == pytest.approx(score[best].tolist())
     assert {m.name for m in res.matches} <= {
