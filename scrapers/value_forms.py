@@ -74,6 +74,32 @@ def packed_value(value: str) -> bool:
     return False
 
 
+#: ``(Body Only)``, ``(nur Gehäuse)``, ``(boîtier seul)``, ``(solo cuerpo)``: a bracket after the value
+#: restricting it to one part of what is sold, the part named in one to three words beside an "only" word.
+_ONLY_WORDS = "only nur seul seule seulement uniquement solo sólo solamente soltanto apenas somente só tylko alleen"
+_ONLY = re.compile(
+    rf"^(?:(?P<before>[^\W\d_]+(?:\s+[^\W\d_]+){{0,2}})\s+(?:{'|'.join(_ONLY_WORDS.split())})"
+    rf"|(?:{'|'.join(_ONLY_WORDS.split())})\s+(?P<after>[^\W\d_]+(?:\s+[^\W\d_]+){{0,2}}))$",
+    re.IGNORECASE,
+)
+#: A name that sells more than one part: ``Camera with 24-120mm Lens``, ``Kamera mit Objektiv``, ``Kit``,
+#: ``Body + Lens``, ``Bundle``.
+_KIT_NAME = re.compile(r"\b(?:with|w/|mit|avec|con|com|inkl|incl|including|kit|bundle|combo)\b|\s\+\s", re.IGNORECASE)
+
+
+def only_part(value: str, title: str | None) -> str | None:
+    """The part a value says in a bracket it is of alone (``1.65 lb / 750 g (Body Only)``: ``body``), when
+    the page's name sells more than that part (``Nikon D750 DSLR Camera with 24-120mm Lens``): then it is a
+    component's value, not the product's. On a page selling the part alone (``Nikon D750 Body``) None."""
+    if len(value) > 200 or not title or not _KIT_NAME.search(title):
+        return None
+    for m in _VALUE_BRACKET.finditer(value):
+        only = _ONLY.match(m.group(1).strip())
+        if only:
+            return (only["before"] or only["after"]).lower()
+    return None
+
+
 #: A value that starts with the name of the variant it is for (``1-inch: 71"L x 24"W``, ``Queen: 60 x 80 in``,
 #: ``Modell S: 30 cm``): a short key with a letter, a colon, then the number.
 _KEYED = re.compile(r"^\s*[-–•*]?\s*([^:\n]{1,24}?)\s*[:：]\s*(?=[\d½¼¾⅓⅔⅛])")

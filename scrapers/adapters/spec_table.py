@@ -21,6 +21,7 @@ from scrapers.axis_rows import AXIS_GROUP_GAP, group_axes, whole_product_weights
 from scrapers.labels import AXES
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page
+from scrapers.pair_roles import adjustable_extents, only_part_pairs
 from scrapers.quantities import (
     clean_text,
     mass_unit,
@@ -341,10 +342,11 @@ _UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
 def spec_table(page: Page) -> list[Observation]:
     """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
     size of the selected variant."""
-    pairs = own_part_pairs(pairs_from_lines(page.lines), page.title)
+    pairs = only_part_pairs(own_part_pairs(pairs_from_lines(page.lines), page.title), page.title)
+    pairs, adjusted = adjustable_extents(pairs)
     if _inch_locale(page.lang):
         pairs = [_with_locale_inches(p, page.lang) for p in pairs]
     obs = observations_from_pairs(pairs, page.decimal_comma)
     for o in obs:
         o.site_wide = page.site_wide_line(o.order)
-    return obs + selected_variant(page) + material_observations(page.lines)
+    return obs + adjusted + selected_variant(page) + material_observations(page.lines)
