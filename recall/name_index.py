@@ -102,9 +102,9 @@ class NameIndex:
         tables=None,
     ):
         from recall.lexicon import MATERIAL_WORDS
-        from recall.names import name_tables
+        from recall.name_tables import name_tables
 
-        # built column-wise (recall.names; or read back by recall.stored_index): phrases (words and core
+        # built column-wise (recall.name_tables; or read back by recall.stored_index): phrases (words and core
         # of every name and alias) -> rows; generic names ("wood piece", "wooden block": only material
         # words and generic nouns) -> their material, describing any object of it (rows by material);
         # head nouns and their suffixes -> rows, and (head, row) -> the materials its names state

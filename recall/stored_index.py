@@ -67,15 +67,15 @@ SETTLED_S = 3.0
 #: Joins the strings of one array in the file (names, aliases and keys never hold it: refused if they do).
 _SEP = "\x00"
 #: The modules whose code decides what the stored index holds.
-_SOURCES = ("recall/names.py", "recall/stored_index.py", "recall/snapshot.py", "recall/lexicon.py",
-            "recall/string_table.py", "kb/kinds.py", "kb/features.py")  # fmt: skip
+_SOURCES = ("recall/names.py", "recall/name_tables.py", "recall/stored_index.py", "recall/snapshot.py",
+            "recall/lexicon.py", "recall/string_table.py", "kb/kinds.py", "kb/features.py")  # fmt: skip
 _ROOT = Path(__file__).resolve().parent.parent
 MATERIALS = tuple(CATEGORIES["material"])
 
 
 @dataclass
 class RecallIndex:
-    """What a recaller is built from: the snapshot and its name tables (see :class:`~recall.names.NameTables`)."""
+    """What a recaller is built from: the snapshot and its name tables (see :class:`~recall.name_tables.NameTables`)."""
 
     snapshot: Any
     tables: Any
@@ -215,7 +215,8 @@ def _read_if_file_unchanged(db: Path, file: Path, code: str) -> RecallIndex | No
 
 def build_tables(snapshot):
     """The name tables of :class:`~recall.engine.NameIndex` for ``snapshot``."""
-    from recall.names import MIN_SUFFIX, name_tables
+    from recall.name_tables import name_tables
+    from recall.names import MIN_SUFFIX
 
     codes = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
     materials = [MATERIALS[c] if c >= 0 else None for c in codes.tolist()]
@@ -246,7 +247,7 @@ def _index_array(starts) -> np.ndarray:
 
 def _table_arrays(tables) -> dict[str, np.ndarray]:
     """The name tables as arrays: CSR phrases and heads (with the materials mask of each (head, row))."""
-    from recall.names import RowsByKey
+    from recall.name_tables import RowsByKey
     from recall.string_table import KeyRows, StringTable
 
     out: dict[str, np.ndarray] = {}
@@ -345,7 +346,7 @@ def read_index(file: Path, fingerprint: list[int], code: str) -> RecallIndex | N
 
 
 def _from_arrays(data: dict[str, np.ndarray], meta: dict, origin: str = "stored") -> RecallIndex:
-    from recall.names import RowsByKey, _HeadMaterials
+    from recall.name_tables import RowsByKey, _HeadMaterials
     from recall.snapshot import CatalogSnapshot
     from recall.string_table import GroupColumn, KeyRows, StringColumn, StringSet, StringTable
 
@@ -381,7 +382,7 @@ def _from_arrays(data: dict[str, np.ndarray], meta: dict, origin: str = "stored"
 
 class RowsByMaterialCode:
     """material -> the set of rows of that material, from the snapshot's int8 material codes (1 B per
-    row, shared with the snapshot; what ``recall.names._RowsByMaterial`` holds as a Python list)."""
+    row, shared with the snapshot; what ``recall.name_tables._RowsByMaterial`` holds as a Python list)."""
 
     def __init__(self, codes: np.ndarray):
         self.codes = codes

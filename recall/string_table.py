@@ -155,7 +155,7 @@ class StringSet(Set):
 
 class KeyRows:
     """key (a str, or a tuple of words joined by spaces) -> its rows, over a :class:`StringTable` and CSR
-    arrays (``rows[starts[k] : starts[k+1]]``, ascending): the interface of ``recall.names.RowsByKey``."""
+    arrays (``rows[starts[k] : starts[k+1]]``, ascending): the interface of ``recall.name_tables.RowsByKey``."""
 
     def __init__(self, keys: StringTable, starts: np.ndarray, rows: np.ndarray, tuples: bool = False):
         if len(starts) != len(keys) + 1:

@@ -11,7 +11,8 @@ from hypothesis import strategies as st
 
 from kb.csvio import read_catalog_csv
 from recall.engine import NameIndex
-from recall.names import NameTables, tables_by_rules
+from recall.name_tables import NameTables
+from recall.names import tables_by_rules
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -47,7 +48,7 @@ def assert_same_word_rows(phrases, by_rules):
 
 
 def test_small_catalogs_are_built_by_the_rules_large_ones_column_wise():
-    from recall.names import COLUMNWISE_FROM, name_tables
+    from recall.name_tables import COLUMNWISE_FROM, name_tables
 
     for n, kind in ((COLUMNWISE_FROM - 1, SimpleNamespace), (COLUMNWISE_FROM, NameTables)):
         assert isinstance(name_tables([f"cup {i}" for i in range(n)], [()] * n, None, 4), kind)
