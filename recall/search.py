@@ -45,11 +45,8 @@ from recall.cells import CellIndex
 from recall.columns import LIST_BELOW, SortedColumns
 from recall.combinations import CombinationIndex
 from recall.costs import PlanCosts, after_probe, before_probe
-from recall.metrics import (
-    FeatureQuery,
-    distances,
-    kdtree_query,
-)
+from recall.distances import distances, kdtree_query
+from recall.metrics import FeatureQuery
 from recall.ranking import (
     CAT_INDEX,
     FILTER_SLACK,

@@ -14,7 +14,8 @@ import numpy as np
 from kb.features import FEATURES
 from recall.catalog_kinds import KindIndex
 from recall.confidence import COMPETITOR_POOL, JP_METRICS
-from recall.metrics import FeatureQuery, distances, feature_terms
+from recall.distances import distances
+from recall.metrics import FeatureQuery, feature_terms
 from recall.name_index import NameEvidence
 from recall.openset import DescribedNoun
 from recall.results import Match

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 from kb.errors import InvalidFeature, RecallError
 from kb.features import CATEGORIES, NUMERIC_FEATURES, ObjectRecord, encode
+from recall.distances import distances
 from recall.metrics import (
     AT_LEAST_SPAN,
     LN2,
@@ -18,7 +19,6 @@ from recall.metrics import (
     MISMATCH_TERM,
     UNKNOWN_NUMERIC_FRACTION,
     FeatureQuery,
-    distances,
     feature_terms,
 )
 from recall.snapshot import CatalogSnapshot

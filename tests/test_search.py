@@ -467,7 +467,7 @@ def test_best_first_cells_alone_equal_brute_force(seed, k):
 @given(query=arbitrary_queries(), k=st.integers(1, 8))
 def test_jplog_top_k_equals_brute_force(query, k):
     """JP in log units searches the log-scaled snapshot with the same pruned index: still exact."""
-    from recall.metrics import distances
+    from recall.distances import distances
 
     logged = catalog().log_scaled
     rows, dist = top_k(catalog(), query, k, metric="jplog")
