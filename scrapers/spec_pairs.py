@@ -167,7 +167,7 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
         if i in column_values:
             continue
         text = line.text
-        if (heading := _heading_unit(text)) is not None:
+        if (heading := _heading_unit(text)) is not None and not _labels_a_value(lines, i):
             headings[heading[0]] = (heading[1], text, i)
         elif (heading := _column_unit(lines, i)) is not None:
             headings[heading[0]] = (heading[1], f"{text} {lines[i + 1].text}", i + 1)
@@ -280,6 +280,14 @@ def _value_heading(text: str) -> bool:
     """Whether ``text`` is a value column's heading with a unit in brackets (``Value (cm)``, ``Wert [mm]``)."""
     head = re.split(r"[(\[（]", text, maxsplit=1)[0].strip(" :").lower()
     return head in _VALUE_HEADINGS and head != text.strip().lower()
+
+
+def _labels_a_value(lines: list[Line], i: int) -> bool:
+    """Whether line ``i`` (a label stating a unit) is followed by its own value (``Verpackung - Höhe in cm``
+    over ``49,00``): a row's label, not a heading for the rows below."""
+    if i + 1 >= len(lines) or not DIGIT.search(nxt := lines[i + 1].text) or len(nxt) > 80:
+        return False
+    return classify_label(nxt) is None and not split_inline(nxt)  # "Width: 923" under it is a row of its own
 
 
 def _column_unit(lines: list[Line], i: int) -> tuple[str, str] | None:

@@ -71,3 +71,34 @@ def test_an_adjustable_products_lowest_setting_is_its_extent():
 def test_one_bound_or_a_parts_bounds_are_not_the_products(rows):
     record = _read(ROWS + rows, "Office chair")
     assert record.dims_cm == (62.0, 60.0)
+
+
+# --- lengths written with no unit anywhere (scrapers/adapters/spec_table.unitless_millimetres) -------------
+
+
+def _de(rows: str):
+    html = (f"<html lang='de'><head><title>Monitor 24 Zoll</title></head><body><h1>Monitor 24 Zoll</h1>"
+            f"<table>{rows}</table></body></html>")  # fmt: skip
+    try:
+        return extract_page(html, "https://shop.example/p/1", "text/html").dims_cm
+    except ExtractionError:
+        return None
+
+
+@pytest.mark.parametrize(
+    ("width", "dims"),
+    [("540,00", (54.0, 37.9, 23.3)),  # 540 cm would be over the 500 cm limit: millimetres
+     ("500,00", None),  # within the limit in cm: which unit is not said, unread
+     ("6000,00", None)],  # 600 cm even in mm: not a size of a household object either way
+)  # fmt: skip
+def test_unitless_lengths_over_the_cm_limit_are_millimetres(width, dims):
+    rows = _row("Breite", width) + _row("Höhe", "379,00") + _row("Länge", "233,00")
+    assert _de(rows) == dims
+
+
+def test_a_package_rows_unit_is_no_heading_for_the_product_rows():
+    # "Verpackung - Höhe in cm" over its own value is a row's label, not a heading saying cm for the rows below
+    rows = _row("Verpackung - Höhe in cm", "49,00") + _row("Breite", "54,00") + _row("Höhe", "37,90")
+    assert _de(rows) is None
+    rows = "<tr><th colspan=2>Maße in cm</th></tr>" + _row("Breite", "54,00") + _row("Höhe", "37,90")
+    assert _de(rows) == (54.0, 37.9)

@@ -29,6 +29,7 @@ from scrapers.quantities import (
     parse_length,
     parse_length_range,
     parse_mass,
+    parse_number,
     third_axis,
 )
 from scrapers.sizes import AXIS_WORD_AFTER
@@ -338,6 +339,31 @@ def _with_locale_inches(pair: Pair, lang: str | None) -> Pair:
 _UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
 
 
+_FIGURE = re.compile(r"\d+(?:[.,]\d+)*")
+
+
+def _after_colon(value: str) -> str:
+    """A value's figures after a sub-label (``Set Size(WXDXH) with Stand: 923 x 253 x 659.4``)."""
+    return clean_text(value.rsplit(": ", 1)[-1])
+
+
+def unitless_millimetres(pairs: list[Pair], decimal_comma: bool | None) -> list[Pair]:
+    """``pairs`` with the product's lengths written with no unit anywhere read in millimetres when the
+    largest of them, read in centimetres, is over the :data:`kb.features.MAX_DIM_CM` limit and in
+    millimetres within it (Play.com's ``923 x 253 x 659.4``, a German shop's ``Breite: 540,00`` for a 54 cm
+    monitor: spec sheets that drop the unit are written in mm). A largest figure within the limit leaves
+    them unread (``no unit stated``): nothing says which unit."""
+    bare = [p for p in pairs if p.info.unit is None and p.info.kind in _LENGTH_KINDS and p.info.role == "product"
+            and not p.package and not p.info.package and _UNITLESS_LETTERED.fullmatch(_after_colon(p.value))]  # fmt: skip
+    figures = [n for p in bare for f in _FIGURE.findall(_after_colon(p.value))
+               if (n := parse_number(f, decimal_comma)) is not None]  # fmt: skip
+    if not figures or not MAX_DIM_CM < max(figures) <= 10 * MAX_DIM_CM:
+        return pairs
+    said = f"no unit stated; read as millimetres ({max(figures):g} cm would be over the {MAX_DIM_CM:g} cm limit)"
+    chosen = {id(p) for p in bare}
+    return [replace(p, info=replace(p.info, unit="mm"), unit_context=said) if id(p) in chosen else p for p in pairs]
+
+
 @adapter("spec_table", priority=50)
 def spec_table(page: Page) -> list[Observation]:
     """Spec tables, definition lists, detail bullets and label/value lines of the visible page, and the
@@ -346,6 +372,7 @@ def spec_table(page: Page) -> list[Observation]:
     pairs, adjusted = adjustable_extents(pairs)
     if _inch_locale(page.lang):
         pairs = [_with_locale_inches(p, page.lang) for p in pairs]
+    pairs = unitless_millimetres(pairs, page.decimal_comma)
     obs = observations_from_pairs(pairs, page.decimal_comma)
     for o in obs:
         o.site_wide = page.site_wide_line(o.order)
