@@ -14,13 +14,13 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 
-from scrapers.labels import LabelInfo, classify_label, classify_other
+from scrapers.labels import AXES, LabelInfo, classify_label, classify_other
 from scrapers.page import Line
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length, parse_mass, unit_hint
 from scrapers.sizes import parse_dims
 
 __all__ = [
-    "DIGIT", "LENGTH_KINDS", "MAX_PAIRS", "Pair", "has_unit", "is_unit", "lists_variants", "own_part_pairs", "pairs_from_lines",
+    "DIGIT", "LENGTH_KINDS", "MAX_PAIRS", "Pair", "family_of", "has_unit", "is_unit", "lists_variants", "own_part_pairs", "pairs_from_lines",
     "split_inline",
 ]
 
@@ -252,7 +252,12 @@ def lists_variants(value: str, following: str, info: LabelInfo) -> bool:
 
 #: A heading's unit applies to the pairs of the next this many lines (one spec block).
 HEADING_SCOPE = 40
-LENGTH_KINDS = frozenset({"length", "width", "height", "depth", "diameter", "thickness", "dimensions", "size"})
+LENGTH_KINDS = frozenset({*AXES, "dimensions", "size"})
+
+
+def family_of(info: LabelInfo) -> str:
+    """``"length"`` for a label of an extent (:data:`LENGTH_KINDS`), ``"mass"`` otherwise."""
+    return "length" if info.kind in LENGTH_KINDS else "mass"
 
 
 #: What a label stating its unit has (``(mm)``, ``, см``, ``in cm``): a cheap test before :func:`unit_hint`.
@@ -309,7 +314,7 @@ def _with_heading_unit(pair: Pair, headings: dict[str, tuple[str, str, int]], i:
     ``Dimensions (mm)`` block of ``Width: 923`` rows)."""
     if pair.info.unit is not None or pair.info.role != "product":
         return pair
-    family = "length" if pair.info.kind in LENGTH_KINDS else "mass"
+    family = family_of(pair.info)
     found = headings.get(family)
     if found is None or i - found[2] > HEADING_SCOPE or found[2] == pair.order:
         return pair

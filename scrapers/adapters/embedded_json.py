@@ -16,10 +16,17 @@ from typing import Any
 
 from scrapers.adapters import Observation, adapter
 from scrapers.adapters.spec_table import observations_from_pairs
-from scrapers.adapters.state_units import is_unit_key, unit_for, unit_keys, unit_text, value_object
+from scrapers.adapters.state_units import (
+    BARE_NUMBER,
+    is_unit_key,
+    unit_for,
+    unit_keys,
+    unit_text,
+    value_object,
+)
 from scrapers.labels import LabelInfo, classify_label
 from scrapers.page import Page
-from scrapers.spec_pairs import CODE, DIGIT, LENGTH_KINDS, Pair, has_unit, split_inline
+from scrapers.spec_pairs import CODE, DIGIT, Pair, family_of, has_unit, split_inline
 
 __all__ = ["NAME_MATCH", "embedded_json"]
 
@@ -77,10 +84,6 @@ def _value_of(node: dict) -> Any:
     return None
 
 
-def _family(info) -> str:
-    return "length" if info.kind in LENGTH_KINDS else "mass"
-
-
 def _keyed_value(node: dict, key: str, value: Any, info, inherited: list) -> str | None:
     """The value text of a measurement key: a string stating its unit as it is; a bare number (or a string
     of one) with the unit its key names (``width_cm``, ``weightInGrams``), a unit key beside it
@@ -94,8 +97,8 @@ def _keyed_value(node: dict, key: str, value: Any, info, inherited: list) -> str
         return value if len(value) < 200 else None
     if isinstance(value, (str, int, float)) and not isinstance(value, bool):
         if info.unit is not None:
-            return f"{value} {info.unit}" if re.fullmatch(r"\s*\d+(?:[.,]\d+)?\s*", str(value)) else None
-        unit = unit_for(key, _family(info), unit_keys(node)) or unit_for(key, _family(info), inherited)
+            return f"{value} {info.unit}" if BARE_NUMBER.fullmatch(str(value)) else None
+        unit = unit_for(key, family_of(info), unit_keys(node)) or unit_for(key, family_of(info), inherited)
         if unit is not None:
             return f"{value} {unit}"
     return None
@@ -105,7 +108,7 @@ def _keyed_pairs(node: dict, order: int, inherited: list) -> list[Pair]:
     """``{"itemWeight": "1.2 kg", "width": {"value": 30, "unit": "cm"}}``: keys that are measurement labels."""
     pairs = []
     for key, value in node.items():
-        if not isinstance(key, str) or len(key) > 60 or key in _UNIT_KEYS or key == "value" or is_unit_key(key):
+        if not isinstance(key, str) or len(key) > 60 or key == "value" or is_unit_key(key):
             continue
         if isinstance(value, (list, bool)) or value is None:
             continue

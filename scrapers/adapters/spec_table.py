@@ -33,7 +33,15 @@ from scrapers.quantities import (
     third_axis,
 )
 from scrapers.sizes import AXIS_WORD_AFTER
-from scrapers.spec_pairs import DIGIT, MAX_PAIRS, Pair, own_part_pairs, pairs_from_lines, split_inline
+from scrapers.spec_pairs import (
+    DIGIT,
+    LENGTH_KINDS,
+    MAX_PAIRS,
+    Pair,
+    own_part_pairs,
+    pairs_from_lines,
+    split_inline,
+)
 from scrapers.value_forms import (
     NARROW_RANGE,
     axis_segments,
@@ -316,7 +324,6 @@ def selected_variant(page: Page) -> list[Observation]:
 #: Regions whose stores write lengths in inches when they write no unit (Barnes & Noble's
 #: ``5.20(w) x 8.00(h) x 0.40(d)``). Only a declared region counts (``en-US``, ``og:locale en_US``).
 INCH_REGIONS = frozenset({"us"})
-_LENGTH_KINDS = frozenset({*AXES, "dimensions", "size"})
 
 
 def _inch_locale(lang: str | None) -> bool:
@@ -326,7 +333,7 @@ def _inch_locale(lang: str | None) -> bool:
 
 def _with_locale_inches(pair: Pair, lang: str | None) -> Pair:
     """A length pair written with no unit anywhere, read in inches on a page of an inch locale (said so)."""
-    if pair.info.unit is not None or pair.info.kind not in _LENGTH_KINDS or pair.info.role != "product":
+    if pair.info.unit is not None or pair.info.kind not in LENGTH_KINDS or pair.info.role != "product":
         return pair
     if not _UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
         return pair
@@ -353,7 +360,7 @@ def unitless_millimetres(pairs: list[Pair], decimal_comma: bool | None) -> list[
     millimetres within it (Play.com's ``923 x 253 x 659.4``, a German shop's ``Breite: 540,00`` for a 54 cm
     monitor: spec sheets that drop the unit are written in mm). A largest figure within the limit leaves
     them unread (``no unit stated``): nothing says which unit."""
-    bare = [p for p in pairs if p.info.unit is None and p.info.kind in _LENGTH_KINDS and p.info.role == "product"
+    bare = [p for p in pairs if p.info.unit is None and p.info.kind in LENGTH_KINDS and p.info.role == "product"
             and not p.package and not p.info.package and _UNITLESS_LETTERED.fullmatch(_after_colon(p.value))]  # fmt: skip
     figures = [n for p in bare for f in _FIGURE.findall(_after_colon(p.value))
                if (n := parse_number(f, decimal_comma)) is not None]  # fmt: skip

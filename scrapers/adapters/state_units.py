@@ -18,8 +18,10 @@ from typing import Any
 from scrapers.label_vocabulary import fold
 from scrapers.quantities import length_unit, mass_unit
 
-__all__ = ["UNIT_WORDS", "family", "is_unit_key", "key_words", "unit_for", "unit_keys", "unit_text", "value_object"]
+__all__ = ["BARE_NUMBER", "UNIT_WORDS", "family", "is_unit_key", "key_words", "unit_for", "unit_keys", "unit_text", "value_object"]
 
+#: A bare number, as a JSON number prints or a store writes it in a string (``"24"``, ``"3,2"``).
+BARE_NUMBER = re.compile(r"\s*\d+(?:[.,]\d+)?\s*")
 _CAMEL = re.compile(r"(?<=[a-z])(?=[A-Z])|[_\-.\s]+")
 
 #: Words that name a unit key, folded (:func:`scrapers.label_vocabulary.fold`).
@@ -95,7 +97,7 @@ def _number(x: Any) -> float | int | str | None:
         return None
     if isinstance(x, (int, float)):
         return x
-    if isinstance(x, str) and re.fullmatch(r"\s*\d+(?:[.,]\d+)?\s*", x):
+    if isinstance(x, str) and BARE_NUMBER.fullmatch(x):
         return x.strip()
     return None
 
