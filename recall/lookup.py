@@ -219,17 +219,17 @@ def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float]:
     URL path or another language, and the store's search already matched the words); with no stated
     feature, when the description names the product. ``text`` is the description or its parse
     (``recall.parser.parse``), so that many records cost one parse."""
+    if isinstance(text, str):
+        from recall.parser import parse
+
+        text = parse(text)  # once for every placement
     judged = [_fit_of(text, placed) for placed in placements(_judged(record))]
     return min(judged, key=lambda j: (j[3], j[2]))[:3]
 
 
-def _fit_of(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float, float]:
+def _fit_of(parsed: Any, record: ObjectRecord) -> tuple[bool, str, float, float]:
     """:func:`fits` for one placement of the record's extents, with the fit's score last (to choose)."""
-    recaller = Recaller.from_records([record])
-    if isinstance(text, str):
-        result = recaller.recall_text(text, top=1)
-    else:
-        result = recaller.recall_parsed(text, top=1)
+    result = Recaller.from_records([record]).recall_parsed(parsed, top=1)
     if not result.matches:
         return False, "the description states nothing to compare", math.inf, math.inf
     if result.closeness is None:
