@@ -149,7 +149,7 @@ def add(args) -> int:
     store = args.store or store_group(args.url or "")
     if not store:
         raise SystemExit("give --url or --store: the store is what the split is by")
-    known = {row["sha256"]: row["id"] for row in load_manifest()}
+    known = known_pages(args.cache or cache_dir())
     if digest in known:
         raise SystemExit(f"already in the corpus as {known[digest]}")
     pid = f"{store}-{digest[:10]}"
@@ -165,9 +165,34 @@ def add(args) -> int:
     return 0
 
 
+def known_pages(cache: Path) -> dict[str, str]:
+    """sha256 -> id of every page the corpus has: the manifests' rows and the shared batches' pages (a
+    page captured by two public repositories is one page, whichever batch it came in)."""
+    known = {row["sha256"]: row["id"] for row in load_manifest()}
+    for page in load_corpus(cache=cache, shared=True, labelled_only=False):
+        if page.source.get("sha256") is None:  # a shared batch's page: no manifest row
+            known.setdefault(hashlib.sha256(page.path.read_bytes()).hexdigest(), page.id)
+    return known
+
+
+def duplicates(pages) -> list[tuple[str, str]]:
+    """Pairs of present pages with the same bytes (the later one, the first one)."""
+    seen: dict[str, str] = {}
+    out = []
+    for page in pages:
+        digest = hashlib.sha256(page.path.read_bytes()).hexdigest()
+        if digest in seen:
+            out.append((page.id, seen[digest]))
+        seen.setdefault(digest, page.id)
+    return out
+
+
 def check(cache: Path) -> int:
     rows = load_manifest()
     pages = load_corpus(cache=cache, shared=True, labelled_only=False)
+    twins = duplicates(pages)
+    for later, first in twins:
+        print(f"{later}: the same page as {first}")
     labelled = [p for p in pages if p.truth is not None]
     stores = Counter(p.store for p in pages)
     langs = Counter(p.language for p in pages)
@@ -176,7 +201,7 @@ def check(cache: Path) -> int:
           + ", ".join(f"{k or '?'} {v}" for k, v in langs.most_common()))
     held = [p for p in labelled if p.held_out]
     print(f"labelled pages: development {len(labelled) - len(held)}, held out {len(held)}")
-    return 0
+    return 1 if twins else 0
 
 
 def main(argv=None) -> int:

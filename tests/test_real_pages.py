@@ -56,3 +56,25 @@ def test_a_snapshot_with_a_work_tree_is_read_from_its_git_directory(tmp_path):
     assert real_pages._git_dir(tmp_path, "owner/tree") == inner
     with pytest.raises(SystemExit, match="fetch it first"):
         real_pages._git_dir(tmp_path, "owner/absent")
+
+
+def test_duplicates_names_each_later_copy_of_a_page(tmp_path):
+    from types import SimpleNamespace
+
+    files = {"a": b"<html>1</html>", "b": b"<html>2</html>", "c": b"<html>1</html>", "d": b"<html>1</html>"}
+    pages = []
+    for pid, body in files.items():
+        (tmp_path / f"{pid}.html").write_bytes(body)
+        pages.append(SimpleNamespace(id=pid, path=tmp_path / f"{pid}.html"))
+    assert real_pages.duplicates(pages) == [("c", "a"), ("d", "a")]
+    assert real_pages.duplicates(pages[:2]) == []
+
+
+def test_no_page_of_the_corpus_is_there_twice():
+    """A page captured by two repositories (a shared batch's page fetched again) is counted once."""
+    from scrapers.corpus import load_corpus
+
+    pages = load_corpus(labelled_only=False)
+    if not pages:
+        pytest.skip("no corpus page is present (cache and shared batches absent)")
+    assert real_pages.duplicates(pages) == []
