@@ -75,6 +75,24 @@ def test_the_store_sells_only_pages_that_state_a_size_or_mass_and_finds_them_by_
 
 
 @needs_corpus
+def test_the_stores_results_come_ten_a_page_with_a_next_link_while_more_follow(store):
+    from scrapers.corpus_store import RESULTS_SHOWN
+    from scrapers.store_search import parse_search_page
+
+    hits = search(store.items, "monitor")
+    assert len(hits) > RESULTS_SHOWN  # the corpus sells more monitors than one results page shows
+    (src,) = parse_sources(store.sources_toml()).stores
+    listed, url = [], store.base_url + "/search?q=monitor"
+    while url:
+        got = requests.get(url, timeout=5)
+        page = parse_search_page(got.content, got.url, got.headers["Content-Type"], src)
+        assert 0 < len(page.product_urls) <= RESULTS_SHOWN
+        listed += page.product_urls
+        url = page.next_url
+    assert listed == [store.base_url + it.path for it in hits]
+
+
+@needs_corpus
 @pytest.mark.parametrize("page_id", CLASSES)
 def test_a_described_product_the_catalog_lacks_ends_as_the_recalls_match(seeded, tmp_path, store, page_id):
     row = next(r for r in load_descriptions() if r["page"] == page_id)
