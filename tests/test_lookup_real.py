@@ -196,6 +196,19 @@ def test_a_feature_the_page_does_not_state_does_not_make_another_product_closer(
     assert exact[2] < near[2]  # ... but the page stating exactly the sizes is the closer one
 
 
+def test_the_sizes_both_state_choose_among_fits_before_a_category():
+    # a 1.9x size miss hidden by a matching material no longer beats an exact size with a finish word's
+    # material (a copper-finish polycarbonate shade)
+    text = "a copper lamp shade, 45 cm across"
+    shade = fits(text, ObjectRecord.create("copper shade", a_cm=45, b_cm=45, material="plastic"))
+    lamp = fits(text, ObjectRecord.create("kinis wall lamp", a_cm=25, b_cm=24, c_cm=18, mass_g=400, material="metal"))
+    assert shade[0] and lamp[0] and shade[2] == 0.0 < lamp[2]
+    # with no size or mass of both, the features the page states choose
+    plain = "a plastic lamp shade, 45 cm across"
+    assert fits(plain, ObjectRecord.create("shade", material="plastic"))[2] == 0.0
+    assert fits(plain, ObjectRecord.create("shade", material="glass"))[2] == 1.0
+
+
 # --- a person's name of a product ------------------------------------------------------------------------
 
 
