@@ -21,7 +21,7 @@ from scrapers.labels import AXES, classify_label, classify_other
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
 __all__ = [
-    "NARROW_RANGE", "axis_segments", "branded_part", "for_one_size", "keyed_variant", "metric_figure", "note_words", "one_length", "packed_value",
+    "NARROW_RANGE", "axis_segments", "bound_value", "branded_part", "fluid_ounces", "for_one_size", "keyed_variant", "metric_figure", "note_words", "one_length", "packed_value",
     "placeholder_size", "sentence_value", "written_value",
 ]
 
@@ -144,6 +144,28 @@ def sentence_value(value: str) -> bool:
     if len(_WORD.findall(head)) < PROSE_WORDS:
         return False
     return classify_label(head) is None and classify_other(head) is None
+
+
+_BOUND = re.compile(r"\s*(?:[<>≤≥＜＞≦≧]|&lt;|&gt;)\s*=?\s*\d")
+
+
+def bound_value(value: str) -> bool:
+    """Whether a measured value is a bound, written with a comparison sign before its figure (``<5ft
+    (152cm)``, ``> 30 cm``, ``≤ 2 kg``): a limit or a range's end (a review form's height brackets), not a
+    measurement of the product."""
+    return _BOUND.match(value) is not None
+
+
+_OUNCES = re.compile(r"\d\s*(?:oz|ounces?)\b\.?", re.IGNORECASE)
+_VOLUME = re.compile(r"\d\s*(?:ml|cl|dl|l|liters?|litres?)\b", re.IGNORECASE)
+
+
+def fluid_ounces(value: str) -> bool:
+    """Whether a value's ounces are a volume: written beside a volume (``4oz / 118ml / X Small``, a cup's
+    capacity; ``12 fl oz``), not a weight."""
+    return re.search(r"\bfl\.?\s*oz\b", value, re.IGNORECASE) is not None or (
+        _OUNCES.search(value) is not None and _VOLUME.search(value) is not None
+    )
 
 
 def branded_part(value: str) -> str | None:

@@ -2,7 +2,7 @@
 unitless weights it must read (issue 22's misses), on small pages written here. Each rule is pinned at its
 boundary: the classes of development pages (a monitor's stand positions, a review site's photo caption, a
 sandal's branded sole, a shop's own measurement of the boxed item, a grocer's size row, metric spec sheets
-without units)."""
+without units, a review form's height brackets, a cup's fluid ounces, a desk converter's tagline)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 
 from kb.errors import ExtractionError
 from scrapers.extract import extract_page
-from scrapers.value_forms import branded_part, note_words, sentence_value
+from scrapers.restatements import _names_the_product
+from scrapers.value_forms import bound_value, branded_part, fluid_ounces, note_words, sentence_value
 
 
 def _read(rows: str, title: str = "Monitor 27 inch", lang: str = "de"):
@@ -155,3 +156,51 @@ def test_a_unitless_weight_beside_lengths_of_unknown_unit_stays_unread():
     # 54 / 37.9 / 23.3 are within the cm limit: nothing says mm, so nothing says kg
     record = _read(_row("Breite", "54") + _row("Höhe", "37,9") + _row("Gewicht", "5,00"))
     assert record is None or record.mass_g is None
+
+
+# -- a bound written with a comparison sign; ounces beside a volume --------------------------------------------
+
+@pytest.mark.parametrize(
+    ("value", "bound"),
+    [("<5ft (152cm)", True), ("> 30 cm", True), ("≤ 2 kg", True), ("&lt;5 kg", True),
+     ("5ft (152cm)", False), ("30 cm <", False), ("approx. < 30 cm", False)],
+)  # fmt: skip
+def test_bound_value_is_a_sign_before_the_figure(value, bound):
+    assert bound_value(value) is bound
+
+
+def test_a_bound_is_no_height():
+    assert _read(_row("Height", "<5ft (152cm)"), "Training Shorts", "en") is None
+    assert _extents(_read(_row("Height", "5ft (152cm)"), "Training Shorts", "en")) == [152.0]
+
+
+@pytest.mark.parametrize(
+    ("value", "fluid"),
+    [("4oz / 118ml / X Small", True), ("12 fl oz", True), ("8 oz (0.25 l)", True),
+     ("4 oz", False), ("113 g (4 oz)", False), ("118 ml", False)],
+)  # fmt: skip
+def test_fluid_ounces_need_a_volume_beside_them(value, fluid):
+    assert fluid_ounces(value) is fluid
+
+
+def test_a_cups_ounces_beside_millilitres_are_no_weight():
+    assert _read(_row("Weight", "4oz / 118ml"), "Reusable Cup", "en") is None
+    assert _read(_row("Weight", "4 oz"), "Reusable Cup", "en").mass_g == pytest.approx(113.398, rel=1e-4)
+
+
+# -- whose part a label names: the title's name ends at a bar; a part's head word --------------------------
+
+TRAY = _row("Keyboard tray dimensions", '23.75 x 6.5"')
+
+
+def test_a_part_the_titles_tagline_lists_stays_a_part():
+    assert _read(TRAY, "Desk Converter | Compact, Adjustable Keyboard Tray", "en") is None
+    assert _extents(_read(TRAY, "Adjustable Keyboard Tray | Shop", "en")) == [60.325, 16.51]
+
+
+@pytest.mark.parametrize(
+    ("part", "product"),
+    [("this vase", True), ("vase", True), ("changedesk s top panel", False), ("top panel", False), (None, False)],
+)  # fmt: skip
+def test_a_part_names_the_product_by_its_head_word(part, product):
+    assert _names_the_product(part, {"changedesk", "vase", "converter"}) is product

@@ -45,7 +45,9 @@ from scrapers.unitless import UNITLESS_LETTERED, unitless_millimetres
 from scrapers.value_forms import (
     NARROW_RANGE,
     axis_segments,
+    bound_value,
     branded_part,
+    fluid_ounces,
     for_one_size,
     keyed_variant,
     one_length,
@@ -68,7 +70,9 @@ def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
 
 def _plausible_mass(value: str, unit: str | None, dc: bool | None) -> tuple[float | None, str | None]:
     """The mass in ``value``; when that reading is absurd and the other decimal-mark reading is not,
-    the other one, with a note."""
+    the other one, with a note. Ounces written beside a volume are a capacity, no mass (``4oz / 118ml``)."""
+    if fluid_ounces(value):
+        return None, None
     mass = parse_mass(value, unit, dc)
     if mass is not None and mass > MAX_MASS_G:
         retry = parse_mass(value, unit, not dc)
@@ -119,6 +123,9 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
     info = pair.info
     raw = f"{pair.label}: {pair.value}"[:200]
     package = pair.package or info.package or packed_value(pair.value)
+    if info.role == "product" and bound_value(pair.value):  # "Height: <5ft (152cm)": a limit, not a size
+        info = replace(info, role="capacity")
+        pair = replace(pair, info=info)
     value, written = written_value(pair.value)
     if value != pair.value:
         pair = replace(pair, value=value)
