@@ -1,4 +1,4 @@
-"""Category words that allow more than one class: ambiguous shape words and mixed materials.
+"""Category words that allow more than one class: ambiguous shape words, mixed materials, finish words.
 
 The paper's JP charges a category mismatch ``2 ln 2`` and a match 0, so a word must name one class. Two
 kinds of words do not (hybrid only; the paper's JP, features only, keeps the stated class as it is):
@@ -13,6 +13,11 @@ kinds of words do not (hybrid only; the paper's JP, features only, keeps the sta
 * **Mixed materials.** "Plastic and metal", "glass and metal", "steel and wood": the parser keeps one
   material, and the object filed under the other paid a whole mismatch. Two material words joined by
   and / & / or / "/" make either material a match.
+* **Finish words.** A metal whose name is also a colour and a plated or painted finish
+  (:data:`FINISH_WORDS`: "a *copper* lamp shade" of polycarbonate with a metalised copper finish, a
+  *chrome* lamp or tap of chromed plastic, a *silver* laptop or phone of plastic, *bronze*- and
+  *brass*-effect fittings) may say the look, not the material: when every material word of the text is
+  one, the metal is a match and any other material half a mismatch (as an unknown material).
 
 Either way the stated category leaves the JP query and becomes soft evidence over every row (shown in
 the vague column): 0 for an allowed class, ``ln 2`` for a shape's second class or an unknown value,
@@ -32,7 +37,10 @@ from recall.lexicon import MATERIAL_WORDS, SHAPE_WORDS
 from recall.metrics import LN2, MISMATCH_TERM, FeatureQuery
 from recall.vague import SoftEvidence
 
-__all__ = ["SHAPE_ALTERNATIVES", "Alternatives", "alternatives", "mixed_materials", "with_alternatives"]
+__all__ = [
+    "FINISH_WORDS", "SHAPE_ALTERNATIVES", "Alternatives", "alternatives", "finish_word", "mixed_materials",
+    "with_alternatives",
+]  # fmt: skip
 
 #: Shape word -> the other classes it often means (development counts in RECALL.md, "Words that allow
 #: two classes"); the first class is the lexicon's (:data:`recall.lexicon.SHAPE_WORDS`).
@@ -43,6 +51,8 @@ SHAPE_ALTERNATIVES: dict[str, tuple[str, ...]] = {
 }  # fmt: skip
 #: The cost of a shape word's second class: half a mismatch (an unknown category's term).
 SECOND_CLASS_TERM = LN2
+#: Material words that are also the names of a colour and of a finish over another material.
+FINISH_WORDS = frozenset({"copper", "brass", "bronze", "chrome", "silver"})
 
 _MATERIAL = "|".join(sorted((re.escape(w) for w in MATERIAL_WORDS if " " not in w), key=len, reverse=True))
 _MIXED = re.compile(rf"\b({_MATERIAL})\s*(?:and/or|and|&|or|/)\s*({_MATERIAL})\b")
@@ -80,6 +90,17 @@ class Alternatives:
         return out
 
 
+def finish_word(parsed) -> str | None:
+    """The finish word (:data:`FINISH_WORDS`) the material of ``parsed`` (a parser result) is stated by,
+    when every material word of its text is one ("a copper lamp shade"; not "chrome steel"), else None."""
+    evidence = parsed.features.get("material")
+    word = (evidence.words or "").lower() if evidence is not None else ""
+    if word not in FINISH_WORDS:
+        return None
+    said = [w for w in re.findall(r"[^\W_]+(?:-[^\W_]+)*", parsed.text.lower()) if w in MATERIAL_WORDS]
+    return word if all(w in FINISH_WORDS for w in said) else None
+
+
 def mixed_materials(text: str) -> frozenset[str] | None:
     """The two material classes of "plastic and metal" (two different classes), else None."""
     for m in _MIXED.finditer(text.lower()):
@@ -104,9 +125,14 @@ def alternatives(query: FeatureQuery, parsed) -> Alternatives | None:
         allowed["shape"] = (frozenset({values["shape"]}), frozenset(second))
         words.append(f"{word} -> shape {values['shape']} (or {'/'.join(second)}, half a mismatch)")
     mixed = mixed_materials(parsed.text)
+    finish = finish_word(parsed)
     if "material" in values and mixed is not None and values["material"] in mixed:
         allowed["material"] = (mixed, frozenset())
         words.append(f"{' and '.join(sorted(mixed))} -> material either")
+    elif "material" in values and finish is not None:
+        stated = values["material"]
+        allowed["material"] = (frozenset({stated}), frozenset(CATEGORIES["material"]) - {stated})
+        words.append(f"{finish} -> material {stated} (or a {finish} finish: another material half a mismatch)")
     return Alternatives(allowed, tuple(words)) if allowed else None
 
 

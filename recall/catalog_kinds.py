@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from kb.kinds import ROOT, Noun, ancestors, kind_of_name, noun_in, words_of
+from kb.kinds import ROOT, Noun, ancestors, kind_of_name, kinds, noun_in, words_of
 from recall.unheld import noun_like
 from recall.words import COLOURS, SIZE_WORDS, head_noun, material_words
 
@@ -41,6 +41,7 @@ class KindIndex:
         self._heads: dict[str, frozenset[str]] | None = None
         self._english: dict[str, str] | None = None
         self._words: dict[str, frozenset[str]] | None = None
+        self._kind_named: frozenset[str] | None = None
 
     def kind(self, row: int) -> str | None:
         if row not in self._kinds:
@@ -76,6 +77,16 @@ class KindIndex:
             # an object named by the head alone ("cord" beside "power cord") is the catalog's generic one
             self._heads = {h: frozenset(k) for h, k in out.items() if h not in sorts or h in bare}
         return self._heads
+
+    def kind_named(self) -> frozenset[str]:
+        """The kinds (``kb/data/kinds.csv``) that a catalog object is called by alone: the Yale objects
+        "furniture", "game", "cup", "tube" stand for any thing of their kind."""
+        if self._kind_named is None:
+            every = kinds()
+            self._kind_named = frozenset(
+                w[0] for w in (words_of(n) for n in self._names) if len(w) == 1 and w[0] in every
+            )
+        return self._kind_named
 
     def words_by_head(self) -> dict[str, frozenset[str]]:
         """The words before the head noun in the catalog's names, by head ("box" -> {"sugar", "cracker",
@@ -170,6 +181,8 @@ def sort_of_catalog_object(noun: Noun, heads, kinds_of: KindIndex | None) -> str
     bases = [h for h in plain if h != head and len(h) >= 3 and head.endswith(h)]
     if head in plain and len(noun.words) > 1:
         bases.append(head)
+    if noun.kind != head and noun.kind in kinds_of.kind_named():
+        return noun.kind  # "a side table" where the catalog has an object called "furniture", its kind
     return next((h for h in bases if noun.kind in plain[h]), None)
 
 

@@ -12,6 +12,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
+from kb.features import MAX_DIM_CM
 from kb.measures.aliases import PARSER_LANGUAGES
 from kb.measures.units import Unit, unit_table
 from kb.measures.words import number_value
@@ -19,7 +20,7 @@ from recall import lexicon as lx
 from recall.reading import DimStatement, Quantity, Reading, Relation, Stated, limit_refusal
 from recall.tokens import Token
 
-__all__ = ["read_relations", "resolve_dims"]
+__all__ = ["MAX_STATED_LENGTH_CM", "read_relations", "resolve_dims"]
 
 
 def read_relations(tokens: list[Token], reading: Reading) -> None:
@@ -80,8 +81,10 @@ def _to_cm(q: Quantity, reading: Reading, stmt: DimStatement, scale: float = 1.0
     f = unit.factor * scale
     value = q.value * f
     reason = limit_refusal("a_cm", value)
+    inside = stmt.start <= q.start and q.end <= stmt.end
+    if reason is not None and _long_thing(q, stmt, value, inside):
+        return Stated(MAX_DIM_CM, MAX_DIM_CM, None, "at_least", stmt.start, stmt.end)
     if reason is not None:  # the quantity's own words, or a relation's ("twenty times as long")
-        inside = stmt.start <= q.start and q.end <= stmt.end
         start, end = (q.start, q.end) if inside else (stmt.start, stmt.end)
         reading.refuse(start, end, f"{value:.10g} cm: {reason}")
         return None
@@ -93,6 +96,20 @@ def _to_cm(q: Quantity, reading: Reading, stmt: DimStatement, scale: float = 1.0
         stmt.start,
         stmt.end,
     )
+
+
+#: A length stated in its own words ("a garden hose, 50 feet long") past the catalog's extent limit
+#: (:data:`kb.features.MAX_DIM_CM`, 5 m) and at most this is the real length of a long flexible thing
+#: (garden hoses, extension cords, ropes, chains and cables are sold at 10-30 m), not an absurd value;
+#: the catalog holds no extent past its limit, so it is read as "at least" the limit. Only a length: a
+#: width, height or diameter past 5 m ("a ball 10 m wide") and a length derived from a relation ("twenty
+#: times as long") stay refused, and so do lengths past this ("9000 m long").
+MAX_STATED_LENGTH_CM = 10_000.0
+
+
+def _long_thing(q: Quantity, stmt: DimStatement, value: float, inside: bool) -> bool:
+    """Whether ``value`` (cm) is a long flexible thing's length (:data:`MAX_STATED_LENGTH_CM`)."""
+    return stmt.role == "length" and inside and q.unit is not None and MAX_DIM_CM < value <= MAX_STATED_LENGTH_CM
 
 
 _ABC = ("a_cm", "b_cm", "c_cm")

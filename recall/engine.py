@@ -36,7 +36,7 @@ from recall.confidence import (
     confidence_from_margin,
     confidence_of,
 )
-from recall.fit import Trust, closeness_of, disagreeing_features, judge
+from recall.fit import Trust, closeness_of, disagree_factor, disagreeing_features, judge
 from recall.geometry import ShapeGeometry, overrides
 from recall.metrics import METRICS, FeatureQuery, relative_errors
 from recall.name_index import HEAD_WEIGHT, NAME_WEIGHT, NameEvidence, NameIndex
@@ -324,7 +324,7 @@ class Recaller:
         trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
         fit = judge(closeness, errors, trust, unused, noun.noun if not_in_catalog else None)
         open_set = not fit.close
-        disagrees = disagreeing_features(errors)  # a stated feature far off: shown by the verdict
+        disagrees = disagreeing_features(errors, disagree_factor(trust))  # a stated value far off: the verdict says it
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
             margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,

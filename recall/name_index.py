@@ -10,6 +10,7 @@ distance. Rules and weights: ``recall/RECALL.md``, "The hybrid".
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -56,6 +57,21 @@ def _comparison(words: list[str], start: int, end: int) -> bool:
     )
 
 
+#: A phrase after "with" says what an object has ("a garbage bin *with lid*", "a caddy *with a handle*",
+#: "a mug with a handle"): its head nouns name parts and accessories, not the object described. It runs to
+#: punctuation; a text that starts with it ("with a handle, 30 cm") has no other phrase to
+#: name the object, so it keeps its heads.
+_WITH_PHRASE = re.compile(r"(?<=\S)(\s+with\b[^,.;:()]*)", re.IGNORECASE)
+
+
+def _without_with_phrases(text: str) -> str:
+    """``text`` with the phrases after "with" (:data:`_WITH_PHRASE`) blanked, character for character."""
+    return _WITH_PHRASE.sub(lambda m: " " * len(m.group()), text)
+
+
+#: The words between a container and what it holds or is for: "a box *of* tissues", "a caddy *for* cleaning
+#: supplies", "a brush *for* bottles" say the compounds "tissue box", "cleaning supplies caddy", "bottle brush".
+_CONTENTS_WORDS = frozenset({"of", "for"})
 #: How many words after "of" may hold the contents of "<head> of <contents>" (``NameIndex._contents_names``).
 CONTENTS_WINDOW = 4
 
@@ -172,7 +188,7 @@ class NameIndex:
         head: dict[int, float] = {}
         phrases = self._whole_names(words, exact, head)
         phrases += [p for p in self._contents_names(words, exact) if p not in phrases]
-        heads = self._head_nouns(words, material, head, counted_head(text))
+        heads = self._head_nouns(words_of(_without_with_phrases("".join(chars))), material, head, counted_head(text))
         if not phrases and not heads:
             heads = self._name_words(list(subject_phrase(text)[-1:]), head)  # the subject's head only
         return NameEvidence(
@@ -215,12 +231,12 @@ class NameIndex:
     def _contents_names(self, words: list[str], exact: dict[int, float]) -> list[str]:
         """Record in ``exact`` the rows of the catalog names "<contents> <head>" that the text says as
         "<head> of <contents>" ("squeeze bottle of mustard" -> "mustard bottle", "a can of Campbell's tomato
-        soup" -> "tomato soup can"): one or two words of the :data:`CONTENTS_WINDOW` words after "of",
-        then the word before it; returns the names found."""
+        soup" -> "tomato soup can"; "for" alike: :data:`_CONTENTS_WORDS`): one or two words of the
+        :data:`CONTENTS_WINDOW` words after "of", then the word before it; returns the names found."""
         n = max(self.size, 1)
         found: list[str] = []
         for i, word in enumerate(words):
-            if word != "of" or i == 0:
+            if word not in _CONTENTS_WORDS or i == 0:
                 continue
             window = words[i + 1 : i + 1 + CONTENTS_WINDOW]
             grams = [(*window[j : j + k], words[i - 1]) for k in (2, 1) for j in range(len(window) - k + 1)]

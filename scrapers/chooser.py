@@ -146,7 +146,7 @@ def _collapse_repeats(values: list) -> list:
 def _whose(o: Observation) -> str:
     """Whose value an observation is: the product's, its package's (the product in its box), the
     shipment's (gross, the parcel sent), or a part's or a capacity's."""
-    if o.role in ("component", "capacity", "shipping", "variant", "name"):
+    if o.role in ("component", "capacity", "shipping", "variant", "name", "content"):
         return o.role
     return "package" if o.package else "product"
 
@@ -287,6 +287,8 @@ def fuse(observations: list[Observation], url: str) -> ProductRecord:
                                               f"product's ({other.raw[:60]!r})"))
         if not valid:  # a quantity written only in the product's name ("Almonds - 13oz")
             valid = _valid(observations, feature, "name", warnings, decisions, refused[feature])
+            if valid and feature == "mass":  # beside it, a size row's net content says it too ("Size: 275g")
+                valid = _valid(observations, feature, "content", warnings, decisions, refused[feature]) + valid
         chosen[feature] = _choose(valid, agree, feature, warnings, decisions)
     apart = {
         (whose, feature): _packages(_valid(observations, feature, whose, warnings, decisions), feature, raw,

@@ -8,7 +8,8 @@ address is at ``/page/<id>``).
 ``/search?q=<words>`` is a plain word-overlap search over the pages' titles, like a small store's: a page
 is found when one query word (lower case, plural ``s`` dropped: :func:`scrapers.demo_store.search.query_words`)
 is a word of its title; results are ordered by how many query words the title holds, then the shorter
-title first (more of it is what was asked for), then by title. Only product pages whose labels state a size
+title first (more of it is what was asked for), then by title, :data:`RESULTS_SHOWN` to a results page
+(``&page=<n>``, with a ``rel="next"`` link while more follow). Only product pages whose labels state a size
 or a mass are sold (a description can state nothing of the others).
 
 >>> with CorpusStore(load_corpus()) as store:                              # doctest: +SKIP
@@ -82,12 +83,15 @@ def search(items: Sequence[StoreItem], query: str) -> list[StoreItem]:
     return [it for _, it in hits]
 
 
-def _results_page(query: str, hits: Sequence[StoreItem]) -> bytes:
+def _results_page(query: str, hits: Sequence[StoreItem], page: int = 1) -> bytes:
     e = html.escape
+    shown = hits[(page - 1) * RESULTS_SHOWN : page * RESULTS_SHOWN]
     cards = "".join(f'<li class="product"><a href="{e(it.path)}">{e(it.title)}</a></li>\n'
-                    for it in hits[:RESULTS_SHOWN])  # fmt: skip
-    main = (f'<h1>Search results for “{e(query)}”</h1>\n<p>{len(hits)} results</p>\n<ul class="results">\n{cards}</ul>'
-            if hits else f'<h1>No results for “{e(query)}”</h1>')  # fmt: skip
+                    for it in shown)  # fmt: skip
+    more = len(hits) > page * RESULTS_SHOWN
+    nav = f'<nav><a rel="next" href="/search?q={quote(query)}&amp;page={page + 1}">Next</a></nav>' if more else ""
+    main = (f'<h1>Search results for “{e(query)}”</h1>\n<p>{len(hits)} results</p>\n<ul class="results">\n{cards}</ul>{nav}'
+            if shown else f'<h1>No results for “{e(query)}”</h1>')  # fmt: skip
     return (f'<!doctype html><html lang="en"><head><meta charset="utf-8"><title>Search: {e(query)}</title>'
             f'<meta name="robots" content="noindex"></head><body><main>{main}</main></body></html>').encode()  # fmt: skip
 
@@ -130,8 +134,11 @@ class CorpusStore:
                 if parts.path == "/robots.txt":
                     body, ctype = b"User-agent: *\nAllow: /\n", "text/plain"
                 elif parts.path == "/search":
-                    query = parse_qs(parts.query).get("q", [""])[0]
-                    body, ctype = _results_page(query, search(store.items, query)), "text/html; charset=utf-8"
+                    args = parse_qs(parts.query)
+                    query, page = args.get("q", [""])[0], args.get("page", ["1"])[0]
+                    page = int(page) if page.isdigit() and int(page) > 0 else 1
+                    body = _results_page(query, search(store.items, query), page)
+                    ctype = "text/html; charset=utf-8"
                 elif parts.path in store.by_path:
                     body, ctype = store.by_path[parts.path].page.path.read_bytes(), "text/html; charset=utf-8"
                 else:

@@ -1,9 +1,10 @@
 """The store side of an on-demand lookup: search the stores, read the top results, keep what fits, write it.
 
 :func:`search_stores` asks every store of a sources file that declares a ``search`` (see
-:mod:`scrapers.sources`) for the given words, reads the first results (:mod:`scrapers.store_search`,
-``rel="next"`` pages followed while a store has listed fewer than its ``search_results``), fetches those
-product pages (and when none of them fits, the next ``search_results``, :data:`MAX_RESULT_BATCHES`) and extracts and validates them exactly as the nightly job does
+:mod:`scrapers.sources`) for the given words, fetches its first ``search_results`` product pages (and
+while none settles the search, :data:`SETTLED_ERROR`, the next, up to :data:`MAX_RESULT_BATCHES`
+batches; a ``rel="next"`` results page is read only when its products are wanted,
+:mod:`scrapers.store_search`) and extracts and validates them exactly as the nightly job does
 (:func:`scrapers.ingest.process_page`), keeps the pages that ``fits`` accepts, and writes them as one
 small ingestion run through the nightly job's own short write transaction (:func:`scrapers.ingest.write_run`):
 observations with adapter ``lookup:<extractor>`` (provisional under the fusion rule, :mod:`scrapers.fusion`)
@@ -23,10 +24,12 @@ description over each candidate alone).
 
 from __future__ import annotations
 
+import functools
+import itertools
 import json
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor, wait
 from dataclasses import asdict, dataclass, field, replace
 from typing import Any
@@ -42,16 +45,27 @@ from scrapers.ingest import IngestionReport, PageOutcome, previous_pages, proces
 from scrapers.sources import Sources, StoreSource
 from scrapers.store_search import parse_search_page
 
-__all__ = ["DEFAULT_MAX_PAGES", "Candidate", "StoreAnswer", "StoresLookup", "search_stores"]
+__all__ = [
+    "DEFAULT_MAX_PAGES", "MAX_RESULT_BATCHES", "SETTLED_ERROR", "Candidate", "StoreAnswer", "StoresLookup",
+    "search_stores",
+]  # fmt: skip
 
-#: Requests (search pages + product pages, all stores together) one lookup may make.
-DEFAULT_MAX_PAGES = 12
+#: Requests (search pages + product pages, all stores together) one lookup may make: a store's first
+#: :data:`MAX_RESULT_BATCHES` batches of its default ``search_results`` (3) over two results pages, and
+#: robots.txt (the time budget bounds a store with a delay between requests well before this).
+DEFAULT_MAX_PAGES = 20
 #: Stores searched at the same time.
 MAX_PARALLEL_STORES = 4
-#: A store's results are read ``search_results`` at a time; when none of them fits, the next ones, up to
-#: this many batches in all (within the page and time budgets): a vague description ("a computer monitor")
-#: in a store that sells many of the kind lists the described one further down.
-MAX_RESULT_BATCHES = 3
+#: A store's results are read ``search_results`` at a time; while none of them settles the search
+#: (:data:`SETTLED_ERROR`), the next ones, up to this many batches in all (within the page and time
+#: budgets): a vague description ("a computer monitor") in a store that sells many of the kind lists the
+#: described one further down, below siblings that fit loosely (a 27-inch monitor for a 32-inch one).
+MAX_RESULT_BATCHES = 5
+#: A page that fits with a score (the mean relative error over the features it states) at most this
+#: settles its store's search: a description whose every value is the product's rounded to two figures
+#: ("71 by 51 cm, 6.8 kg") is within 5 % of each. A page that fits less closely may be a sibling of the
+#: described product (the same kind, another size): the next batch is read, and the closest fit wins.
+SETTLED_ERROR = 0.05
 #: fits(record) -> (fits?, why) or (fits?, why, score): whether a product page is the described object; the
 #: score (lower is closer) says which of several pages that fit fits best.
 FitFn = Callable[[ObjectRecord], "tuple[bool, str] | tuple[bool, str, float]"]
@@ -162,13 +176,14 @@ def _checked(fetcher: PoliteFetcher, budget: _Budget, store: StoreSource) -> Sto
 
 
 def _result_urls(
-    fetcher: PoliteFetcher, budget: _Budget, store: StoreSource, query: str, answer, wanted: int
-) -> list[str]:
-    """Up to ``wanted`` product URLs for ``query``, following ``rel=next`` pages."""
+    fetcher: PoliteFetcher, budget: _Budget, store: StoreSource, query: str, answer
+) -> Iterator[str]:
+    """The product URLs the search lists for ``query``, in order: a ``rel=next`` page is fetched only
+    when the URLs before it are used up and another is wanted."""
     url: str | None = store.search_url(query)
-    found: list[str] = []
+    found: set[str] = set()
     seen: set[str] = set()
-    while url and url not in seen and len(found) < wanted:
+    while url and url not in seen:
         seen.add(url)
         bounded = _checked(fetcher, budget, store)
         answer.search_pages.append(url)
@@ -179,10 +194,12 @@ def _result_urls(
             raise _Stop(f"search failed: {fetch_error_kind(err)}: {err.reason}") from None
         except ExtractionError as err:
             raise _Stop(f"search answer unreadable: {err}") from None
-        found += [u for u in page.product_urls if u not in found]
+        for u in page.product_urls:
+            if u not in found:
+                found.add(u)
+                yield u
         nxt = page.next_url
         url = nxt if nxt and urlsplit(nxt).netloc == urlsplit(store.base_url).netloc else None
-    return found[:wanted]
 
 
 def _timed_extractor(budget: _Budget):
@@ -208,24 +225,29 @@ def _search_one(
     fits: FitFn | None = None,
 ) -> tuple[StoreAnswer, list[PageOutcome]]:
     """One store: the first query that lists products, then its top product pages, a batch of
-    ``search_results`` at a time while none fits (:data:`MAX_RESULT_BATCHES`; without ``fits``, one)."""
+    ``search_results`` at a time while none settles the search (:func:`_settled`, up to
+    :data:`MAX_RESULT_BATCHES`; without ``fits``, one batch)."""
     answer = StoreAnswer(store.name)
     outcomes: list[PageOutcome] = []
     extract = _timed_extractor(budget)
     batch = store.search_results
     try:
-        urls: list[str] = []
-        wanted = batch * (MAX_RESULT_BATCHES if fits is not None else 1)
+        urls: Iterator[str] = iter(())
         for query in queries:
             answer.queries.append(query)
-            urls = _result_urls(fetcher, budget, store, query, answer, wanted)
-            if urls:
+            listed = _result_urls(fetcher, budget, store, query, answer)
+            first = next(listed, None)
+            if first is not None:
+                urls = itertools.chain([first], listed)
                 break
-        if not urls:
+        else:
             return answer, outcomes
         answer.status = "answered"
-        for i, url in enumerate(urls):
-            if i and i % batch == 0 and _any_fits(outcomes, fits):
+        for i in range(batch * (MAX_RESULT_BATCHES if fits is not None else 1)):
+            if i and i % batch == 0 and _settled(outcomes, fits):
+                break
+            url = next(urls, None)
+            if url is None:
                 break
             bounded = _checked(fetcher, budget, store)
             answer.product_pages.append(url)
@@ -237,11 +259,20 @@ def _search_one(
     return answer, outcomes
 
 
-def _any_fits(outcomes: list[PageOutcome], fits: FitFn | None) -> bool:
-    """Whether a page read fits (or is known from an earlier lookup): then no further results are read."""
-    return fits is None or any(
-        p.outcome == "not_modified" or (p.outcome == "extracted" and fits(p.clean)[0]) for p in outcomes
-    )
+def _settled(outcomes: list[PageOutcome], fits: FitFn | None) -> bool:
+    """Whether the pages read settle the search (no further results are read): one is known from an
+    earlier lookup, or fits with a score at most :data:`SETTLED_ERROR` (a ``fits`` that gives no score
+    settles it with any fit); without ``fits``, always."""
+    if fits is None:
+        return True
+    for page in outcomes:
+        if page.outcome == "not_modified":
+            return True
+        if page.outcome == "extracted":
+            ok, _why, *score = fits(page.clean)
+            if ok and (score[0] if score else 0.0) <= SETTLED_ERROR:
+                return True
+    return False
 
 
 def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = ()) -> list[Candidate]:
@@ -309,6 +340,7 @@ def search_stores(
     results, and add those ``fits`` accepts to ``kb`` (see the module docstring), with ``names`` (what the
     description calls the object) as their aliases. ``deadline`` is a ``clock.monotonic()`` time."""
     clock = clock or SystemClock()
+    fits = functools.lru_cache(maxsize=None)(fits)  # judged once a record: by the stop rule, then by _judge
     report = StoresLookup(tuple(queries))
     stores = [s for s in sources.stores if s.search]
     if not stores:

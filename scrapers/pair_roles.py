@@ -1,7 +1,8 @@
 """Whose value a spec pair states, decided from the other pairs and the page's name (after
 :func:`scrapers.spec_pairs.own_part_pairs`): a value said to be one part's alone on a kit's page
-(``750 g (Body Only)``), and an adjustable product's two bounds of one axis (``Min. height`` / ``Max.
-height``)."""
+(``750 g (Body Only)``), an adjustable product's two bounds of one axis (``Min. height`` / ``Max.
+height``) or its highest setting beside its lowest (``(höchste Position)``), and a size measured with the packed
+weight (``[Eigenmessung]`` beside ``[Eigenmessung inkl. Verpackung]``)."""
 
 from __future__ import annotations
 
@@ -11,9 +12,9 @@ from dataclasses import replace
 from scrapers.adapters import Observation
 from scrapers.labels import AXES, classify_label
 from scrapers.spec_pairs import Pair
-from scrapers.value_forms import only_part
+from scrapers.value_forms import note_words, only_part, packed_value
 
-__all__ = ["adjustable_extents", "only_part_pairs"]
+__all__ = ["adjustable_extents", "highest_settings", "measured_packed", "only_part_pairs"]
 
 
 def only_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
@@ -66,3 +67,48 @@ def adjustable_extents(pairs: list[Pair]) -> tuple[list[Pair], list[Observation]
             p = replace(p, info=replace(p.info, role="product"))
         out.append(p)
     return out, notes
+
+
+#: A size said to be an adjustable product's highest or lowest setting in its own text (``mit Standfuß
+#: (höchste Position)``, ``with stand (lowest position)``, ``position la plus haute``).
+_HIGHEST = re.compile(
+    r"\b(?:h(?:ö|oe)chste[rn]?|oberste[rn]?|maximale[rn]?|highest|tallest|maximum|max\.?)\s+"
+    r"(?:position|stellung|einstellung|setting)\b|\bposition\s+(?:la\s+plus\s+haute|haute|maximale)\b",
+    re.IGNORECASE,
+)
+_LOWEST = re.compile(
+    r"\b(?:niedrigste[rn]?|unterste[rn]?|minimale[rn]?|lowest|minimum|min\.?)\s+"
+    r"(?:position|stellung|einstellung|setting)\b|\bposition\s+(?:la\s+plus\s+basse|basse|minimale)\b",
+    re.IGNORECASE,
+)
+
+
+def highest_settings(obs: list[Observation]) -> list[Observation]:
+    """``obs`` with the product's sizes that say they are the highest setting (``60.84 x 19.04 x 49.32 cm - mit
+    Standfuß (höchste Position)``) made another configuration's (role ``variant``), when the page also states
+    a size at the lowest setting: the lowest setting is the product's own size, as for two bounds written as
+    labels (:func:`adjustable_extents`). A lone highest setting is left as it is."""
+    sizes = [o for o in obs if o.feature == "dims" and o.role == "product"]
+    if not any(_LOWEST.search(o.raw) and not _HIGHEST.search(o.raw) for o in sizes):
+        return obs
+    for o in sizes:
+        if _HIGHEST.search(o.raw) and not _LOWEST.search(o.raw):
+            o.role = "variant"
+            o.note = "; ".join(filter(None, [o.note, "the highest setting of an adjustable product; the page "
+                                             "states the lowest, the product's own size"]))  # fmt: skip
+    return obs
+
+
+def measured_packed(obs: list[Observation]) -> list[Observation]:
+    """``obs`` with a product size made a package value when its bracket note is part of a weight's note
+    that says the packaging is included (``Außenmaße: 160 x 680 x 440 mm [Eigenmessung]`` beside ``Gewicht:
+    5.197kg [Eigenmessung inkl. Verpackung & Beilagen]``): one measurement of one thing, the boxed item."""
+    packed = [note_words(o.raw) for o in obs if o.feature == "mass" and o.package and packed_value(o.raw)]
+    for o in obs:
+        if o.feature != "dims" or o.role != "product" or o.package:
+            continue
+        words = note_words(o.raw)
+        if words and any(words < p for p in packed):
+            o.package = True
+            o.note = "; ".join(filter(None, [o.note, "measured with the weight that includes the packaging"]))
+    return obs

@@ -30,12 +30,12 @@ def restated_elsewhere(
 ) -> list[tuple[Any, Any]]:
     """(sentence candidate, the labelled observation of another thing it agrees with) for every product
     candidate of ``feature`` read from a sentence whose value a labelled field gives to a part, a variant
-    or a capacity. A "part" named by a word of the product's name is the product itself ("This vase
-    weighs approximately: 1.2 kg" on the vase's page), never evidence."""
+    or a capacity. A "part" whose head word is a word of the product's name is the product itself ("This vase
+    weighs approximately: 1.2 kg" on the vase's page), never evidence (:func:`_names_the_product`)."""
     name_words = {w for o in observations if o.feature == "name" for w in _WORD.findall(str(o.value).lower())}
     labelled = [o for o in observations if o.feature == feature and o.source in LABELLED_SOURCES]
     others = [o for o in labelled if (o.role in OTHER_THINGS or getattr(o, "package", False))
-              and not (set(_WORD.findall((o.part or "").lower())) & name_words)]  # fmt: skip
+              and not _names_the_product(o.part, name_words)]  # fmt: skip
     products = [o for o in labelled if o.role == "product" and not getattr(o, "package", False)]
     out = []
     for cand in valid:
@@ -49,6 +49,13 @@ def restated_elsewhere(
         if hit is not None and not any(_agrees(cand.value, p.value, feature, agree) for p in products):
             out.append((cand, hit))
     return out
+
+
+def _names_the_product(part: str | None, name_words: set[str]) -> bool:
+    """Whether a part's words name the product itself: their last (head) word is a word of its name ("This
+    vase" on the vase's page), not only a word before it ("CHANGEdesk's top panel": the panel)."""
+    words = _WORD.findall((part or "").lower())
+    return bool(words) and words[-1] in name_words
 
 
 def _agrees(a: Any, b: Any, feature: str, agree: Callable[[Any, Any], bool]) -> bool:

@@ -192,6 +192,26 @@ def _known(origin: str, where: str, table: dict[str, Any], allowed: dict[str, ty
         raise _fail(origin, where, f"unknown key {unknown[0]!r} (known: {', '.join(sorted(allowed))})")
 
 
+@dataclass(frozen=True)
+class _Overrides:
+    """What the command line sets for every store (None: each store's own value)."""
+
+    base_url: str | None = None
+    delay_s: float | None = None
+    max_page_s: float | None = None
+    budget_s: float | None = None
+
+    def check(self, origin: str) -> None:
+        if self.base_url is not None:
+            _check_url(origin, "--base-url", "base_url", self.base_url)
+        if self.delay_s is not None and self.delay_s < 0:
+            raise _fail(origin, "--delay", "delay must be >= 0")
+        if self.max_page_s is not None and not self.max_page_s > 0:
+            raise _fail(origin, "--page-deadline", "the page deadline must be > 0 seconds")
+        if self.budget_s is not None and not self.budget_s > 0:
+            raise _fail(origin, "--store-budget", "the store budget must be > 0 seconds")
+
+
 def parse_sources(
     text: str,
     *,
@@ -215,88 +235,88 @@ def parse_sources(
     stores_raw = data.get("stores")
     if not isinstance(stores_raw, list) or not stores_raw:
         raise _fail(origin, "", "no stores: add at least one [[stores]] table")
-    if base_url is not None:
-        _check_url(origin, "--base-url", "base_url", base_url)
-    if delay_s is not None and delay_s < 0:
-        raise _fail(origin, "--delay", "delay must be >= 0")
-    if max_page_s is not None and not max_page_s > 0:
-        raise _fail(origin, "--page-deadline", "the page deadline must be > 0 seconds")
-    if budget_s is not None and not budget_s > 0:
-        raise _fail(origin, "--store-budget", "the store budget must be > 0 seconds")
+    overrides = _Overrides(base_url, delay_s, max_page_s, budget_s)
+    overrides.check(origin)
     stores: list[StoreSource] = []
     seen: set[str] = set()
     for i, raw in enumerate(stores_raw, start=1):
-        if not isinstance(raw, dict):
-            raise _fail(origin, f"store {i}", "must be a table")
-        where = f"store {i}" + (f" ({raw['name']!r})" if isinstance(raw.get("name"), str) else "")
-        _known(origin, where, raw, _STORE_KEYS)
-        merged = {**defaults, **raw}
-        values = {k: _check_type(origin, where, k, v, _STORE_KEYS[k]) for k, v in merged.items()}
-        for key in ("name", "base_url"):
-            if not values.get(key):
-                raise _fail(origin, where, f"missing {key}")
-        name = values["name"]
-        if name in seen:
-            raise _fail(origin, where, f"two stores are named {name!r}")
-        seen.add(name)
-        base = (base_url or values["base_url"]).rstrip("/")
-        _check_url(origin, where, "base_url", base)
-
-        def expand(url: str, key: str, base: str = base, where: str = where) -> str:
-            return _check_url(origin, where, key, url.replace("{base_url}", base))
-
-        sitemaps = tuple(expand(u, "sitemaps") for u in values.get("sitemaps", []))
-        urls = tuple(expand(u, "urls") for u in values.get("urls", []))
-        for key in ("include", "exclude"):
-            for pattern in values.get(key, []):
-                try:
-                    re.compile(pattern)
-                except re.error as err:
-                    raise _fail(origin, where, f"{key}: {pattern!r} is not a valid regex ({err})") from None
-        adapter = values.get("adapter", "auto")
-        if adapter not in ADAPTER_HINTS:
-            raise _fail(origin, where, f"adapter {adapter!r} unknown (one of {', '.join(ADAPTER_HINTS)})")
-        max_pages = values.get("max_pages", DEFAULT_MAX_PAGES)
-        if max_pages <= 0:
-            raise _fail(origin, where, "max_pages must be > 0")
-        search = values.get("search")
-        if search is not None:
-            if QUERY_FIELD not in search:
-                raise _fail(origin, where, f"search: {search!r} has no {QUERY_FIELD} for the search words")
-            _check_url(origin, where, "search", expand(search.replace(QUERY_FIELD, "q"), "search"))
-            search = search.replace("{base_url}", base)
-        search_results = values.get("search_results", DEFAULT_SEARCH_RESULTS)
-        if search_results <= 0:
-            raise _fail(origin, where, "search_results must be > 0")
-        budget = budget_s if budget_s is not None else values.get("budget_s", DEFAULT_STORE_BUDGET_S)
-        if not budget > 0:
-            raise _fail(origin, where, "budget_s must be > 0")
-        policy_values = {k: values[k] for k in _POLICY_KEYS if k in values}
-        if delay_s is not None:
-            policy_values["delay_s"] = delay_s
-        if max_page_s is not None:
-            policy_values["max_page_s"] = max_page_s
-        try:
-            policy = FetchPolicy(**policy_values)
-        except ValueError as err:
-            raise _fail(origin, where, str(err)) from None
-        stores.append(
-            StoreSource(
-                name=name,
-                base_url=base,
-                sitemaps=sitemaps,
-                urls=urls,
-                include=tuple(values.get("include", [])),
-                exclude=tuple(values.get("exclude", [])),
-                adapter=adapter,
-                max_pages=max_pages,
-                policy=policy,
-                search=search,
-                search_results=search_results,
-                budget_s=budget,
-            )
-        )
+        stores.append(_store(origin, i, raw, defaults, overrides, seen))
     return Sources(tuple(stores), origin)
+
+
+def _store(origin: str, i: int, raw: object, defaults: dict, overrides: _Overrides, seen: set[str]) -> StoreSource:
+    """The ``i``-th ``[[stores]]`` table, checked, over ``defaults`` and under ``overrides``; its name is
+    added to ``seen`` (the names of the stores before it)."""
+    if not isinstance(raw, dict):
+        raise _fail(origin, f"store {i}", "must be a table")
+    where = f"store {i}" + (f" ({raw['name']!r})" if isinstance(raw.get("name"), str) else "")
+    _known(origin, where, raw, _STORE_KEYS)
+    merged = {**defaults, **raw}
+    values = {k: _check_type(origin, where, k, v, _STORE_KEYS[k]) for k, v in merged.items()}
+    for key in ("name", "base_url"):
+        if not values.get(key):
+            raise _fail(origin, where, f"missing {key}")
+    if values["name"] in seen:
+        raise _fail(origin, where, f"two stores are named {values['name']!r}")
+    seen.add(values["name"])
+    base = (overrides.base_url or values["base_url"]).rstrip("/")
+    _check_url(origin, where, "base_url", base)
+
+    def expand(url: str, key: str) -> str:
+        return _check_url(origin, where, key, url.replace("{base_url}", base))
+
+    sitemaps = tuple(expand(u, "sitemaps") for u in values.get("sitemaps", []))
+    urls = tuple(expand(u, "urls") for u in values.get("urls", []))
+    for key in ("include", "exclude"):
+        for pattern in values.get(key, []):
+            try:
+                re.compile(pattern)
+            except re.error as err:
+                raise _fail(origin, where, f"{key}: {pattern!r} is not a valid regex ({err})") from None
+    adapter = values.get("adapter", "auto")
+    if adapter not in ADAPTER_HINTS:
+        raise _fail(origin, where, f"adapter {adapter!r} unknown (one of {', '.join(ADAPTER_HINTS)})")
+    max_pages = values.get("max_pages", DEFAULT_MAX_PAGES)
+    if max_pages <= 0:
+        raise _fail(origin, where, "max_pages must be > 0")
+    search = values.get("search")
+    if search is not None:
+        if QUERY_FIELD not in search:
+            raise _fail(origin, where, f"search: {search!r} has no {QUERY_FIELD} for the search words")
+        _check_url(origin, where, "search", expand(search.replace(QUERY_FIELD, "q"), "search"))
+        search = search.replace("{base_url}", base)
+    search_results = values.get("search_results", DEFAULT_SEARCH_RESULTS)
+    if search_results <= 0:
+        raise _fail(origin, where, "search_results must be > 0")
+    budget = overrides.budget_s if overrides.budget_s is not None else values.get("budget_s", DEFAULT_STORE_BUDGET_S)
+    if not budget > 0:
+        raise _fail(origin, where, "budget_s must be > 0")
+    return StoreSource(
+        name=values["name"],
+        base_url=base,
+        sitemaps=sitemaps,
+        urls=urls,
+        include=tuple(values.get("include", [])),
+        exclude=tuple(values.get("exclude", [])),
+        adapter=adapter,
+        max_pages=max_pages,
+        policy=_policy(origin, where, values, overrides),
+        search=search,
+        search_results=search_results,
+        budget_s=budget,
+    )
+
+
+def _policy(origin: str, where: str, values: dict, overrides: _Overrides) -> FetchPolicy:
+    policy_values = {k: values[k] for k in _POLICY_KEYS if k in values}
+    if overrides.delay_s is not None:
+        policy_values["delay_s"] = overrides.delay_s
+    if overrides.max_page_s is not None:
+        policy_values["max_page_s"] = overrides.max_page_s
+    try:
+        return FetchPolicy(**policy_values)
+    except ValueError as err:
+        raise _fail(origin, where, str(err)) from None
 
 
 def load_sources(

@@ -372,12 +372,16 @@ def _stem(word: str) -> str:
 _SCREEN = re.compile(r"display|screen|bildschirm|écran|ecran|pantalla|schermo|tela|ekran|экран|panel", re.IGNORECASE)
 
 
+_TITLE_BAR = re.compile(r"\s[|｜]\s")  # a title's name | a tagline or the store's name
+
+
 def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
     """Pairs whose part's label names the product itself (``Robot Weight`` on a robot vacuum's page,
     ``Speaker Dimensions`` on a speaker's: every word of the part in the page title) as the product's,
     when no label of the page states the product's own value of that feature (mass or size): a fallback,
-    so a robot's ``Base Dimensions`` beside its ``Dimensions`` stays the base's."""
-    words = {_stem(w) for w in re.findall(r"[^\W\d_]+", (title or "").lower())}
+    so a robot's ``Base Dimensions`` beside its ``Dimensions`` stays the base's. The title's name ends at a bar
+    (``Desk Converter | Compact, Adjustable Keyboard Tray``: a tagline's feature stays a part)."""
+    words = {_stem(w) for w in re.findall(r"[^\W\d_]+", _TITLE_BAR.split(title or "")[0].lower())}
     if not words:
         return pairs
 

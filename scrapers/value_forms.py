@@ -21,8 +21,8 @@ from scrapers.labels import AXES, classify_label, classify_other
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
 __all__ = [
-    "NARROW_RANGE", "axis_segments", "for_one_size", "keyed_variant", "metric_figure", "one_length", "packed_value",
-    "placeholder_size", "written_value",
+    "NARROW_RANGE", "axis_segments", "bound_value", "branded_part", "fluid_ounces", "for_one_size", "keyed_variant", "metric_figure", "note_words", "one_length", "packed_value",
+    "placeholder_size", "sentence_value", "written_value",
 ]
 
 #: A range no wider than this ratio is the object's own adjustment or a tolerance (``30-32 cm``, ``1,2 – 1,5
@@ -74,6 +74,14 @@ def packed_value(value: str) -> bool:
     return False
 
 
+def note_words(value: str) -> frozenset[str]:
+    """The folded words of the brackets after a value's figures (``160 x 680 x 440 mm [Eigenmessung]``:
+    ``{"eigenmessung"}``), what the store says of how or what it measured."""
+    if len(value) > 200:
+        return frozenset()
+    return frozenset(w for m in _VALUE_BRACKET.finditer(value) for w in re.split(r"[\W_]+", fold(m.group(1))) if w)
+
+
 #: ``(Body Only)``, ``(nur Gehäuse)``, ``(boîtier seul)``, ``(solo cuerpo)``: a bracket after the value
 #: restricting it to one part of what is sold, the part named in one to three words beside an "only" word.
 _ONLY_WORDS = "only nur seul seule seulement uniquement solo sólo solamente soltanto apenas somente só tylko alleen"
@@ -117,6 +125,57 @@ def keyed_variant(value: str) -> bool:
         return False
     words = [w for w in re.split(r"[\W_]+", fold(key)) if w]
     return not all(w in QUALIFIERS or w in OVERALL or w in BODY_WORDS for w in words)
+
+
+#: Words before a labelled value's first figure from which the value is a sentence, not the field's value.
+PROSE_WORDS = 4
+_WORD = re.compile(r"[^\W\d_]+")
+
+
+def sentence_value(value: str) -> bool:
+    """Whether a labelled value is a sentence under the label (a photo caption under ``Dimensions``: ``The
+    keyboard is placed on a 900 x 400 mm desk pad``), not the field's value: :data:`PROSE_WORDS` or more words
+    before its first figure, with no colon among them (a sub-label: ``Set Size(WXDXH) with Stand: 923``) and
+    not themselves a measurement label (``Breite x Höhe x Tiefe 30 x 20 x 10``)."""
+    m = re.search(r"\d", value)
+    if m is None or re.search(r"[:：]", value[: m.start()]):
+        return False
+    head = value[: m.start()]
+    if len(_WORD.findall(head)) < PROSE_WORDS:
+        return False
+    return classify_label(head) is None and classify_other(head) is None
+
+
+_BOUND = re.compile(r"\s*(?:[<>≤≥＜＞≦≧]|&lt;|&gt;)\s*=?\s*\d")
+
+
+def bound_value(value: str) -> bool:
+    """Whether a measured value is a bound, written with a comparison sign before its figure (``<5ft
+    (152cm)``, ``> 30 cm``, ``≤ 2 kg``): a limit or a range's end (a review form's height brackets), not a
+    measurement of the product."""
+    return _BOUND.match(value) is not None
+
+
+_OUNCES = re.compile(r"\d\s*(?:oz|ounces?)\b\.?", re.IGNORECASE)
+_VOLUME = re.compile(r"\d\s*(?:ml|cl|dl|l|liters?|litres?)\b", re.IGNORECASE)
+
+
+def fluid_ounces(value: str) -> bool:
+    """Whether a value's ounces are a volume: written beside a volume (``4oz / 118ml / X Small``, a cup's
+    capacity; ``12 fl oz``), not a weight."""
+    return re.search(r"\bfl\.?\s*oz\b", value, re.IGNORECASE) is not None or (
+        _OUNCES.search(value) is not None and _VOLUME.search(value) is not None
+    )
+
+
+def branded_part(value: str) -> str | None:
+    """The branded thing a measured value names before its figure (``Thickness: Vibram® 5mm``: the sole, a
+    maker's part or material named by its trademark), else None: a value naming a trademarked component
+    measures that component, not the product (a product's own name is its title, not its value)."""
+    m = re.search(r"\d", value)
+    head = value[: m.start()] if m else ""
+    found = re.search(r"([^\W\d_][\w-]*)\s*[®™]", head)
+    return found.group(1) if found else None
 
 
 _ONE = r"(?<![\d.,])1(?:[.,]0+)?(?:\s*[^\W\d_]{0,6}\.?|\s*[\"'″])?\s*"

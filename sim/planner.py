@@ -24,37 +24,34 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import Any
 
 from kb.features import ObjectRecord
 from sim.grasp_rules import HEAVY_MASS_G, candidates
 from sim.grasps import (
-    BALL_MAX_ONE_HAND_CM,
     FINGER_LEAD_PARAM,
     GRASP_TYPES,
     HAND_MAX_APERTURE_CM,
     GraspPlan,
-    drapes,
-    edge_depth_cm,
     edge_grip_in_cm,
-    edge_lever_lead_cm,
-    edge_overhang_cm,
-    is_flat_grasp,
-    sheet_held_cm,
     side_force_capacity,
 )
 from sim.grip_force import (
-    BALL_FINGER_CONTACT_DEG,
     EDGE_PAD_LEVER_CM,
     GRAVITY,
     MIN_GRIP_FORCE_N,
     SAFETY_FACTOR,
-    WRAP_REACH_CM,
-    ball_over_top_force,
     edge_grip_force,
     required_grip_force,
-    wrap_moment_force,
+)
+from sim.plan_context import (
+    PlanContext,
+    edge_params,
+    lever_params,
+    plan_context,
+    planned_force,
+    round_across_params,
+    sheet_params,
 )
 from sim.planned_object import DEFAULTS, PlannedObject, resolve_features
 from sim.programs import HandProgram, program_for
@@ -80,8 +77,6 @@ __all__ = [
 #: Stored with every validation result; bump when the rules change what they choose.
 PLANNER_VERSION = "15"  # 15: a flat object laid by its length across the edge gets fingers by its width; 14: a squeezable deep object's side wrap squeezed for half the friction lever; 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
-#: Feix et al. 2014: 96 % of grasp locations are 7 cm wide or less; beyond this the hand wraps or spans.
-TYPICAL_MAX_WIDTH_CM = 7.0
 #: Fingertip grasps open at least this much wider than the object (cm): people's maximum grip aperture
 #: during the reach exceeds the object by a few centimetres (Jeannerod 1984, "The timing of natural
 #: prehension movements"). 1 cm left the pads' capsules brushing round objects and boxes on the way down
@@ -119,100 +114,8 @@ def _aperture(grasp_type: str, width_cm: float) -> float:
     return round(min(HAND_MAX_APERTURE_CM, opening_needed(grasp_type, width_cm)), 2)
 
 
-@dataclass(frozen=True)
-class _Context:
-    """What every candidate of one object shares: the object, its width notes and its two force bounds."""
-
-    o: PlannedObject
-    feasible: bool
-    notes: tuple[str, ...]
-    base_force: float
-    edge_force: float
-    wrap_force: float
-    ball_force: float = 0.0  # a wrap from above of a ball wider than the span, held over its top
-
-
-def _over_top_ball_force(o: PlannedObject) -> float | None:
-    """The squeeze of a wrap from above holding ``o`` over its top (sim/grip_force.py ball_over_top_force)
-    when it is a ball (a sphere body) wider than the hand's span and at most :data:`BALL_MAX_ONE_HAND_CM`,
-    whose friction lets a squeeze lift it; else None."""
-    if not HAND_MAX_APERTURE_CM < o.c_cm <= BALL_MAX_ONE_HAND_CM or o.shape != "radial":
-        return None
-    if o.body().form != "sphere":
-        return None
-    return ball_over_top_force(o.mass_g, o.friction, o.fragility)
-
-
-def _context(o: PlannedObject) -> _Context:
-    """Feasibility of a one-hand grasp across ``c``, the notes it gives, and the force bounds."""
-    width = o.c_cm
-    notes = list(o.assumptions)
-    ball_force = _over_top_ball_force(o)
-    feasible = width <= HAND_MAX_APERTURE_CM or ball_force is not None
-    if ball_force is not None:
-        notes.append(
-            f"a ball wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span (up to {BALL_MAX_ONE_HAND_CM:g} cm): "
-            "held from above over its top, the thumb at its near side, the fingers curled over its far side"
-        )
-    if not feasible:
-        notes.append(
-            f"every side is wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span (smallest {width:g} cm): "
-            "needs two hands; the best one-hand option is listed but flagged infeasible"
-        )
-    elif width > TYPICAL_MAX_WIDTH_CM:
-        notes.append(
-            f"grasped width {width:g} cm is over 7 cm, wider than 96 % of human grasp locations (Feix 2014)"
-        )
-    base_force = required_grip_force(o.mass_g, o.friction, o.fragility)
-    flat = is_flat_grasp(o.c_cm, o.b_cm)  # across the table edge: its middle side, or its length (a key)
-    edge_force = edge_grip_force(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), o.fragility) if flat else 0.0
-    # A side wrap of a deep object (not a flat one: that is taken at a table edge) holds the weight's moment.
-    wrap_force = 0.0 if edge_force else wrap_moment_force(
-        o.mass_g, o.b_cm, o.friction, o.fragility, squeezable=o.rigidity == "squeezable"
-    )
-    return _Context(o, feasible, tuple(notes), base_force, edge_force, wrap_force, ball_force or 0.0)
-
-
-def _planned_force(ctx: _Context, program: HandProgram, rationale: list[str]) -> tuple[float, float]:
-    """The squeeze to plan (before the capacity check), with the rationale lines that explain it, and the
-    squeeze the ranking judges: without the side wrap's moment term, which only wraps are given (a pinch
-    from above hangs the weight under the grip), so that a heavy deep object's wraps are not ranked below
-    grasps whose moment was never counted."""
-    o = ctx.o
-    force = ctx.base_force
-    if o.rigidity == "squeezable":
-        force = round(max(MIN_GRIP_FORCE_N, force * 0.8), 2)
-        rationale.append("squeezable: a softer grip (it deforms to the fingers, more contact area)")
-    if ctx.edge_force > force:
-        force = ctx.edge_force
-        depth = edge_depth_cm(o.a_cm, o.b_cm)
-        rationale.append(
-            f"flat: picked up at its edge, the pads {edge_grip_in_cm(depth):.3g} cm in and its centre of mass "
-            f"{depth / 2:.3g} cm in; the squeeze must hold the moment of its weight: {ctx.edge_force:g} N"
-        )
-    if program.control == "wrap" and program.approach == "top" and ctx.ball_force > force:
-        force = ctx.ball_force
-        rationale.append(
-            f"over its top: the fingers press {BALL_FINGER_CONTACT_DEG:g} deg above its far equator, pushing it "
-            f"down, and the thumb at its near one; the squeeze must carry its weight at both friction limits: "
-            f"{ctx.ball_force:g} N"
-        )
-    ranked = force
-    if program.control == "wrap" and program.approach == "side" and ctx.wrap_force > force:
-        force = ctx.wrap_force
-        rationale.append(
-            f"deep: {o.b_cm:g} cm along the approach, its centre of mass beyond the wrap's {WRAP_REACH_CM:g} cm; "
-            f"the squeeze must hold the moment of its weight: {ctx.wrap_force:g} N"
-        )
-    rationale.append(
-        f"grip {force:g} N = m g SF / (2 mu) with m = {o.mass_g:.0f} g, mu = {o.friction:g} ({o.material or 'unknown'}, "
-        f"{o.texture or 'unknown'} texture), SF = {SAFETY_FACTOR.get(o.fragility, 2.4):g} ({o.fragility})"
-    )
-    return force, ranked
-
-
 def _plan(
-    ctx: _Context, rank: int, grasp_type: str, reason: str, program: HandProgram, hold: dict[str, Any] | None = None
+    ctx: PlanContext, rank: int, grasp_type: str, reason: str, program: HandProgram, hold: dict[str, Any] | None = None
 ) -> GraspPlan:
     """One candidate as a plan: its score from its rank, force and feasibility, and why. ``hold``: the plan
     params of a grasp of a part (a handle: its ``width_cm`` replaces the object's smallest side)."""
@@ -231,7 +134,7 @@ def _plan(
     # _rank_key (fit, then force, then rule order), which the ranking itself uses.
     score = max(0.5, 1.0 - 0.2 * rank)
     capacity = side_force_capacity(grasp_type)
-    force, _ranked = _planned_force(ctx, program, rationale)
+    force, _ranked = planned_force(ctx, program, rationale)
     needed = force
     force_ok = force <= capacity
     if not force_ok:
@@ -246,7 +149,7 @@ def _plan(
             f"aperture: needs a {opening:g} cm opening round {width:g} cm, more than the hand's "
             f"{HAND_MAX_APERTURE_CM:g} cm: ranked down"
         )
-    lever = _lever(ctx, program, hold, force_ok, force)
+    lever = lever_params(ctx, program, hold, force_ok, force)
     if lever:
         rationale.append(
             f"lever: the finger pads {lever[FINGER_LEAD_PARAM]:g} cm deeper under it than the thumb on top, so "
@@ -276,75 +179,16 @@ def _plan(
             "assumed_mass_g": round(o.mass_g, 1),
             "planner_version": PLANNER_VERSION,
             "program": program.name,
-            **_round_across(o, hold),
-            **_sheet(ctx, hold),
-            **_edge(ctx, hold),
+            **round_across_params(o, hold),
+            **sheet_params(ctx, hold),
+            **edge_params(ctx, hold),
             **lever,
             **{k: v for k, v in (hold or {}).items() if k not in ("grasped_dim", "approach")},
         },
     )
 
 
-def _round_across(o: PlannedObject, hold: dict[str, Any] | None) -> dict[str, float]:
-    """``{"round_across_cm": diameter}`` when the grasped side is round (a cylinder lying on its side,
-    grasped across its diameter: a battery, a marker), else {}; sim/diagnosis.py reads it to tell a rod
-    pressed into the table from a slip (grasp-small)."""
-    if hold:
-        return {}
-    body = o.body()
-    if body.form != "cylinder" or "c" not in body.round_dims:
-        return {}
-    return {"round_across_cm": round(o.c_cm, 3)}
-
-
-def _sheet(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
-    """For a floppy sheet the trial drapes (sim/sheet.py ``is_sheet``: floppy, flat at a table edge, a plain
-    box body): the held strip's depth behind the edge, where the pads press, and the grams that hang from
-    it; sim/diagnosis.py reads them instead of the rigid plate's edge moment (grasp-small)."""
-    o = ctx.o
-    if hold or not ctx.edge_force or not drapes(o.rigidity, o.material):
-        return {}
-    body = o.body()
-    if not (len(body.parts) == 1 and body.parts[0].geom == "box"):
-        return {}
-    depth = edge_depth_cm(o.a_cm, o.b_cm)
-    held = sheet_held_cm(depth, edge_overhang_cm(depth))
-    return {
-        "sheet_held_cm": round(held, 3),
-        "sheet_grip_in_cm": round(edge_grip_in_cm(depth), 3),
-        "sheet_hanging_g": round(o.mass_g * (depth - held) / depth, 1),
-    }
-
-
-def _edge(ctx: _Context, hold: dict[str, Any] | None) -> dict[str, float]:
-    """For a flat object picked up at a table edge (rule 3): the depth that lies across the edge, how far it
-    overhangs and how far in from its rim the pads press (sim/grasps.py, the trial's geometry);
-    sim/diagnosis.py reads them to say why a pinch there closed without holding a coin (grasp-odd)."""
-    o = ctx.o
-    if hold or not ctx.edge_force:
-        return {}
-    depth = edge_depth_cm(o.a_cm, o.b_cm)
-    return {
-        "edge_depth_cm": round(depth, 3),
-        "edge_overhang_cm": round(edge_overhang_cm(depth), 3),
-        "edge_grip_in_cm": round(edge_grip_in_cm(depth), 3),
-    }
-
-
-def _lever(
-    ctx: _Context, program: HandProgram, hold: dict[str, Any] | None, force_ok: bool, squeeze: float
-) -> dict[str, float]:
-    """An edge lever hold (rule 3): a pinch of a rigid flat object whose moment at the table edge needs more
-    than the pinch can squeeze (the pads at one depth carry it only by their patches, ``2 F r``) puts the
-    finger pads under it deeper than the thumb on top, by the lead whose couple ``F L`` carries that moment
-    at the planned squeeze (sim/grasps.py ``edge_lever_lead_cm``; sim/hand.py extends the fingers)."""
-    o = ctx.o
-    if hold or force_ok or not ctx.edge_force or program.control != "pinch" or drapes(o.rigidity, o.material):
-        return {}
-    return {FINGER_LEAD_PARAM: edge_lever_lead_cm(o.mass_g, edge_depth_cm(o.a_cm, o.b_cm), squeeze)}
-
-
-def _handle_hold(ctx: _Context) -> dict[str, Any] | None:
+def _handle_hold(ctx: PlanContext) -> dict[str, Any] | None:
     """The hold params of a pan's handle (the one the simulator builds, sim/bodies.py), or None when the
     object's kind has no long handle. A loop handle (mug, pitcher) is not held: this hand's fingers cannot
     pass through the loop without abduction (PHYSICS.md), and its body is wrapped instead."""
@@ -374,10 +218,10 @@ def _handle_noun(o: PlannedObject) -> str:
     return style[1] if style else "long-handled object"
 
 
-def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
+def _handle_plan(ctx: PlanContext, hold: dict[str, Any]) -> GraspPlan:
     """The handle hold as a plan: the friction bound on the handle, not the body's edge or wrap moment
     (the pan hangs under the wrap; the trial's pushes test the moment)."""
-    hctx = _Context(ctx.o, True, ctx.notes, ctx.base_force, 0.0, 0.0)
+    hctx = PlanContext(ctx.o, True, ctx.notes, ctx.base_force, 0.0, 0.0)
     where = "at its middle, nearer its heavy end (it is heavy)" if hold["handle_grip"] == "middle" else "near its end"
     reason = (
         f"a {_handle_noun(ctx.o)}: held by its handle ({hold['width_cm']:g} cm wide) {where}, in a small-diameter "
@@ -398,7 +242,7 @@ def _handle_plan(ctx: _Context, hold: dict[str, Any]) -> GraspPlan:
     return dataclasses.replace(plan, grip_force_n=capacity, rationale=(*plan.rationale, line))
 
 
-def _brim_plan(ctx: _Context) -> GraspPlan | None:
+def _brim_plan(ctx: PlanContext) -> GraspPlan | None:
     """A peaked cap (sim/bodies.py ``peaked``) is picked up by its brim, a thin plate: thumb on top, four
     fingers under it, at a table edge like any flat object (rule 3). The crown hangs beyond the pads, so the
     squeeze must hold its weight's moment about them: ``F = SF m g d / (2 r)``, ``d`` from the pads to the
@@ -422,7 +266,7 @@ def _brim_plan(ctx: _Context) -> GraspPlan | None:
         f"a peaked cap: pinched by its brim ({hold['width_cm']:g} cm thin plate), thumb on top and four fingers "
         "under it, as people pick a cap up by the peak"
     )
-    plan = _plan(_Context(o, True, o.assumptions, ctx.base_force, 0.0, 0.0), 0, BRIM_GRASP, reason,
+    plan = _plan(PlanContext(o, True, o.assumptions, ctx.base_force, 0.0, 0.0), 0, BRIM_GRASP, reason,
                  program_for(BRIM_GRASP), hold)  # fmt: skip
     if moment <= plan.grip_force_n:
         return plan
@@ -452,7 +296,7 @@ def plan_grasps(
     sim.experience ``Experience``) may move a later one of the first three to the front, where the trials
     of its object class say so; None keeps the rules' order.
     """
-    ctx = _context(resolve_features(obj))
+    ctx = plan_context(resolve_features(obj))
     hold = _handle_hold(ctx)
     brim = _brim_plan(ctx)
     plans: list[GraspPlan] = [_handle_plan(ctx, hold)] if hold else [brim] if brim else []

@@ -208,23 +208,43 @@ def write_report(
 ) -> Path:
     """Write ``index.html``, plots, ``results.json`` and ``results.csv`` into ``out_dir``; return the
     path of ``index.html``. ``results`` are result rows (see the module docstring)."""
+    from sim.choice import choose, summarize_choices
+
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    rows = [_normalise(r) for r in results]
-    rows.sort(
-        key=lambda r: (
-            str(r.get("object_name")),
-            r.get("rank") or 0,
-            str(r.get("grasp_type")),
-            r.get("seed") or 0,
-        )
+    rows = sorted(
+        (_normalise(r) for r in results),
+        key=lambda r: (str(r.get("object_name")), r.get("rank") or 0, str(r.get("grasp_type")), r.get("seed") or 0),
     )
     total = len(rows)
     counts = {k: sum(r["outcome"] == k for r in rows) for k in ("success", "failure", "error")}
-    setup = sum(r["outcome"] == "failure" and is_setup_failure(r) for r in rows)  # counted apart
     objects = len({r.get("object_name") for r in rows})
     rates = {key: success_rates(rows, key) for key, _ in _GROUPS}
+    generated = now().strftime("%Y-%m-%d %H:%M UTC")
+    protocols = sorted({str(r["protocol"]) for r in rows})
+    rate = counts["success"] / total if total else 0.0
+    choices = choose(rows)
+    chosen = summarize_choices(choices)
+    template = Template(resources.files("sim").joinpath("templates/report.html").read_text(encoding="utf-8"))
+    page = template.substitute(
+        meta=_e(" \u00b7 ".join(_meta_bits(rows, generated, protocols, title_meta))),
+        cards=_cards(rows, counts, chosen, objects, rate),
+        plots="\n".join(_plots(rates, out)) or "<p>No trials.</p>",
+        rate_tables="\n".join(_rate_table(rates[key], key, label) for key, label in _GROUPS),
+        gallery=_gallery(rows, out, choices),
+        rows="\n".join(_row_html(r) for r in rows),
+    )
+    index = out / "index.html"
+    index.write_text(page, encoding="utf-8")
+    summary = {"generated": generated, "objects": objects, "trials": total, **counts,
+               "success_rate": round(rate, 4), "protocols": protocols, "choices": chosen.to_dict()}  # fmt: skip
+    doc = {"summary": summary, "rates": rates, "choices": [c.to_dict() for c in choices], "results": rows}
+    _write_data(out, doc, rows)
+    return index
 
+
+def _plots(rates: Mapping[str, Any], out: Path) -> list[str]:
+    """One success-rate plot per group that has trials, written into ``out``; their ``<img>`` tags."""
     plots = []
     for key, label in _GROUPS:
         if not rates[key]:
@@ -232,29 +252,34 @@ def write_report(
         name = f"rates_by_{key}.png"
         _plot(rates[key], key, label, out / name)
         plots.append(f"<img src='{name}' alt='success rate by {_e(label)}'>")
+    return plots
 
-    generated = now().strftime("%Y-%m-%d %H:%M UTC")
+
+def _meta_bits(
+    rows: list[dict[str, Any]], generated: str, protocols: list[str], title_meta: Mapping[str, Any] | None
+) -> list[str]:
+    """The report's header line: when, how many, the success rule judged by, simulator, hand, the caller's."""
+    objects = len({r.get("object_name") for r in rows})
     versions = sorted({str(r.get("hand_version")) for r in rows if r.get("hand_version")})
     sims = sorted({str(r.get("simulator")) for r in rows if r.get("simulator")})
-    meta_bits = [f"generated {generated}", f"{objects} objects, {total} trials"]
-    protocols = sorted({str(r["protocol"]) for r in rows})
-    meta_bits.append("protocol " + (", ".join(protocols) or DEFAULT_PROTOCOL))  # the success rule judged by
+    bits = [f"generated {generated}", f"{objects} objects, {len(rows)} trials"]
+    bits.append("protocol " + (", ".join(protocols) or DEFAULT_PROTOCOL))
     if sims:
-        meta_bits.append("simulator " + ", ".join(sims))
+        bits.append("simulator " + ", ".join(sims))
     if versions:
-        meta_bits.append("hand " + ", ".join(versions))
-    for k, v in (title_meta or {}).items():
-        meta_bits.append(f"{k} {v}")
-    rate = counts["success"] / total if total else 0.0
-    from sim.choice import choose, summarize_choices
+        bits.append("hand " + ", ".join(versions))
+    bits += [f"{k} {v}" for k, v in (title_meta or {}).items()]
+    return bits
 
-    choices = choose(rows)
-    chosen = summarize_choices(choices)
-    cards = "".join(
+
+def _cards(rows: list[dict[str, Any]], counts: Mapping[str, int], chosen: Any, objects: int, rate: float) -> str:
+    """The summary cards: counts of trials by outcome (setup failures apart) and of objects by choice."""
+    setup = sum(r["outcome"] == "failure" and is_setup_failure(r) for r in rows)  # counted apart
+    return "".join(
         f"<div class='card'>{_e(label)}<b>{_e(value)}</b></div>"
         for label, value in (
             ("objects", objects),
-            ("trials", total),
+            ("trials", len(rows)),
             ("success", counts["success"]),
             ("grasp failure", counts["failure"] - setup),
             ("setup failure (aperture)", setup),
@@ -265,34 +290,13 @@ def write_report(
             ("validated differs from first", chosen.differs),
         )
     )
-    template = Template(resources.files("sim").joinpath("templates/report.html").read_text(encoding="utf-8"))
-    page = template.substitute(
-        meta=_e(" \u00b7 ".join(meta_bits)),
-        cards=cards,
-        plots="\n".join(plots) or "<p>No trials.</p>",
-        rate_tables="\n".join(_rate_table(rates[key], key, label) for key, label in _GROUPS),
-        gallery=_gallery(rows, out, choices),
-        rows="\n".join(_row_html(r) for r in rows),
-    )
-    index = out / "index.html"
-    index.write_text(page, encoding="utf-8")
 
-    summary = {
-        "generated": generated,
-        "objects": objects,
-        "trials": total,
-        **counts,
-        "success_rate": round(rate, 4),
-        "protocols": protocols,
-        "choices": chosen.to_dict(),
-    }
-    doc = {"summary": summary, "rates": rates, "choices": [c.to_dict() for c in choices], "results": rows}
-    (out / "results.json").write_text(
-        json.dumps(to_jsonable(doc), ensure_ascii=False, indent=1), encoding="utf-8"
-    )
+
+def _write_data(out: Path, doc: Mapping[str, Any], rows: list[dict[str, Any]]) -> None:
+    """``results.json`` (the whole document) and ``results.csv`` (a row per trial) beside the page."""
+    (out / "results.json").write_text(json.dumps(to_jsonable(doc), ensure_ascii=False, indent=1), encoding="utf-8")
     with (out / "results.csv").open("w", newline="", encoding="utf-8") as fh:
         writer = csv.DictWriter(fh, fieldnames=CSV_FIELDS, extrasaction="ignore")
         writer.writeheader()
         for r in rows:
             writer.writerow({k: _csv_cell(r.get(k)) for k in CSV_FIELDS})
-    return index

@@ -7,9 +7,16 @@ import numpy as np
 import pytest
 
 from kb.catalog import ObjectRecord
-from recall.alternatives import SHAPE_ALTERNATIVES, alternatives, mixed_materials, with_alternatives
+from recall.alternatives import (
+    FINISH_WORDS,
+    SHAPE_ALTERNATIVES,
+    alternatives,
+    finish_word,
+    mixed_materials,
+    with_alternatives,
+)
 from recall.engine import Recaller
-from recall.lexicon import SHAPE_WORDS
+from recall.lexicon import MATERIAL_WORDS, SHAPE_WORDS
 from recall.metrics import LN2, MISMATCH_TERM, FeatureQuery
 from recall.parser import parse
 
@@ -215,3 +222,39 @@ def test_alternatives_search_the_union_of_the_variants_and_equal_a_full_scan(tex
 def test_curved_is_a_vague_long_shape_that_a_geometric_word_beats():
     assert parse("curved and soft, about 7.5 inches long").values()["shape"] == "long"
     assert parse("a curved cylindrical thing").values()["shape"] == "prism"  # priority 3 wins
+
+
+@pytest.mark.parametrize(
+    ("text", "word"),
+    [
+        ("a copper lamp shade, 45 cm across", "copper"),
+        ("a chrome desk lamp", "chrome"),
+        ("a silver laptop, 1.3 kg", "silver"),
+        ("Solid brass padlock, 6 cm tall", "brass"),
+        ("a chrome steel bowl", None),  # steel names the material
+        ("a copper and steel pan", None),  # a mixed material, either a match
+        ("a metallic copper kettle", None),  # stated by "metallic"
+        ("a steel padlock", None),
+    ],
+)
+def test_a_finish_word_is_the_material_only_when_every_material_word_is_one(text, word):
+    assert finish_word(parse(text)) == word
+    assert FINISH_WORDS <= set(MATERIAL_WORDS)
+
+
+def test_a_finish_word_makes_its_metal_a_match_and_another_material_half_a_mismatch():
+    res = _recaller().recall_text("a copper thing, 6 cm long, 300 g", top=5)
+    m = _by_name(res)
+    assert "material" not in res.query["values"]
+    assert m["steel bar"].vague_part == pytest.approx(0.0)
+    assert m["glass thing"].vague_part == pytest.approx(LN2)  # half a mismatch, not 2 ln 2
+    assert m["mystery lump"].vague_part == pytest.approx(LN2)
+    parsed = parse("a copper thing, 6 cm long, 300 g")
+    query = FeatureQuery.from_parsed(parsed)
+    r = _recaller()
+    _, soft = with_alternatives(query, None, alternatives(query, parsed), r.snapshot.cat_cols)
+    names = list(r.snapshot.names)
+    assert soft.errors_of(names.index("steel padlock")) == {"material": 0.0}
+    assert soft.errors_of(names.index("glass thing")) == {"material": pytest.approx(0.5)}
+    # a plain metal word stays in the JP query: another material pays the whole mismatch there
+    assert _recaller().recall_text("a steel thing, 6 cm long, 300 g").query["values"]["material"] == "metal"

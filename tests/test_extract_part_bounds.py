@@ -73,7 +73,7 @@ def test_one_bound_or_a_parts_bounds_are_not_the_products(rows):
     assert record.dims_cm == (62.0, 60.0)
 
 
-# --- lengths written with no unit anywhere (scrapers/adapters/spec_table.unitless_millimetres) -------------
+# --- lengths written with no unit anywhere (scrapers/unitless.py) -------------
 
 
 def _de(rows: str):

@@ -270,11 +270,11 @@ def test_a_unitless_value_with_no_unit_anywhere_is_refused_with_the_reason():
 
     with pytest.raises(ExtractionError, match="no unit stated"):
         _tv("<h3>Dimensions</h3><ul><li>Width: 92</li><li>Depth: 25</li><li>Weight: 19.4</li></ul>")
-    # lengths over the cm limit in cm are millimetres (spec_table.unitless_millimetres); a weight stays unread
+    # lengths over the cm limit in cm are millimetres (scrapers/unitless.py), and that sheet's bare weight kg
     record = _tv("<h3>Dimensions</h3><ul><li>Width: 923</li><li>Depth: 253</li><li>Weight: 19.4</li></ul>")
-    assert record.dims_cm == (92.3, 25.3) and record.mass_g is None
+    assert record.dims_cm == (92.3, 25.3) and record.mass_g == 19400.0
     assert any("read as millimetres" in w for w in record.warnings)
-    assert any("no unit stated" in w and "19.4" in w for w in record.warnings)
+    assert any("read as kilograms" in w for w in record.warnings)
 
 
 def test_a_headings_unit_reaches_only_its_own_block():

@@ -5,7 +5,15 @@ import math
 
 import pytest
 
-from recall.fit import DISAGREE_FACTOR, THRESHOLDS, Trust, disagreeing_features, judge
+from recall.fit import (
+    DISAGREE_FACTOR,
+    NAMED_DISAGREE_FACTOR,
+    THRESHOLDS,
+    Trust,
+    disagree_factor,
+    disagreeing_features,
+    judge,
+)
 from recall.metrics import relative_errors
 
 
@@ -35,9 +43,24 @@ def test_a_feature_off_by_the_factor_disagrees_whatever_the_mean():
     limit = 1.0 - 1.0 / DISAGREE_FACTOR  # 4x off: d / max(v, x) = 0.75
     assert disagreeing_features({"mass_g": limit}) == ("mass_g",)
     assert disagreeing_features({"mass_g": limit - 1e-3}) == ()
-    fit = judge(0.1, {"mass_g": limit, "a_cm": 0.0}, Trust.NAMED)  # mean well under every threshold
+    fit = judge(0.1, {"mass_g": limit, "a_cm": 0.0}, Trust.PLAIN)  # mean well under every threshold
     assert not fit.close and "mass 4x off" in fit.reason and fit.score > 1.0
-    assert judge(0.1, {"mass_g": limit - 1e-3, "a_cm": 0.0}, Trust.NAMED).close
+    assert judge(0.1, {"mass_g": limit - 1e-3, "a_cm": 0.0}, Trust.PLAIN).close
+
+
+@pytest.mark.parametrize("trust", [Trust.PLAIN, Trust.DOUBTED])
+def test_a_name_widens_the_disagreement_by_the_thresholds_ratio(trust):
+    """Named: 6x (4 x 0.45 / 0.30); a value 5x off a named object fits, the same value off an unnamed one
+    does not; 6x off a named one never fits."""
+    assert NAMED_DISAGREE_FACTOR == pytest.approx(DISAGREE_FACTOR * THRESHOLDS[Trust.NAMED] / THRESHOLDS[Trust.PLAIN])
+    assert disagree_factor(Trust.NAMED) == NAMED_DISAGREE_FACTOR and disagree_factor(trust) == DISAGREE_FACTOR
+    named_limit = 1.0 - 1.0 / NAMED_DISAGREE_FACTOR
+    five = 1.0 - 1.0 / 5.0
+    assert judge(0.1, {"mass_g": five, "a_cm": 0.0}, Trust.NAMED).close
+    assert not judge(0.1, {"mass_g": five, "a_cm": 0.0}, trust).close
+    at = judge(0.1, {"mass_g": named_limit, "a_cm": 0.0}, Trust.NAMED)
+    assert not at.close and "mass 6x off (at most 6x)" in at.reason
+    assert judge(0.1, {"mass_g": named_limit - 1e-3, "a_cm": 0.0}, Trust.NAMED).close
 
 
 def test_categorical_errors_never_disagree():

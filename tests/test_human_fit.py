@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from sim import human_fit
+from sim import family_models, human_fit
 from sim.grasps import FAMILIES
 from sim.human_families import YALE_DEV_CSV, YaleObject, planner_features, read_yale_families
 from sim.human_fit import (
@@ -90,10 +90,10 @@ def test_soft_training_weighs_every_recorded_family_but_scores_the_majority():
     x = np.zeros((12, 2))
     y = np.array([0] * 7 + [2] * 5)
     shares = np.array([[0.55, 0.0, 0.45]] * 7 + [[0.0, 0.0, 1.0]] * 5)
-    hard = human_fit._fit(Candidate("logistic", "planner", 1.0), x, y, shares)
-    soft = human_fit._fit(Candidate("logistic", "planner", 1.0, soft=True), x, y, shares)
+    hard = family_models.fit_candidate(Candidate("logistic", "planner", 1.0), x, y, shares)
+    soft = family_models.fit_candidate(Candidate("logistic", "planner", 1.0, soft=True), x, y, shares)
     assert hard.predict(x[:1])[0] == 0 and soft.predict(x[:1])[0] == 2
-    tree = human_fit._fit(Candidate("tree", "planner", 2, leaf=3, soft=True), x, y, shares)
+    tree = family_models.fit_candidate(Candidate("tree", "planner", 2, leaf=3, soft=True), x, y, shares)
     assert tree.predict(x[:1])[0] == 2
 
 
@@ -227,4 +227,4 @@ def test_neighbours_vote_as_scikit_learns_brute_force_search(seed, k, distance):
     x, y, q = rng.normal(size=(30, 3)), rng.integers(0, 3, 30), rng.normal(size=(6, 3))
     weights = "distance" if distance else "uniform"
     theirs = KNeighborsClassifier(k, weights=weights, algorithm="brute").fit(x, y).predict(q)
-    assert (human_fit._Neighbours(k, distance).fit(x, y).predict(q) == theirs).all()
+    assert (family_models._Neighbours(k, distance).fit(x, y).predict(q) == theirs).all()

@@ -75,6 +75,24 @@ def test_the_store_sells_only_pages_that_state_a_size_or_mass_and_finds_them_by_
 
 
 @needs_corpus
+def test_the_stores_results_come_ten_a_page_with_a_next_link_while_more_follow(store):
+    from scrapers.corpus_store import RESULTS_SHOWN
+    from scrapers.store_search import parse_search_page
+
+    hits = search(store.items, "monitor")
+    assert len(hits) > RESULTS_SHOWN  # the corpus sells more monitors than one results page shows
+    (src,) = parse_sources(store.sources_toml()).stores
+    listed, url = [], store.base_url + "/search?q=monitor"
+    while url:
+        got = requests.get(url, timeout=5)
+        page = parse_search_page(got.content, got.url, got.headers["Content-Type"], src)
+        assert 0 < len(page.product_urls) <= RESULTS_SHOWN
+        listed += page.product_urls
+        url = page.next_url
+    assert listed == [store.base_url + it.path for it in hits]
+
+
+@needs_corpus
 @pytest.mark.parametrize("page_id", CLASSES)
 def test_a_described_product_the_catalog_lacks_ends_as_the_recalls_match(seeded, tmp_path, store, page_id):
     row = next(r for r in load_descriptions() if r["page"] == page_id)
@@ -176,6 +194,19 @@ def test_a_feature_the_page_does_not_state_does_not_make_another_product_closer(
     near = fits(text, ObjectRecord.create("kinis wall lamp", a_cm=25, b_cm=24, c_cm=18, material="metal"))
     assert exact[0] and near[0]  # both fit (the rule counts the unstated material as half an error) ...
     assert exact[2] < near[2]  # ... but the page stating exactly the sizes is the closer one
+
+
+def test_the_sizes_both_state_choose_among_fits_before_a_category():
+    # a 1.9x size miss hidden by a matching material no longer beats an exact size with a finish word's
+    # material (a copper-finish polycarbonate shade)
+    text = "a copper lamp shade, 45 cm across"
+    shade = fits(text, ObjectRecord.create("copper shade", a_cm=45, b_cm=45, material="plastic"))
+    lamp = fits(text, ObjectRecord.create("kinis wall lamp", a_cm=25, b_cm=24, c_cm=18, mass_g=400, material="metal"))
+    assert shade[0] and lamp[0] and shade[2] == 0.0 < lamp[2]
+    # with no size or mass of both, the features the page states choose
+    plain = "a plastic lamp shade, 45 cm across"
+    assert fits(plain, ObjectRecord.create("shade", material="plastic"))[2] == 0.0
+    assert fits(plain, ObjectRecord.create("shade", material="glass"))[2] == 1.0
 
 
 # --- a person's name of a product ------------------------------------------------------------------------

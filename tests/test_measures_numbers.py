@@ -186,7 +186,7 @@ def test_both_sides_refuse_an_absurd_length_with_a_reason(value: float, word: st
     cm = parse_length(f"{format_decimal(value)} {word}")
     assert cm == pytest.approx(value * unit_table()[word].factor, rel=1e-6)
     page = check_dims([cm])
-    description = parse(f"a box {format_decimal(value)} {word} long")
+    description = parse(f"a box {format_decimal(value)} {word} tall")  # a length past 5 m: a long thing's
     if cm > MAX_DIM_CM:
         assert page is not None and "absurd" in page
         assert "a_cm" not in description.features and "absurd" in description.refused[0].reason
@@ -197,7 +197,10 @@ def test_both_sides_refuse_an_absurd_length_with_a_reason(value: float, word: st
 def test_the_limits_are_pinned_on_both_sides() -> None:
     assert check_dims([parse_length("500 cm")]) is None and parse("a pole 500 cm long").values()["a_cm"] == 500
     assert "absurd" in check_dims([parse_length("500.01 cm")])
-    assert "a_cm" not in parse("a pole 500.01 cm long").features
+    assert "a_cm" not in parse("a pole 500.01 cm wide").features
+    # a length in its own words up to 100 m is a long flexible thing's: at least the limit, no refusal
+    long = parse("a pole 500.01 cm long").features["a_cm"]
+    assert (long.value, long.qualifier) == (MAX_DIM_CM, "at_least")
     assert check_mass(parse_mass("500 kg")) is None and parse("it weighs 500 kg").values()["mass_g"] == MAX_MASS_G
     assert "absurd" in check_mass(parse_mass("500.001 kg"))
     assert "absurd" in parse("it weighs 500.001 kg").refused[0].reason

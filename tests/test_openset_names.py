@@ -208,3 +208,30 @@ def test_a_head_of_its_contents_names_the_catalog_name_of_contents_and_head():
     assert CONTENTS_WINDOW == 4  # the contents are the four words after "of"
     assert names.find("a bottle of one two three four mustard").phrases == ()
     assert names.find("a bottle of one two three mustard").phrases == ("mustard bottle",)
+
+
+def test_a_container_for_its_contents_names_the_compound_as_of_does():
+    """"<head> for <contents>" ("a caddy for cleaning supplies", "a brush for bottles") names "<contents>
+    <head>" as "of" does; another preposition does not."""
+    from recall.name_index import NameIndex
+
+    names = NameIndex(["cleaning supplies caddy", "bottle brush"], [(), ()])
+    assert set(names.find("a plastic caddy for cleaning supplies, 35 cm").exact) == {0}
+    assert names.find("a stiff brush for bottles, 30 cm").phrases == ("bottle brush",)
+    assert names.find("a stiff brush by bottles, 30 cm").phrases == ()  # heads only
+
+
+# ------------------------------------------------ a phrase after "with" names parts, not the object (issue 23)
+def test_head_nouns_after_with_name_no_object():
+    """"a garbage bin with lid": "lid" is what the bin has; it named the catalog's toilet lid, which the
+    features then ranked first. A head after "with" is no evidence; up to the next comma only, and a text that
+    starts with "with" keeps its heads (nothing else names the object)."""
+    from recall.name_index import NameIndex
+
+    names = NameIndex(["toilet lid", "trash can", "wiper handle"], [(), ("garbage bin",), ()])
+    found = names.find("kitchen garbage bin with lid, 60 cm tall")
+    assert set(found.exact) == {1} and "lid" not in found.heads and 0 not in found.head
+    assert 0 in names.find("kitchen garbage bin, a lid on top, 60 cm tall").head  # no "with": the lid's head
+    assert set(names.find("a caddy, with a handle, 35 cm").head) == set()
+    assert set(names.find("a caddy with a handle, a lid on top").head) == {0}  # the phrase ends at the comma
+    assert set(names.find("with a handle, 35 cm").head) == {2}  # nothing before "with"

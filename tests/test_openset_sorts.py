@@ -93,6 +93,21 @@ def test_a_noun_whose_english_name_is_a_catalog_objects_names_it():
     assert sort_of_catalog_object(frying_pan, set(), None) is None
 
 
+def test_a_catalog_object_called_by_a_kind_alone_holds_every_noun_of_that_kind():
+    """The Yale "furniture": a side table (kind furniture) is a sort of it; not a noun of another kind,
+    nor where the kind's name only heads a longer name ("garden furniture"), nor a kind no object is
+    called by alone."""
+    side_table = noun_in(["side", "table"])
+    assert side_table.kind == "furniture"
+    assert sort_of_catalog_object(side_table, {"furniture"}, _index(["furniture", "drawer"])) == "furniture"
+    assert sort_of_catalog_object(side_table, {"furniture"}, _index(["garden furniture"])) is None
+    assert sort_of_catalog_object(side_table, {"drawer"}, _index(["drawer"])) is None
+    hammer = noun_in(["hammer"])
+    assert hammer.kind != "furniture"
+    assert sort_of_catalog_object(hammer, {"furniture"}, _index(["furniture"])) is None
+    assert _index(["furniture", "cup", "small ball", "garden furniture"]).kind_named() == {"furniture", "cup"}
+
+
 # -------------------------------------------------------------------------------------- in the recall
 @pytest.mark.parametrize("text", [
     "a medium spring clamp, plastic, 11.5 by 9 by 2.7 cm, about 60 g",

@@ -158,9 +158,31 @@ def test_the_limit_itself_is_accepted(text: str, feature: str, value: float) -> 
     assert parse(text).refused == ()
 
 
-@pytest.mark.parametrize("text", ["500.0001 cm long", "5.00001 m long", "500.001 kg", "500000.1 g"])
+@pytest.mark.parametrize("text", ["500.0001 cm wide", "5.00001 m tall", "500.001 kg", "500000.1 g"])
 def test_just_past_the_limit_is_refused(text: str) -> None:
     assert _numbers(text) == {}
+    assert "absurd for a household object" in _refused(text)[0][1]
+
+
+# A length in its own words past 5 m, up to 100 m, is a long flexible thing's ("a garden hose, 50 feet
+# long"): read as at least the catalog's limit (recall.dimensions.MAX_STATED_LENGTH_CM).
+@pytest.mark.parametrize(
+    "text", ["500.0001 cm long", "5.00001 m long", "a garden hose, 50 feet long", "a rope, length 100 m"]
+)
+def test_a_length_past_the_limit_up_to_100_m_is_at_least_the_limit(text: str) -> None:
+    from recall.dimensions import MAX_STATED_LENGTH_CM
+
+    assert MAX_STATED_LENGTH_CM == 10_000.0
+    p = parse(text)
+    assert p.values()["a_cm"] == MAX_DIM_CM and p.features["a_cm"].qualifier == "at_least"
+    assert p.refused == ()
+
+
+@pytest.mark.parametrize(
+    "text", ["100.001 m long", "a ball 10 m wide", "a 15 m hose", "twenty times as long as it is wide, 30 cm wide"]
+)
+def test_past_100_m_another_extent_or_a_derived_length_is_still_refused(text: str) -> None:
+    assert not {"a_cm"} & set(_numbers(text))
     assert "absurd for a household object" in _refused(text)[0][1]
 
 

@@ -47,7 +47,8 @@ class Observation:
     #: Whose value it is: "product" (package values have ``package``), "shipping" (a shipment's: gross, the
     #: parcel), or "component" / "capacity" (a part's extent, a capacity or rating: proposed so the chooser
     #: can list it, never chosen), or "name" (a quantity written only in the product's name: used when no
-    #: other product value of that feature is stated).
+    #: other product value of that feature is stated), or "content" (a size row's net content, ``Size: 275g``:
+    #: used beside a "name" mass, never alone).
     role: str = "product"
     #: For a component's value, the part it names (``cable``), else None.
     part: str | None = None

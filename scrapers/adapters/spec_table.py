@@ -21,7 +21,7 @@ from scrapers.axis_rows import AXIS_GROUP_GAP, group_axes, whole_product_weights
 from scrapers.labels import AXES
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page
-from scrapers.pair_roles import adjustable_extents, only_part_pairs
+from scrapers.pair_roles import adjustable_extents, highest_settings, measured_packed, only_part_pairs
 from scrapers.quantities import (
     clean_text,
     mass_unit,
@@ -29,7 +29,6 @@ from scrapers.quantities import (
     parse_length,
     parse_length_range,
     parse_mass,
-    parse_number,
     third_axis,
 )
 from scrapers.sizes import AXIS_WORD_AFTER
@@ -42,13 +41,18 @@ from scrapers.spec_pairs import (
     pairs_from_lines,
     split_inline,
 )
+from scrapers.unitless import UNITLESS_LETTERED, unitless_millimetres
 from scrapers.value_forms import (
     NARROW_RANGE,
     axis_segments,
+    bound_value,
+    branded_part,
+    fluid_ounces,
     for_one_size,
     keyed_variant,
     one_length,
     packed_value,
+    sentence_value,
     written_value,
 )
 
@@ -66,7 +70,9 @@ def mass_unit_of_range(value: str, label_unit: str | None) -> bool:
 
 def _plausible_mass(value: str, unit: str | None, dc: bool | None) -> tuple[float | None, str | None]:
     """The mass in ``value``; when that reading is absurd and the other decimal-mark reading is not,
-    the other one, with a note."""
+    the other one, with a note. Ounces written beside a volume are a capacity, no mass (``4oz / 118ml``)."""
+    if fluid_ounces(value):
+        return None, None
     mass = parse_mass(value, unit, dc)
     if mass is not None and mass > MAX_MASS_G:
         retry = parse_mass(value, unit, not dc)
@@ -99,7 +105,7 @@ def observations_from_pairs(
                 kind, length, p, r, note = axes[-1]
                 axes[-1] = (kind, length, p, r, "; ".join(filter(None, [note, said])))
         unread = not found and len(axes) == n_axes
-        if unread and pair.info.role == "product" and _UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
+        if unread and pair.info.role == "product" and UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
             found = [Observation("warning", f"{pair.label}: {pair.value}: no unit stated (not in the value, "
                                  "its label or a heading above it); not used", order=pair.order)]
         if pair.info.shipping:
@@ -117,6 +123,9 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
     info = pair.info
     raw = f"{pair.label}: {pair.value}"[:200]
     package = pair.package or info.package or packed_value(pair.value)
+    if info.role == "product" and bound_value(pair.value):  # "Height: <5ft (152cm)": a limit, not a size
+        info = replace(info, role="capacity")
+        pair = replace(pair, info=info)
     value, written = written_value(pair.value)
     if value != pair.value:
         pair = replace(pair, value=value)
@@ -124,9 +133,15 @@ def _pair_observations(pair: Pair, decimal_comma: bool | None, rank: int, axes: 
         # "72 cm bei Größe S", "1-inch: 71"L x 24"W": one size's value, never the product's
         info = replace(info, role="variant")
         pair = replace(pair, info=info)
+    if info.role == "product" and (brand := branded_part(pair.value)) is not None:
+        info = replace(info, role="component", part=brand)  # "Thickness: Vibram® 5mm": the sole's
+        pair = replace(pair, info=info)
     if info.role != "product":
         out.extend(_other_observations(pair, raw, decimal_comma, rank))
         return out
+    if sentence_value(pair.value):  # a caption under "Dimensions": "The keyboard is placed on a 900 x 400 mm pad"
+        return [Observation("warning", f"{raw[:80]}: a sentence under the label, not its value; not used",
+                            order=pair.order)]  # fmt: skip
     if info.kind in ("dimensions", "size"):
         out.extend(_dims_pair_observations(pair, package, raw, decimal_comma, rank))
     elif info.kind == "weight":
@@ -218,6 +233,10 @@ def _dims_pair_observations(
         mass, note = _plausible_mass(rest, None, decimal_comma)
         if mass is not None:
             out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, note))
+    elif not out and (mass := _plausible_mass(pair.value, None, decimal_comma)[0]) is not None:
+        # "Size: 275g": a net content, the product's weight only beside a mass in its name (the chooser)
+        out.append(Observation("mass", mass, package, rank, pair.order, pair.group, raw, role="content",
+                               note="a net content in a size row, beside the weight in the product's name"))  # fmt: skip
     return out
 
 
@@ -335,40 +354,10 @@ def _with_locale_inches(pair: Pair, lang: str | None) -> Pair:
     """A length pair written with no unit anywhere, read in inches on a page of an inch locale (said so)."""
     if pair.info.unit is not None or pair.info.kind not in LENGTH_KINDS or pair.info.role != "product":
         return pair
-    if not _UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
+    if not UNITLESS_LETTERED.fullmatch(clean_text(pair.value)):
         return pair
     return replace(pair, info=replace(pair.info, unit="in"),
                    unit_context=f"inches, the unit of the page's locale ({lang})")  # fmt: skip
-
-
-#: Numbers only, maybe with axis letters in brackets (``5.20(w) x 8.00(h) x 0.40(d)``, ``923 x 253 x 659.4``,
-#: ``19.4``): the unit must come from the label, a heading above it or the page's locale.
-_UNITLESS_LETTERED = re.compile(r"(?:[\d\s.,x×*/-]|\((?:[whdlWHDL])\))+")
-
-
-_FIGURE = re.compile(r"\d+(?:[.,]\d+)*")
-
-
-def _after_colon(value: str) -> str:
-    """A value's figures after a sub-label (``Set Size(WXDXH) with Stand: 923 x 253 x 659.4``)."""
-    return clean_text(value.rsplit(": ", 1)[-1])
-
-
-def unitless_millimetres(pairs: list[Pair], decimal_comma: bool | None) -> list[Pair]:
-    """``pairs`` with the product's lengths written with no unit anywhere read in millimetres when the
-    largest of them, read in centimetres, is over the :data:`kb.features.MAX_DIM_CM` limit and in
-    millimetres within it (Play.com's ``923 x 253 x 659.4``, a German shop's ``Breite: 540,00`` for a 54 cm
-    monitor: spec sheets that drop the unit are written in mm). A largest figure within the limit leaves
-    them unread (``no unit stated``): nothing says which unit."""
-    bare = [p for p in pairs if p.info.unit is None and p.info.kind in LENGTH_KINDS and p.info.role == "product"
-            and not p.package and not p.info.package and _UNITLESS_LETTERED.fullmatch(_after_colon(p.value))]  # fmt: skip
-    figures = [n for p in bare for f in _FIGURE.findall(_after_colon(p.value))
-               if (n := parse_number(f, decimal_comma)) is not None]  # fmt: skip
-    if not figures or not MAX_DIM_CM < max(figures) <= 10 * MAX_DIM_CM:
-        return pairs
-    said = f"no unit stated; read as millimetres ({max(figures):g} cm would be over the {MAX_DIM_CM:g} cm limit)"
-    chosen = {id(p) for p in bare}
-    return [replace(p, info=replace(p.info, unit="mm"), unit_context=said) if id(p) in chosen else p for p in pairs]
 
 
 @adapter("spec_table", priority=50)
@@ -380,7 +369,7 @@ def spec_table(page: Page) -> list[Observation]:
     if _inch_locale(page.lang):
         pairs = [_with_locale_inches(p, page.lang) for p in pairs]
     pairs = unitless_millimetres(pairs, page.decimal_comma)
-    obs = observations_from_pairs(pairs, page.decimal_comma)
+    obs = measured_packed(highest_settings(observations_from_pairs(pairs, page.decimal_comma)))
     for o in obs:
         o.site_wide = page.site_wide_line(o.order)
     return obs + adjusted + selected_variant(page) + material_observations(page.lines)

@@ -52,8 +52,8 @@ def register(app: typer.Typer) -> None:
             float, typer.Option("--budget", help="Seconds a lookup may take (default 10).")
         ] = 10.0,
         max_pages: Annotated[
-            int, typer.Option("--max-pages", help="Requests a lookup may make, over all stores (default 12).")
-        ] = 12,
+            int, typer.Option("--max-pages", help="Requests a lookup may make, over all stores (default 20).")
+        ] = 20,
         db: DbOption = None,
         json_out: JsonOption = False,
     ) -> None:

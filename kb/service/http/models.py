@@ -44,7 +44,7 @@ class RecallIn(TextIn):
 
 class LookupIn(RecallIn):
     budget_s: float = Field(10.0, gt=0, le=60, description="Seconds the lookup may take.")
-    max_pages: int = Field(12, ge=1, le=50, description="Requests the lookup may make, over all stores.")
+    max_pages: int = Field(20, ge=1, le=50, description="Requests the lookup may make, over all stores.")
     force: bool = Field(False, description="Ask the stores even when the catalog recall is good.")
 
 
