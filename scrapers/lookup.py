@@ -1,11 +1,10 @@
 """The store side of an on-demand lookup: search the stores, read the top results, keep what fits, write it.
 
 :func:`search_stores` asks every store of a sources file that declares a ``search`` (see
-:mod:`scrapers.sources`) for the given words, reads the first results (:mod:`scrapers.store_search`,
-``rel="next"`` pages followed while a store has listed fewer than its ``search_results``), fetches those
-product pages (and while none of them settles the search, :data:`SETTLED_ERROR`, the next
-``search_results``, up to :data:`MAX_RESULT_BATCHES` batches; a results page is asked for only when its
-products are wanted) and extracts and validates them exactly as the nightly job does
+:mod:`scrapers.sources`) for the given words, fetches its first ``search_results`` product pages (and
+while none settles the search, :data:`SETTLED_ERROR`, the next, up to :data:`MAX_RESULT_BATCHES`
+batches; a ``rel="next"`` results page is read only when its products are wanted,
+:mod:`scrapers.store_search`) and extracts and validates them exactly as the nightly job does
 (:func:`scrapers.ingest.process_page`), keeps the pages that ``fits`` accepts, and writes them as one
 small ingestion run through the nightly job's own short write transaction (:func:`scrapers.ingest.write_run`):
 observations with adapter ``lookup:<extractor>`` (provisional under the fusion rule, :mod:`scrapers.fusion`)
@@ -25,6 +24,7 @@ description over each candidate alone).
 
 from __future__ import annotations
 
+import functools
 import itertools
 import json
 import threading
@@ -275,20 +275,6 @@ def _settled(outcomes: list[PageOutcome], fits: FitFn | None) -> bool:
     return False
 
 
-def _once(fits: FitFn) -> FitFn:
-    """``fits`` judged once per record (the search's stop rule and the final judgement ask of the same
-    pages)."""
-    memo: dict[int, tuple[ObjectRecord, Any]] = {}
-
-    def judged(record: ObjectRecord):
-        key = id(record)
-        if key not in memo:
-            memo[key] = (record, fits(record))
-        return memo[key][1]
-
-    return judged
-
-
 def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = ()) -> list[Candidate]:
     """Mark each page: extracted pages that do not fit become rejections (recorded, never added); a page that
     fits is named as a person reads it (:func:`scrapers.product_names.person_name`) and ``names`` (what the
@@ -354,7 +340,7 @@ def search_stores(
     results, and add those ``fits`` accepts to ``kb`` (see the module docstring), with ``names`` (what the
     description calls the object) as their aliases. ``deadline`` is a ``clock.monotonic()`` time."""
     clock = clock or SystemClock()
-    fits = _once(fits)
+    fits = functools.lru_cache(maxsize=None)(fits)  # judged once a record: by the stop rule, then by _judge
     report = StoresLookup(tuple(queries))
     stores = [s for s in sources.stores if s.search]
     if not stores:
