@@ -348,6 +348,7 @@ def configure_options(spec: mujoco.MjSpec) -> None:
     opt.impratio = 10.0  # frictional stiffer than normal: holding without creeping slip (MuJoCo docs)
     opt.iterations = 50
     opt.ls_iterations = 20
+    # opt.jacobian stays MuJoCo's auto, dense at these sizes: sparse changes a verdict (sim/PHYSICS.md)
 
 
 # ---------------------------------------------------------------------------------------------------------

@@ -100,20 +100,46 @@ class Runner:
         self.wrist_base = self.d.ctrl[world.wrist_act].copy()
         self.hold_joints: list[list] = []  # filled by _latch: the grip-force loop runs from then on
         self.closed_posture: tuple[float, ...] = ()
+        # Read every control tick: views of MjData's own buffers (valid while the data lives), and the
+        # hand-object geom pairs as a set, so the per-tick checks cost no numpy indexing.
+        d = self.d
+        self._state = (d.qpos, d.qvel, d.qacc)
+        self._warnings = d.warning.number
+        self._touching = frozenset(zip(*(a.tolist() for a in np.nonzero(world.touches)), strict=True))
 
     def _step(self, n_steps: int, where: str) -> None:
         mujoco.mj_step(self.m, self.d, nstep=n_steps)
-        check_physics(self.m, self.d, where)
+        qpos, qvel, qacc = self._state
+        # check_physics's two tests on the views taken once; it runs (and raises, naming why) when one fires.
+        if not math.isfinite(qpos.dot(qpos) + qvel.dot(qvel) + qacc.dot(qacc)) or self._warnings.any():
+            check_physics(self.m, self.d, where)
+
+    def _largest_contact_force(self) -> float | None:
+        """The largest normal force of the active hand-object contacts (None without one): the max of
+        ``TrialWorld.contact_forces()``, by a loop over the few contacts instead of numpy indexing."""
+        d = self.d
+        if d.ncon == 0:
+            return None
+        c, force, touching, top = d.contact, d.efc_force, self._touching, None
+        for g1, g2, row in zip(c.geom1.tolist(), c.geom2.tolist(), c.efc_address.tolist(), strict=True):
+            if row >= 0 and (g1, g2) in touching:
+                f = float(force[row])  # the contact's first row: its normal force (elliptic cones)
+                if top is None or f > top:
+                    top = f
+        return top
 
     def _measure(self, record_force: bool = False) -> np.ndarray | None:
         """Record the contact forces and the object's motion relative to the palm since the reference;
         returns the object's position in the palm (None before the reference is taken)."""
-        forces = self.w.contact_forces()
-        total = float(forces.sum())
-        if forces.size:
-            self.max_force = max(self.max_force, float(forces.max()))
         if record_force:
-            self.hold_forces.append(total / 2.0)  # the squeeze: contact forces from both sides, halved
+            forces = self.w.contact_forces()
+            if forces.size:
+                self.max_force = max(self.max_force, float(forces.max()))
+            self.hold_forces.append(float(forces.sum()) / 2.0)  # the squeeze: both sides' forces, halved
+        else:  # the total is read only while holding; the largest force by a cheaper loop
+            top = self._largest_contact_force()
+            if top is not None:
+                self.max_force = max(self.max_force, top)
         if self.ref_pos is None:
             return None
         pos, rot = self.w.object_in_palm()
