@@ -63,13 +63,17 @@ def report(trials, catalog, budget_s: float, sold: int, failures: bool) -> dict:
 
     dev = [t for t in trials if not t.held_out]
     held = [t for t in trials if t.held_out]
-    out = {"all": summary(trials), "development": summary(dev), "held_out": summary(held),
+    new = [t for t in dev if t.written_by]  # the later development rows (README: written before any run)
+    out = {"all": summary(trials), "development": summary(dev), "new_development": summary(new),
+           "held_out": summary(held),
            "catalog": summary(catalog), "budget_s": budget_s, "pages": sold}  # fmt: skip
     print(f"lookup on real store pages ({sold} pages real, descriptions written here), time budget "
           f"{budget_s:g} s per lookup")  # fmt: skip
-    for part in ("all", "development", "held_out"):
+    for part in ("all", "development", "new_development", "held_out"):
         s = out[part]
-        print(f"  {part:<12} right {s['right']}/{s['descriptions']} ({s['right_share']}), values right "
+        if not s["descriptions"]:
+            continue
+        print(f"  {part:<15} right {s['right']}/{s['descriptions']} ({s['right_share']}), values right "
               f"{s['values_right']}/{s['descriptions']} ({s['values_share']}), over budget {s['over_budget']}, "
               f"slowest {s['max_s']} s")  # fmt: skip
     c = out["catalog"]

@@ -39,6 +39,7 @@ class Trial:
     text: str
     expected: str
     held_out: bool | None = None
+    written_by: str | None = None
     looked_up: bool = False
     why: str | None = None
     match: str | None = None
@@ -93,7 +94,8 @@ def run_trial(template: Path, workdir: Path, row: dict[str, Any], store, sources
     shutil.copy(template, db)
     expected = row.get("page") or row["object"]
     page = pages.get(row["page"]) if row.get("page") else None
-    trial = Trial(row["text"], expected, held_out=page.held_out if page is not None else None)
+    trial = Trial(row["text"], expected, held_out=page.held_out if page is not None else None,
+                  written_by=row.get("written_by"))
     t0 = time.perf_counter()
     out = recall_with_lookup(db, row["text"], sources=sources, session=session, budget_s=budget_s)
     trial.seconds = time.perf_counter() - t0

@@ -204,3 +204,13 @@ def test_a_part_the_titles_tagline_lists_stays_a_part():
 )  # fmt: skip
 def test_a_part_names_the_product_by_its_head_word(part, product):
     assert _names_the_product(part, {"changedesk", "vase", "converter"}) is product
+
+
+@given(st.text(max_size=60))
+def test_bounds_and_fluid_ounces_never_raise(text):
+    assert bound_value(text) in (True, False)
+    assert fluid_ounces(text) in (True, False)
+    if "oz" not in text.lower() and "ounce" not in text.lower():
+        assert fluid_ounces(text) is False
+    if not any(c.isdigit() for c in text):
+        assert bound_value(text) is False

@@ -63,6 +63,17 @@ def test_the_descriptions_are_data_with_an_expected_page_or_object():
 
 
 @needs_corpus
+def test_every_description_is_of_a_sold_page_and_the_later_ones_of_development_stores_only():
+    from scrapers.corpus_store import sold
+
+    pages = {p.id: p for p in CORPUS}
+    rows = load_descriptions()
+    assert all(r["page"] in pages and sold(pages[r["page"]]) for r in rows)
+    later = [r for r in rows if r.get("written_by")]
+    assert len(later) >= 40 and not any(pages[r["page"]].held_out for r in later)
+
+
+@needs_corpus
 def test_the_store_sells_only_pages_that_state_a_size_or_mass_and_finds_them_by_a_title_word(store):
     assert all(p.truth.get("dims_cm") or p.truth.get("mass_g") for p in CORPUS)
     hits = search(store.items, "garlic presses")
