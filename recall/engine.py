@@ -100,6 +100,16 @@ def resolve_metric(metric: str | None, features_only: bool) -> str:
     return DEFAULT_METRIC[bool(features_only)] if metric is None else metric
 
 
+@dataclasses.dataclass(frozen=True)
+class _Verdict:
+    """What :meth:`Recaller._verdict` decides of the best match."""
+
+    not_in_catalog: bool
+    unknown: str | None
+    modifier: str | None
+    trust: Trust
+
+
 class Recaller:
     """Recall objects from one catalog snapshot. Build with :meth:`from_db`, :meth:`from_csv`,
     :meth:`from_records` or from a snapshot. Thread-safe for reading."""
@@ -298,30 +308,8 @@ class Recaller:
         )
         errors.update(soft.errors_of(best) if soft is not None else {})
         closeness = closeness_of(errors, self._silent_categories(best))
-        # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
-        # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)
-        named_whole = matches[0].matched_by_name and not names_inside(noun, names.phrases)
-        not_in_catalog = not_in_catalog and not named_whole
-        if noun is not None and noun.sort_of is not None and not named_whole:
-            # a sort of a catalog object ("a spring clamp"): in the catalog only as an object of that head
-            not_in_catalog = words_of(self.snapshot.names[best])[-1:] != [noun.sort_of]
-        # a lexicon synonym of a catalog object ("cellphone", "pen drive": smartphone, usb stick) is no
-        # unknown noun, and names it with all its words
-        unknown = None if noun is not None and noun.in_catalog else names.unknown_noun
-        synonym = best in synonym_rows(noun, self.names.phrases)
-        modifier = self._foreign_modifier(subject, best, names)
-        modifier = None if synonym and modifier in noun.noun.split() else modifier
-        # a noun before the head of an object named by its head alone says which sort ("a *table* knife" of
-        # the catalog's "knife"): neither doubt nor a name's evidence
-        narrows = modifier is not None and plain_name(words_of(self.snapshot.names[best]))
-        modifier = None if narrows else modifier
-        trusted = (
-            (matches[0].matched_by_name or synonym)
-            and modifier is None
-            and not narrows
-            and material_agrees(subject, matches[0].features.get("material"))
-        )
-        trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
+        v = self._verdict(best, matches, names, noun, subject, not_in_catalog)
+        not_in_catalog, unknown, modifier, trust = v.not_in_catalog, v.unknown, v.modifier, v.trust
         fit = judge(closeness, errors, trust, unused, noun.noun if not_in_catalog else None)
         open_set = not fit.close
         disagrees = disagreeing_features(errors, disagree_factor(trust))  # a stated value far off: the verdict says it
@@ -352,6 +340,43 @@ class Recaller:
             fit=fit,
             **base,
         )
+
+    def _verdict(
+        self,
+        best: int,
+        matches: list,
+        names: NameEvidence,
+        noun: DescribedNoun | None,
+        subject: tuple[str, ...],
+        not_in_catalog: bool,
+    ) -> _Verdict:
+        """Whether the described thing is in the catalog at all, and how far the best match's name is
+        trusted: its unknown noun or foreign modifier, if any (``not_in_catalog``: the noun's own verdict)."""
+        # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
+        # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)
+        named_whole = matches[0].matched_by_name and not names_inside(noun, names.phrases)
+        not_in_catalog = not_in_catalog and not named_whole
+        if noun is not None and noun.sort_of is not None and not named_whole:
+            # a sort of a catalog object ("a spring clamp"): in the catalog only as an object of that head
+            not_in_catalog = words_of(self.snapshot.names[best])[-1:] != [noun.sort_of]
+        # a lexicon synonym of a catalog object ("cellphone", "pen drive": smartphone, usb stick) is no
+        # unknown noun, and names it with all its words
+        unknown = None if noun is not None and noun.in_catalog else names.unknown_noun
+        synonym = best in synonym_rows(noun, self.names.phrases)
+        modifier = self._foreign_modifier(subject, best, names)
+        modifier = None if synonym and modifier in noun.noun.split() else modifier
+        # a noun before the head of an object named by its head alone says which sort ("a *table* knife" of
+        # the catalog's "knife"): neither doubt nor a name's evidence
+        narrows = modifier is not None and plain_name(words_of(self.snapshot.names[best]))
+        modifier = None if narrows else modifier
+        trusted = (
+            (matches[0].matched_by_name or synonym)
+            and modifier is None
+            and not narrows
+            and material_agrees(subject, matches[0].features.get("material"))
+        )
+        trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
+        return _Verdict(not_in_catalog, unknown, modifier, trust)
 
     def _silent_categories(self, row: int) -> tuple[str, ...]:
         """The categorical features the catalog holds no value for at ``row`` (code < 0)."""

@@ -87,31 +87,48 @@ def discover_urls(
             events.append((sitemap, "discover", "sitemap_loop: a sitemap index lists a sitemap already read"))
             continue
         seen_maps.add(sitemap)
-        if streak.gave_up:
-            why = unresponsive_reason(store, streak.count, "sitemaps and pages")
-            events.append((sitemap, "discover", f"{STORE_UNRESPONSIVE}: {why}"))
-            continue
-        try:
-            result = fetcher.fetch(sitemap, policy=store.policy, until=until)
-        except FetchError as err:
-            streak.record(fetch_error_kind(err))
-            events.append((sitemap, "discover", f"{fetch_error_kind(err)}: {err.reason}"))
-            continue
-        streak.record(None)
-        try:
-            with work or nullcontext():
-                kind, locs, more = sitemap_locs(result.body or b"")
-        except Exception as err:  # noqa: BLE001 - lxml's XMLSyntaxError and friends: a bad sitemap is skipped
-            events.append((sitemap, "discover", f"bad_sitemap: {type(err).__name__}: {err}"))
-            continue
-        if more:
-            events.append(
-                (sitemap, "discover", f"sitemap_truncated: more than {MAX_SITEMAP_URLS} URLs; the first kept")
-            )
-        if kind == "sitemapindex":
-            sitemaps.extend(locs)
-        else:
-            urls.extend(locs)
+        found = _read_sitemap(fetcher, store, sitemap, events, until, work, streak)
+        if found is not None:
+            kind, locs = found
+            (sitemaps if kind == "sitemapindex" else urls).extend(locs)
+    return _page_urls(store, urls)
+
+
+def _read_sitemap(
+    fetcher: PoliteFetcher,
+    store: StoreSource,
+    sitemap: str,
+    events: list[tuple[str, str, str]],
+    until: float | None,
+    work: AbstractContextManager | None,
+    streak: TimeoutStreak,
+) -> tuple[str, list[str]] | None:
+    """One sitemap fetched and parsed: (its kind, its locations), or None with the reason in ``events``."""
+    if streak.gave_up:
+        why = unresponsive_reason(store, streak.count, "sitemaps and pages")
+        events.append((sitemap, "discover", f"{STORE_UNRESPONSIVE}: {why}"))
+        return None
+    try:
+        result = fetcher.fetch(sitemap, policy=store.policy, until=until)
+    except FetchError as err:
+        streak.record(fetch_error_kind(err))
+        events.append((sitemap, "discover", f"{fetch_error_kind(err)}: {err.reason}"))
+        return None
+    streak.record(None)
+    try:
+        with work or nullcontext():
+            kind, locs, more = sitemap_locs(result.body or b"")
+    except Exception as err:  # noqa: BLE001 - lxml's XMLSyntaxError and friends: a bad sitemap is skipped
+        events.append((sitemap, "discover", f"bad_sitemap: {type(err).__name__}: {err}"))
+        return None
+    if more:
+        events.append((sitemap, "discover", f"sitemap_truncated: more than {MAX_SITEMAP_URLS} URLs; the first kept"))
+    return kind, list(locs)
+
+
+def _page_urls(store: StoreSource, urls: list[str]) -> list[str]:
+    """``urls`` as the store's product pages to fetch: Shopify products as their JSON, de-duplicated, the
+    store's include/exclude patterns applied, at most ``max_pages``."""
     out: list[str] = []
     seen: set[str] = set()
     for url in urls:

@@ -100,6 +100,7 @@ QUALIFIERS = {
         "shade os as pés feet legs produs füße todo conjunto jednostkowym jednostkowe produktu produkcie výrobku vyrobku geräts gerätes изделия товару aproximado aproximada liquido líquido "
         "netto нето ürün urun produsului tuotteen в во предмета предмет изделие товар ürünün "
         "one "  # "One size: 2 x 2 x 2 in": the only size there is
+        "about around roughly nearly almost etwa rund aproximadamente circa ongeveer omkring cirka noin "  # "measures about: 7 cm"
         "all alle tous toutes todas todos tutte tutti wszystkie "  # a unit note: "All measurements in cm"
         "i på "  # Nordic prepositions: "Lengde i fot"
         "starting at from per piece each pro stück je unit pièce unidad adet ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "

@@ -18,98 +18,99 @@ METRIC_HELP = (
 
 def register(app: typer.Typer) -> None:
     """Add the recall and evaluate commands to the root app."""
+    app.command("recall")(recall_command)
+    app.command("evaluate")(evaluate_command)
 
-    @app.command("recall")
-    def recall_command(
-        text: Annotated[str | None, typer.Argument(help="The description, in quotes.")] = None,
-        file: Annotated[
-            Path | None,
-            typer.Option("--file", help="CSV with a 'description' column: JSON Lines, one per row."),
-        ] = None,
-        top: Annotated[int, typer.Option("--top", min=1, help="How many matches to return.")] = 5,
-        metric: Annotated[str | None, typer.Option("--metric", help=METRIC_HELP)] = None,
-        features_only: Annotated[
-            bool,
-            typer.Option("--features-only", help="Ignore object names in the text (the paper's method)."),
-        ] = False,
-        lookup: Annotated[
-            bool,
-            typer.Option("--lookup", help="When the catalog does not know it (open set, or confidence below "
-                         "0.5), search the stores of --sources, add what fits, and recall again."),
-        ] = False,
-        force_lookup: Annotated[
-            bool, typer.Option("--force-lookup", help="Like --lookup, but ask the stores even after a good recall.")
-        ] = False,
-        sources: Annotated[
-            Path | None,
-            typer.Option("--sources", help=f"Stores for --lookup (TOML; stores with a 'search') [env {ENV_SOURCES}; "
-                         "default: the bundled demo store's]"),
-        ] = None,
-        base_url: Annotated[
-            str | None, typer.Option("--base-url", help="Point every store of --sources at this URL.")
-        ] = None,
-        budget: Annotated[
-            float, typer.Option("--budget", help="Seconds a lookup may take (default 10).")
-        ] = 10.0,
-        max_pages: Annotated[
-            int, typer.Option("--max-pages", help="Requests a lookup may make, over all stores (default 20).")
-        ] = 20,
-        db: DbOption = None,
-        json_out: JsonOption = False,
-    ) -> None:
-        """Recall the catalog objects a description is about, nearest first, with the reasons.
 
-        With --lookup, an object the catalog does not know is looked up in the stores' search first."""
-        from kb.errors import DescriptionError, RecallError
-        from kb.service.cli.common import resolve_db
-        from recall.metrics import METRICS
+def recall_command(
+    text: Annotated[str | None, typer.Argument(help="The description, in quotes.")] = None,
+    file: Annotated[
+        Path | None,
+        typer.Option("--file", help="CSV with a 'description' column: JSON Lines, one per row."),
+    ] = None,
+    top: Annotated[int, typer.Option("--top", min=1, help="How many matches to return.")] = 5,
+    metric: Annotated[str | None, typer.Option("--metric", help=METRIC_HELP)] = None,
+    features_only: Annotated[
+        bool,
+        typer.Option("--features-only", help="Ignore object names in the text (the paper's method)."),
+    ] = False,
+    lookup: Annotated[
+        bool,
+        typer.Option("--lookup", help="When the catalog does not know it (open set, or confidence below "
+                     "0.5), search the stores of --sources, add what fits, and recall again."),
+    ] = False,
+    force_lookup: Annotated[
+        bool, typer.Option("--force-lookup", help="Like --lookup, but ask the stores even after a good recall.")
+    ] = False,
+    sources: Annotated[
+        Path | None,
+        typer.Option("--sources", help=f"Stores for --lookup (TOML; stores with a 'search') [env {ENV_SOURCES}; "
+                     "default: the bundled demo store's]"),
+    ] = None,
+    base_url: Annotated[
+        str | None, typer.Option("--base-url", help="Point every store of --sources at this URL.")
+    ] = None,
+    budget: Annotated[
+        float, typer.Option("--budget", help="Seconds a lookup may take (default 10).")
+    ] = 10.0,
+    max_pages: Annotated[
+        int, typer.Option("--max-pages", help="Requests a lookup may make, over all stores (default 20).")
+    ] = 20,
+    db: DbOption = None,
+    json_out: JsonOption = False,
+) -> None:
+    """Recall the catalog objects a description is about, nearest first, with the reasons.
 
-        if (text is None) == (file is None):
-            raise DescriptionError("give either a description TEXT or --file D.csv (not both)")
-        if metric is not None and metric not in METRICS:
-            raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
-        options = dict(top=top, metric=metric, features_only=features_only)
-        if lookup or force_lookup:
-            plan = _lookup_sources(sources, base_url)
-            limits = dict(budget_s=budget, max_pages=max_pages, force=force_lookup)
-            _lookup_command(resolve_db(db), text, file, plan, {**options, **limits}, json_out)
-        else:
-            _recall_command(resolve_db(db), text, file, options, json_out)
+    With --lookup, an object the catalog does not know is looked up in the stores' search first."""
+    from kb.errors import DescriptionError, RecallError
+    from kb.service.cli.common import resolve_db
+    from recall.metrics import METRICS
 
-    @app.command("evaluate")
-    def evaluate_command(
-        catalog: Annotated[Path | None, typer.Option("--catalog", help="Catalog CSV (canonical header).")] = None,
-        descriptions: Annotated[
-            Path | None, typer.Option("--descriptions", help="CSV with columns object,description.")
-        ] = None,
-        open_set: Annotated[
-            Path | None,
-            typer.Option("--open-set", help="CSV with a 'description' column of objects NOT in the catalog."),
-        ] = None,
-        every_set: Annotated[
-            bool, typer.Option("--all", help="One row per development set (recall.scoreboard) instead.")
-        ] = False,
-        blind: Annotated[bool, typer.Option("--blind", help="With --all: the blind sets too.")] = False,
-        json_out: JsonOption = False,
-    ) -> None:
-        """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss;
-        with --all, top-1/top-3, open-set detection, false flags, Brier and ECE of every development set."""
-        from kb.service.cli.common import emit
-        from recall.evaluation import evaluate
+    if (text is None) == (file is None):
+        raise DescriptionError("give either a description TEXT or --file D.csv (not both)")
+    if metric is not None and metric not in METRICS:
+        raise RecallError(f"unknown metric {metric!r}; expected one of {', '.join(METRICS)}")
+    options = dict(top=top, metric=metric, features_only=features_only)
+    if lookup or force_lookup:
+        plan = _lookup_sources(sources, base_url)
+        limits = dict(budget_s=budget, max_pages=max_pages, force=force_lookup)
+        _lookup_command(resolve_db(db), text, file, plan, {**options, **limits}, json_out)
+    else:
+        _recall_command(resolve_db(db), text, file, options, json_out)
 
-        if every_set:
-            _scoreboard_command(blind, json_out)
-            return
-        if catalog is None or descriptions is None:
-            raise typer.BadParameter("give --catalog and --descriptions, or --all")
-        for path in (catalog, descriptions, open_set):
-            if path is not None and not path.is_file():
-                raise FileNotFoundError(2, "No such file", str(path))
-        report = evaluate(catalog, descriptions, open_set_csv=open_set)
-        if json_out:
-            emit(report.to_dict())
-        else:
-            _print_report(report)
+def evaluate_command(
+    catalog: Annotated[Path | None, typer.Option("--catalog", help="Catalog CSV (canonical header).")] = None,
+    descriptions: Annotated[
+        Path | None, typer.Option("--descriptions", help="CSV with columns object,description.")
+    ] = None,
+    open_set: Annotated[
+        Path | None,
+        typer.Option("--open-set", help="CSV with a 'description' column of objects NOT in the catalog."),
+    ] = None,
+    every_set: Annotated[
+        bool, typer.Option("--all", help="One row per development set (recall.scoreboard) instead.")
+    ] = False,
+    blind: Annotated[bool, typer.Option("--blind", help="With --all: the blind sets too.")] = False,
+    json_out: JsonOption = False,
+) -> None:
+    """Recall accuracy per metric (the paper's Fig. 5), the hybrid's, parse scores and every miss;
+    with --all, top-1/top-3, open-set detection, false flags, Brier and ECE of every development set."""
+    from kb.service.cli.common import emit
+    from recall.evaluation import evaluate
+
+    if every_set:
+        _scoreboard_command(blind, json_out)
+        return
+    if catalog is None or descriptions is None:
+        raise typer.BadParameter("give --catalog and --descriptions, or --all")
+    for path in (catalog, descriptions, open_set):
+        if path is not None and not path.is_file():
+            raise FileNotFoundError(2, "No such file", str(path))
+    report = evaluate(catalog, descriptions, open_set_csv=open_set)
+    if json_out:
+        emit(report.to_dict())
+    else:
+        _print_report(report)
 
 
 def _recall_command(db: Path, text: str | None, file: Path | None, options: dict, json_out: bool) -> None:
