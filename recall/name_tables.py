@@ -124,49 +124,23 @@ class NameTables:
     """Phrases, generic phrases, head keys with their stated materials, vocabulary (see the module)."""
 
     def __init__(self, names: Sequence[str], aliases: Sequence[Sequence[str]], materials, min_suffix: int):
-        import pyarrow as pa
-
         texts = list(names)
         texts.extend(itertools.chain.from_iterable(aliases))  # the owner of each: its row
         per_row = np.fromiter(map(len, aliases), dtype=np.int64, count=len(aliases))
         owners = np.concatenate((np.arange(len(names)), np.repeat(np.arange(len(aliases)), per_row)))
         n_phr = len(texts)
-        words, wpar = _tokens(texts, strip_parens=False)
-        core, cpar = _tokens(texts, strip_parens=True)
-        # a phrase whose text is all in parentheses keeps its words as its core
-        has_core = np.zeros(n_phr, dtype=bool)
-        has_core[cpar] = True
-        back = np.flatnonzero(~has_core[wpar])
-        core = pa.concat_arrays([core, words.take(pa.array(back))])
-        cpar = np.concatenate((cpar, wpar[back]))
-        order = np.argsort(cpar, kind="stable")
-        core, cpar = core.take(pa.array(order)), cpar[order]
+        words, wpar, core, cpar = _words_and_cores(texts)
         # word ids of the singular forms (Python once per distinct word), and what each word is
         vocab = _Vocabulary(words, core)
         words, core = vocab.ids[: len(words)], vocab.ids[len(words) :]
         keep = ~_variant_labels(core, cpar, vocab.label)
         core, cpar = core[keep], cpar[keep]
-        word_keys = vocab.join(words, wpar, n_phr)
         core_keys = vocab.join(core, cpar, n_phr)
         spoken = np.zeros(n_phr, dtype=bool)
         spoken[wpar] = True  # a phrase with no word names nothing
-        # phrases: words and core both name the row
-        kid, uniq = _encode(pa.concat_arrays([word_keys.filter(spoken), core_keys.filter(spoken)]))
-        starts, rows, _ = _group(kid, np.concatenate((owners[spoken], owners[spoken])))
-        self.phrases = RowsByKey(uniq, starts, rows, tuples=True)
+        self.phrases = _phrases(vocab.join(words, wpar, n_phr), core_keys, spoken, owners)
         self.longest = int(np.bincount(wpar, minlength=1).max(initial=0))
-        # head of each core: the word before the first "of" after the first word, else the last word
-        cstart = np.searchsorted(cpar, np.arange(n_phr))
-        cend = np.searchsorted(cpar, np.arange(n_phr), "right")
-        pos = np.arange(len(core)) - cstart[cpar]
-        of = np.flatnonzero(vocab.of[core] & (pos >= 1))
-        none = np.iinfo(np.int64).max
-        first_of = np.full(n_phr, none)
-        np.minimum.at(first_of, cpar[of], of)
-        live = spoken & (cend > cstart)
-        head = np.full(n_phr, -1, dtype=np.int64)
-        head_at = np.where(first_of < none, first_of - 1, cend - 1)
-        head[live] = core[head_at[live]]
+        head, live = _heads(core, cpar, vocab, n_phr, spoken)
         # materials stated besides the head (bits of CATEGORIES["material"]); generic cores: one stated
         # material, a generic head, only generic nouns, material words and "of"
         wbits = np.where(core == head[cpar], 0, vocab.material_bit[core])
@@ -180,21 +154,68 @@ class NameTables:
             tuple(core_keys[p].as_py().split(" ")): vocab.materials[int(stated[p]).bit_length() - 1]
             for p in np.flatnonzero(generic).tolist()
         }
-        # head keys: the head and its suffixes (once per distinct head), with the stated materials
-        hs, hinv = np.unique(head[live], return_inverse=True)
-        suffixes = [[h, *(h[c:] for c in range(1, len(h) - min_suffix + 1))] for h in vocab.words(hs)]
-        per = np.array([len(x) for x in suffixes], dtype=np.int64)
-        key_of = {}
-        flat = np.array([key_of.setdefault(k, len(key_of)) for x in suffixes for k in x], dtype=np.int64)
-        kstart = np.concatenate(([0], np.cumsum(per)))
-        reps = per[hinv]
-        src = np.repeat(np.flatnonzero(live), reps)
-        which = np.repeat(kstart[hinv], reps) + np.arange(reps.sum()) - np.repeat(np.cumsum(reps) - reps, reps)
-        starts, rows, masks = _group(flat[which], owners[src], stated[src])
-        self.heads = RowsByKey(list(key_of), starts, rows)
+        self.heads, key_of, masks = _head_keys(head, live, stated, owners, vocab, min_suffix)
         self.head_materials = _HeadMaterials(self.heads, masks, vocab.materials)
         self.by_material = _RowsByMaterial(list(materials or ()))
         self.vocabulary = frozenset(vocab.singular) | frozenset(key_of)
+
+
+def _words_and_cores(texts: list[str]):
+    """Every phrase's words and its core (the words outside parentheses; all its words when it is all in
+    parentheses), each with the phrase it belongs to, cores in phrase order."""
+    import pyarrow as pa
+
+    words, wpar = _tokens(texts, strip_parens=False)
+    core, cpar = _tokens(texts, strip_parens=True)
+    has_core = np.zeros(len(texts), dtype=bool)
+    has_core[cpar] = True
+    back = np.flatnonzero(~has_core[wpar])
+    core = pa.concat_arrays([core, words.take(pa.array(back))])
+    cpar = np.concatenate((cpar, wpar[back]))
+    order = np.argsort(cpar, kind="stable")
+    return words, wpar, core.take(pa.array(order)), cpar[order]
+
+
+def _phrases(word_keys, core_keys, spoken: np.ndarray, owners: np.ndarray) -> RowsByKey:
+    """Phrase -> rows: a phrase's words and its core both name its row."""
+    import pyarrow as pa
+
+    kid, uniq = _encode(pa.concat_arrays([word_keys.filter(spoken), core_keys.filter(spoken)]))
+    starts, rows, _ = _group(kid, np.concatenate((owners[spoken], owners[spoken])))
+    return RowsByKey(uniq, starts, rows, tuples=True)
+
+
+def _heads(core: np.ndarray, cpar: np.ndarray, vocab: _Vocabulary, n_phr: int, spoken: np.ndarray):
+    """(head word id per phrase, -1 without one; whether the phrase has a head): the word before the first
+    "of" after the first word, else the last word of its core."""
+    cstart = np.searchsorted(cpar, np.arange(n_phr))
+    cend = np.searchsorted(cpar, np.arange(n_phr), "right")
+    pos = np.arange(len(core)) - cstart[cpar]
+    of = np.flatnonzero(vocab.of[core] & (pos >= 1))
+    none = np.iinfo(np.int64).max
+    first_of = np.full(n_phr, none)
+    np.minimum.at(first_of, cpar[of], of)
+    live = spoken & (cend > cstart)
+    head = np.full(n_phr, -1, dtype=np.int64)
+    head_at = np.where(first_of < none, first_of - 1, cend - 1)
+    head[live] = core[head_at[live]]
+    return head, live
+
+
+def _head_keys(head, live, stated, owners, vocab: _Vocabulary, min_suffix: int):
+    """Head key -> rows (each head and its suffixes of at least ``min_suffix`` letters, once per distinct
+    head), the keys in order, and each (key, row) pair's stated-material bits."""
+    hs, hinv = np.unique(head[live], return_inverse=True)
+    suffixes = [[h, *(h[c:] for c in range(1, len(h) - min_suffix + 1))] for h in vocab.words(hs)]
+    per = np.array([len(x) for x in suffixes], dtype=np.int64)
+    key_of: dict[str, int] = {}
+    flat = np.array([key_of.setdefault(k, len(key_of)) for x in suffixes for k in x], dtype=np.int64)
+    kstart = np.concatenate(([0], np.cumsum(per)))
+    reps = per[hinv]
+    src = np.repeat(np.flatnonzero(live), reps)
+    which = np.repeat(kstart[hinv], reps) + np.arange(reps.sum()) - np.repeat(np.cumsum(reps) - reps, reps)
+    starts, rows, masks = _group(flat[which], owners[src], stated[src])
+    return RowsByKey(list(key_of), starts, rows), key_of, masks
 
 
 class _Vocabulary:

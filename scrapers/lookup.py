@@ -275,10 +275,12 @@ def _settled(outcomes: list[PageOutcome], fits: FitFn | None) -> bool:
     return False
 
 
-def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = ()) -> list[Candidate]:
+def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = (), as_judged=None) -> list[Candidate]:
     """Mark each page: extracted pages that do not fit become rejections (recorded, never added); a page that
-    fits is named as a person reads it (:func:`scrapers.product_names.person_name`) and ``names`` (what the
-    search asked for) become the aliases of the one that fits best (an alias names one object)."""
+    fits is written as ``fits`` judged it (``as_judged``, when given: the record without what the fit read
+    as no evidence, so that the recall after the lookup compares what the fit compared), named as a person
+    reads it (:func:`scrapers.product_names.person_name`) and ``names`` (what the search asked for) become
+    the aliases of the one that fits best (an alias names one object)."""
     from scrapers.product_names import person_name
 
     out = []
@@ -294,6 +296,7 @@ def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = ()) 
             cand.outcome, cand.reason = ("added", why) if ok else ("does_not_fit", why)
             if ok:
                 page.record.adapter = LOOKUP_ADAPTER_PREFIX + (page.record.adapter or "unknown")
+                page.clean = as_judged(page.clean) if as_judged is not None else page.clean
                 scored.append((score[0] if score else 0.0, len(scored), page, cand))
             else:
                 page.outcome, page.stage, page.reason, page.detail = "rejected", "lookup", "does_not_fit", why
@@ -335,10 +338,12 @@ def search_stores(
     clock: Clock | None = None,
     max_pages: int = DEFAULT_MAX_PAGES,
     names: Sequence[str] = (),
+    as_judged: Callable[[ObjectRecord], ObjectRecord] | None = None,
 ) -> StoresLookup:
     """Search the stores for ``queries`` (tried in order per store until one lists products), read the top
     results, and add those ``fits`` accepts to ``kb`` (see the module docstring), with ``names`` (what the
-    description calls the object) as their aliases. ``deadline`` is a ``clock.monotonic()`` time."""
+    description calls the object) as their aliases, each as ``as_judged`` makes it (:func:`_judge`).
+    ``deadline`` is a ``clock.monotonic()`` time."""
     clock = clock or SystemClock()
     fits = functools.lru_cache(maxsize=None)(fits)  # judged once a record: by the stop rule, then by _judge
     report = StoresLookup(tuple(queries))
@@ -366,7 +371,7 @@ def search_stores(
     report.extract_s = budget.extract_s
     report.fetch_s = max(time.perf_counter() - t0 - budget.extract_s, 0.0)
     t0 = time.perf_counter()
-    report.candidates = _judge(outcomes, fits, names)
+    report.candidates = _judge(outcomes, fits, names, as_judged)
     report.judge_s = time.perf_counter() - t0
     _name_known(kb, report.candidates, previous)
     _write(kb, report, outcomes, description, clock)

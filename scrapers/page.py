@@ -352,10 +352,17 @@ def visible_text(el) -> str:
     return " ".join("".join(parts).split())
 
 
+_new = object.__new__
+
+
 def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
     text = " ".join(text.split())
     if text:
-        lines.append(Line(text, context[0], context[3], len(lines), context[1]))
+        # Line(text, package, group, index, site_wide) without the frozen dataclass's slow __init__ (one
+        # object.__setattr__ per field; pages have thousands of lines): the same fields, the same object
+        line = _new(Line)
+        line.__dict__.update(text=text, package=context[0], group=context[3], index=len(lines), site_wide=context[1])
+        lines.append(line)
 
 
 def _loads_lenient(text: str) -> tuple[Any, str | None]:

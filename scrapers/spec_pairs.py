@@ -167,6 +167,8 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
         if i in column_values:
             continue
         text = line.text
+        if DIGIT.search(text) is None and _reads_nothing(text):
+            continue  # most lines (menus, prose) start no pair and state no heading
         if (heading := _heading_unit(text)) is not None and not _labels_a_value(lines, i):
             headings[heading[0]] = (heading[1], text, i)
         elif (heading := _column_unit(lines, i)) is not None:
@@ -176,6 +178,16 @@ def pairs_from_lines(lines: list[Line]) -> list[Pair]:
         if headings and len(pairs) > before:
             pairs[before:] = [_with_heading_unit(p, headings, i) for p in pairs[before:]]
     return pairs
+
+
+def _reads_nothing(text: str) -> bool:
+    """Whether a line without a digit is no label (:func:`classify_label`, :func:`classify_other`) and no unit
+    heading (:func:`_heading_unit`): then it starts nothing in :func:`pairs_from_lines` (the same tests, cheaply)."""
+    if len(text) > 80:
+        return True
+    if classify_label(text) is not None or classify_other(text) is not None:
+        return False
+    return len(text) > 60 or _UNIT_HINT_MARK.search(text) is None
 
 
 def _pairs_at(lines: list[Line], i: int, pairs: list[Pair], column_values: set[int]) -> None:
@@ -302,7 +314,7 @@ def _column_unit(lines: list[Line], i: int) -> tuple[str, str] | None:
     if i + 1 >= len(lines):
         return None
     unit = lines[i + 1].text.strip("()[] ")
-    if not is_unit(unit) or not _label_line(lines[i]):  # the cheap test first: most lines are no label
+    if not _label_line(lines[i]) or not is_unit(unit):  # the cheap test first (labels are cached)
         return None
     if length_unit(unit) is not None:
         return "length", unit

@@ -83,19 +83,9 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
     mass = _num(params.get("assumed_mass_g"))
     mu = _num(params.get("friction"), 0.45)
     capacity = side_force_capacity(grasp) if grasp else _num(plan.get("grip_force_n"))
-    if params.get("feasible") is False:
-        return Cause(
-            "aperture", f"its smallest side ({width:g} cm) is wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span: it needs two hands"
-        )
-    if params.get("fits_aperture") is False:
-        opening = _num(params.get("opening_needed_cm"))
-        return Cause(
-            "aperture",
-            f"a {grasp.replace('_', ' ')} round {width:g} cm needs a {opening:g} cm opening, more than the hand's "
-            f"{HAND_MAX_APERTURE_CM:g} cm: a setup problem, not a grasp that slipped",
-        )
-    if "inside" in reason:
-        return Cause("aperture", f"the hand, opened for a {grasp.replace('_', ' ')}, cannot get round it ({width:g} cm across)")
+    setup = _setup(params, reason, grasp, width)
+    if setup is not None:
+        return setup
     sheet = _sheet(params, reason, mass, capacity, grasp)
     if sheet is not None:
         return sheet
@@ -113,6 +103,34 @@ def diagnose(row: Mapping[str, Any]) -> Cause | None:
     pressed = _pressed(plan, params, reason)
     if pressed is not None:
         return pressed
+    return _held_badly(row, plan, params, reason, mass, mu, capacity)
+
+
+def _setup(params: Mapping[str, Any], reason: str, grasp: str, width: float) -> Cause | None:
+    """An ``aperture`` cause when the trial could not start as planned: no one-hand grasp, an opening wider
+    than the hand's span, or the hand inside the object."""
+    if params.get("feasible") is False:
+        return Cause(
+            "aperture", f"its smallest side ({width:g} cm) is wider than the hand's {HAND_MAX_APERTURE_CM:g} cm span: it needs two hands"
+        )
+    if params.get("fits_aperture") is False:
+        opening = _num(params.get("opening_needed_cm"))
+        return Cause(
+            "aperture",
+            f"a {grasp.replace('_', ' ')} round {width:g} cm needs a {opening:g} cm opening, more than the hand's "
+            f"{HAND_MAX_APERTURE_CM:g} cm: a setup problem, not a grasp that slipped",
+        )
+    if "inside" in reason:
+        return Cause("aperture", f"the hand, opened for a {grasp.replace('_', ' ')}, cannot get round it ({width:g} cm across)")
+    return None
+
+
+def _held_badly(
+    row: Mapping[str, Any], plan: Mapping[str, Any], params: Mapping[str, Any], reason: str, mass: float, mu: float,
+    capacity: float,
+) -> Cause:
+    """The cause of a grasp that closed on the object and lost it: its crown's moment (a cap by its brim),
+    a moment that turned it, else friction."""
     squeeze = _num(row.get("grip_force_n")) or _num(plan.get("grip_force_n"))
     weight = mass / 1000.0 * GRAVITY
     lever = _num(params.get("brim_lever_cm"))

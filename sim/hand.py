@@ -43,7 +43,7 @@ from sim.hand_model import (
     configure_options,
     digit_length_cm,
     finger_tip,
-    finger_tip_y,
+    finger_tip_y_of,
     hand_spec,
     max_torques,
     thumb_tip,
@@ -123,7 +123,7 @@ def finger_pinch_mcp(finger: str, y_cm: float, pip_per_mcp: float = PIP_PER_MCP)
     """MCP angle (radians, PIP following at ``pip_per_mcp``) that puts ``finger``'s tip at hand-frame ``y_cm``."""
     lo, hi = 0.0, math.radians(RANGE_DEG["mcp"][1])
     pip_max = math.radians(RANGE_DEG["pip"][1])
-    return _solve(lambda q: finger_tip_y(finger, q, min(pip_max, pip_per_mcp * q)), y_cm, lo, hi)
+    return _solve(finger_tip_y_of(finger, pip_per_mcp, pip_max), y_cm, lo, hi)
 
 
 def thumb_flex_for(y_cm: float) -> float:

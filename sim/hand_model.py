@@ -372,15 +372,21 @@ def finger_tip(finger: str, mcp: float, pip: float) -> tuple[float, float]:
     return y, z
 
 
-def finger_tip_y(finger: str, mcp: float, pip: float) -> float:
-    """The y of :func:`finger_tip` alone (the same operations), for solvers that need only it."""
-    p1, p2, p3, y, _ = _TIP_CHAIN[finger]
-    angle = 0.0 + mcp
-    y += p1 * math.cos(angle)
-    angle += pip
-    y += p2 * math.cos(angle)
-    y += p3 * math.cos(angle + _DISTAL_BEND)
-    return y
+def finger_tip_y_of(finger: str, pip_per_mcp: float, pip_max: float):
+    """The y of :func:`finger_tip` (the same operations) as a function of the MCP angle alone, the PIP at
+    ``min(pip_max, pip_per_mcp * mcp)``: one Python call per evaluation for the posture solvers."""
+    p1, p2, p3, y0, _ = _TIP_CHAIN[finger]
+    cos, bend = math.cos, _DISTAL_BEND
+
+    def tip_y(mcp: float) -> float:
+        angle = 0.0 + mcp
+        y = y0 + p1 * cos(angle)
+        pip = pip_per_mcp * mcp
+        angle += pip if pip < pip_max else pip_max  # min(pip_max, pip), without the call
+        y += p2 * cos(angle)
+        return y + p3 * cos(angle + bend)
+
+    return tip_y
 
 
 #: Per finger: its three phalanx lengths and the (y, z) of its MCP axis (cm, hand frame).

@@ -91,7 +91,7 @@ APERTURE_PENALTY = 0.2
 #: small-diameter wrap from above (Feix 2016 type 2; what people do with a frying pan: PLANNER.md).
 HANDLE_GRASP = "heavy_wrap_small_diameter"
 #: A pan at least this heavy is held at the middle of its handle, nearer its centre of mass (people choke up
-#: on a heavy pan); a lighter one near the handle's end (sim/world.py ``HANDLE_END_MARGIN_CM``).
+#: on a heavy pan); a lighter one near the handle's end (sim/placement.py ``HANDLE_END_MARGIN_CM``).
 HANDLE_MIDDLE_MIN_MASS_G = HEAVY_MASS_G
 #: A peaked cap is picked up by its brim: thumb on top, four fingers under it (Feix 2016 type 6, prismatic
 #: 4 finger; the brim is 17 cm wide), the strongest pinch (60 N) against its crown's moment.

@@ -320,14 +320,8 @@ def validate(
         objects, top=top, seeds=seeds, hand=hand, ids=_object_ids(kb), stored=stored,
         image_dir=image_dir, trial=trial, render=render,
     )  # fmt: skip
-    if limit is not None:
-        keep = {id(t) for t in [t for t in tasks if t.trial is not None][: max(0, int(limit))]}
-        tasks = [t for t in tasks if t.trial is None or id(t) in keep]
-
-    if isinstance(executor, str):
-        executor_name, ex, owns = executor, make_executor(executor, workers=workers, address=address), True
-    else:
-        executor_name, ex, owns = type(executor).__name__, executor, False
+    tasks = _limited(tasks, limit)
+    executor_name, ex, owns = _executor(executor, workers, address)
     summary = ValidationSummary(
         objects=len(objects),
         trials=len(wanted),
@@ -346,9 +340,7 @@ def validate(
             if row is not None:  # else not run (limit) or not stored
                 results.append({**_with_images(row, images.get(key)), **meta.get(row["object_name"], {})})
         if image_dir is not None and render is not None:
-            extra = _validated_renders(results, objects, image_dir, render, hand)
-            _, more = _run(ex, extra, summary, batches, progress=False)
-            results = [_with_images(r, more.get(_row_key(r))) for r in results]
+            results = _with_validated_renders(ex, results, objects, image_dir, render, hand, summary, batches)
     finally:
         if owns:
             ex.close()
@@ -360,3 +352,25 @@ def validate(
         summary.report = write_report(results, report_path)
     summary.wall_time_s = round(clock() - t0, 3)
     return summary
+
+
+def _limited(tasks: list, limit: int | None) -> list:
+    """``tasks`` with at most ``limit`` trials (render-only tasks kept): the rest resume in a later run."""
+    if limit is None:
+        return tasks
+    keep = {id(t) for t in [t for t in tasks if t.trial is not None][: max(0, int(limit))]}
+    return [t for t in tasks if t.trial is None or id(t) in keep]
+
+
+def _executor(executor: Executor | str, workers: int | None, address: str | None) -> tuple[str, Executor, bool]:
+    """(its name, the executor, whether this run owns it and closes it) for an executor or its name."""
+    if isinstance(executor, str):
+        return executor, make_executor(executor, workers=workers, address=address), True
+    return type(executor).__name__, executor, False
+
+
+def _with_validated_renders(ex, results, objects, image_dir, render, hand, summary, batches) -> list:
+    """``results`` with a rendering of each object's validated choice where it differs from the first."""
+    extra = _validated_renders(results, objects, image_dir, render, hand)
+    _, more = _run(ex, extra, summary, batches, progress=False)
+    return [_with_images(r, more.get(_row_key(r))) for r in results]

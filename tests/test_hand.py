@@ -103,6 +103,21 @@ def test_pinch_kinematics_are_consistent():
         assert H.thumb_tip(t)[0] == pytest.approx(y - 5.0, abs=1e-6)
 
 
+def test_the_solvers_tip_y_is_finger_tips_y_to_the_last_bit():
+    # finger_tip_y_of writes out finger_tip's chain for the posture solvers: the same floats, with the PIP
+    # both below and at its cap (ratio x MCP past pip_max), so a stored posture does not move
+    from sim.hand_model import finger_tip_y_of
+
+    pip_max = math.radians(H.RANGE_DEG["pip"][1])
+    for finger in (f.name for f in H.FINGERS):
+        for ratio in (0.3, 0.8, 1.0, 1.6):
+            tip_y = finger_tip_y_of(finger, ratio, pip_max)
+            for k in range(41):
+                q = k * math.radians(H.RANGE_DEG["mcp"][1]) / 40
+                assert tip_y(q) == H.finger_tip(finger, q, min(pip_max, ratio * q))[0]
+    assert finger_tip_y_of("index", 1.6, pip_max)(1.5) != finger_tip_y_of("index", 1.6, 1.0)(1.5)  # the cap bites
+
+
 def test_planar_kinematics_match_the_mujoco_model():
     model = H.hand_spec().compile()
     data = mujoco.MjData(model)
