@@ -15,6 +15,11 @@ catalog's match, however close, is a *kind* of the thing while the description n
   contents in their container, and the stores are searched for the contents first
   (:func:`contents_phrase`). A name that holds it ("a can of soda" -> soda can, "a pair of scissors")
   asks nothing.
+* **A named match that fits only loosely** (:func:`loose_fit`): the text names the catalog object, which
+  then fits up to the named threshold (:data:`recall.fit.THRESHOLDS`, NAMED), but a store's product must
+  fit within the plain one (PLAIN); a match between the two ("a 12 inch cast iron skillet, a bit over 8
+  pounds" as the seed's frying pan, 0.34) is kept for its name alone, and the stores may sell the one
+  described.
 
 The lookup keeps the catalog's match when no store product fits (:mod:`recall.lookup`), so a lookup
 asked here costs a search, never a worse answer.
@@ -25,11 +30,13 @@ from __future__ import annotations
 import re
 
 from recall.engine import GENERIC_NOUNS, RecallResult, subject_phrase
+from recall.fit import THRESHOLDS, Trust
 
 __all__ = [
     "LOOKUP_BELOW_CONFIDENCE",
     "contents_phrase",
     "lookup_reason",
+    "loose_fit",
     "phrase_words",
     "proper_name",
     "unnamed_contents",
@@ -57,10 +64,22 @@ def lookup_reason(result: RecallResult, threshold: float = LOOKUP_BELOW_CONFIDEN
     contents = unnamed_contents(result)
     if contents is not None:
         return f"the recalled {result.best.name} does not name what the text says it holds ({contents})"
+    loose = loose_fit(result)
+    if loose is not None:
+        return f"the recalled {result.best.name} fits only loosely ({loose:.2f} > {THRESHOLDS[Trust.PLAIN]:g})"
     name = proper_name(result, names) if names is not None else None
     if name is not None:
         return f"the text names {name}, which the recalled {result.best.name} is not known by"
     return None
+
+
+def loose_fit(result: RecallResult) -> float | None:
+    """The closeness of the first match when the text names it and it is above the plain threshold (module
+    docstring), else None."""
+    best = result.best
+    if best is None or not best.matched_by_name or result.closeness is None:
+        return None
+    return result.closeness if result.closeness > THRESHOLDS[Trust.PLAIN] else None
 
 
 def unnamed_subject(result: RecallResult) -> str | None:
