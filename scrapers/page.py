@@ -138,9 +138,8 @@ class Page:
             lang = tree.get("lang") or tree.get("xml:lang")
             if lang and lang.strip():
                 return lang.strip()
-            for content in tree.xpath(
-                "//meta[@property='og:locale' or @http-equiv='content-language']/@content"
-            ):
+            for content in _attributes(tree, (("meta", "property", "og:locale", "content"),
+                                              ("meta", "http-equiv", "content-language", "content"))):  # fmt: skip
                 if content.strip():
                     return content.strip()
         return None
@@ -196,13 +195,13 @@ class Page:
             return []
         found: list[str] = []
         for xp in (
-            "//meta[@property='og:title']/@content",
+            (("meta", "property", "og:title", "content"),),
             "//@id[. = 'productTitle' or . = 'title']/.. | //@itemprop[. = 'name']/..",
             "//h1[contains(@class, 'title') or contains(@class, 'name')]",
             "//title",
             "//h1",
         ):
-            for hit in tree.xpath(xp):
+            for hit in tree.xpath(xp) if isinstance(xp, str) else _attributes(tree, xp):
                 text = hit if isinstance(hit, str) else visible_text(hit)
                 text = _WS.sub(" ", text).strip()
                 if text and text not in found:
@@ -215,7 +214,7 @@ class Page:
         tree = self.tree
         if tree is None:
             return None
-        for href in tree.xpath("//link[@rel='canonical']/@href | //meta[@property='og:url']/@content"):
+        for href in _attributes(tree, (("link", "rel", "canonical", "href"), ("meta", "property", "og:url", "content"))):
             if href.strip():
                 return href.strip()
         return None
@@ -261,15 +260,18 @@ class Page:
         context = contexts[node] if node is not None else (False, False, False, 0)
         for node in reversed(chain):
             if context is not None:
-                tag = node.tag if isinstance(node.tag, str) else ""
-                foreign, own_package = _container_kind(node.get("id"), node.get("class"))
-                if tag in _DROP_TAGS or not tag or (foreign and tag not in _NEVER_DROP):
-                    context = None
+                tag = node.tag
+                if not isinstance(tag, str) or not tag or tag in _DROP_TAGS:
+                    context = None  # dropped whatever its names say
                 else:
-                    package, site_wide, sectioned, _ = context
-                    if not site_wide and (tag in SITE_WIDE_TAGS or node.get("role") in SITE_WIDE_ROLES):
-                        site_wide = tag in ("nav", "aside") or not sectioned or node.get("role") in SITE_WIDE_ROLES
-                    context = (package or own_package, site_wide, sectioned or tag in _SECTIONING, len(contexts) + 1)
+                    foreign, own_package = _container_kind(node.get("id"), node.get("class"))
+                    if foreign and tag not in _NEVER_DROP:
+                        context = None
+                    else:
+                        package, site_wide, sectioned, _ = context
+                        if not site_wide and (tag in SITE_WIDE_TAGS or node.get("role") in SITE_WIDE_ROLES):
+                            site_wide = tag in ("nav", "aside") or not sectioned or node.get("role") in SITE_WIDE_ROLES
+                        context = (package or own_package, site_wide, sectioned or tag in _SECTIONING, len(contexts) + 1)
             contexts[node] = context
         return context
 
@@ -280,6 +282,19 @@ class Page:
 
 
 _UNSEEN = object()
+
+
+def _attributes(tree, wanted: tuple[tuple[str, str, str, str], ...]) -> list[str]:
+    """In document order, attribute ``attr`` of each ``tag`` element whose ``key`` attribute is ``value``, for
+    each (tag, key, value, attr) of ``wanted``: the XPath ``//tag[@key='value']/@attr`` (a union of them),
+    by lxml's tag iterator (a third of the XPath's time)."""
+    found = []
+    for el in tree.iter(*dict.fromkeys(tag for tag, _, _, _ in wanted)):
+        for tag, key, value, attr in wanted:
+            if el.tag == tag and el.get(key) == value and (text := el.get(attr)) is not None:
+                found.append(text)
+                break
+    return found
 
 
 @lru_cache(maxsize=8192)

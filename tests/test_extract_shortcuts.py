@@ -64,3 +64,28 @@ def test_one_scan_finds_the_lines_a_search_per_line_finds(texts):
     lines = _lines(texts)
     for pattern in (_MATERIAL_HINT, _MADE_OF, _SOLID):
         assert lines_matching(lines, pattern) == {i for i, t in enumerate(texts) if pattern.search(t)}
+
+
+_ELEMENT = st.tuples(
+    st.sampled_from(["meta", "link", "div"]),
+    st.sampled_from(["property", "rel", "http-equiv"]),
+    st.sampled_from(["og:url", "canonical", "og:title", "content-language", "og:locale"]),
+    st.sampled_from(["content", "href", "id"]),
+)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(_ELEMENT, max_size=8))
+def test_the_tag_iterator_reads_what_the_xpath_reads(elements):
+    from scrapers.page import Page, _attributes
+
+    body = "".join(f'<{tag} {key}="{value}" {attr}="v{i}"><{tag} {key}="{value}"></{tag}></{tag}>'
+                   for i, (tag, key, value, attr) in enumerate(elements))  # fmt: skip
+    tree = Page(f"<html><head></head><body>{body}<p>x</p></body></html>", "https://example.test/").tree
+    for xpath, wanted in (
+        ("//link[@rel='canonical']/@href | //meta[@property='og:url']/@content",
+         (("link", "rel", "canonical", "href"), ("meta", "property", "og:url", "content"))),
+        ("//meta[@property='og:locale' or @http-equiv='content-language']/@content",
+         (("meta", "property", "og:locale", "content"), ("meta", "http-equiv", "content-language", "content"))),
+    ):  # fmt: skip
+        assert _attributes(tree, wanted) == [str(v) for v in tree.xpath(xpath)]
