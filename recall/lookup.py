@@ -8,7 +8,9 @@
    recalled, the recall says the object is not in the catalog (``not_in_catalog``: a noun the catalog does
    not have; or ``open_set``: nothing close), or its confidence is below
    ``threshold`` (:data:`LOOKUP_BELOW_CONFIDENCE`), or the first match is not the thing the subject names
-   (:func:`unnamed_subject`: "peanut butter" recalled as a coffee can); ``force`` looks it up anyway.
+   (:func:`unnamed_subject`: "peanut butter" recalled as a coffee can), or the text names a product the
+   catalog's kind is not: a proper name or contents the match lacks (:mod:`recall.lookup_need`); ``force``
+   looks it up anyway.
 2. **Search words** (:func:`search_terms`): the description's subject phrase ("glazed ceramic teapot"),
    then its head noun alone ("teapot"); each store gets the first that lists products.
 3. **The stores** (:func:`scrapers.lookup.search_stores`): the top results of every store with a search,
@@ -36,8 +38,16 @@ import requests
 
 from kb.errors import RecallError
 from kb.features import NUMERIC_FEATURES, ObjectRecord
-from recall.engine import GENERIC_NOUNS, Recaller, RecallResult, subject_phrase
+from recall.engine import Recaller, RecallResult
 from recall.fit import THRESHOLDS, Trust, judge
+from recall.lookup_need import (
+    LOOKUP_BELOW_CONFIDENCE,
+    contents_phrase,
+    lookup_reason,
+    phrase_words,
+    unnamed_contents,
+    unnamed_subject,
+)
 from scrapers.fetcher import Clock, SystemClock
 from scrapers.lookup import DEFAULT_MAX_PAGES, StoresLookup, search_stores
 from scrapers.sources import Sources
@@ -55,8 +65,6 @@ __all__ = [
 ]
 
 DEFAULT_BUDGET_S = 10.0
-#: A recall less confident than this is looked up.
-LOOKUP_BELOW_CONFIDENCE = 0.5
 #: A store's product fits the description when its mean relative error over the stated features is at most
 #: this: the recall's open-set threshold for an unnamed match (one rule, :mod:`recall.fit`).
 FIT_CLOSENESS = THRESHOLDS[Trust.PLAIN]
@@ -106,71 +114,19 @@ def _summary(result: RecallResult) -> dict[str, Any]:
     return {"match": best.name if best else None, "confidence": result.confidence, "open_set": result.open_set}
 
 
-def lookup_reason(result: RecallResult, threshold: float = LOOKUP_BELOW_CONFIDENCE) -> str | None:
-    """Why ``result`` needs a lookup, or None when it does not (see the module docstring)."""
-    if not result.matches:
-        return "nothing in the catalog was recalled"
-    if result.not_in_catalog and result.described is not None:
-        return f"the catalog has no {result.described.english} (nearest: {result.best.name})"
-    if result.open_set:
-        return f"not in the catalog (nearest: {result.best.name}, not a close match)"
-    other = unnamed_subject(result)
-    if other is not None:
-        return f"the recalled {result.best.name} is no {other}, and the text names no catalog object"
-    if result.confidence < threshold:
-        return f"confidence {result.confidence:.2f} is below {threshold:g}"
-    return None
-
-
-def unnamed_subject(result: RecallResult) -> str | None:
-    """The subject's head noun when the recall's first match is another thing: the head is a noun (a
-    lexicon noun, or a word that is no feature word, colour or adjective: :func:`recall.openset.noun_like`;
-    never a generic noun), the text
-    names the match neither by a name or alias nor by a head noun, and neither the noun nor its English
-    name is a word of the match's name. "crunchy peanut butter, 1 kg" recalled as the master chef can (a
-    coffee can) at confidence 0.93: a butter is no can, so the catalog's match, however close its sizes,
-    is evidence of nothing and the stores are asked (issue 22). None otherwise."""
-
-    from recall.names import words_of
-    from recall.openset import noun_in, noun_like
-    from recall.words import COLOURS, material_words
-
-    best = result.best
-    if best is None or best.matched_by_name or best.name_part > 0:
-        return None
-    text = result.text or ""
-    phrase = _phrase(text, keep_generic=True)
-    head = phrase[-1] if phrase else None
-    if head is None or head in GENERIC_NOUNS or head in material_words():
-        return None  # "a kitchen tool", "a glass object", "paper, 9 by 4 inches": no noun names a thing
-    if re.search(rf"\b{re.escape(head)}s?[- ](?:like|shaped|style|sized)\b", text.lower()):
-        return None  # "a ball-like fruit": a comparison
-    lexicon = noun_in([head]) is not None  # a lexicon noun that is a shade word too: "a tail *light*"
-    if not (lexicon or (head not in COLOURS and (noun_like(head) or result.unknown_noun == head))):
-        return None
-    words = set(words_of(best.name))
-    english = words_of(result.described.english)[-1:] if result.described is not None else []
-    return None if head in words or any(w in words for w in english) else head
-
-
-def _phrase(text: str, keep_generic: bool = False) -> tuple[str, ...]:
-    """The subject phrase's words without units and (unless ``keep_generic``) generic nouns: what names
-    something to search for."""
-    from kb.measures.aliases import PARSER_LANGUAGES
-    from kb.measures.units import unit_table
-
-    units = unit_table(PARSER_LANGUAGES)
-    return tuple(w for w in subject_phrase(text) if w not in units and (keep_generic or w not in GENERIC_NOUNS))
-
-
 def search_terms(result: RecallResult) -> tuple[str, ...]:
     """The search words to try, most specific first: the subject phrase, then its head noun (in English
-    when the recall recognised the noun, ``described``). Units and
-    generic nouns ("5 grams", "something") name nothing to search for."""
-    phrase = _phrase(result.text or "")
+    when the recall recognised the noun, ``described``); before both, the contents of "a <container> of
+    <contents>" the recall's match does not name (:func:`recall.lookup_need.unnamed_contents`: a store
+    sells "pasta sauce", not a jar). Units and generic nouns ("5 grams", "something") name nothing to
+    search for."""
+    phrase = phrase_words(result.text or "")
     described = result.described.english if result.described is not None else None
     noun = described or result.unknown_noun or (phrase[-1] if phrase else None)
     terms = [" ".join(phrase)] if phrase else []
+    contents = contents_phrase(result.text or "")
+    if contents and (result.best is None or unnamed_contents(result) is not None):
+        terms.insert(0, " ".join(contents))
     if noun and noun not in terms:
         terms.append(noun)
     return tuple(terms)
@@ -316,7 +272,8 @@ def recall_with_lookup(
     before = Recaller.from_db(db).recall_text(text, **options)
     out = LookupResult(text=text, before=before, seconds={"recall": time.perf_counter() - t0})
     start = clock.monotonic()
-    out.why = lookup_reason(before, threshold) or ("forced" if force else None)
+    names = Recaller.from_db(db).names
+    out.why = lookup_reason(before, threshold, names) or ("forced" if force else None)
     if out.why is None:
         out.message = f"recalled from the catalog: {before.best.name} (confidence {before.confidence:.2f})"
         return out
@@ -339,7 +296,8 @@ def recall_with_lookup(
     try:
         out.stores = search_stores(kb, sources, terms, description=text, fits=lambda r: fits(parsed, r),
                                    session=session, deadline=deadline, clock=clock, max_pages=max_pages,
-                                   names=described_names(before, terms, Recaller.from_db(db).names.heads))  # fmt: skip
+                                   names=described_names(before, terms, names.heads),
+                                   as_judged=_judged)  # fmt: skip
     finally:
         if own_session:
             session.close()

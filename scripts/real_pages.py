@@ -146,9 +146,7 @@ def add(args) -> int:
     container = f"{args.container}:{args.member}" if args.member else args.container
     page = unpack(_blob(git_dir, commit, args.path), args.path, container)
     digest = hashlib.sha256(page).hexdigest()
-    store = args.store or store_group(args.url or "")
-    if not store:
-        raise SystemExit("give --url or --store: the store is what the split is by")
+    store = page_store(args.url, args.store)
     known = known_pages(args.cache or cache_dir())
     if digest in known:
         raise SystemExit(f"already in the corpus as {known[digest]}")
@@ -163,6 +161,18 @@ def add(args) -> int:
     (cache / f"{pid}.html").write_bytes(page)
     print(pid)
     return 0
+
+
+def page_store(url: str, store: str = "") -> str:
+    """The split key of a page: ``store`` when given, else the store of ``url``, which must be absolute
+    (a relative address such as ``/brand/item/`` has no host, and its path is no store)."""
+    if store:
+        return store
+    if not url:
+        raise SystemExit("give --url or --store: the store is what the split is by")
+    if not re.match(r"[a-z][a-z0-9+.-]*://[^/\s]+", url, flags=re.I):
+        raise SystemExit(f"--url {url!r} is not an absolute address: give the page's full address or --store")
+    return store_group(url)
 
 
 def known_pages(cache: Path) -> dict[str, str]:

@@ -78,3 +78,12 @@ def test_no_page_of_the_corpus_is_there_twice():
     if not pages:
         pytest.skip("no corpus page is present (cache and shared batches absent)")
     assert real_pages.duplicates(pages) == []
+
+
+def test_a_page_store_comes_from_an_absolute_address_only():
+    assert real_pages.page_store("https://www.101gigas.com/asus/rx580/") == "101gigas"
+    assert real_pages.page_store("/asus/rx580/", store="101gigas") == "101gigas"
+    with pytest.raises(SystemExit, match="not an absolute address"):
+        real_pages.page_store("/asus/rx580/")  # a relative canonical link: its path is no store
+    with pytest.raises(SystemExit, match="give --url or --store"):
+        real_pages.page_store("")

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import replace
+from functools import lru_cache
 from typing import Any
 
 from scrapers.adapters import Observation, adapter
@@ -47,6 +48,7 @@ _TOKEN = re.compile(r"[^\W\d_]{3,}")
 NAME_MATCH = 0.6
 
 
+@lru_cache(maxsize=16384)
 def _key_label(key: str) -> str:
     """A JSON key as label words: ``itemWeight`` -> ``item Weight``, ``product_width`` -> ``product width``."""
     return _CAMEL.sub(" ", key).strip()

@@ -13,6 +13,7 @@ measurement of its family: a ``"unit": "cm"`` never makes a bare ``"weight": 3``
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 from typing import Any
 
 from scrapers.label_vocabulary import fold
@@ -37,11 +38,13 @@ VALUE_WORDS = ("value", "amount", "number", "quantity", "magnitude", "wert", "va
 _UNIT_NAME_KEYS = ("symbol", "abbreviation", "abbr", "code", "name", "value", "text", "label")
 
 
+@lru_cache(maxsize=16384)
 def key_words(key: str) -> frozenset[str]:
     """A JSON key's words, folded: ``unidad_peso`` -> {unidad, peso}, ``weightUnit`` -> {weight, unit}."""
     return frozenset(fold(w) for w in _CAMEL.split(key) if w)
 
 
+@lru_cache(maxsize=16384)
 def is_unit_key(key: str) -> bool:
     return len(key) <= 40 and bool(key_words(key) & UNIT_WORDS)
 
