@@ -21,7 +21,13 @@ from scrapers.axis_rows import AXIS_GROUP_GAP, group_axes, whole_product_weights
 from scrapers.labels import AXES
 from scrapers.normalize import material_from_text
 from scrapers.page import Line, Page, lines_matching
-from scrapers.pair_roles import adjustable_extents, highest_settings, measured_packed, only_part_pairs
+from scrapers.pair_roles import (
+    adjustable_extents,
+    highest_settings,
+    measured_packed,
+    only_part_pairs,
+    own_part_pairs,
+)
 from scrapers.quantities import (
     clean_text,
     mass_unit,
@@ -37,7 +43,6 @@ from scrapers.spec_pairs import (
     LENGTH_KINDS,
     MAX_PAIRS,
     Pair,
-    own_part_pairs,
     pairs_from_lines,
     split_inline,
 )

@@ -13,11 +13,11 @@ import re
 
 from kb.measures.units import units_pattern
 from scrapers.adapters import Observation, adapter
+from scrapers.inline_pairs import DIGIT
 from scrapers.normalize import material_from_text
 from scrapers.page import Page, lines_matching
 from scrapers.quantities import parse_dims, parse_length, parse_mass, third_axis
 from scrapers.signs import minus_before
-from scrapers.spec_pairs import DIGIT
 
 __all__ = ["MAX_PROSE_LINES", "free_text", "text"]
 
