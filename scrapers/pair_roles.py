@@ -1,5 +1,5 @@
-"""Whose value a spec pair states, decided from the other pairs and the page's name (after
-:func:`scrapers.spec_pairs.own_part_pairs`): a value said to be one part's alone on a kit's page
+"""Whose value a spec pair states, decided from the other pairs and the page's name: a part that names the
+product itself (``Robot Weight`` on a robot vacuum's page, :func:`own_part_pairs`), a value said to be one part's alone on a kit's page
 (``750 g (Body Only)``), an adjustable product's two bounds of one axis (``Min. height`` / ``Max.
 height``) or its highest setting beside its lowest (``(höchste Position)``), and a size measured with the packed
 weight (``[Eigenmessung]`` beside ``[Eigenmessung inkl. Verpackung]``)."""
@@ -14,7 +14,7 @@ from scrapers.labels import AXES, classify_label
 from scrapers.spec_pairs import Pair
 from scrapers.value_forms import note_words, only_part, packed_value
 
-__all__ = ["adjustable_extents", "highest_settings", "measured_packed", "only_part_pairs"]
+__all__ = ["adjustable_extents", "highest_settings", "measured_packed", "only_part_pairs", "own_part_pairs"]
 
 
 def only_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
@@ -112,3 +112,43 @@ def measured_packed(obs: list[Observation]) -> list[Observation]:
             o.package = True
             o.note = "; ".join(filter(None, [o.note, "measured with the weight that includes the packaging"]))
     return obs
+
+
+def _stem(word: str) -> str:
+    return word[:-1] if len(word) > 3 and word.endswith("s") else word
+
+
+#: A screen's size is its diagonal, never an extent of the product, even on a monitor's page ("IPS Display").
+_SCREEN = re.compile(r"display|screen|bildschirm|écran|ecran|pantalla|schermo|tela|ekran|экран|panel", re.IGNORECASE)
+
+
+_TITLE_BAR = re.compile(r"\s[|｜]\s")  # a title's name | a tagline or the store's name
+
+
+def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
+    """Pairs whose part's label names the product itself (``Robot Weight`` on a robot vacuum's page,
+    ``Speaker Dimensions`` on a speaker's: every word of the part in the page title) as the product's,
+    when no label of the page states the product's own value of that feature (mass or size): a fallback,
+    so a robot's ``Base Dimensions`` beside its ``Dimensions`` stays the base's. The title's name ends at a bar
+    (``Desk Converter | Compact, Adjustable Keyboard Tray``: a tagline's feature stays a part)."""
+    words = {_stem(w) for w in re.findall(r"[^\W\d_]+", _TITLE_BAR.split(title or "")[0].lower())}
+    if not words:
+        return pairs
+
+    def feature(info) -> str:
+        return "mass" if info.kind == "weight" else "dims"
+
+    stated = {feature(p.info) for p in pairs if p.info.role == "product" and not (p.package or p.info.package)}
+    out = []
+    for p in pairs:
+        info = p.info
+        if (
+            info.role == "component"
+            and info.part
+            and feature(info) not in stated
+            and {_stem(w) for w in info.part.split()} <= words
+            and not (feature(info) == "dims" and _SCREEN.search(info.part))
+        ):
+            p = replace(p, info=replace(info, role="product", part=None))
+        out.append(p)
+    return out

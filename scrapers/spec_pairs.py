@@ -7,6 +7,8 @@ labels over a row of values, or with the unit in the label (``Výška [mm]: 516`
 turns the visible lines (:attr:`scrapers.page.Page.lines`) into :class:`Pair` s whose label
 :func:`scrapers.labels.classify_label` (or :func:`~scrapers.labels.classify_other`) recognises; the
 ``spec_table`` adapter reads their values (:func:`scrapers.adapters.spec_table.observations_from_pairs`).
+Pairs within one line are :mod:`scrapers.inline_pairs`' (re-exported here); whose value a pair states once
+all are read, :mod:`scrapers.pair_roles`'.
 """
 
 from __future__ import annotations
@@ -14,28 +16,23 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 
+from scrapers.inline_pairs import DIGIT, has_unit, is_unit, split_inline
 from scrapers.labels import AXES, LabelInfo, classify_label, classify_other
 from scrapers.page import Line
-from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length, parse_mass, unit_hint
+from scrapers.quantities import length_unit, mass_unit, parse_length, parse_mass, unit_hint
 from scrapers.sizes import parse_dims
 
 __all__ = [
-    "DIGIT", "LENGTH_KINDS", "MAX_PAIRS", "Pair", "family_of", "has_unit", "is_unit", "lists_variants", "own_part_pairs", "pairs_from_lines",
-    "split_inline",
+    "CODE", "DIGIT", "LENGTH_KINDS", "MAX_PAIRS", "Pair", "family_of", "has_unit", "is_unit", "lists_variants",
+    "pairs_from_lines", "split_inline",
 ]
 
 #: Reading stops after this many recognised measurement pairs. Real product pages state at most a few
 #: dozen (23 on the richest page measured); a page with thousands is a parts list or a spec dump, and the
 #: product's own values come first.
 MAX_PAIRS = 400
-_AXIS_LETTER_END = re.compile(r"(?<=\s)[HWDLBT]\.?\s*$")
 _PUNCT_ONLY = re.compile(r"[\W_]+")
 _BARE_NUMBER = re.compile(r"\d+(?:[.,]\d+)*")
-_SEPARATOR = re.compile(r"\s*(?::|\s[—–]\s|=)\s*")
-DIGIT = re.compile(r"\d")
-_MAX_LABEL_WORDS = 6
-#: The last field bar before a label (``| lens height:``, ``• Weight:``): the label's words start after it.
-_FIELD_BAR = re.compile(r"[|•·](?!.*[|•·])\s*")
 CODE = re.compile(r"[{}<>;]|\":|:\s*\"")  # JSON, CSS or markup inside a string is not a spec line
 
 
@@ -53,105 +50,6 @@ class Pair:
     #: the pairs), for ``--explain``; None when the label or the value states it.
     unit_context: str | None = None
 
-
-def split_inline(text: str) -> list[tuple[str, str, LabelInfo]]:
-    """Recognised ``label: value`` pairs within one line (several per line allowed), or a label followed
-    directly by a number (``Gewicht 4,7 kg``).
-
-    Before each separator (``:``, a spaced dash, ``=``) the longest run of up to six words that
-    :func:`classify_label` recognises is the label; its value runs to where the next label starts (the
-    last word before the next separator when that one is not recognised)."""
-    text = clean_text(text)
-    seps = list(_SEPARATOR.finditer(text))
-    labelled: list[tuple[str, LabelInfo, int]] = []  # label, what it names, where its value starts
-    starts: list[int] = []  # where each separator's label starts
-    prev_end = 0
-    for k, sep in enumerate(seps):
-        bar = _FIELD_BAR.search(text, prev_end, sep.start()) if k > 0 else None
-        if bar:
-            prev_end = bar.end()  # "70mm | lens height: 42mm": a new field starts at "|"
-        first_field = k == 0 or bar is not None
-        words = list(re.finditer(r"\S+", text[prev_end : sep.start()]))
-        label_start = bar.start() if bar else prev_end + words[-1].start() if words else sep.start()
-        # Before a field's first separator every word is the label's: "Cable length: 75 cm" names a part,
-        # not a length ("length" alone is only the label when nothing precedes it).
-        shortest = max(1, len(words)) if first_field and len(words) <= _MAX_LABEL_WORDS else 1
-        for n in range(min(_MAX_LABEL_WORDS, len(words)), shortest - 1, -1):
-            first = words[-n].group(0)
-            if k > 0 and (DIGIT.search(first) or is_unit(first.rstrip(";,|"))):
-                continue  # "Weight: 2 kg Height: 30 cm", "Height: 30 cm; Width: 20 cm": "kg", "cm;" end the
-                # previous value, they start no label
-            cand_start = prev_end + words[-n].start()
-            info = classify_label(text[cand_start : sep.start()])
-            if info is not None:
-                labelled.append((text[cand_start : sep.start()], info, sep.end()))
-                label_start = cand_start
-                break
-        else:
-            if first_field and words and (other := classify_other(text[prev_end + words[0].start() : sep.start()])):
-                labelled.append((text[prev_end + words[0].start() : sep.start()], other, sep.end()))
-                label_start = prev_end + words[0].start()
-        starts.append(label_start)
-        prev_end = sep.end()
-    out: list[tuple[str, str, LabelInfo]] = []
-    value_starts = {start for _, _, start in labelled}
-    recognised = [sep.end() in value_starts for sep in seps]
-    for label, info, value_start in labelled:
-        end = _value_end(text, value_start, starts, recognised)
-        value = text[value_start:end].strip(" ;,|•·")
-        if DIGIT.search(value):
-            out.append((label, value, info))
-    if not seps:
-        # "Gewicht 4,7 kg"; "Length 70 cm, chest width 52 cm, in size L": each clause a label and a number
-        # "サイズ 文庫判/ページ数 170p/高さ 16cm": fields separated by slashes, each its own clause
-        fields = _FIELD_SLASH.search(text) is not None
-        clauses = _FIELD_SLASH.split(text) if fields else _CLAUSE.split(text)
-        for clause in clauses:
-            found = _label_then_number(clause)
-            if found is None:
-                if clause is clauses[0] and not fields:
-                    break
-                continue
-            out.append(found if len(clauses) == 1 else (found[0], found[1].strip(" ,;"), found[2]))
-    return out
-
-
-# A clause boundary: a comma or semicolon, a space and a word ("4,7 kg", "H21.6, W9.1" have none).
-#: A slash between fields (``文庫判/ページ数 170p/高さ 16cm``): followed by two letters, so ``30/20/10 cm`` and
-#: ``cm/inch`` are not split.
-_FIELD_SLASH = re.compile(r"\s*/\s*(?=[^\W\d_]{2})(?![^\W\d_]{1,6}\b\s*$)")
-_CLAUSE = re.compile(r"[;,]\s+(?=[^\W\d_]{2})")
-
-
-_MEASURED = re.compile(r"\d\s*(?:([^\W\d_]{1,12}\.?)(?![^\W_])|([\"'″]))")
-
-
-def has_unit(text: str) -> bool:
-    """Whether ``text`` holds a number followed by a unit (``2 kg``, ``30"``, ``20"W``)."""
-    return any(m.group(2) or is_unit(m.group(1).rstrip(".")) for m in _MEASURED.finditer(text))
-
-
-def _value_end(text: str, value_start: int, starts: list[int], recognised: list[bool]) -> int:
-    """Where a value that starts at ``value_start`` ends: where the next label starts. An unrecognised
-    "label" before a separator ends it only once the value holds a measured number (``Weight: Surface
-    Pro 9 i5, i7: 879 g`` keeps ``i7: 879 g``; ``Weight: 2 kg Colour: red`` stops before ``Colour``)."""
-    for start, known in zip(starts, recognised, strict=True):
-        if start >= value_start and (known or has_unit(text[value_start:start])):
-            return start
-    return len(text)
-
-
-def _label_then_number(text: str) -> tuple[str, str, LabelInfo] | None:
-    m = DIGIT.search(text)
-    if not m or m.start() == 0:
-        return None
-    cut = m.start()
-    letter = _AXIS_LETTER_END.search(text[:cut])  # "Size H21.6, W9.1, D1.5cm": H belongs to the value
-    if letter:
-        cut = letter.start()
-    label = text[:cut]
-    info = classify_label(label) or classify_other(label)
-    return (label.strip(), text[cut:], info) if info is not None else None
 
 
 def pairs_from_lines(lines: list[Line]) -> list[Pair]:
@@ -370,47 +268,3 @@ def _header_row(lines: list[Line], i: int) -> list[Pair]:
         Pair(lab.text, val.text, classify_label(lab.text), lab.package or val.package, val.index, val.group)
         for lab, val in zip(labels, values, strict=False)
     ]
-
-
-def is_unit(text: str) -> bool:
-    return len(text) <= 12 and (length_unit(text) is not None or mass_unit(text) is not None)
-
-
-def _stem(word: str) -> str:
-    return word[:-1] if len(word) > 3 and word.endswith("s") else word
-
-
-#: A screen's size is its diagonal, never an extent of the product, even on a monitor's page ("IPS Display").
-_SCREEN = re.compile(r"display|screen|bildschirm|écran|ecran|pantalla|schermo|tela|ekran|экран|panel", re.IGNORECASE)
-
-
-_TITLE_BAR = re.compile(r"\s[|｜]\s")  # a title's name | a tagline or the store's name
-
-
-def own_part_pairs(pairs: list[Pair], title: str | None) -> list[Pair]:
-    """Pairs whose part's label names the product itself (``Robot Weight`` on a robot vacuum's page,
-    ``Speaker Dimensions`` on a speaker's: every word of the part in the page title) as the product's,
-    when no label of the page states the product's own value of that feature (mass or size): a fallback,
-    so a robot's ``Base Dimensions`` beside its ``Dimensions`` stays the base's. The title's name ends at a bar
-    (``Desk Converter | Compact, Adjustable Keyboard Tray``: a tagline's feature stays a part)."""
-    words = {_stem(w) for w in re.findall(r"[^\W\d_]+", _TITLE_BAR.split(title or "")[0].lower())}
-    if not words:
-        return pairs
-
-    def feature(info) -> str:
-        return "mass" if info.kind == "weight" else "dims"
-
-    stated = {feature(p.info) for p in pairs if p.info.role == "product" and not (p.package or p.info.package)}
-    out = []
-    for p in pairs:
-        info = p.info
-        if (
-            info.role == "component"
-            and info.part
-            and feature(info) not in stated
-            and {_stem(w) for w in info.part.split()} <= words
-            and not (feature(info) == "dims" and _SCREEN.search(info.part))
-        ):
-            p = replace(p, info=replace(info, role="product", part=None))
-        out.append(p)
-    return out

@@ -48,3 +48,19 @@ def test_the_fast_line_is_the_dataclass_line():
     _add_line(lines, "  Gewicht \n 4,7 kg ", (True, False, False, 7))
     assert lines == [Line("Gewicht 4,7 kg", True, 7, 0, False)]
     assert hash(lines[0]) == hash(Line("Gewicht 4,7 kg", True, 7, 0, False))
+
+
+_PROSE = st.lists(st.sampled_from(["made of", "aus", "en", "solid", "oak", "Material", "Materiál", "素材", "2",
+                                   " ", "\n", "x", "é", "massivem", "Eiche", "\x00"]), max_size=8).map("".join)  # fmt: skip
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(_PROSE, max_size=10))
+def test_one_scan_finds_the_lines_a_search_per_line_finds(texts):
+    from scrapers.adapters.spec_table import _MATERIAL_HINT
+    from scrapers.adapters.text import _MADE_OF, _SOLID
+    from scrapers.page import lines_matching
+
+    lines = _lines(texts)
+    for pattern in (_MATERIAL_HINT, _MADE_OF, _SOLID):
+        assert lines_matching(lines, pattern) == {i for i, t in enumerate(texts) if pattern.search(t)}

@@ -20,8 +20,14 @@ from scrapers.adapters import Observation, adapter
 from scrapers.axis_rows import AXIS_GROUP_GAP, group_axes, whole_product_weights
 from scrapers.labels import AXES
 from scrapers.normalize import material_from_text
-from scrapers.page import Line, Page
-from scrapers.pair_roles import adjustable_extents, highest_settings, measured_packed, only_part_pairs
+from scrapers.page import Line, Page, lines_matching
+from scrapers.pair_roles import (
+    adjustable_extents,
+    highest_settings,
+    measured_packed,
+    only_part_pairs,
+    own_part_pairs,
+)
 from scrapers.quantities import (
     clean_text,
     mass_unit,
@@ -37,7 +43,6 @@ from scrapers.spec_pairs import (
     LENGTH_KINDS,
     MAX_PAIRS,
     Pair,
-    own_part_pairs,
     pairs_from_lines,
     split_inline,
 )
@@ -301,8 +306,9 @@ _MATERIAL_LABEL = re.compile(
 def material_observations(lines: list[Line]) -> list[Observation]:
     """``Material: Plástico`` lines (label and value on one line or two), first known material first."""
     obs = []
+    hinted = lines_matching(lines, _MATERIAL_HINT)
     for i, line in enumerate(lines):
-        if not _MATERIAL_HINT.search(line.text):
+        if i not in hinted:
             continue
         text = clean_text(line.text)
         label, _, value = text.partition(":")

@@ -13,8 +13,9 @@ import re
 
 from kb.measures.units import units_pattern
 from scrapers.adapters import Observation, adapter
+from scrapers.inline_pairs import DIGIT
 from scrapers.normalize import material_from_text
-from scrapers.page import Page
+from scrapers.page import Page, lines_matching
 from scrapers.quantities import parse_dims, parse_length, parse_mass, third_axis
 from scrapers.signs import minus_before
 
@@ -48,8 +49,10 @@ def text(page: Page) -> list[Observation]:
         else:
             obs.extend(_title_diameter(title, page.decimal_comma))
         obs.extend(_title_mass(title, page.decimal_comma))
-    for line in page.lines[:MAX_PROSE_LINES]:
-        if len(line.text) > 600:
+    prose = page.lines[:MAX_PROSE_LINES]
+    said = lines_matching(prose, _MADE_OF) | lines_matching(prose, _SOLID)
+    for k, line in enumerate(prose):
+        if len(line.text) > 600 or k not in said:
             continue
         material = None
         for pattern in (_MADE_OF, _SOLID):
@@ -182,8 +185,8 @@ def free_text(page: Page) -> list[Observation]:
         text = line.text
         if not 15 <= len(text) <= 600:
             continue
-        if not any(ch.isdigit() for ch in text):
-            continue
+        if DIGIT.search(text) is None and (text.isascii() or not any(ch.isdigit() for ch in text)):
+            continue  # (an ASCII text's digits are DIGIT's; any other text keeps str.isdigit's, "²" too)
         raw = text[:200]
         if _MEASURES.search(text):
             dims = parse_dims(text, None, dc)
