@@ -93,13 +93,14 @@ def report(trials, catalog, budget_s: float, sold: int, failures: bool) -> dict:
 def save(out: dict, trials) -> None:
     from saved import save_result
 
-    d, h, c = out["development"], out["held_out"], out["catalog"]
+    d, h, c, n = out["development"], out["held_out"], out["catalog"], out["new_development"]
     load = round(os.getloadavg()[0], 1)
     result = (
         f"{d['descriptions'] + h['descriptions']} descriptions of products the seed catalog lacks (written here) "
         f"against {out['pages']} real corpus pages behind a word-overlap title search (the store written here): "
         f"right product {d['right']}/{d['descriptions']} development stores, "
-        f"{h['right']}/{h['descriptions']} held-out; values right {d['values_right']}/{d['descriptions']} and "
+        f"{h['right']}/{h['descriptions']} held-out (of the development ones, {n['right']}/{n['descriptions']} "
+        f"written later, before any run: unseen when written); values right {d['values_right']}/{d['descriptions']} and "
         f"{h['values_right']}/{h['descriptions']}; over the {out['budget_s']:g} s budget {out['all']['over_budget']}, "
         f"slowest {out['all']['max_s']} s; catalog objects searched {c['looked_up']}/{c['descriptions']} "
         f"(load {load} on 2 cores)"

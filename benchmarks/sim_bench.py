@@ -388,6 +388,8 @@ def save_choice(out: dict[str, Any]) -> Path:
         f"{out['trials_per_cpu_s']} trials per CPU-second at load average {out['load_avg_1min']:.0f} (before about "
         f"{b['trials_per_cpu_s']:g}); {out['trials']} trials in {out['wall_s']:.0f} s wall on 2 workers"
     )
+    if "trials_per_cpu_s_min_of_n" in out:  # --repeat: the rate less at the load's mercy
+        result += f"; {out['trials_per_cpu_s_min_of_n']} from each trial's least CPU time over {len(out['runs_trials_per_cpu_s'])} runs"
     return save_result(
         "sim_choice",
         benchmark=f"closed-loop choice (`sim_bench.py --only choice`, seed catalog: data written here, top {out['top']})",

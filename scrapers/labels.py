@@ -105,6 +105,11 @@ _ORDER_LETTERS = {
 }  # fmt: skip
 
 
+def without_order_hint(text: str) -> str:
+    """``text`` with its axis-order hints (``(B x H x T)``, ``L x W x H``) blanked out."""
+    return _ORDER_HINT.sub(" ", text)
+
+
 def _order_of(text: str, kinds: list[str]) -> tuple[str, ...]:
     """The axes a dimensions label names in order (see :attr:`LabelInfo.order`)."""
     m = _ORDER_HINT.search(text) or _ORDER_WORD.search(text.lower())

@@ -63,6 +63,12 @@ _DROP_TAGS = frozenset(
     {"script", "style", "noscript", "template", "svg", "head", "iframe", "select", "option"}
 )
 _NEVER_DROP = frozenset({"html", "body", "main"})
+#: A hidden help popup: an element hidden by its own ``style`` whose name says tooltip, popup, popover,
+#: hint or info dialog (Alza's ``infoPopup infoDialog`` under each spec label: a sentence of help text
+#: between the label and its value). Its text explains a label and is never a value; a hidden element
+#: named otherwise (a closed spec tab) is read.
+_HIDDEN = re.compile(r"display\s*:\s*none", re.IGNORECASE)
+_HELP_POPUP = re.compile(r"tool-?tip|popup|popover|hint|info-?dialog", re.IGNORECASE)
 #: Elements that hold what every page of a store shows (a header, footer, navigation, an aside): a size
 #: there is a size guide's or a banner's, not the product's. ``header`` and ``footer`` count only outside
 #: sectioning content (HTML's rule: inside an ``article`` or ``section`` they are that section's own).
@@ -265,7 +271,7 @@ class Page:
                     context = None  # dropped whatever its names say
                 else:
                     foreign, own_package = _container_kind(node.get("id"), node.get("class"))
-                    if foreign and tag not in _NEVER_DROP:
+                    if (foreign and tag not in _NEVER_DROP) or _help_popup(node):
                         context = None
                     else:
                         package, site_wide, sectioned, _ = context
@@ -295,6 +301,14 @@ def _attributes(tree, wanted: tuple[tuple[str, str, str, str], ...]) -> list[str
                 found.append(text)
                 break
     return found
+
+
+def _help_popup(node) -> bool:
+    style = node.get("style")
+    if not style or not _HIDDEN.search(style):
+        return False
+    names = f"{node.get('id') or ''} {node.get('class') or ''}"
+    return bool(_HELP_POPUP.search(names))
 
 
 @lru_cache(maxsize=8192)
@@ -389,7 +403,23 @@ def visible_text(el) -> str:
 _new = object.__new__
 
 
+#: A text node of at least this many non-empty lines is a block of lines (a marketplace's description
+#: shown with its line breaks, Trendyol's ``Ağırlık 58.0 kg\nDerinlik 49.0 cm\n...``): each line is read
+#: as its own; fewer breaks are the markup's indentation (``\n  Výška  \n``, ``4,7\nkg``).
+TEXT_BLOCK_LINES = 3
+
+
 def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
+    if text.count("\n") >= TEXT_BLOCK_LINES - 1:
+        rows = [row for row in text.split("\n") if not row.isspace() and row]
+        if len(rows) >= TEXT_BLOCK_LINES:
+            for row in rows:
+                _add_one(lines, row, context)
+            return
+    _add_one(lines, text, context)
+
+
+def _add_one(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
     text = " ".join(text.split())
     if text:
         # Line(text, package, group, index, site_wide) without the frozen dataclass's slow __init__ (one

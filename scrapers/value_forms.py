@@ -17,7 +17,7 @@ from scrapers.label_vocabulary import (
     QUALIFIERS,
     fold,
 )
-from scrapers.labels import AXES, classify_label, classify_other
+from scrapers.labels import AXES, classify_label, classify_other, without_order_hint
 from scrapers.quantities import clean_text, length_unit, mass_unit, parse_length
 
 __all__ = [
@@ -136,12 +136,13 @@ def sentence_value(value: str) -> bool:
     """Whether a labelled value is a sentence under the label (a photo caption under ``Dimensions``: ``The
     keyboard is placed on a 900 x 400 mm desk pad``), not the field's value: :data:`PROSE_WORDS` or more words
     before its first figure, with no colon among them (a sub-label: ``Set Size(WXDXH) with Stand: 923``) and
-    not themselves a measurement label (``Breite x Höhe x Tiefe 30 x 20 x 10``)."""
+    not themselves a measurement label (``Breite x Höhe x Tiefe 30 x 20 x 10``); an axis-order hint is no
+    word (``(B x H x T) 305 x 17,9 x 196 mm``)."""
     m = re.search(r"\d", value)
     if m is None or re.search(r"[:：]", value[: m.start()]):
         return False
     head = value[: m.start()]
-    if len(_WORD.findall(head)) < PROSE_WORDS:
+    if len(_WORD.findall(without_order_hint(head))) < PROSE_WORDS:  # ``(B x H x T) 305 x 17,9 x 196 mm``
         return False
     return classify_label(head) is None and classify_other(head) is None
 
