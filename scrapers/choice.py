@@ -10,12 +10,14 @@ value the page states, perhaps several times and in several readers. Each cluste
 * ``support``: how many other readers state the same value (0, 1, 2 or more others: 0, 0.5, 1);
 * ``repeats``: how many more times the page states it (capped at 3);
 * ``complete``: for a size, how many extents its fullest member states (of 3);
-* ``main``: the share of its statements read inside the page's main content, not in a header, footer,
-  navigation or aside (site-wide blocks: a store's size guide, a banner).
+* ``main``: the share of its statements read inside the page's main, shown content, not in a header,
+  footer, navigation or aside (site-wide blocks: a store's size guide, a banner) nor in a hidden meta field
+  (``Observation.hidden``: a shop system's postage weight in ``<meta>``).
 
 The highest score wins (ties: the cluster holding the earliest candidate in the adapters' priority order);
 its fullest member (sizes) or its best member (mass) is the value. A cluster stated **only** in site-wide
-blocks (``main`` 0: a footer's shipping limits, an aside's size guide) is never the product's: with no
+blocks or hidden meta fields (``main`` 0: a footer's shipping limits, an aside's size guide, an
+``og:product:weight`` no shown line states) is never the product's: with no
 other cluster, nothing is chosen. :func:`fit_weights` fits the weights on
 samples of labelled pages (``benchmarks/corpus_bench.py --loso`` fits them on all development stores but
 one and scores the one left out); :data:`WEIGHTS` are checked on the development stores only.
@@ -87,7 +89,7 @@ def features(members: Sequence[Any], source_index: Callable[[Any], int], n_sourc
         "support": min(len(sources) - 1, 2) / 2,
         "repeats": min(len(members) - 1, 3) / 3,
         "complete": max(len(o.value) for o in members) / 3 if members[0].feature == "dims" else 0.0,
-        "main": sum(not getattr(o, "site_wide", False) for o in members) / len(members),
+        "main": sum(not (getattr(o, "site_wide", False) or getattr(o, "hidden", False)) for o in members) / len(members),
     }
 
 

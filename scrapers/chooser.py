@@ -105,7 +105,7 @@ def _choose(
             scored = {"cluster": i + 1, "score": round(c.score, 3), "features": c.features}
             for o in c.members:
                 if c.site_wide:
-                    why = "not the product's: stated only in a site-wide block (header, footer, nav, aside)"
+                    why = f"not the product's: stated only in {_off_main_places(c.members)}"
                 elif o is chosen:
                     why = "chosen: highest-scoring cluster (scrapers.choice)"
                     if feature == "dims" and len(c.members) > 1:
@@ -116,7 +116,8 @@ def _choose(
                     why = f"alternative: disagrees with the chosen value (cluster {i + 1}, lower score)"
                 decisions.append(_candidate(o, why) | scored | ({"representative": True} if o is c.value else {}))
     if chosen is None:
-        warnings.append(f"{feature}: only site-wide blocks state one ({best.members[0].raw[:80]!r}); not used")
+        where = "site-wide blocks" if not any(o.hidden for o in best.members) else "hidden meta fields"
+        warnings.append(f"{feature}: only {where} state one ({best.members[0].raw[:80]!r}); not used")
         return None
     for other in clusters[1 : 1 + MAX_DISAGREEMENTS]:
         o = other.members[0]
@@ -127,6 +128,16 @@ def _choose(
     if len(clusters) > 1 + MAX_DISAGREEMENTS:
         warnings.append(f"{feature}: and {len(clusters) - 1 - MAX_DISAGREEMENTS} more disagreeing values")
     return chosen
+
+
+def _off_main_places(members: list[Observation]) -> str:
+    """Where a cluster outside the main content is stated: site-wide blocks, hidden meta fields or both."""
+    places = []
+    if any(o.site_wide for o in members):
+        places.append("a site-wide block (header, footer, nav, aside)")
+    if any(o.hidden for o in members):
+        places.append("a hidden meta field (a shop system's postage weight, shown nowhere on the page)")
+    return " or ".join(places)
 
 
 def _source_index(o: Observation) -> int:

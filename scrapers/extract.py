@@ -84,7 +84,7 @@ def extract_page(body: str | bytes, url: str, content_type: str | None = None) -
 def _has_dims_and_mass(observations: list[Observation]) -> bool:
     found = {
         o.feature for o in observations
-        if not o.package and o.role == "product" and o.feature in ("dims", "mass") and not o.site_wide
+        if not o.package and o.role == "product" and o.feature in ("dims", "mass") and not o.off_main
     }
     return len(found) == 2
 

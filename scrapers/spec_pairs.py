@@ -17,6 +17,7 @@ import re
 from dataclasses import dataclass, replace
 
 from scrapers.inline_pairs import DIGIT, has_unit, is_unit, split_inline
+from scrapers.label_vocabulary import QUALIFIERS, fold
 from scrapers.labels import AXES, LabelInfo, classify_label, classify_other
 from scrapers.page import Line
 from scrapers.quantities import length_unit, mass_unit, parse_length, parse_mass, unit_hint
@@ -219,10 +220,22 @@ def _column_unit(lines: list[Line], i: int) -> tuple[str, str] | None:
     return ("mass", unit) if mass_unit(unit) is not None else None
 
 
+_WORD = re.compile(r"[^\W\d_]{2,}")
+
+
+def figures_only(value: str) -> bool:
+    """Whether ``value`` (after a sub-label's colon) holds figures and no word but units and qualifiers
+    (``923``, ``ca. 30 x 20``, ``5.20(w) x 8.00(h)``): a value a heading's unit may complete. A value naming
+    something (``Eco Genuino 122 NT``: a variant table's model cell under the ``Gewicht (kg)`` column) is not
+    a figure in that unit."""
+    tail = value.rsplit(": ", 1)[-1]
+    return all(is_unit(w) or fold(w) in QUALIFIERS for w in _WORD.findall(tail))
+
+
 def _with_heading_unit(pair: Pair, headings: dict[str, tuple[str, str, int]], i: int) -> Pair:
     """``pair`` with the unit of the heading above it when its label states none (a Play.com style
-    ``Dimensions (mm)`` block of ``Width: 923`` rows)."""
-    if pair.info.unit is not None or pair.info.role != "product":
+    ``Dimensions (mm)`` block of ``Width: 923`` rows) and its value is figures (:func:`figures_only`)."""
+    if pair.info.unit is not None or pair.info.role != "product" or not figures_only(pair.value):
         return pair
     family = family_of(pair.info)
     found = headings.get(family)

@@ -349,10 +349,11 @@ def test_value_split_over_cells_and_lone_colons():
 
 
 def test_opengraph_product_weight():
+    # a hidden field: the product's when a shown line agrees (tests/test_extract_hidden_fields.py)
     page = """<html><head><meta property="og:title" content="Desk Lamp">
     <meta property="product:weight:value" content="1.4"><meta property="product:weight:units" content="kg">
     <meta property="product:shipping_weight:value" content="2.0">
-    <meta property="product:shipping_weight:units" content="kg"></head><body></body></html>"""
+    <meta property="product:shipping_weight:units" content="kg"></head><body><p>Weight: 1.4 kg</p></body></html>"""
     record = extract_page(page, "https://shop.example/lamp")
     assert record.mass_g == pytest.approx(1400.0)
     assert record.package_mass_g == [pytest.approx(2000.0)]

@@ -54,6 +54,15 @@ class Observation:
     part: str | None = None
     #: Read in a site-wide block (the store's header, footer, navigation, an aside: ``Line.site_wide``).
     site_wide: bool = False
+    #: Stated only in a ``<meta>`` field the page never shows (Open Graph's ``product:weight``, a microdata
+    #: ``<meta itemprop="weight">``): the weight a shop system computes postage from, the product's only
+    #: when a shown statement agrees (``scrapers.choice``, feature ``main``).
+    hidden: bool = False
+
+    @property
+    def off_main(self) -> bool:
+        """Not read in the page's main, shown content: a site-wide block or a hidden meta field."""
+        return self.site_wide or self.hidden
 
     def extents(self) -> tuple[tuple[str, float], ...]:
         """``(role, cm)`` per stated extent of a dims observation."""

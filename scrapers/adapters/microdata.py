@@ -70,8 +70,25 @@ def microdata(page: Page) -> list[Observation]:
     for item in tree.xpath("//*[@itemscope][@itemtype]"):
         itemtype = (item.get("itemtype") or "").strip().rsplit("/", 1)[-1].lower()
         if itemtype in PRODUCT_TYPES and item.get("itemprop") is None:
-            return read_product(item_dict(item), 1, page.decimal_comma)
+            obs = read_product(item_dict(item), 1, page.decimal_comma)
+            if _hidden_weight(item):
+                for o in obs:
+                    o.hidden = o.hidden or (o.feature == "mass" and o.raw.startswith("weight:"))
+            return obs
     return []
+
+
+def _hidden_weight(item) -> bool:
+    """Whether ``item``'s ``weight`` is a ``<meta>`` field the page does not show (Shopware's buybox
+    ``<meta itemprop="weight" content="6.5 kg">``, its postage weight), also as a QuantitativeValue whose
+    ``value`` is one; a shown ``<span itemprop="weight">`` is not."""
+    for el in item.iterdescendants():
+        if isinstance(el.tag, str) and "weight" in (el.get("itemprop") or "").split() and _owner(el) is item:
+            if el.get("itemscope") is None:
+                return el.tag == "meta"
+            values = [v for v in el.iterdescendants() if isinstance(v.tag, str) and v.get("itemprop") == "value"]
+            return bool(values) and values[0].tag == "meta"
+    return False
 
 
 _OG_WEIGHTS = (("product:weight", False), ("product:shipping_weight", True), ("og:weight", False))
@@ -80,7 +97,9 @@ _OG_WEIGHTS = (("product:weight", False), ("product:shipping_weight", True), ("o
 @adapter("opengraph", priority=25)
 def opengraph(page: Page) -> list[Observation]:
     """Open Graph / Facebook catalog product meta: ``product:weight:value`` with ``:units`` (and the
-    shipping weight, a package value)."""
+    shipping weight, a package value). Shown nowhere on the page, the weight is a hidden field
+    (``Observation.hidden``): shop systems fill it with the postage weight (PrestaShop's ``1.1 KG`` for a
+    graphics card), so it is the product's only where a shown statement agrees."""
     tree = page.tree
     if tree is None or "weight:value" not in page.text:
         return []
@@ -93,5 +112,6 @@ def opengraph(page: Page) -> list[Observation]:
         if value and units:
             mass = parse_mass(f"{value} {units}", None, False)
             if mass is not None:
-                obs.append(Observation("mass", mass, package, rank=0, raw=f"{prefix}: {value} {units}"))
+                # the product's weight only when a shown line agrees (Observation.hidden); the shipping one is a package's
+                obs.append(Observation("mass", mass, package, rank=0, raw=f"{prefix}: {value} {units}", hidden=not package))
     return obs
