@@ -11,8 +11,8 @@ from conftest import SEED_CSV
 
 from kb.catalog import KnowledgeBase
 from recall.engine import Recaller
-from recall.lookup import lookup_reason, recall_with_lookup, search_terms
 from recall.fit import THRESHOLDS, Trust
+from recall.lookup import lookup_reason, recall_with_lookup, search_terms
 from recall.lookup_need import contents_phrase, loose_fit, proper_name, unnamed_contents
 from scrapers.demo_store import DemoStore
 from scrapers.demo_store.products import P
