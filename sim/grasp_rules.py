@@ -8,7 +8,7 @@ from __future__ import annotations
 from sim.grasps import edge_depth_cm
 from sim.planned_object import PlannedObject
 
-__all__ = ["Candidates", "HEAVY_MASS_G", "LIGHT_MASS_G", "candidates"]
+__all__ = ["Candidates", "HEAVY_MASS_G", "LIGHT_MASS_G", "candidates", "is_tiny_flat"]
 
 #: Feix et al. 2014: 92 % of grasped objects weigh 500 g or less; heavier objects get power grasps.
 HEAVY_MASS_G = 500.0
@@ -177,15 +177,27 @@ def _lateral_pinch(o: PlannedObject, why: str) -> Candidates:
     ]
 
 
-def _small_flat(o: PlannedObject) -> Candidates | None:
-    """Tiny flat things (coins, clips: the tip pinch) and small flat-sided ones (keys, cards: lateral)."""
-    w, a = o.c_cm, o.a_cm
-    small_flat = (
+def _is_small_flat(o: PlannedObject) -> bool:
+    """Flat and small enough for a pinch of the thumb against the index (keys, cards, coins)."""
+    w = o.c_cm
+    return (
         w <= LATERAL_PINCH_MAX_THICK_CM
-        and a <= LATERAL_PINCH_MAX_LENGTH_CM
+        and o.a_cm <= LATERAL_PINCH_MAX_LENGTH_CM
         and o.mass_g <= LATERAL_PINCH_MAX_MASS_G
         and w <= 0.6 * o.b_cm
     )
+
+
+def is_tiny_flat(o: PlannedObject) -> bool:
+    """A tiny flat thing (coin, paper clip, washer: at most TIP_PINCH_MAX_LENGTH_CM long), picked up by the tip
+    pinch; its own class of experience too (sim/experience.py ``object_class``)."""
+    return _is_small_flat(o) and o.a_cm <= TIP_PINCH_MAX_LENGTH_CM
+
+
+def _small_flat(o: PlannedObject) -> Candidates | None:
+    """Tiny flat things (coins, clips: the tip pinch) and small flat-sided ones (keys, cards: lateral)."""
+    w, a = o.c_cm, o.a_cm
+    small_flat = _is_small_flat(o)
     if small_flat and a <= TIP_PINCH_MAX_LENGTH_CM:
         return [
             (
