@@ -43,6 +43,7 @@ from recall.reading import NEGATED_REASON, Reading, Stated
 from recall.tags import Tagger
 from recall.tokens import Tokenizer
 from recall.toolkit import Tree
+from recall.unread import read_unread
 
 __all__ = [
     "GRAMMAR",
@@ -91,7 +92,8 @@ class FeatureEvidence:
 class RefusedQuantity:
     """A stated value the parser does not use, and why: negated ("not 10 cm"), negative ("-10 kg"), zero,
     beyond the catalog's limits ("1e308 cm", "10**100 g"; 5 m and 500 kg are accepted), too small to
-    state, or a second unit not smaller than one of the first ("5 ft 12 in")."""
+    state, a second unit not smaller than one of the first ("5 ft 12 in"), or not read: a number followed
+    by a word the parser knows no meaning of ("40 blorps", :mod:`recall.unread`)."""
 
     words: str
     start: int
@@ -170,6 +172,7 @@ class DescriptionParser:
             read_categories(segment, pos, reading)
             pos += len(segment)
         read_relations(tokens, reading)
+        read_unread(tokens, reading)
         features, hint = _resolve(reading, text)
         refused = tuple(
             RefusedQuantity(text[start:end], start, end, reason)

@@ -12,8 +12,6 @@ from hypothesis import strategies as st
 
 from kb.errors import DescriptionError
 from kb.features import CATEGORIES, FEATURES
-from kb.measures.aliases import PARSER_LANGUAGES
-from kb.measures.units import unit_table
 from recall import lexicon
 from recall.parser import MAX_TEXT_CHARS, QUALIFIERS, FeatureEvidence, ParsedDescription, parse
 from recall.toolkit import Tree
@@ -221,8 +219,10 @@ def test_contents_give_a_lower_bound_on_mass() -> None:
 
 
 def test_unit_table_is_built_with_pint_once() -> None:
-    table = unit_table(PARSER_LANGUAGES)
-    assert table is unit_table(PARSER_LANGUAGES)
+    from kb.measures.units import description_units
+
+    table = description_units()
+    assert table is description_units()
     assert table["inches"].factor == approx(2.54)
     assert table["lb"].factor == approx(453.59237)
     assert table["kg"].kind == "mass" and table["ml"].kind == "volume" and table["'"].kind == "length"
