@@ -36,6 +36,7 @@ from kb.features import FEATURES
 from recall import lexicon as lx
 from recall.categories import read_categories, resolve_categories
 from recall.chunks import GRAMMAR, MAX_SEGMENT_TOKENS, Chunker, size
+from recall.descriptions import MAX_DESCRIPTION_CHARS
 from recall.dimensions import read_relations, resolve_dims
 from recall.mass import resolve_mass
 from recall.quantities import QuantityReader
@@ -57,8 +58,9 @@ __all__ = [
     "parse",
 ]
 
-#: Longest accepted description (characters); longer input raises DescriptionError.
-MAX_TEXT_CHARS = 1_000_000
+#: Longest accepted description (characters; :data:`recall.descriptions.MAX_DESCRIPTION_CHARS`, the one
+#: limit of every face); longer input raises DescriptionError.
+MAX_TEXT_CHARS = MAX_DESCRIPTION_CHARS
 QUALIFIERS: tuple[str, ...] = ("about", "exact", "at_least", "at_most", "range")
 
 
@@ -156,6 +158,11 @@ class DescriptionParser:
             raise DescriptionError(
                 f"description too long: {len(text):,} characters (at most {MAX_TEXT_CHARS:,})"
             )
+        return self.read(text)
+
+    def read(self, text: str) -> ParsedDescription:
+        """The stages on ``text`` of any length (no face calls it: the tests of the stages' own bounds on
+        long hostile input do)."""
         try:
             tokens = self.tagger.tag(self.tokenizer.tokens(text))
         except TimeoutError:  # nltk.redos backstop on a regular expression; never expected
