@@ -26,6 +26,7 @@ __all__ = [
     "MAX_MARGIN",
     "NOT_IN_CATALOG_CONFIDENCE",
     "OPEN_SET_CONFIDENCE_CAP",
+    "REFUSED_CONFIDENCE_CAP",
     "capped_confidence",
     "competitors_of",
     "confidence_from_margin",
@@ -80,6 +81,9 @@ MAX_MARGIN = 10.0
 COMPETITOR_POOL = 16
 #: An open-set result's confidence is at most this.
 OPEN_SET_CONFIDENCE_CAP = 0.5
+#: ... and so is a result whose description states a value that is not used (refused as absurd, negative,
+#: zero, or not read: "a 40 tonne mug", "a 10 cm mug of 40 blorps"): what it said was not all compared.
+REFUSED_CONFIDENCE_CAP = 0.5
 #: ... and a description naming a noun the catalog does not have at most this (its first match is the
 #: physically closest object, never the described one; measured in RECALL.md).
 NOT_IN_CATALOG_CONFIDENCE = 0.05
@@ -143,15 +147,19 @@ def capped_confidence(
     not_in_catalog: bool,
     features_only: bool = True,
     soft_only: bool = False,
+    refused: bool = False,
 ) -> float:
     """:func:`confidence_of`, capped at :data:`OPEN_SET_CONFIDENCE_CAP` for an open-set result, at
     :data:`NOT_IN_CATALOG_CONFIDENCE` for a noun the catalog does not have and, when ``soft_only`` (no
     stated feature and no name: vague words only, "something small and round"), at the ranking's own
     posterior of the first, 1 / ``competitors``: none of the 1,886 results of the nine sets (both modes) is
-    of that kind, so the fitted model has nothing to say about them."""
+    of that kind, so the fitted model has nothing to say about them; at :data:`REFUSED_CONFIDENCE_CAP`
+    when ``refused`` (a stated value was not used)."""
     confidence = confidence_of(margin, closeness, unknown_noun, metric, competitors, features_only)
     if soft_only:
         confidence = min(confidence, 1.0 / max(competitors, 1.0))
+    if refused:
+        confidence = min(confidence, REFUSED_CONFIDENCE_CAP)
     if open_set:
         confidence = min(confidence, OPEN_SET_CONFIDENCE_CAP)
     if not_in_catalog:

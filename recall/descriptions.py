@@ -1,5 +1,6 @@
-"""Descriptions read from a CSV file: the ``description`` column that ``objrecall parse --file``,
-``objrecall recall --file`` and the evaluation's open-set file share."""
+"""Descriptions: their length limit (:data:`MAX_DESCRIPTION_CHARS`, every face's), and the ``description``
+column of a CSV file that ``objrecall parse --file``, ``objrecall recall --file`` and the evaluation's
+open-set file share."""
 
 from __future__ import annotations
 
@@ -10,7 +11,11 @@ from pathlib import Path
 from kb.errors import DescriptionError
 from kb.files import read_input_file
 
-__all__ = ["MAX_DESCRIPTIONS_BYTES", "read_description_column"]
+__all__ = ["MAX_DESCRIPTIONS_BYTES", "MAX_DESCRIPTION_CHARS", "read_description_column"]
+
+#: The longest description (characters): the one limit of the recall API (``recall.parser.parse``, so
+#: ``Recaller.recall_text``, the CLI and the HTTP service), refused with one DescriptionError past it.
+MAX_DESCRIPTION_CHARS = 5_000
 
 #: The largest file of descriptions read (about 300,000 descriptions of 200 characters).
 MAX_DESCRIPTIONS_BYTES = 64 * 1024 * 1024

@@ -61,6 +61,7 @@ from recall.shortlist import Shortlist, ranking_scores
 from recall.snapshot import CatalogSnapshot, load_snapshot
 from recall.subject import noun_phrase, subject_head, subject_phrase
 from recall.submaterials import SubmaterialIndex, with_submaterial
+from recall.unread import unknown_to_catalog
 from recall.vague import SoftEvidence, soft_evidence
 
 __all__ = [
@@ -172,6 +173,7 @@ class Recaller:
         self, parsed: Any, *, top: int = 5, metric: str | None = None, features_only: bool = False
     ) -> RecallResult:
         """Recall from a parser result (``recall.parser.ParsedDescription``)."""
+        parsed = unknown_to_catalog(parsed, self.names.vocabulary)  # "2 AA batteries": the catalog's word
         query = FeatureQuery.from_parsed(parsed)
         if not features_only:
             query = self._shape_from_geometry(query)
@@ -194,6 +196,7 @@ class Recaller:
         result = self._recall(
             query, names, top=top, metric=metric, features_only=features_only, soft=soft, noun=noun,
             subject=subject, unused=nothing_compared(parsed.refused, bool(query.numeric)),
+            refused=bool(nothing_compared(parsed.refused, False)),
         )  # fmt: skip
         result.text = text
         result.parsed = parsed.to_dict()
@@ -277,6 +280,7 @@ class Recaller:
         noun: DescribedNoun | None = None,
         subject: tuple[str, ...] = (),
         unused: tuple[str, ...] = (),
+        refused: bool = False,
     ) -> RecallResult:
         metric = _checked(metric, features_only, top)
         qdict = {
@@ -316,7 +320,7 @@ class Recaller:
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
             margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
-            soft_only=len(query) == 0 and not named,
+            soft_only=len(query) == 0 and not named, refused=refused,
         )  # fmt: skip
         same_kind_as, same_kind = self.shortlist.same_kind(noun, ranked, metric) if not_in_catalog else (None, [])
         return RecallResult(

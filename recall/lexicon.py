@@ -42,9 +42,8 @@ from __future__ import annotations
 from types import MappingProxyType
 
 from kb.measures import words as _words
-from kb.measures.aliases import PARSER_LANGUAGES
 from kb.measures.numbers import VULGAR_FRACTIONS
-from kb.measures.units import aliases_of
+from kb.measures.units import description_aliases_of
 
 # --------------------------------------------------------------------------------------------- numbers
 #: Number words (tag NW), magnitude words (tag NMAG) and fraction words (tag FRC): the number
@@ -57,11 +56,14 @@ ORDINAL_FRACTIONS: frozenset[str] = frozenset(FRACTION_WORDS) - {"half", "halves
 UNICODE_FRACTIONS = VULGAR_FRACTIONS
 
 # ----------------------------------------------------------------------------------------------- units
-#: Unit words -> pint unit names: the English and language-neutral words of the one unit table
-#: (:mod:`kb.measures.aliases`); the factors are computed once with pint (:mod:`kb.measures.units`).
-LENGTH_UNITS: dict[str, str] = aliases_of("length", PARSER_LANGUAGES)
-MASS_UNITS: dict[str, str] = aliases_of("mass", PARSER_LANGUAGES)
-VOLUME_UNITS: dict[str, str] = aliases_of("volume", PARSER_LANGUAGES)
+#: Unit words -> pint unit names: the description parser's words of the one unit table
+#: (:func:`kb.measures.units.description_units`: every language's but the English homographs, and the
+#: description-only units, "t", "km", "stone"); the factors are computed once with pint.
+LENGTH_UNITS: dict[str, str] = description_aliases_of("length")
+MASS_UNITS: dict[str, str] = description_aliases_of("mass")
+VOLUME_UNITS: dict[str, str] = description_aliases_of("volume")
+#: Unit words that are other words first (a container, a material): a unit only right after a number.
+UNIT_NOUNS: dict[str, str] = {"cup": "UVOL", "stone": "UMASS", "stones": "UMASS"}
 #: Density assumed for contents (g per ml): "filled with half a liter of water" weighs at least 500 g.
 CONTENTS_DENSITY_G_PER_ML = 1.0
 

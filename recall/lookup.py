@@ -48,6 +48,7 @@ from recall.lookup_need import (
     unnamed_contents,
     unnamed_subject,
 )
+from recall.lookup_slots import stated_placements
 from scrapers.fetcher import Clock, SystemClock
 from scrapers.lookup import DEFAULT_MAX_PAGES, StoresLookup, search_stores
 from scrapers.sources import Sources
@@ -179,13 +180,18 @@ def fits(text: str | Any, record: ObjectRecord) -> tuple[bool, str, float]:
         from recall.parser import parse
 
         text = parse(text)  # once for every placement
-    judged = [_fit_of(text, placed) for placed in placements(_judged(record))]
+    record = _judged(record)
+    three = all(d is not None for d in record.dims_cm)
+    described = stated_placements(text) if three else [text]  # the description's extents, where allowed
+    judged = [_fit_of(d, recaller, placed) for placed in placements(record)
+              for recaller in [Recaller.from_records([placed])] for d in described]  # fmt: skip
     return min(judged, key=lambda j: (j[3], j[2]))[:3]
 
 
-def _fit_of(parsed: Any, record: ObjectRecord) -> tuple[bool, str, float, float]:
-    """:func:`fits` for one placement of the record's extents, with the fit's score last (to choose)."""
-    result = Recaller.from_records([record]).recall_parsed(parsed, top=1)
+def _fit_of(parsed: Any, recaller: Recaller, record: ObjectRecord) -> tuple[bool, str, float, float]:
+    """:func:`fits` for one placement of the record's extents (``recaller``: over it alone) and of the
+    description's (:func:`recall.lookup_slots.stated_placements`), with the fit's score last (to choose)."""
+    result = recaller.recall_parsed(parsed, top=1)
     if not result.matches:
         return False, "the description states nothing to compare", math.inf, math.inf
     if result.closeness is None:

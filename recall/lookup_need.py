@@ -15,11 +15,16 @@ catalog's match, however close, is a *kind* of the thing while the description n
   contents in their container, and the stores are searched for the contents first
   (:func:`contents_phrase`). A name that holds it ("a can of soda" -> soda can, "a pair of scissors")
   asks nothing.
-* **A named match that fits only loosely** (:func:`loose_fit`): the text names the catalog object, which
-  then fits up to the named threshold (:data:`recall.fit.THRESHOLDS`, NAMED), but a store's product must
-  fit within the plain one (PLAIN); a match between the two ("a 12 inch cast iron skillet, a bit over 8
-  pounds" as the seed's frying pan, 0.34) is kept for its name alone, and the stores may sell the one
-  described.
+* **A named match that does not settle the description** (:func:`loose_fit`): the text names the catalog
+  object, but its values are not the object's own as a person rounds them: the mean relative error is
+  above :data:`scrapers.lookup_store.SETTLED_ERROR` (0.05), the error within which a store's page settles
+  a search. A catalog object named by a kind's noun ("frying pan", "coffee mug", "candle") is one product
+  of that kind; fitting more loosely, it is a sibling of the one described (another size), as a store's
+  page that fits loosely is, and the stores may sell the one described ("a black frying pan, about 23 cm
+  across and 5 cm deep" as the seed's 0.23 frying pan, "a handmade stoneware coffee mug, 9 cm tall, 280 g"
+  at 0.10, "an unscented pillar candle" at 0.16). Above the plain threshold (PLAIN, 0.30) a store's
+  product could not even fit as it does ("a 12 inch cast iron skillet, a bit over 8 pounds" as the frying
+  pan, 0.34). Descriptions written from the catalog's own values fit within 0.00-0.03.
 
 The lookup keeps the catalog's match when no store product fits (:mod:`recall.lookup`), so a lookup
 asked here costs a search, never a worse answer.
@@ -30,7 +35,6 @@ from __future__ import annotations
 import re
 
 from recall.engine import GENERIC_NOUNS, RecallResult, subject_phrase
-from recall.fit import THRESHOLDS, Trust
 
 __all__ = [
     "LOOKUP_BELOW_CONFIDENCE",
@@ -64,22 +68,24 @@ def lookup_reason(result: RecallResult, threshold: float = LOOKUP_BELOW_CONFIDEN
     contents = unnamed_contents(result)
     if contents is not None:
         return f"the recalled {result.best.name} does not name what the text says it holds ({contents})"
-    loose = loose_fit(result)
-    if loose is not None:
-        return f"the recalled {result.best.name} fits only loosely ({loose:.2f} > {THRESHOLDS[Trust.PLAIN]:g})"
     name = proper_name(result, names) if names is not None else None
     if name is not None:
         return f"the text names {name}, which the recalled {result.best.name} is not known by"
+    loose = loose_fit(result)
+    if loose is not None:
+        return f"the recalled {result.best.name} fits only loosely ({loose:.2f}): the stores may sell the one described"
     return None
 
 
 def loose_fit(result: RecallResult) -> float | None:
-    """The closeness of the first match when the text names it and it is above the plain threshold (module
-    docstring), else None."""
+    """The closeness of the first match when the text names it and it is above the error that settles a
+    store's search (:data:`scrapers.lookup_store.SETTLED_ERROR`; module docstring), else None."""
+    from scrapers.lookup_store import SETTLED_ERROR
+
     best = result.best
     if best is None or not best.matched_by_name or result.closeness is None:
         return None
-    return result.closeness if result.closeness > THRESHOLDS[Trust.PLAIN] else None
+    return result.closeness if result.closeness > SETTLED_ERROR else None
 
 
 def unnamed_subject(result: RecallResult) -> str | None:

@@ -36,6 +36,7 @@ from kb.features import FEATURES
 from recall import lexicon as lx
 from recall.categories import read_categories, resolve_categories
 from recall.chunks import GRAMMAR, MAX_SEGMENT_TOKENS, Chunker, size
+from recall.descriptions import MAX_DESCRIPTION_CHARS
 from recall.dimensions import read_relations, resolve_dims
 from recall.mass import resolve_mass
 from recall.quantities import QuantityReader
@@ -43,6 +44,7 @@ from recall.reading import NEGATED_REASON, Reading, Stated
 from recall.tags import Tagger
 from recall.tokens import Tokenizer
 from recall.toolkit import Tree
+from recall.unread import read_unread
 
 __all__ = [
     "GRAMMAR",
@@ -56,8 +58,9 @@ __all__ = [
     "parse",
 ]
 
-#: Longest accepted description (characters); longer input raises DescriptionError.
-MAX_TEXT_CHARS = 1_000_000
+#: Longest accepted description (characters; :data:`recall.descriptions.MAX_DESCRIPTION_CHARS`, the one
+#: limit of every face); longer input raises DescriptionError.
+MAX_TEXT_CHARS = MAX_DESCRIPTION_CHARS
 QUALIFIERS: tuple[str, ...] = ("about", "exact", "at_least", "at_most", "range")
 
 
@@ -91,7 +94,8 @@ class FeatureEvidence:
 class RefusedQuantity:
     """A stated value the parser does not use, and why: negated ("not 10 cm"), negative ("-10 kg"), zero,
     beyond the catalog's limits ("1e308 cm", "10**100 g"; 5 m and 500 kg are accepted), too small to
-    state, or a second unit not smaller than one of the first ("5 ft 12 in")."""
+    state, a second unit not smaller than one of the first ("5 ft 12 in"), or not read: a number followed
+    by a word the parser knows no meaning of ("40 blorps", :mod:`recall.unread`)."""
 
     words: str
     start: int
@@ -154,6 +158,11 @@ class DescriptionParser:
             raise DescriptionError(
                 f"description too long: {len(text):,} characters (at most {MAX_TEXT_CHARS:,})"
             )
+        return self.read(text)
+
+    def read(self, text: str) -> ParsedDescription:
+        """The stages on ``text`` of any length (no face calls it: the tests of the stages' own bounds on
+        long hostile input do)."""
         try:
             tokens = self.tagger.tag(self.tokenizer.tokens(text))
         except TimeoutError:  # nltk.redos backstop on a regular expression; never expected
@@ -170,6 +179,7 @@ class DescriptionParser:
             read_categories(segment, pos, reading)
             pos += len(segment)
         read_relations(tokens, reading)
+        read_unread(tokens, reading)
         features, hint = _resolve(reading, text)
         refused = tuple(
             RefusedQuantity(text[start:end], start, end, reason)

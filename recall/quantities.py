@@ -15,8 +15,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from kb.measures.aliases import PARSER_LANGUAGES
-from kb.measures.units import Unit, combine, unit_table
+from kb.measures.units import Unit, combine, description_units
 from kb.measures.words import number_value
 from recall import lexicon as lx
 from recall.chunks import size
@@ -42,7 +41,7 @@ class QuantityReader:
     """Reads chunk trees into a :class:`Reading`, with the unit table (built once); thread-safe."""
 
     def __init__(self) -> None:
-        self._units = unit_table(PARSER_LANGUAGES)
+        self._units = description_units()
 
     def read(self, tree: Tree, segment: list[Token], base: int, reading: Reading) -> None:
         """Read one sentence's chunks (``segment`` its tokens, ``base`` the index of its first token)."""

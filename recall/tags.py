@@ -11,9 +11,8 @@ from __future__ import annotations
 
 import re
 
-from kb.measures.aliases import PARSER_LANGUAGES
 from kb.measures.numbers import DIGITS_PATTERN
-from kb.measures.units import is_smaller_unit, unit_table
+from kb.measures.units import description_units, is_smaller_unit
 from recall import lexicon as lx
 from recall.tokens import FRACTION_CHARS, Token
 from recall.toolkit import RegexpTagger, UnigramTagger
@@ -263,8 +262,8 @@ def _word_tag(
     """The tag of a word whose meaning depends on its neighbours ("cup", "can", "light", "quarter", a
     dimension word before its hedged value); the lexicon's tag otherwise."""
     tag = tok.tag
-    if tok.low == "cup" and prev_num:
-        return "UVOL"  # "1 cup of water"
+    if prev_num and tok.low in lx.UNIT_NOUNS:
+        return lx.UNIT_NOUNS[tok.low]  # "1 cup of water", "a 40 stone mug"; "a stone mortar" keeps its material
     if tok.low == "can" and tag == "SHP":
         if not (
             (prev is not None and prev.low in lx.CAN_PRECEDERS) or (nxt is not None and nxt.low == "of")
@@ -322,7 +321,7 @@ _METRIC_LENGTH = frozenset({"millimeter", "centimeter", "meter"})
 def _imperial_text(tokens: list[Token]) -> bool:
     """True when the text's units are imperial (an ounce, pound, inch or foot) and none is a metric
     length: there "7 in diameter" is seven inches."""
-    table = unit_table(PARSER_LANGUAGES)
+    table = description_units()
     imperial = False
     for tok in tokens:
         if tok.tag in UNIT_TAGS:
@@ -365,7 +364,7 @@ def _smaller_unit_after(out: list[Token], tok: Token) -> bool:
         k -= 1
     if k == len(out) - 1 or k < 1 or out[k].tag not in UNIT_TAGS or out[k - 1].tag not in NUMBER_TAGS:
         return False
-    table = unit_table(PARSER_LANGUAGES)
+    table = description_units()
     first, second = table.get(out[k].low), table.get(tok.low)
     return first is not None and second is not None and is_smaller_unit(first, second)
 

@@ -83,7 +83,7 @@ class Tokenizer:
                 and len(low) > 1
                 and low not in known
                 and low not in lx.TOLERANCE_WORDS
-                and _split_hyphen(low)
+                and _split_hyphen(low, glued=bool(raw) and raw[-1].end == start)
             ):
                 # "5-cm-long" parts, "non-fragile" -> non fragile; number compounds stay whole
                 offset = start
@@ -122,8 +122,11 @@ class Tokenizer:
         return out
 
 
-def _split_hyphen(low: str) -> bool:
+def _split_hyphen(low: str, glued: bool = False) -> bool:
+    """Whether a hyphenated word is split (``glued``: right after the token before it, as "300g-ish")."""
     parts = low.split("-")
     if len(parts) == 2 and parts[0] in lx.NUMBER_WORDS and parts[1] in lx.NUMBER_WORDS:
         return False  # "twenty-one"
+    if len(parts[0]) == 1 and not glued and not any(p in lx.DIMENSION_WORDS for p in parts[1:]):
+        return False  # "t-shirt", "l-shaped", "x-ray": one word (no tonne, litre or "x"); "5 m-long" splits
     return True

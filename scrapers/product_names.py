@@ -27,6 +27,12 @@ MAX_NAME_WORDS = 8
 #: comma, a slash, a sentence's end, a bracket.
 _NAME_END = re.compile(r"\s[|｜/–—-]\s|[|｜]|:\s|,\s*|\.\s|\s?[(\[]")
 _SIGNS = re.compile(r"[®™©℗«»“”\"]")
+#: A web address standing for the store in its own title ("Play.com (UK) : ...", "... bei csv-direct.de").
+_HOST = r"(?:www\.)?[a-z0-9][a-z0-9-]*(?:\.[a-z0-9-]+)*\.(?:com|net|org|shop|store|eu|co\.uk|com\.br|[a-z]{2})(?![\w.])"
+_STORE_FIRST = re.compile(rf"^\s*{_HOST}(?:\s*\([^()]*\))?\s*[|｜:/–—-]\s*", re.IGNORECASE)
+_STORE_LAST = re.compile(
+    rf"(?:\s*[|｜:/–—-]\s*|\s+(?:bei|at|on|from|chez|su|von|auf)\s+){_HOST}(?:\s*\([^()]*\))?\s*$", re.IGNORECASE
+)
 _URLISH = re.compile(r"^(?:[a-z][a-z0-9+.-]*://[^/\s]*)?/\S*$", re.IGNORECASE)
 _MARKUP = re.compile(r"<\s*/?\s*[a-zA-Z!][^<>]*>")
 _HIDDEN = frozenset({"script", "style", "noscript", "template", "head", "iframe"})
@@ -67,7 +73,9 @@ def person_name(title: str) -> str:
     VX3276-4K-MHD 32 Inch 4K Monitor, IPS Display with HDR10 ..." -> "ViewSonic VX3276-4K-MHD 32 Inch 4K
     Monitor"; "Galaxy Tab S9 FE (Wi-Fi) | Samsung Levant" -> "Galaxy Tab S9 FE"), with the next part joined
     while the name is one word ("Microsoft - Surface Laptop - Copilot+ PC" -> "Microsoft Surface Laptop");
-    trademark signs and quotes dropped; at most :data:`MAX_NAME_WORDS` words. A URL or URL path is read
+    trademark signs and quotes dropped; the store's own web address before or after the name dropped
+    ("Play.com (UK) : Samsung Series 5 ..." -> "Samsung Series 5 ..."; "... Computerbildschirm bei
+    csv-direct.de"); at most :data:`MAX_NAME_WORDS` words. A URL or URL path is read
     as the words of its segment with the most words ("/products/sleep-sound-therapy-system" -> "sleep sound
     therapy system").
     The title itself when nothing is left.
@@ -81,6 +89,7 @@ def person_name(title: str) -> str:
         segment = max(reversed(segments), key=lambda s: len(re.split(r"[-_+]+", s)), default="")
         segment = re.sub(r"\.[a-z0-9]{2,5}$", "", segment, flags=re.IGNORECASE)
         text = " ".join(re.sub(r"[-_+]+", " ", segment).split()) or text
+    text = _STORE_LAST.sub("", _STORE_FIRST.sub("", text)) or text  # the store's address names no product
     parts = [p.strip() for p in _NAME_END.split(text)]
     name = ""
     for part in parts:

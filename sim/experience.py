@@ -3,7 +3,7 @@
 The planner ranks candidates by rules (sim/planner.py); the trials (sim/trial.py) say which held. An
 :class:`Experience` keeps, per **(hand program, object class)**, how many validated candidates held and how
 many were tried (a candidate holds when every seed's trial succeeded, as in sim/choice.py). The object
-class is the planner's resolved ``shape`` and ``material`` (``thin/paper``, ``radial/glass``, ...:
+class is the planner's resolved ``shape`` and ``material`` (``thin/paper``, ``radial/glass``, ..., a tiny flat thing apart:
 :func:`object_class`); a program, not a grasp type, because merged types run the same hand actions.
 
 **Estimate.** The chance that program ``p`` holds an object of class ``k`` is the posterior mean of a
@@ -30,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from kb.errors import SimulationError
+from sim.grasp_rules import is_tiny_flat
 from sim.programs import program_for
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
     "PRIOR_MEAN",
     "PRIOR_STRENGTH",
     "SWITCH_MARGIN",
+    "TINY_SUFFIX",
     "WINDOW",
     "Experience",
     "FirstChoiceMeasure",
@@ -61,10 +63,19 @@ _EPS = 1e-9
 EXPERIENCE_JSON = Path(__file__).resolve().parent / "data" / "experience.json"
 
 
+#: Suffix of the class of a tiny flat thing (sim.grasp_rules ``is_tiny_flat``: coins, clips).
+TINY_SUFFIX = "/tiny"
+
+
 def object_class(obj: Any) -> str:
     """The class experience is kept for: ``shape/material`` of a resolved object (sim.planned_object
-    ``PlannedObject``; an unknown material is ``unknown``)."""
-    return f"{obj.shape}/{obj.material or 'unknown'}"
+    ``PlannedObject``; an unknown material is ``unknown``), plus :data:`TINY_SUFFIX` for a tiny flat thing
+    (at most 3.5 cm long: the planner's tip-pinch row). A coin and a key are both ``thin/metal``, but the
+    thumb-index tip pinch that holds coins and clips (3 of 3 in the seed catalog, data written here) pushed
+    the key and the credit card out (0 of 2), whose lateral pinch holds: lumped, the coins' trials promoted
+    the tip pinch over the key's lateral pinch (sim/PLANNER.md)."""
+    base = f"{obj.shape}/{obj.material or 'unknown'}"
+    return base + TINY_SUFFIX if is_tiny_flat(obj) else base
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ from __future__ import annotations
 from sim.grasps import edge_depth_cm
 from sim.planned_object import PlannedObject
 
-__all__ = ["Candidates", "HEAVY_MASS_G", "LIGHT_MASS_G", "candidates"]
+__all__ = ["Candidates", "HEAVY_MASS_G", "LIGHT_MASS_G", "candidates", "is_tiny_flat"]
 
 #: Feix et al. 2014: 92 % of grasped objects weigh 500 g or less; heavier objects get power grasps.
 HEAVY_MASS_G = 500.0
@@ -82,6 +82,17 @@ def _floppy(o: PlannedObject) -> Candidates | None:
     """Cloth and paper sheets: a fold pinched or gathered in the fist."""
     if o.rigidity != "floppy":
         return None
+    if o.mass_g < LATERAL_PINCH_MAX_MASS_G * 2 and o.material == "paper":
+        # A sheet of paper does not gather into a fold as cloth does: it is pinched flat at its edge between
+        # the thumb and two finger pads (Feix 2016 type 8). Seed catalog (data written here, seed 0): the
+        # thumb-2 finger held all four light paper sheets (the a4 sheet, two envelopes, sandpaper), the
+        # lateral pinch two; on the five other light floppy objects (cloth, rubber gloves, a bunch of keys)
+        # both held (planner version 16).
+        return [
+            ("thumb_2_finger", "a light paper sheet: pinched flat at its edge between thumb and two finger pads"),
+            ("lateral_pinch", "floppy: pinch it between thumb and the side of the index"),
+            ("medium_wrap", "floppy: gather it in the fist"),
+        ]
     if o.mass_g < LATERAL_PINCH_MAX_MASS_G * 2:
         return [
             ("lateral_pinch", "floppy and light: pinch a fold between thumb and the side of the index"),
@@ -166,15 +177,27 @@ def _lateral_pinch(o: PlannedObject, why: str) -> Candidates:
     ]
 
 
-def _small_flat(o: PlannedObject) -> Candidates | None:
-    """Tiny flat things (coins, clips: the tip pinch) and small flat-sided ones (keys, cards: lateral)."""
-    w, a = o.c_cm, o.a_cm
-    small_flat = (
+def _is_small_flat(o: PlannedObject) -> bool:
+    """Flat and small enough for a pinch of the thumb against the index (keys, cards, coins)."""
+    w = o.c_cm
+    return (
         w <= LATERAL_PINCH_MAX_THICK_CM
-        and a <= LATERAL_PINCH_MAX_LENGTH_CM
+        and o.a_cm <= LATERAL_PINCH_MAX_LENGTH_CM
         and o.mass_g <= LATERAL_PINCH_MAX_MASS_G
         and w <= 0.6 * o.b_cm
     )
+
+
+def is_tiny_flat(o: PlannedObject) -> bool:
+    """A tiny flat thing (coin, paper clip, washer: at most TIP_PINCH_MAX_LENGTH_CM long), picked up by the tip
+    pinch; its own class of experience too (sim/experience.py ``object_class``)."""
+    return _is_small_flat(o) and o.a_cm <= TIP_PINCH_MAX_LENGTH_CM
+
+
+def _small_flat(o: PlannedObject) -> Candidates | None:
+    """Tiny flat things (coins, clips: the tip pinch) and small flat-sided ones (keys, cards: lateral)."""
+    w, a = o.c_cm, o.a_cm
+    small_flat = _is_small_flat(o)
     if small_flat and a <= TIP_PINCH_MAX_LENGTH_CM:
         return [
             (

@@ -1,5 +1,6 @@
-"""Every command's error path: one ``Error: ...`` line on stderr and exit code 1, never a boxed usage
-error, a traceback or exit code 2 (README: "Errors are one line on stderr and exit code 1")."""
+"""Every command's error path: one ``Error: ...`` line on stderr, never a boxed usage error or a traceback;
+exit code 1 for an error, 2 for a usage error (an unknown option or command, a bad option value), as click
+has it (README: "Errors are one line on stderr and exit code 1; usage errors exit 2")."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import typer.main
 from typer.testing import CliRunner
 
 from kb.service.cli import app
+from kb.service.cli.common import USAGE_EXIT
 
 runner = CliRunner()
 
@@ -28,8 +30,8 @@ def _leaf_commands() -> list[list[str]]:
     return out
 
 
-def _assert_one_line_error(result, args):
-    assert result.exit_code == 1, (args, result.exit_code, result.output)
+def _assert_one_line_error(result, args, code: int = 1):
+    assert result.exit_code == code, (args, result.exit_code, result.output)
     lines = [ln for ln in result.stderr.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("Error: "), (args, result.stderr)
     assert "Traceback" not in result.output and "╭" not in result.output, (args, result.output)
@@ -40,9 +42,9 @@ def test_every_command_is_covered():
 
 
 @pytest.mark.parametrize("command", _leaf_commands(), ids=" ".join)
-def test_an_unknown_option_is_one_line_exit_1(command):
+def test_an_unknown_option_is_one_line_exit_2(command):
     result = runner.invoke(app, [*command, "--no-such-option"])
-    _assert_one_line_error(result, command)
+    _assert_one_line_error(result, command, USAGE_EXIT)
     assert "--no-such-option" in result.stderr and "--help" in result.stderr
 
 
@@ -68,10 +70,24 @@ def test_missing_files_are_one_line_exit_1(tmp_path):
         _assert_one_line_error(runner.invoke(app, args), args)
 
 
-def test_bad_values_are_one_line_exit_1(tmp_path):
+def test_bad_values_are_one_line_exit_2(tmp_path):
     for args in (["catalog", "list", "--limit", "many"], ["sql"], ["sql", "select 1", "--timeout", "soon"],
                  ["recall", "a mug", "--top", "-x"], ["no-such-command"]):
-        _assert_one_line_error(runner.invoke(app, args), args)
+        _assert_one_line_error(runner.invoke(app, args), args, USAGE_EXIT)
+
+
+@pytest.mark.parametrize("text", ["-5 cm mug", "-0.5 kg", "-.5 m long"])
+def test_a_description_starting_with_a_minus_says_to_put_dashes_before_it(text, seeded_db):
+    for command in (["recall"], ["parse"], ["grasp", "plan"]):
+        result = runner.invoke(app, [*command, text])
+        _assert_one_line_error(result, command, USAGE_EXIT)
+        assert "put -- before it" in result.stderr, result.stderr
+    result = runner.invoke(app, ["recall", "--db", str(seeded_db), "--json", "--", text])
+    assert result.exit_code == 0 and "negative: a size or a mass is more than zero" in result.stdout
+
+
+def test_an_unknown_word_option_gets_no_dash_hint():
+    assert "put --" not in runner.invoke(app, ["recall", "-x"]).stderr
 
 
 def test_a_duckdb_file_that_is_no_catalog_is_one_line(tmp_path):

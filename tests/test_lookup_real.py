@@ -235,6 +235,12 @@ def test_the_sizes_both_state_choose_among_fits_before_a_category():
         ("/products/sleep-sound-therapy-system", "sleep sound therapy system"),
         ("https://www.amazon.com/ViewSonic-VX3276-Monitor/dp/B07SRDX1Z1", "ViewSonic VX3276 Monitor"),
         ("Trail 25 Pack", "Trail 25 Pack"),
+        # the store's own web address before or after the name names no product (real titles, dev pages)
+        ('Play.com (UK) : Samsung Series 5 550 37" LE37B550 / HD 1080p : Electronics - Free Delivery', "Samsung Series 5 550 37 LE37B550"),
+        ("NEC MultiSync E274F black Computerbildschirm bei csv-direct.de", "NEC MultiSync E274F black Computerbildschirm"),
+        ("Electric Kettle 1.7 L | Argos.co.uk", "Electric Kettle 1.7 L"),
+        ("Node.js Design Patterns", "Node.js Design Patterns"),  # a dotted word inside the name: kept
+        ("Rakuten.de", "Rakuten.de"),  # nothing but the address: the title itself
         ("x", "x"),
     ],
 )  # fmt: skip

@@ -28,7 +28,15 @@ def test_stored_unit_table_equals_a_fresh_pint_build() -> None:
 
 
 def test_stored_unit_table_is_what_the_writer_writes() -> None:
-    assert units.STORED_TABLE.read_text(encoding="utf-8") == units.table_to_json(units.build_unit_table())
+    text = units.table_to_json(units.build_unit_table(), units.build_unit_table(description=True))
+    assert units.STORED_TABLE.read_text(encoding="utf-8") == text
+
+
+def test_stored_description_units_equal_a_fresh_pint_build() -> None:
+    fresh = units.build_unit_table(description=True)
+    stored = units._read_description(units.STORED_TABLE)
+    assert stored == fresh and list(stored) == list(fresh)
+    assert (fresh["t"].factor, fresh["km"].factor, fresh["yd"].factor) == (1e6, 1e5, 91.44)
 
 
 def _stored() -> dict:
@@ -68,17 +76,24 @@ def test_a_missing_or_unreadable_stored_table_is_not_used(tmp_path: Path) -> Non
     assert units._read_stored(tmp_path / "short.json") is None
 
 
-def test_the_parser_reads_the_english_and_neutral_words_of_the_one_table() -> None:
-    table = unit_table(PARSER_LANGUAGES)
-    assert table is unit_table(PARSER_LANGUAGES)  # built once
+def test_the_parser_reads_every_language_but_the_english_homographs_and_the_description_units() -> None:
+    table = units.description_units()
+    assert table is units.description_units()  # built once
     for kind, words in (("length", lexicon.LENGTH_UNITS), ("mass", lexicon.MASS_UNITS),
                         ("volume", lexicon.VOLUME_UNITS)):  # fmt: skip
         for word, name in words.items():
             assert (table[word].kind, table[word].pint_name) == (kind, name)
     assert set(table) == {*lexicon.LENGTH_UNITS, *lexicon.MASS_UNITS, *lexicon.VOLUME_UNITS}
-    # English words that are units elsewhere are not the parser's units
-    for word in ("once", "pies", "libra", "metro", "santim", "pouce"):
+    assert set(unit_table(PARSER_LANGUAGES)) <= set(table)
+    # English words that are units elsewhere are not the parser's units; the other languages' words are
+    for word in ("once", "pies", "libra", "metro"):
         assert word not in table and word in unit_table()
+    for word, name in (("gramm", "gram"), ("zentimeter", "centimeter"), ("gramos", "gram"), ("pouce", "inch")):
+        assert table[word].pint_name == name
+    # the description-only units are no page's: the extractor's table does not hold them
+    for word, name in (("t", "tonne"), ("km", "kilometer"), ("µm", "micrometer"), ("yd", "yard"),
+                       ("mi", "mile"), ("stone", "stone")):  # fmt: skip
+        assert table[word].pint_name == name and word not in unit_table()
 
 
 def test_no_word_names_two_units_even_without_its_accents() -> None:

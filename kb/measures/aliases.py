@@ -20,7 +20,9 @@ KINDS: dict[str, str] = {
 
 #: The pint units of the imperial system; the others are metric. One quantity is never written in both
 #: ("1 kg 2 lb" is two quantities).
-IMPERIAL: frozenset[str] = frozenset({"inch", "foot", "pound", "ounce", "fluid_ounce", "gallon", "cup"})
+IMPERIAL: frozenset[str] = frozenset(
+    {"inch", "foot", "pound", "ounce", "fluid_ounce", "gallon", "cup", "yard", "mile", "stone"}
+)
 
 #: pint unit name -> language -> the words (space-separated; ``_`` stands for a space inside a word).
 ALIASES: dict[str, dict[str, str]] = {
@@ -103,3 +105,25 @@ ALIASES: dict[str, dict[str, str]] = {
 
 #: The languages the description parser reads units in.
 PARSER_LANGUAGES: frozenset[str] = frozenset({"", "en"})
+
+#: Units a description is written in that no storefront page states a household object's size or mass in
+#: (pint unit name -> kind, then language -> words as in :data:`ALIASES`). Only the description parser reads
+#: them (:func:`kb.measures.units.description_units`), so that "a 40 tonne mug" or "a 3 km long pencil" is
+#: refused as absurd instead of read as if no size were given; the extractor does not (a page's "range
+#: 10 km" or "load 2 t" is no size of the product). Factors by pint, as the others'.
+DESCRIPTION_KINDS: dict[str, str] = {
+    "micrometer": "length", "kilometer": "length", "yard": "length", "mile": "length",
+    "tonne": "mass", "stone": "mass",
+}  # fmt: skip
+DESCRIPTION_ALIASES: dict[str, dict[str, str]] = {
+    "micrometer": {"": "µm μm", "en": "micrometer micrometers micrometre micrometres micron microns"},
+    "kilometer": {"": "km kms", "en": "kilometer kilometers kilometre kilometres"},
+    "yard": {"": "yd yds", "en": "yard yards"},
+    "mile": {"": "mi", "en": "mile miles"},
+    "tonne": {"": "t", "en": "tonne tonnes ton tons metric_ton metric_tons"},
+    "stone": {"en": "stone stones"},
+}
+#: Unit words of other languages that are English words too: a description (English) keeps them as words
+#: ("once", "pies"; "libra", "metro"); every other language's unit word is read in a description as well
+#: ("300 Gramm", "12 Zentimeter", "2 kilogramos").
+ENGLISH_HOMOGRAPHS: frozenset[str] = frozenset({"once", "onces", "pies", "libra", "libras", "metro", "metros"})

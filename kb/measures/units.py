@@ -30,7 +30,15 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import Any, Literal
 
-from kb.measures.aliases import ALIASES, IMPERIAL, KINDS
+from kb.measures.aliases import (
+    ALIASES,
+    DESCRIPTION_ALIASES,
+    DESCRIPTION_KINDS,
+    ENGLISH_HOMOGRAPHS,
+    IMPERIAL,
+    KINDS,
+    PARSER_LANGUAGES,
+)
 
 __all__ = [
     "CATALOG_UNITS",
@@ -40,6 +48,8 @@ __all__ = [
     "aliases_of",
     "build_unit_table",
     "combine",
+    "description_aliases_of",
+    "description_units",
     "is_smaller_unit",
     "words_pattern",
     "convert",
@@ -94,6 +104,17 @@ def _alias_rows() -> tuple[tuple[str, str, str, str], ...]:
     )
 
 
+@functools.cache
+def _description_rows() -> tuple[tuple[str, str, str, str], ...]:
+    """(word, kind, pint name, language) for every word of :data:`DESCRIPTION_ALIASES`."""
+    return tuple(
+        (word.replace("_", " "), DESCRIPTION_KINDS[name], name, lang)
+        for name, by_lang in DESCRIPTION_ALIASES.items()
+        for lang, words in by_lang.items()
+        for word in words.split()
+    )
+
+
 def unit_words() -> list[str]:
     """Every unit word of every language, in the aliases' order (without pint or the stored table)."""
     return [w for w, _k, _n, _l in _alias_rows()]
@@ -129,15 +150,37 @@ def unit_table(languages: frozenset[str] | None = None) -> MappingProxyType[str,
     return MappingProxyType(stored if stored is not None else build_unit_table())
 
 
-def build_unit_table() -> dict[str, Unit]:
-    """The table computed with one pint registry, factors to 12 significant digits. Raises ValueError
-    when a word names two units."""
+@functools.cache
+def description_units() -> MappingProxyType[str, Unit]:
+    """The description parser's unit words: every word of the one table (each language's, less the
+    :data:`~kb.measures.aliases.ENGLISH_HOMOGRAPHS`; the parser's own languages first, so they win a
+    word) and the description-only units of :data:`~kb.measures.aliases.DESCRIPTION_ALIASES` ("t", "km",
+    "stone"), their factors stored beside the table's (built with pint when missing); once per process."""
+    full = unit_table()
+    table = {w: u for w, u in full.items() if u.language in PARSER_LANGUAGES}
+    for w, u in full.items():
+        if w not in ENGLISH_HOMOGRAPHS:
+            table.setdefault(w, u)
+    extra = _read_description(STORED_TABLE)
+    for w, u in (extra if extra is not None else build_unit_table(description=True)).items():
+        table.setdefault(w, u)
+    return MappingProxyType(table)
+
+
+def description_aliases_of(kind: str) -> dict[str, str]:
+    """Word -> pint name of the ``kind``'s words in :func:`description_units`."""
+    return {w: u.pint_name for w, u in description_units().items() if u.kind == kind}
+
+
+def build_unit_table(description: bool = False) -> dict[str, Unit]:
+    """The table computed with one pint registry, factors to 12 significant digits (``description``: of
+    the description-only units). Raises ValueError when a word names two units."""
     import pint
 
     ureg = pint.UnitRegistry()
     factors: dict[str, float] = {}
     table: dict[str, Unit] = {}
-    for word, kind, name, lang in _alias_rows():
+    for word, kind, name, lang in _description_rows() if description else _alias_rows():
         if name not in factors:
             # 12 significant digits: the definitions' exact decimals (pint's foot is 30.479999999999997 cm)
             factors[name] = float(f"{ureg.Quantity(1.0, name).to(CATALOG_UNITS[kind]).magnitude:.12g}")
@@ -156,13 +199,22 @@ def _read_stored(path: Path) -> dict[str, Unit] | None:
         return None
 
 
-def table_from_json(data: Any) -> dict[str, Unit] | None:
-    """The table stored as ``{"units": {word: [kind, pint name, factor, language]}}``, or None unless it
-    lists exactly the aliases' words, each with its kind, pint name and language, and a positive finite
-    factor."""
-    rows = data["units"]
+def _read_description(path: Path) -> dict[str, Unit] | None:
+    """The stored description-only units, or None when missing, unreadable or not the aliases' units."""
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+        return table_from_json(data, description=True)
+    except (OSError, ValueError, TypeError, KeyError):
+        return None
+
+
+def table_from_json(data: Any, description: bool = False) -> dict[str, Unit] | None:
+    """The table stored as ``{"units": {word: [kind, pint name, factor, language]}}`` (``description``:
+    its ``"description"`` rows), or None unless it lists exactly the aliases' words, each with its kind,
+    pint name and language, and a positive finite factor."""
+    rows = data["description" if description else "units"]
     expected: dict[str, tuple[str, str, str]] = {}
-    for word, kind, name, lang in _alias_rows():
+    for word, kind, name, lang in _description_rows() if description else _alias_rows():
         expected.setdefault(word, (kind, name, lang))
     if set(rows) != set(expected):
         return None
@@ -177,17 +229,22 @@ def table_from_json(data: Any) -> dict[str, Unit] | None:
     return table
 
 
-def table_to_json(table: Mapping[str, Unit]) -> str:
-    """The stored form: one line per unit word, ``"word": [kind, pint name, factor, language]``."""
-    import pint
-
-    rows = ",\n".join(
+def _json_rows(table: Mapping[str, Unit]) -> str:
+    return ",\n".join(
         f"  {json.dumps(w, ensure_ascii=False)}: {json.dumps([u.kind, u.pint_name, u.factor, u.language], ensure_ascii=False)}"
         for w, u in table.items()
     )
+
+
+def table_to_json(table: Mapping[str, Unit], description: Mapping[str, Unit] | None = None) -> str:
+    """The stored form: one line per unit word, ``"word": [kind, pint name, factor, language]``; the
+    description-only units (:func:`description_units`) under ``"description"``."""
+    import pint
+
     note = "written by `python -m kb.measures.units --write` from kb/measures/aliases.py with pint; do not edit"
     head = f' "note": {json.dumps(note)},\n "pint": {json.dumps(pint.__version__)},\n'
-    return "{\n" + head + ' "units": {\n' + rows + "\n }\n}\n"
+    extra = "" if description is None else ',\n "description": {\n' + _json_rows(description) + "\n }"
+    return "{\n" + head + ' "units": {\n' + _json_rows(table) + "\n }" + extra + "\n}\n"
 
 
 def convert(value: float, word: str) -> tuple[str, float]:
@@ -254,8 +311,9 @@ def volume_unit(unit: str | None) -> float | None:
 
 
 def symbol(unit: Unit) -> str:
-    """The unit's symbol: its first language-neutral word ("cm", "kg", "in")."""
-    return ALIASES[unit.pint_name][""].split()[0]
+    """The unit's symbol: its first language-neutral word ("cm", "kg", "in"; "stone" has none)."""
+    words = (ALIASES.get(unit.pint_name) or DESCRIPTION_ALIASES[unit.pint_name]).get("") or unit.pint_name
+    return words.split()[0]
 
 
 def is_smaller_unit(unit: Unit, sub_unit: Unit) -> bool:
@@ -285,7 +343,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m kb.measures.units", description="Build the unit table with pint.")
     ap.add_argument("--write", action="store_true", help=f"store it as {STORED_TABLE.name} (package data)")
     args = ap.parse_args(argv)
-    text = table_to_json(build_unit_table())
+    text = table_to_json(build_unit_table(), build_unit_table(description=True))
     if args.write:
         STORED_TABLE.parent.mkdir(exist_ok=True)
         STORED_TABLE.write_text(text, encoding="utf-8")

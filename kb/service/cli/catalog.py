@@ -85,7 +85,7 @@ def init(
 
 @catalog_app.command("import")
 def catalog_import(
-    file: Annotated[Path, typer.Argument(help="Canonical catalog CSV.", exists=True, dir_okay=False)],
+    file: Annotated[Path, typer.Argument(help="Canonical catalog CSV.")],
     db: DbOption = None,
     skip_invalid: Annotated[bool, typer.Option("--skip-invalid", help="Import valid rows, list the rest.")] = False,
     json_out: JsonOption = False,

@@ -21,9 +21,12 @@ from typer.core import TyperGroup
 from kb.errors import DatabaseError, ObjrecallError
 from kb.jsonable import to_jsonable
 
-__all__ = ["DbOption", "JsonOption", "ObjrecallGroup", "default_db_path", "emit", "emit_lines", "resolve_db"]
+__all__ = ["USAGE_EXIT", "DbOption", "JsonOption", "ObjrecallGroup", "default_db_path", "emit", "emit_lines", "resolve_db"]
 
 ENV_DB = "OBJRECALL_DB"
+#: Exit code of a usage error (a bad option or value, an unknown command, a missing file argument), as click
+#: and typer have it; every other error is 1.
+USAGE_EXIT = 2
 
 
 def default_db_path() -> Path:
@@ -64,8 +67,9 @@ def emit_lines(items: Iterable[Any]) -> None:
 
 
 class ObjrecallGroup(TyperGroup):
-    """Root command group: an :class:`ObjrecallError`, and any usage error (a missing file, a bad option or
-    value, an unknown command), becomes one ``Error: ...`` line on stderr and exit code 1."""
+    """Root command group: an :class:`ObjrecallError` becomes one ``Error: ...`` line on stderr and exit
+    code 1; a usage error (a bad option or value, an unknown command, a file argument that does not
+    exist) one such line and exit code 2 (:data:`USAGE_EXIT`, click's)."""
 
     def main(self, args: Any = None, prog_name: Any = None, complete_var: Any = None,
              standalone_mode: bool = True, **extra: Any) -> Any:
@@ -79,7 +83,7 @@ class ObjrecallGroup(TyperGroup):
                 sys.exit(0)
             ctx = getattr(err, "ctx", None)
             hint = f" (see `{ctx.command_path} --help`)" if ctx is not None else ""
-            _fail(f"{err.format_message()}{hint}", exit_now=True)
+            _fail(f"{err.format_message()}{_dash_hint(err, ctx)}{hint}", exit_now=True, code=USAGE_EXIT)
         except typer.Abort:
             if not standalone_mode:
                 raise
@@ -103,9 +107,20 @@ class ObjrecallGroup(TyperGroup):
             _fail(f"database error (is this an objrecall catalog?): {first}")
 
 
-def _fail(message: str, *, exit_now: bool = False) -> None:
-    """One line on stderr and exit code 1 (no traceback); ``exit_now`` outside a running command."""
+def _dash_hint(err: Exception, ctx: Any) -> str:
+    """For an unknown option that is a number ("-5", "-.5 kg"): the text was read as an option; say how to
+    pass a description that starts with a minus sign."""
+    name = str(getattr(err, "option_name", "") or "")
+    if not (name.startswith("-") and (name[1:2].isdigit() or name[1:2] == ".")):
+        return ""
+    path = ctx.command_path if ctx is not None else "objrecall recall"
+    return f": a text starting with '-' is read as an option; put -- before it: {path} -- \"{name} ...\""
+
+
+def _fail(message: str, *, exit_now: bool = False, code: int = 1) -> None:
+    """One line on stderr and exit code ``code`` (1: an error; :data:`USAGE_EXIT` for a usage error; no
+    traceback); ``exit_now`` outside a running command."""
     sys.stderr.write(f"Error: {' '.join(message.split())}\n")
     if exit_now:
-        sys.exit(1)
-    raise typer.Exit(1)
+        sys.exit(code)
+    raise typer.Exit(code)

@@ -29,7 +29,7 @@ class Page(BaseModel):
 
 class TextIn(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    text: str = Field(min_length=1, max_length=MAX_TEXT_CHARS, description="A description of an object.")
+    text: str = Field(min_length=1, description=f"A description of an object (at most {MAX_TEXT_CHARS:,} characters).")
 
 
 class RecallIn(TextIn):
@@ -50,7 +50,7 @@ class LookupIn(RecallIn):
 
 class PlanIn(BaseModel):
     model_config = ConfigDict(extra="forbid")
-    text: str | None = Field(None, min_length=1, max_length=MAX_TEXT_CHARS, description="A description.")
+    text: str | None = Field(None, min_length=1, description=f"A description (at most {MAX_TEXT_CHARS:,} characters).")
     name: str | None = Field(None, min_length=1, max_length=MAX_NAME_CHARS, description="A catalog name or alias.")
     top: int = Field(3, ge=1, le=15, description="How many ranked grasp plans.")
 

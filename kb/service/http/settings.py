@@ -24,6 +24,7 @@ from kb.errors import (
     RequestTimeout,
     WritesDisabled,
 )
+from recall.descriptions import MAX_DESCRIPTION_CHARS
 
 __all__ = [
     "DEFAULT_ALLOWED_HOSTS",
@@ -67,7 +68,7 @@ DEFAULT_PAGE = 50
 SQL_MAX_ROWS = 5_000
 SQL_MAX_TIMEOUT_S = 10.0
 SQL_MAX_RESPONSE_BYTES = 8 * 1024 * 1024
-MAX_TEXT_CHARS = 5_000
+MAX_TEXT_CHARS = MAX_DESCRIPTION_CHARS  # the recall API's one limit (recall.descriptions); refused there
 MAX_TOP = 50
 
 #: HTTP status of each error class (the most specific class listed wins).
