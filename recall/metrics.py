@@ -334,7 +334,9 @@ def relative_errors(
       lower bound, so only a stated value below it differs; a catalog that records classes, not
       measurements (``bins``, :mod:`recall.catalog_folder`: feature -> (below, above)), has each value
       stand for the class [x / below, x * above] (above infinite: a lower bound, the size of the part
-      the data set measured), and only a stated value or interval outside it differs;
+      the data set measured), and only a stated value or interval outside it differs; where the sizes
+      are a part's and the object's part reaches the open top size class, its mass class is open above too
+      (:func:`_past_the_part`);
     * categorical: 0 match, 1 mismatch, 0.5 unknown.
     """
     out: dict[str, float] = {}
@@ -346,6 +348,8 @@ def relative_errors(
         low, high = _class_of(x, bins.get(cond.feature) if bins else None)
         floor = floors.get(cond.feature) if floors else None
         high = math.inf if floor is not None and x >= floor else high  # the open top bin: never too small
+        if cond.feature == "mass_g" and _past_the_part(num_row, floors, bins):
+            high = math.inf  # what the hand bore of a door on its hinges, a hose on the floor: no upper bound
         d = max(cond.low - high, low - cond.high, 0.0)
         scale = max(abs(cond.value), abs(x))
         out[cond.feature] = min(d / scale, 1.0) if scale > 0 else 0.0
@@ -353,6 +357,21 @@ def relative_errors(
         code = int(cat_row[CATEGORICAL_FEATURES.index(feat)])
         out[feat] = 0.0 if code == CATEGORY_CODES[feat][value] else (0.5 if code < 0 else 1.0)
     return out
+
+
+def _past_the_part(num_row: np.ndarray, floors, bins) -> bool:
+    """Whether the catalog measured the part grasped (``bins``: the largest size's class open above, the
+    whole at least as large) and this object's part already reaches the open top size class (``floors``:
+    "15 cm or more"): the object extends past what was measured, so its recorded mass class (what the
+    hand bore: the Yale data set codes its wardrobe door at 750 g, its hose at 240 g, its cord at 65 g)
+    is no upper bound of the whole object's mass. False without both declarations."""
+    if not floors or not bins:
+        return False
+    floor, factors = floors.get("a_cm"), bins.get("a_cm")
+    if floor is None or factors is None or not math.isinf(factors[1]):
+        return False
+    x = float(num_row[NUMERIC_FEATURES.index("a_cm")])
+    return not math.isnan(x) and x >= floor
 
 
 def _class_of(x: float, factors: tuple[float, float] | None) -> tuple[float, float]:

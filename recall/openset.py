@@ -114,7 +114,9 @@ def described_noun(
         and before is not None and (before in material_words() or before in COLOURS)
     ):  # fmt: skip
         return None  # "a wood plate", "a white stick": a material or colour and a shape, no object's name
-    if (noun is None or _generic(noun, generic) or _hypernym(noun, kinds_of, heads)) and after_of:
+    if (noun is None or _generic(noun, generic) or _hypernym(noun, kinds_of, heads)) and after_of and not (
+        subject and subject[-1] in PART_NOUNS and subject[-1] in heads
+    ):  # "the handle of a C-clamp": a part the catalog holds objects of; the whole says only whose it is
         noun = noun_in(list(after_of)) or noun
     if noun is None or _generic(noun, generic):
         return None  # a generic noun ("thing", "toy") names a kind; a compound on one ("glue stick") an object

@@ -138,3 +138,29 @@ def test_the_yale_size_classes_reach_a_quarter_below_their_value():
     bins = read_bins(Path(__file__).parent / "data" / "catalog_yale" / "catalog.csv")
     assert _errors(8.0, 10.0, bins=bins) == 0.0 and _errors(400.0, 10.0, bins=bins) == 0.0
     assert _errors(7.9, 10.0, bins=bins) == pytest.approx(0.1 / 10.0, rel=1e-4)  # outside, of the value
+
+
+def _mass_error(stated_g: float, catalog_a_cm: float, floors, bins) -> float:
+    import numpy as np
+
+    from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
+    from recall.metrics import FeatureQuery
+
+    num = np.full(len(NUMERIC_FEATURES), np.nan)
+    num[NUMERIC_FEATURES.index("a_cm")] = catalog_a_cm
+    num[NUMERIC_FEATURES.index("mass_g")] = 750.0
+    cat = np.full(len(CATEGORICAL_FEATURES), -1)
+    query = FeatureQuery.from_values({"mass_g": stated_g})
+    return relative_errors(num, cat, query, floors, bins)["mass_g"]
+
+
+def test_a_part_measured_past_the_top_size_class_bounds_no_mass_above():
+    """A catalog of the part grasped (sizes open above) whose object's part reaches the open top size class
+    (15 cm or more: the Yale wardrobe door, its mass class 750 g): a stated 12 kg is no misfit; the class's
+    lower end still is, and an object under the floor, or a catalog without those declarations, keeps it."""
+    floors, bins = {"a_cm": 15.0}, {"a_cm": (1.25, math.inf), "mass_g": (1.5, 1.5)}
+    assert _mass_error(12000.0, 15.0, floors, bins) == 0.0
+    assert _mass_error(400.0, 15.0, floors, bins) == pytest.approx(100 / 750)  # below [500, inf)
+    assert _mass_error(12000.0, 14.9, floors, bins) == pytest.approx((12000 - 1125) / 12000)  # under the floor
+    assert _mass_error(12000.0, 15.0, floors, {"a_cm": (1.25, 2.0), "mass_g": (1.5, 1.5)}) > 0.9  # sizes closed
+    assert _mass_error(12000.0, 15.0, {}, bins) > 0.9  # no open top size class

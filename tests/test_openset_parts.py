@@ -35,3 +35,23 @@ def test_only_parts_and_shapes_are_read_so():
     assert bare_part("glass screen, 170 grams", ("glass", "screen"))
     assert not bare_part("kitchen tongs, metal, 12 inches", ("kitchen", "tong"))  # a name, bare
     assert not bare_part("a frame, 250 g", ("frame",)) and not bare_part("", ())
+
+
+@pytest.fixture(scope="module")
+def with_handles(tmp_path_factory) -> Recaller:
+    rows = [("clamp handle", 15, 1, 1, 225), ("wiper handle", 15, 2, 2, 350), ("cell phone", 10, 5.5, 1, 100)]
+    return from_sizes(tmp_path_factory.mktemp("handles") / "catalog.csv", rows)
+
+
+@pytest.mark.parametrize("text", ["the handle of a C-clamp, 12 cm long, 8 mm thick, 50 g", "a handle of a mop, 1 m"])
+def test_a_part_the_catalog_holds_is_described_not_the_whole_after_of(with_handles, text):
+    """"the handle of a C-clamp": the catalog holds handles, so the whole after "of" (a c clamp, not in it)
+    says whose handle it is, not that the object is missing."""
+    assert with_handles.described(text) is None
+    assert not with_handles.recall_text(text).not_in_catalog
+
+
+def test_a_part_the_catalog_holds_no_object_of_still_reads_the_whole(recaller):
+    """Boundary: where no catalog object has the part as its head noun, the whole after "of" is the noun."""
+    noun = recaller.described("the handle of a C-clamp, 12 cm long, 50 g")
+    assert noun is not None and noun.noun == "c clamp" and not noun.in_catalog

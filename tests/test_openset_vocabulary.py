@@ -151,7 +151,8 @@ def test_no_single_lexicon_noun_is_a_material_or_unit_word_but_the_objects_named
 
     features = set(lx.MATERIAL_WORDS) | set(lx.LENGTH_UNITS) | set(lx.MASS_UNITS) | set(lx.VOLUME_UNITS)
     singles = {k[0] for k, n in nouns().items() if len(k) == 1 and n.lang == "en"}
-    both = {"carton", "cork", "cup", "glass", "marble", "paper", "soap", "sponge", "stone", "tin"}
+    # "micrometer": a unit (48d194b) and a measuring tool (the Yale catalog's), as "cup" is a unit and a cup
+    both = {"carton", "cork", "cup", "glass", "marble", "micrometer", "paper", "soap", "sponge", "stone", "tin"}
     assert singles & features <= both, (singles & features) - both
     assert "iron" not in singles and "wool" not in singles and "felt" not in singles
     assert "short" not in singles and "tight" not in singles  # "shorts", "tights" would make them nouns
