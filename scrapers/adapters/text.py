@@ -160,6 +160,24 @@ _COMPARED = re.compile(
     r"(?=\s*(?:than|als|que|di)\b|\s*[.!;]|\s*$))",
     re.IGNORECASE,
 )
+#: A sentence saying who wears which size ("Model is 189cm tall and wearing a size M", "Model is 6'0\" and
+#: wears size M", "Das Model ist 1,89 m groß und trägt Größe M", "Le mannequin mesure 1,89 m et porte une
+#: taille M"): a garment page's note on the wearer; its lengths are the wearer's, never the product's.
+_WEARER = re.compile(
+    r"\b(?:wears?|wearing|trägt|tragt|porte|lleva|indossa|veste|draagt|nosi|bär)\s+(?:a\s+|the\s+|une\s+|la\s+|"
+    r"die\s+|eine\s+|een\s+|maat\s+)?(?:size|grö(?:ß|ss)e|taille|talla|taglia|tamanho|maat|rozmiar|storlek|størrelse)\b",
+    re.IGNORECASE,
+)
+_SENTENCE_END = re.compile(r"[.!?;]\s|\s/\s|\s\|\s")
+
+
+def _wearers_sentence(text: str, at: int) -> bool:
+    """Whether the sentence of ``text`` around position ``at`` says who wears which size (:data:`_WEARER`)."""
+    start = max((m.end() for m in _SENTENCE_END.finditer(text, 0, at)), default=0)
+    end = next((m.start() for m in _SENTENCE_END.finditer(text, at)), len(text))
+    return _WEARER.search(text, start, end) is not None
+
+
 _MADE_OF = re.compile(
     r"\b(?:made (?:of|from|out of)|crafted (?:of|from)|carved (?:from|out of)|cut from|cast in|constructed (?:of|from)|"
     r"aus|hergestellt aus|fabricado en|realizzato in|feito de|fait en|en)\s+"
@@ -200,6 +218,8 @@ def free_text(page: Page) -> list[Observation]:
                 )
         axes: dict[str, float] = {}
         for m in _AXIS_PHRASE.finditer(text):
+            if _wearers_sentence(text, m.start()):
+                continue  # "Model is 189cm tall and wearing a size M": the wearer's height
             kind = _AXIS_WORDS[m.group("axis").lower()]
             value = parse_length(m.group("q"), None, dc)
             if value is not None and minus_before(text, m.start("q")):
