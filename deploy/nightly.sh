@@ -7,7 +7,7 @@
 #   --at HH:MM      time of day (UTC) to run at (default $NIGHTLY_AT, else 02:00)
 #   --now           also run once right away, at start-up
 #   --init-db PATH  before anything, create the catalog with the seed objects if PATH does not exist
-#                   (`objrecall init --seed --db PATH`)
+#                   (its folder, then `objrecall init --seed --db PATH`)
 #   --once          run the command once (after --now/--init-db handling) and exit: for tests and cron
 #
 # A failing run is logged and the loop goes on to the next night; SIGTERM stops the loop.
@@ -47,6 +47,7 @@ log() { echo "nightly.sh $(date -u +%Y-%m-%dT%H:%M:%SZ): $*" >&2; }
 
 if [ -n "$init_db" ] && [ ! -e "$init_db" ]; then
   log "no catalog at $init_db: objrecall init --seed --db $init_db"
+  mkdir -p "$(dirname "$init_db")"  # the deployment's own data folder (init never creates folders)
   objrecall init --seed --db "$init_db"
 fi
 

@@ -30,7 +30,7 @@ import duckdb
 
 from kb.connections import CATALOG_READ_CONFIG, SANDBOX_CONFIG, open_connection, retry_while_locked
 from kb.csvio import read_catalog_csv, write_catalog_csv
-from kb.errors import DatabaseError, ObjectNotFound, QueryFailed
+from kb.errors import CatalogMissing, DatabaseError, FolderMissing, ObjectNotFound, QueryFailed
 from kb.features import CATEGORICAL_FEATURES, FEATURES, ObjectRecord, normalize_name
 from kb.locks import lock_for
 from kb.sandbox import run_user_sql
@@ -98,7 +98,7 @@ class KnowledgeBase:
         kb = cls(path, read_only=read_only, busy_timeout=busy_timeout)
         if read_only:
             if not path.exists():
-                raise DatabaseError(f"{path}: no catalog there (create it with `objrecall init --db {path}`)")
+                raise CatalogMissing(path)
         elif upgrade:
             kb.upgrade()
         return kb
@@ -109,7 +109,8 @@ class KnowledgeBase:
             raise DatabaseError(f"{self.path}: opened read-only; cannot migrate")
         from kb import migrate  # Alembic and SQLAlchemy load only when a writer migrates
 
-        self.path.parent.mkdir(parents=True, exist_ok=True)
+        if not self.path.parent.is_dir():
+            raise FolderMissing(self.path, self.path.parent)  # a typo in --db: no folders made silently
         with self._lock.write():
             self._retry(lambda: migrate.upgrade(self.path, revision))
 
@@ -132,7 +133,7 @@ class KnowledgeBase:
         if write and self.read_only:
             raise DatabaseError(f"{self.path}: opened read-only; cannot write")
         if not write and not self.path.exists():
-            raise DatabaseError(f"{self.path}: no catalog there (create it with `objrecall init --db {self.path}`)")
+            raise CatalogMissing(self.path)
         lock = self._lock.write() if write else self._lock.read()
         with lock:
             if write:
@@ -324,7 +325,7 @@ class KnowledgeBase:
         if not isinstance(query, str) or not query.strip():
             raise QueryFailed("empty query")
         if not self.path.exists():
-            raise DatabaseError(f"{self.path}: no catalog there (create it with `objrecall init --db {self.path}`)")
+            raise CatalogMissing(self.path)
         with self._lock.read():  # in-process writers wait for the worker, as for any reader
             answer = run_user_sql(
                 self.path, query, params, max_rows=max_rows, timeout_s=timeout_s, busy_timeout=self.busy_timeout

@@ -12,9 +12,9 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from kb.errors import DatabaseBusy
+from kb.errors import CatalogUnreadable, DatabaseBusy
 
-__all__ = ["CATALOG_READ_CONFIG", "SANDBOX_CONFIG", "is_lock_conflict", "open_connection", "retry_while_locked"]
+__all__ = ["CATALOG_READ_CONFIG", "SANDBOX_CONFIG", "database_reason", "is_lock_conflict", "open_connection", "retry_while_locked"]
 
 #: Settings of every read connection: read-only, no file or network access, no extensions, configuration
 #: locked so a query cannot undo any of it, and a memory cap.
@@ -34,7 +34,8 @@ SANDBOX_CONFIG: dict[str, Any] = {
 CATALOG_READ_CONFIG: dict[str, Any] = {k: v for k, v in SANDBOX_CONFIG.items() if k != "lock_configuration"}
 
 def open_connection(path: Path | str, *, read_only: bool, config: dict[str, Any] | None = None):
-    """A DuckDB connection to ``path`` that never draws DuckDB's progress bar, then ``config``.
+    """A DuckDB connection to ``path`` that never draws DuckDB's progress bar, then ``config``; a file that
+    is no DuckDB database, or a damaged one, raises :class:`~kb.errors.CatalogUnreadable` naming it.
 
     DuckDB draws a progress bar on stdout for any statement over 2 s, terminal or not, which corrupts the
     output of ``--json`` and CSV commands. The bar can only be turned off per connection (not as a connect
@@ -46,7 +47,12 @@ def open_connection(path: Path | str, *, read_only: bool, config: dict[str, Any]
 
     settings = dict(config or {})
     lock = settings.pop("lock_configuration", False)
-    con = duckdb.connect(str(path), read_only=read_only, config=settings)
+    try:
+        con = duckdb.connect(str(path), read_only=read_only, config=settings)
+    except (duckdb.IOException, duckdb.SerializationException) as err:
+        if is_lock_conflict(err):
+            raise
+        raise CatalogUnreadable(path, database_reason(err)) from None  # not DuckDB, or damaged: name it
     try:
         con.execute("SET enable_progress_bar = false")
         if lock:
@@ -81,3 +87,15 @@ def retry_while_locked(fn: Callable[[], Any], *, path: Path, busy_timeout: float
                 ) from None
             time.sleep(delay)
             delay = min(delay * 2, 0.25)
+
+
+def database_reason(err: BaseException) -> str:
+    """The reason of a database failure in one line: the innermost error's first line, without the
+    driver's class prefix ("(_duckdb.IOException) ") and SQLAlchemy's "(Background on this error ...)"."""
+    inner: BaseException = err
+    while getattr(inner, "orig", None) is not None or inner.__cause__ is not None:
+        inner = getattr(inner, "orig", None) or inner.__cause__  # type: ignore[assignment]
+    text = (str(inner).strip().splitlines() or [type(inner).__name__])[0]
+    if text.startswith("(") and ") " in text:
+        text = text.split(") ", 1)[1]
+    return text.split(" (Background on this error", 1)[0].strip()

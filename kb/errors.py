@@ -12,6 +12,9 @@ clear line (CLI, exit code 1) or a JSON body (HTTP 4xx). Anything else is a bug.
     │   └── CatalogImportError    a CSV row was invalid; nothing was imported (names row, column, reason)
     ├── DatabaseError
     │   ├── DatabaseBusy          another process held the database for longer than the busy timeout
+    │   ├── CatalogMissing        no catalog file there (one message for every command and the service)
+    │   ├── CatalogUnreadable     the file is no DuckDB catalog, or a damaged one (names file and reason)
+    │   ├── FolderMissing         the folder a new catalog would be created in does not exist
     │   └── MigrationError        the database could not be brought to the schema head
     ├── QueryRefused              user SQL tried to write, read files, attach, install or load
     ├── QueryFailed               user SQL was valid for the sandbox but failed (syntax, ...)
@@ -40,11 +43,14 @@ from __future__ import annotations
 __all__ = [
     "CatalogError",
     "CatalogImportError",
+    "CatalogMissing",
+    "CatalogUnreadable",
     "DatabaseBusy",
     "DatabaseError",
     "DescriptionError",
     "ExtractionError",
     "FetchError",
+    "FolderMissing",
     "IngestionBusy",
     "IngestionError",
     "InvalidFeature",
@@ -113,6 +119,45 @@ class DatabaseError(ObjrecallError):
 
 class DatabaseBusy(DatabaseError):
     """Another process held the database for longer than the busy timeout."""
+
+
+class CatalogMissing(DatabaseError):
+    """No catalog file at ``path``: the one message of every command and of the service."""
+
+    def __init__(self, path: object):
+        self.path = path
+        super().__init__(
+            f"{path}: no catalog there (create it with `objrecall init --db {path}`, then `objrecall catalog "
+            f"import FILE`; or `objrecall init --seed --db {path}` for the seed catalog)"
+        )
+
+    def __reduce__(self):
+        return (type(self), (self.path,))
+
+
+class CatalogUnreadable(DatabaseError):
+    """The file at ``path`` is no DuckDB database, a damaged one, or a database without the catalog's
+    tables; ``reason`` says which, in the database's own words (:func:`database_reason`)."""
+
+    def __init__(self, path: object, reason: str):
+        self.path = path
+        self.reason = reason
+        super().__init__(f"{path}: not a usable objrecall catalog: {reason}")
+
+    def __reduce__(self):
+        return (type(self), (self.path, self.reason))
+
+
+class FolderMissing(DatabaseError):
+    """A new catalog file would be created in a folder that does not exist (never created silently)."""
+
+    def __init__(self, path: object, folder: object):
+        self.path = path
+        self.folder = folder
+        super().__init__(f"{path}: the folder {folder} does not exist (create it first, or give another path)")
+
+    def __reduce__(self):
+        return (type(self), (self.path, self.folder))
 
 
 class MigrationError(DatabaseError):

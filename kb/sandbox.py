@@ -40,7 +40,15 @@ from pathlib import Path
 from typing import Any
 
 from kb.connections import SANDBOX_CONFIG, open_connection, retry_while_locked
-from kb.errors import DatabaseBusy, DatabaseError, ObjrecallError, QueryFailed, QueryRefused, QueryTimeout
+from kb.errors import (
+    CatalogMissing,
+    DatabaseBusy,
+    DatabaseError,
+    ObjrecallError,
+    QueryFailed,
+    QueryRefused,
+    QueryTimeout,
+)
 from kb.sql_policy import check_query, first_line, write_refusal
 
 __all__ = [
@@ -138,7 +146,7 @@ def _answer(request: dict[str, Any]) -> tuple:
     path = Path(request["path"])
     try:
         if not path.exists():
-            raise DatabaseError(f"{path}: no catalog there (create it with `objrecall init --db {path}`)")
+            raise DatabaseError(str(CatalogMissing(path)))  # sent to the caller as a DatabaseError
         con = retry_while_locked(
             lambda: open_connection(path, read_only=True, config=USER_SQL_CONFIG),
             path=path, busy_timeout=request["busy_timeout"],

@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from kb.errors import RecallError
+from kb.errors import CatalogMissing, RecallError
 from kb.features import (
     CATEGORICAL_FEATURES,
     CATEGORIES,
@@ -258,7 +258,7 @@ def load_snapshot(db: str | Path) -> CatalogSnapshot:
     cached until the database changes."""
     path = Path(db)
     if not path.exists():
-        raise RecallError(f"{path}: no catalog here (run `objrecall init` and import a catalog first)")
+        raise CatalogMissing(path)
     key = str(path.resolve())
     version = _db_version(path)
     with _LOCK:

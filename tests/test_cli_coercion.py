@@ -60,5 +60,5 @@ def test_a_one_shot_recall_imports_no_pydantic(tmp_path: Path) -> None:
             "print('pydantic' in sys.modules)")  # fmt: skip
     done = subprocess.run([sys.executable, "-c", code, str(tmp_path / "absent.duckdb")], capture_output=True,
                           text=True, timeout=300)  # fmt: skip
-    assert "no catalog here" in done.stderr  # the command ran (its options coerced) and refused the file
+    assert "no catalog there" in done.stderr  # the command ran (its options coerced) and refused the file
     assert done.stdout.split()[-1] == "False"

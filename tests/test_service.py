@@ -52,7 +52,7 @@ def assert_error(response, status: int, error: str | None = None, words: str | N
 
 # ------------------------------------------------------------------------------------------ reads
 def test_health_and_version(client):
-    assert client.get("/health").json() == {"status": "ok", "catalog": True}
+    assert client.get("/health").json() == {"status": "ok", "catalog": True, "catalog_state": "ok", "catalog_error": None}
     v = client.get("/version").json()
     assert v["catalog"]["objects"] > 100
     assert v["schema_revision"]
@@ -453,9 +453,11 @@ def test_request_time_limit(shared_db):
 
 def test_missing_catalog_is_a_clear_503(tmp_path):
     c = TestClient(create_app(tmp_path / "none.duckdb", token=""), **LOCAL)
-    assert c.get("/health").json() == {"status": "ok", "catalog": False}
-    assert_error(c.get("/objects"), 503, "DatabaseError", "objrecall init")
-    assert_error(c.post("/recall", json={"text": "a mug"}), 503, "DatabaseError")
+    health = c.get("/health").json()
+    assert (health["status"], health["catalog"], health["catalog_state"]) == ("degraded", False, "missing")
+    assert "no catalog there" in health["catalog_error"]
+    assert_error(c.get("/objects"), 503, "CatalogMissing", "objrecall init")
+    assert_error(c.post("/recall", json={"text": "a mug"}), 503, "CatalogMissing")
 
 
 def test_every_error_class_has_a_status():

@@ -18,6 +18,7 @@ from typing import Annotated, Any
 import typer
 from typer.core import TyperGroup
 
+from kb.connections import database_reason
 from kb.errors import DatabaseError, ObjrecallError
 from kb.jsonable import to_jsonable
 
@@ -49,6 +50,8 @@ def resolve_db(db: Path | None) -> Path:
     """The catalog file ``--db`` names, else the default; an empty path or a folder is refused here, for every
     command alike (a folder is never a catalog; an empty ``--db ""`` is the current folder)."""
     path = Path(db) if db is not None else default_db_path()
+    if db is None and not os.environ.get(ENV_DB):
+        path.parent.mkdir(parents=True, exist_ok=True)  # the default data folder, made on first use
     if path.is_dir():
         raise DatabaseError(f"{path}: is a folder, not a catalog file (give a file path, e.g. {path / 'catalog.duckdb'})")
     return path
@@ -103,8 +106,7 @@ class ObjrecallGroup(TyperGroup):
             if "duckdb" not in type(err).__module__:
                 raise
             # a DuckDB file that is not an objrecall catalog, or one damaged: say so in one line
-            first = (str(err).strip().splitlines() or [type(err).__name__])[0]
-            _fail(f"database error (is this an objrecall catalog?): {first}")
+            _fail(f"database error (is this an objrecall catalog?): {database_reason(err)}")
 
 
 def _dash_hint(err: Exception, ctx: Any) -> str:

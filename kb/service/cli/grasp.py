@@ -17,7 +17,14 @@ from typing import Annotated, Any
 
 import typer
 
-from kb.errors import CatalogError, DatabaseError, InvalidFeature, ObjectNotFound, ObjrecallError, RecallError
+from kb.errors import (
+    CatalogError,
+    CatalogMissing,
+    InvalidFeature,
+    ObjectNotFound,
+    ObjrecallError,
+    RecallError,
+)
 from kb.service.cli.common import DbOption, JsonOption, emit, emit_lines, resolve_db
 
 grasp_app = typer.Typer(no_args_is_help=True, help="Plan grasps for objects and validate them in MuJoCo.")
@@ -327,7 +334,7 @@ def validate(
         raise ObjrecallError("name the objects to validate, or pass --all")
     path = resolve_db(db)
     if not path.exists():
-        raise DatabaseError(f"{path}: no catalog there (create it with `objrecall init --seed --db {path}`)")
+        raise CatalogMissing(path)
     kb = KnowledgeBase.open(path)
     summary = run_validation(
         kb,

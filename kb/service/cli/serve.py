@@ -67,6 +67,10 @@ def serve(
     from kb.service.http.protocol import protocol_with_timeout
 
     path = resolve_db(db)
+    if path.exists():
+        from kb.catalog_check import check_catalog
+
+        check_catalog(path)  # a corrupt file: refused now, naming it, not a 500 on every read later
     hosts = list(allowed_hosts_from(allowed_host))
     if not allowed_host and host not in ("0.0.0.0", "::", ""):
         hosts.append(host)  # the address it listens on is a name it is reached by

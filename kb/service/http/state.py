@@ -15,7 +15,8 @@ import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from kb.errors import DatabaseError, ObjrecallError
+from kb.catalog_check import CatalogWatch
+from kb.errors import CatalogMissing, ObjrecallError
 from kb.service.http.jobs import IngestionJobs
 from kb.service.http.renders import RenderCache
 from kb.service.http.settings import ENV_SOURCES, ServiceSettings
@@ -37,6 +38,7 @@ class ServiceState:
         self._recaller: Any = None
         self._checked = 0.0
         self.renders = RenderCache(settings.render_concurrency, settings.render_cache_entries)
+        self.catalog = CatalogWatch(settings.db)  # what /health reports
 
     def knowledge_base(self) -> KnowledgeBase:
         """A read-only view of the catalog for one request."""
@@ -114,5 +116,5 @@ class ServiceState:
 
     def _require_catalog(self) -> None:
         if not self.settings.db.exists():
-            raise DatabaseError(f"{self.settings.db}: no catalog there (create it with `objrecall init`)")
+            raise CatalogMissing(self.settings.db)
 

@@ -12,8 +12,17 @@ router = APIRouter(tags=["service"])
 
 @router.get("/health")
 def health(state: State) -> dict[str, Any]:
-    """Liveness: the process answers; ``catalog`` says whether the database file exists."""
-    return {"status": "ok", "catalog": state.settings.db.exists()}
+    """Liveness: the process answers (HTTP 200); ``catalog`` says whether the database file exists,
+    ``catalog_state`` whether it can be read ("ok", "missing", "unreadable", "busy"; checked again only
+    when the file changed) and ``catalog_error`` why not; ``status`` is "ok" only with a readable catalog,
+    else "degraded"."""
+    catalog = state.catalog.state()
+    return {
+        "status": "ok" if catalog.state == "ok" else "degraded",
+        "catalog": catalog.state != "missing",
+        "catalog_state": catalog.state,
+        "catalog_error": catalog.error,
+    }
 
 
 @router.get("/version")
