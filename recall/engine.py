@@ -29,6 +29,7 @@ from recall.catalog_kinds import KindIndex, plain_name
 from recall.confidence import (
     CONFIDENCE_COEF,
     JP_METRICS,
+    MAX_LOOSE_FEATURES,
     MAX_MARGIN,
     NOT_IN_CATALOG_CONFIDENCE,
     capped_confidence,
@@ -320,7 +321,7 @@ class Recaller:
         margin = float(matches[1].score - matches[0].score) if len(matches) > 1 else MAX_MARGIN
         confidence = capped_confidence(
             margin, closeness, unknown is not None, metric, competitors, open_set, not_in_catalog, features_only,
-            soft_only=len(query) == 0 and not named, refused=refused,
+            soft_only=len(query) <= MAX_LOOSE_FEATURES and not names.exact, refused=refused,
         )  # fmt: skip
         same_kind_as, same_kind = self.shortlist.same_kind(noun, ranked, metric) if not_in_catalog else (None, [])
         return RecallResult(

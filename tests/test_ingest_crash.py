@@ -159,3 +159,27 @@ def test_bad_sources_file_is_one_clear_error(tmp_path, store):
     assert proc.returncode == 1
     assert err.strip().splitlines()[-1].startswith("Error: ") and "missing base_url" in err
     assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("moment", ["crawling", "write transaction open"])
+def test_ctrl_c_leaves_before_or_after_and_exits_130(setup, store, tmp_path, moment):
+    """SIGINT (Ctrl-C) while crawling the slow loopback store, or with the write transaction open: the
+    catalog is as before or as after the run (INGESTION.md: a run commits once), no traceback, and the
+    exit code 130 (typer's for Ctrl-C). The run prints no line saying it was interrupted (left: report)."""
+    before_db, sources, before, after, duration, _ = setup
+    db = tmp_path / "interrupted.duckdb"
+    shutil.copy(before_db, db)
+    if moment == "crawling":
+        proc = _ingest(db, sources, store)
+        time.sleep(duration * 0.5)
+    else:
+        proc = _ingest(db, sources, store, env={PAUSE_ENV: "60"})
+        while "write transaction open" not in (line := proc.stderr.readline()) and line:
+            pass
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130 and "Traceback" not in err, err
+    state = snapshot(db)
+    assert state == before or state == after
+    if moment != "crawling":
+        assert state == before  # the COMMIT never ran
