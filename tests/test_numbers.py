@@ -52,7 +52,17 @@ CASES = [
     ("a couple", 2),
     ("a couple of", 2),
     ("a third", 1 / 3),
+    ("a million", 1_000_000),  # scale words: "million" was not a number, so "a million grams" vanished
+    ("two million", 2_000_000),
+    ("1.5 million", 1_500_000),
+    ("two million three hundred thousand", 2_300_000),
+    ("a billion", 1_000_000_000),
 ]
+
+
+@pytest.mark.parametrize("text", ["million million", "a dozen million", "two million dozen", "a billion million"])
+def test_a_scale_word_after_a_scale_or_a_dozen_is_no_number(text: str) -> None:
+    assert parse_number(text) is None
 
 
 @pytest.mark.parametrize(("text", "expected"), CASES)
@@ -102,12 +112,16 @@ def _words(n: int, hyphen: bool = False, use_and: bool = False) -> str:
         if not rest:
             return head
         return head + (" and " if use_and else " ") + _words(rest, hyphen)
+    if n >= 1_000_000:
+        millions, rest = divmod(n, 1_000_000)
+        head = _words(millions, hyphen) + " million"
+        return head if not rest else head + " " + _words(rest, hyphen, use_and)
     thousands, rest = divmod(n, 1000)
     head = _words(thousands, hyphen) + " thousand"
     return head if not rest else head + " " + _words(rest, hyphen, use_and)
 
 
-@given(st.integers(min_value=0, max_value=999_999), st.booleans(), st.booleans())
+@given(st.integers(min_value=0, max_value=999_999_999), st.booleans(), st.booleans())
 def test_integers_rendered_as_words_parse_back(n: int, hyphen: bool, use_and: bool) -> None:
     assert parse_number(_words(n, hyphen, use_and)) == n
 

@@ -124,6 +124,8 @@ def test_the_number_grammar_reads_scientific_notation_and_powers(token: str, val
         ("0 cm", "zero: a size or a mass is more than zero"),
         ("0.00001 g", "1e-05 g: too small to state (under 0.0001)"),  # was 0.0 g
         ("a 1000 liter tank full of water", "1000000 g of contents: absurd for a household object (over 500000 g)"),
+        ("a mug weighing a million grams", "1000000 g: absurd for a household object (over 500000 g)"),  # was dropped
+        ("a pencil two million km long", "2e+11 cm: absurd for a household object (over 500 cm)"),
     ],
 )
 def test_absurd_values_are_refused_not_changed(text: str, reason: str) -> None:

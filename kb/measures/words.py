@@ -43,7 +43,7 @@ NUMBER_WORDS: dict[str, int] = {
     "dozen": 12, "couple": 2,
 }  # fmt: skip
 #: Magnitude words (tag NMAG): they multiply what precedes them ("two hundred", "a thousand").
-MAGNITUDE_WORDS: dict[str, int] = {"hundred": 100, "thousand": 1000}
+MAGNITUDE_WORDS: dict[str, int] = {"hundred": 100, "thousand": 1000, "million": 10**6, "billion": 10**9}
 #: Fraction words (tag FRC): "half", "a quarter", "three quarters", "seven and quarter".
 FRACTION_WORDS: dict[str, float] = {
     "half": 0.5, "halves": 0.5, "quarter": 0.25, "quarters": 0.25, "third": 1 / 3, "thirds": 1 / 3,
@@ -119,7 +119,7 @@ class _Whole:
     def __init__(self) -> None:
         self.total = 0.0  # completed thousands
         self.group: float | None = None  # the part under a thousand being built
-        self.last = ""  # kind of the last piece: digits, unit, teen, tens, hundred, thousand, dozen
+        self.last = ""  # kind of the last piece: digits, unit, teen, tens, hundred, thousand, scale, dozen
         self.seen = False
 
     def add(self, kind: str, value: float) -> bool:
@@ -129,12 +129,12 @@ class _Whole:
                 return False
             self.group = (g or 0) + value
         elif kind == "unit":  # 1..9
-            if last == "tens" or last == "hundred" or last == "" or last == "thousand":
+            if last in ("tens", "hundred", "", "thousand", "scale"):
                 self.group = (g or 0) + value
             else:
                 return False
         elif kind in ("teen", "tens"):  # 10..19, 20..90
-            if last in ("", "hundred", "thousand"):
+            if last in ("", "hundred", "thousand", "scale"):
                 self.group = (g or 0) + value
             else:
                 return False
@@ -147,8 +147,14 @@ class _Whole:
                 return False
             self.total += (g if g is not None else 1) * 1000
             self.group = None
+        elif kind == "scale":  # "a million", "two million three hundred thousand", "three thousand million"
+            if last in ("scale", "dozen"):
+                return False
+            base = self.total + (g or 0)
+            self.total = (base if base else 1) * value
+            self.group = None
         elif kind == "dozen":  # "a dozen", "two dozen"
-            if last in ("dozen", "hundred", "thousand"):
+            if last in ("dozen", "hundred", "thousand", "scale"):
                 return False
             self.group = (g if g is not None else 1) * value
         self.last = kind
@@ -162,7 +168,8 @@ class _Whole:
 
 def _word_kind(word: str) -> tuple[str, float] | None:
     if word in MAGNITUDE_WORDS:
-        return ("hundred" if word == "hundred" else "thousand"), float(MAGNITUDE_WORDS[word])
+        value = float(MAGNITUDE_WORDS[word])
+        return ("hundred" if value == 100 else "thousand" if value == 1000 else "scale"), value
     if word == "dozen":
         return "dozen", 12.0
     if word == "couple":
