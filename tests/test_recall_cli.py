@@ -176,3 +176,28 @@ def test_the_table_says_which_stated_value_was_not_used(seeded, text, words):
 def test_the_table_says_nothing_was_refused_when_nothing_was(seeded):
     res = run("recall", "a red mug 9 cm tall, 300 g", "--db", seeded)
     assert res.exit_code == 0 and "Not used" not in res.stdout
+
+
+def test_a_long_row_refuses_the_whole_file_naming_its_rows(seeded, tmp_path):
+    """Checked before any row is recalled: the batch is refused whole, not cut off at its first long row."""
+    from recall.descriptions import MAX_DESCRIPTION_CHARS
+
+    path = tmp_path / "d.csv"
+    rows = ["a ball", "x" * (MAX_DESCRIPTION_CHARS + 1), "a mug", "y" * MAX_DESCRIPTION_CHARS]
+    path.write_text("description\n" + "\n".join(rows) + "\n")
+    res = run("recall", "--file", path, "--db", seeded, "--json")
+    assert res.exit_code == 1 and "Traceback" not in res.output
+    assert "row 2 (5,001 characters)" in res.output and "row 4" not in res.output  # exactly at the limit is fine
+    assert "nothing recalled" in res.output and '"matches"' not in res.output  # row 1 was not printed first
+
+
+def test_more_than_three_long_rows_are_counted(tmp_path):
+    from kb.errors import DescriptionError
+    from recall.descriptions import MAX_DESCRIPTION_CHARS, read_description_column
+
+    path = tmp_path / "d.csv"
+    path.write_text("description\n" + "\n".join(["z" * (MAX_DESCRIPTION_CHARS + 1)] * 5) + "\n")
+    with pytest.raises(DescriptionError, match=r"row 1 .*row 2 .*row 3 \(5,001 characters\) and 2 more"):
+        read_description_column(path)
+    path.write_text("description\n" + "\n".join(["z" * MAX_DESCRIPTION_CHARS] * 5) + "\n")
+    assert len(read_description_column(path)) == 5
