@@ -53,6 +53,8 @@ __all__ = [
 DEFAULT_BUSY_TIMEOUT = 30.0
 DEFAULT_MAX_ROWS = 10_000
 DEFAULT_SQL_TIMEOUT = 10.0
+#: What :meth:`Catalog.sql` can return: a QueryResult, a pyarrow Table or a pandas DataFrame.
+SQL_OUTPUTS = ("rows", "arrow", "pandas")
 
 
 @dataclass
@@ -324,6 +326,8 @@ class KnowledgeBase:
         """
         if not isinstance(query, str) or not query.strip():
             raise QueryFailed("empty query")
+        if output not in SQL_OUTPUTS:
+            raise QueryFailed(f"unknown output {output!r}; expected one of {', '.join(map(repr, SQL_OUTPUTS))}")
         if not self.path.exists():
             raise CatalogMissing(self.path)
         with self._lock.read():  # in-process writers wait for the worker, as for any reader

@@ -128,6 +128,11 @@ def test_user_sql_limits(seeded_db):
         kb.sql("selec nonsense")
     frame = kb.sql("select name, mass_g from objects where shape = ?", ["radial"], output="pandas")
     assert list(frame.columns) == ["name", "mass_g"] and len(frame) > 3
+    table = kb.sql("select name from objects limit 2", output="arrow")
+    assert table.column_names == ["name"] and table.num_rows == 2
+    for wrong in ("excel", "Pandas", "", None):  # an unknown output is refused, not answered in another form
+        with pytest.raises(QueryFailed, match="unknown output"):
+            kb.sql("select 1", output=wrong)
 
 
 def test_reader_needs_existing_file(tmp_path):
