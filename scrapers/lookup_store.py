@@ -122,7 +122,7 @@ def _result_urls(
             result = fetcher.fetch(url, policy=bounded.policy)
             page = parse_search_page(result.body or b"", result.final_url, result.content_type, store)
         except FetchError as err:
-            raise _Stop(f"search failed: {fetch_error_kind(err)}: {err.reason}") from None
+            raise _Stop(f"search failed: {fetch_error_kind(err)}: {err.reason} ({err.url})") from None
         except ExtractionError as err:
             raise _Stop(f"search answer unreadable: {err}") from None
         for u in page.product_urls:

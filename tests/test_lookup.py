@@ -130,6 +130,7 @@ def test_a_failing_store_is_skipped_with_its_reason_within_the_budget(db, store,
         elapsed = time.monotonic() - t0
     skipped, good = result.stores.stores
     assert skipped.status == "skipped" and reason in skipped.reason
+    assert f"({bad.base_url}/" in skipped.reason  # the address asked, so a user sees which store is down
     assert good.status == "answered" and result.found and result.result.best.name == TEAPOT_NAME
     assert elapsed < 20.0  # did not wait for the slow store's answer
     assert result.stores.fetch_s <= 4.0  # the stores' part ended by its deadline
