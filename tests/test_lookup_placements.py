@@ -5,9 +5,7 @@ tall). The store is the demo store on 127.0.0.1 with products written here; the 
 from __future__ import annotations
 
 import pytest
-from conftest import SEED_CSV
 
-from kb.catalog import KnowledgeBase
 from kb.features import ObjectRecord
 from recall.fit import THRESHOLDS, Trust
 from recall.lookup import fits, placements, recall_with_lookup
@@ -43,10 +41,8 @@ def test_the_extents_a_page_states_are_compared_where_they_fit_best():
 
 
 @pytest.fixture
-def db(tmp_path):
-    path = tmp_path / "catalog.duckdb"
-    KnowledgeBase.open(path).import_csv(SEED_CSV)
-    return path
+def db(seeded_db):
+    return seeded_db  # conftest's seed catalog (a fresh copy per test)
 
 
 def test_the_page_stating_two_sizes_exactly_beats_a_fuller_page_further_off(db):

@@ -7,9 +7,7 @@ products written here; the catalog a real DuckDB file of the seed catalog."""
 from __future__ import annotations
 
 import pytest
-from conftest import SEED_CSV
 
-from kb.catalog import KnowledgeBase
 from kb.features import ObjectRecord
 from recall.lookup import fits, recall_with_lookup
 from recall.lookup_slots import ROLE_SLOTS, extent_role, stated_placements
@@ -66,10 +64,8 @@ def test_a_lone_width_fits_a_product_as_its_largest_extent():
 
 
 @pytest.fixture
-def db(tmp_path):
-    path = tmp_path / "catalog.duckdb"
-    KnowledgeBase.open(path).import_csv(SEED_CSV)
-    return path
+def db(seeded_db):
+    return seeded_db  # conftest's seed catalog (a fresh copy per test)
 
 
 def test_the_product_whose_largest_extent_is_the_width_wins_the_names(db):

@@ -93,26 +93,26 @@ class Unit:
         return _SYMBOL[self.kind]
 
 
-@functools.cache
-def _alias_rows() -> tuple[tuple[str, str, str, str], ...]:
-    """(word, kind, pint name, language) for every alias, in the aliases' order (once per process)."""
+def _rows(aliases, kinds) -> tuple[tuple[str, str, str, str], ...]:
+    """(word, kind, pint name, language) for every word of an alias table, in its order."""
     return tuple(
-        (word.replace("_", " "), KINDS[name], name, lang)
-        for name, by_lang in ALIASES.items()
+        (word.replace("_", " "), kinds[name], name, lang)
+        for name, by_lang in aliases.items()
         for lang, words in by_lang.items()
         for word in words.split()
     )
+
+
+@functools.cache
+def _alias_rows() -> tuple[tuple[str, str, str, str], ...]:
+    """(word, kind, pint name, language) for every alias, in the aliases' order (once per process)."""
+    return _rows(ALIASES, KINDS)
 
 
 @functools.cache
 def _description_rows() -> tuple[tuple[str, str, str, str], ...]:
     """(word, kind, pint name, language) for every word of :data:`DESCRIPTION_ALIASES`."""
-    return tuple(
-        (word.replace("_", " "), DESCRIPTION_KINDS[name], name, lang)
-        for name, by_lang in DESCRIPTION_ALIASES.items()
-        for lang, words in by_lang.items()
-        for word in words.split()
-    )
+    return _rows(DESCRIPTION_ALIASES, DESCRIPTION_KINDS)
 
 
 def unit_words() -> list[str]:
