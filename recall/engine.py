@@ -56,6 +56,7 @@ from recall.openset import (
     synonym_rows,
     trust_of,
 )
+from recall.openset_named import fits_by, named_first
 from recall.results import Match, RecallResult
 from recall.search import select_top_k
 from recall.shortlist import Shortlist, ranking_scores
@@ -304,15 +305,13 @@ class Recaller:
         ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
         rows, dist = self.shortlist.candidates(ranked, named, top, metric, soft)
         score, parts = ranking_scores(rows, dist, names, soft, metric)
+        if names.rows() and not names_inside(noun, names.phrases):  # a named object that fits ranks first
+            score, parts = named_first(rows, score, parts, names, lambda r, t: self._fits(r, query, soft, subject, t))
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         matches = self.shortlist.matches(rows, score, parts, ranked, metric, set(names.exact))
         best = int(rows[0])
-        errors = relative_errors(
-            self.snapshot.num_rows(best), self.snapshot.cat_rows(best), query, self.floors, self.bins
-        )
-        errors.update(soft.errors_of(best) if soft is not None else {})
-        closeness = closeness_of(errors, self._silent_categories(best))
+        errors, closeness = self._closeness(best, query, soft)
         v = self._verdict(best, matches, names, noun, subject, not_in_catalog)
         not_in_catalog, unknown, modifier, trust = v.not_in_catalog, v.unknown, v.modifier, v.trust
         fit = judge(closeness, errors, trust, unused, noun.noun if not_in_catalog else None)
@@ -382,6 +381,21 @@ class Recaller:
         )
         trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
         return _Verdict(not_in_catalog, unknown, modifier, trust)
+
+    def _closeness(self, row: int, query: FeatureQuery, soft: SoftEvidence | None) -> tuple[dict, float | None]:
+        """The relative errors of ``row`` against the stated features and its closeness (their mean)."""
+        snap = self.snapshot
+        errors = relative_errors(snap.num_rows(row), snap.cat_rows(row), query, self.floors, self.bins)
+        errors.update(soft.errors_of(row) if soft is not None else {})
+        return errors, closeness_of(errors, self._silent_categories(row))
+
+    def _fits(self, row: int, query: FeatureQuery, soft: SoftEvidence | None, subject, trust: Trust) -> bool:
+        """Whether ``row`` is a close match by the open-set rule (:func:`recall.openset_named.fits_by`); a
+        whole name whose material the subject's words contradict is trusted as a head noun only."""
+        if trust is Trust.NAMED and not material_agrees(subject, self.snapshot.record(row).material):
+            trust = Trust.PLAIN
+        errors, closeness = self._closeness(row, query, soft)
+        return fits_by(closeness, errors, trust)
 
     def _silent_categories(self, row: int) -> tuple[str, ...]:
         """The categorical features the catalog holds no value for at ``row`` (code < 0)."""
