@@ -31,12 +31,20 @@ NARROW_RANGE = 1.5
 
 _SEGMENT_SPLIT = re.compile(r"\s+|[、，,;/／|]+")
 
+#: The name of the one size an article comes in (``One Size``, ``Taille unique``, ``Talla única``, ``Taglia
+#: unica``, ``Tamanho único``, ``Einheitsgröße``, ``Uniwersalny``, ``Univerzální``, ``Onesize``, ``Free size``,
+#: ``Beden: Tek Ebat``), named after the size word: a value "for" that size is the product's.
+_ONE_SIZE = (
+    r"(?:one[\s-]*size|onesize|os|unique|[uú]nic[ao]|uni|universal\w*|uniwersaln\w*|univerz[aá]ln\w*|"
+    r"free(?:[\s-]*size)?|einheitsgr\w*|tek|unisize)\b"
+)
 #: A value stated for one size of the garment or article (``Gesamtlänge: 72 cm bei Größe S``, ``Length:
-#: 70 cm in size M``, ``Longueur : 68 cm en taille 38``, ``71 cm (talla M)``): a variant's, not the product's.
+#: 70 cm in size M``, ``Longueur : 68 cm en taille 38``, ``71 cm (talla M)``): a variant's, not the product's;
+#: not when that size is the only one (``27 cm (talla One Size)``, :data:`_ONE_SIZE`).
 _FOR_ONE_SIZE = re.compile(
     r"\d.*?(?:\b(?:bei|in|für|fuer|for|at|en|pour|na|em|w|i|på|ve|v|voor|bij|op)\s+(?:der\s+|la\s+|a\s+|de\s+)?"
     r"|[(（]\s*)(?:gr(?:ö|oe)(?:ß|ss)e|size|taille|talla|taglia|maat|rozmiarze|rozmiar|tamanho|storlek|"
-    r"størrelse|velikosti|koko|méret|beden)\b",
+    rf"størrelse|velikosti|koko|méret|beden)\b(?!\s*[:：]?\s*{_ONE_SIZE})",
     re.IGNORECASE,
 )
 
