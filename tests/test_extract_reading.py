@@ -21,8 +21,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from scrapers.extract import extract_page
 from kb.errors import ExtractionError
+from scrapers.extract import extract_page
 from scrapers.value_forms import bound_value, for_one_size
 
 SIZE_WORDS = ["size", "talla", "taille", "taglia", "Größe", "tamanho", "maat", "rozmiar", "beden", "storlek"]
