@@ -14,6 +14,7 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Mapping
 from pathlib import Path
@@ -56,6 +57,7 @@ from recall.openset import (
     synonym_rows,
     trust_of,
 )
+from recall.openset_classes import past_part_rows, with_open_mass
 from recall.openset_named import fits_by, named_first
 from recall.results import Match, RecallResult
 from recall.search import select_top_k
@@ -304,6 +306,11 @@ class Recaller:
         ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
         ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
         rows, dist = self.shortlist.candidates(ranked, named, top, metric, soft)
+        if self.bins and self.floors:  # past the part measured, the mass class is open above (as the verdict)
+            past = self._past_part_rows()
+            dist_of = functools.partial(self.shortlist.distances_of, metric=metric)
+            mass = self.snapshot.num_cols[NUMERIC_FEATURES.index("mass_g")]
+            rows, dist = with_open_mass(rows, dist, query, ranked, past, mass, self.bins, metric, dist_of)
         score, parts = ranking_scores(rows, dist, names, soft, metric)
         if names.rows() and not names_inside(noun, names.phrases):  # a named object that fits ranks first
             score, parts = named_first(rows, score, parts, names, lambda r, t: self._fits(r, query, soft, subject, t))
@@ -381,6 +388,14 @@ class Recaller:
         )
         trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
         return _Verdict(not_in_catalog, unknown, modifier, trust)
+
+    def _past_part_rows(self) -> np.ndarray:
+        """The rows whose mass class is open above (:func:`recall.openset_classes.past_part_rows`), once
+        per declaration of floors and classes."""
+        key = (tuple(sorted(self.floors.items())), tuple(sorted(self.bins.items())))
+        if getattr(self, "_past", (None,))[0] != key:
+            self._past = (key, past_part_rows(self.snapshot, self.floors, self.bins))
+        return self._past[1]
 
     def _closeness(self, row: int, query: FeatureQuery, soft: SoftEvidence | None) -> tuple[dict, float | None]:
         """The relative errors of ``row`` against the stated features and its closeness (their mean)."""
