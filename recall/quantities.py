@@ -19,6 +19,7 @@ from kb.measures.units import Unit, combine, description_units
 from kb.measures.words import number_value
 from recall import lexicon as lx
 from recall.chunks import size
+from recall.quantities_joins import fraction_of, join_chunks, tail_unit
 from recall.reading import DimStatement, Quantity, Reading
 from recall.tags import UNIT_TAGS
 from recall.tokens import Token
@@ -42,6 +43,11 @@ class QuantityReader:
 
     def __init__(self) -> None:
         self._units = description_units()
+
+    def join(self, tree: Tree) -> Tree:
+        """One sentence's chunk tree with adjacent chunks that state one quantity joined
+        (:func:`recall.quantities_joins.join_chunks`: "2 m 30", "half a million grams")."""
+        return join_chunks(tree, self._units)
 
     def read(self, tree: Tree, segment: list[Token], base: int, reading: Reading) -> None:
         """Read one sentence's chunks (``segment`` its tokens, ``base`` the index of its first token)."""
@@ -290,6 +296,10 @@ class QuantityReader:
                     unit = range_unit or unit
                 elif label == "UNIT":
                     unit = self._units.get(part[0].low)
+                elif label == "TAIL":  # "2 m 30", "5 ft 3": the tail in the smaller unit (joined chunks)
+                    sub_unit, value = tail_unit(unit, self._units), _num(part)
+                    one = combine(numbers[0], unit, value, sub_unit) if unit and sub_unit and value else None
+                    numbers = [one] if isinstance(one, float) else numbers
                 elif label == "SUB":  # "1 lb 2 oz", "5 ft 3 in": one quantity in two units
                     sub_unit = self._units.get(part[0].low)
                     if unit is not None and sub_unit is not None and len(numbers) == 2:
@@ -393,6 +403,8 @@ def _num(toks: Sequence[Token]) -> float | None:
     if len(words) == 1 and words[0] in ("a", "an"):
         return 1.0
     value = number_value(words)
+    if value is None:
+        value = fraction_of(words)  # "half a million" (joined chunks)
     if value is not None and any(t.negative for t in toks):
         return -value
     return value
