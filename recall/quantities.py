@@ -20,6 +20,7 @@ from kb.measures.words import number_value
 from recall import lexicon as lx
 from recall.chunks import size
 from recall.quantities_joins import fraction_of, join_chunks, tail_unit
+from recall.quantities_unnumbered import VAGUE_REASON, read_unnumbered, vague_before
 from recall.reading import DimStatement, Quantity, Reading
 from recall.tags import UNIT_TAGS
 from recall.tokens import Token
@@ -57,6 +58,13 @@ class QuantityReader:
             if isinstance(child, Tree):
                 n = size(child)
                 toks = segment[k : k + n]
+                vague = vague_before(segment, k, [t.low for t in toks])
+                if vague is not None and child.label() in ("QUANT", "DIM"):
+                    quant = size(child[0]) if child.label() == "DIM" else n
+                    reading.refuse(vague, toks[quant - 1].end, VAGUE_REASON)  # "a few hundred grams"
+                    reading.in_dim_chunk.update(range(base + k, base + k + n))
+                    k += n
+                    continue
                 if child.label() == "QUANT" and idx + 1 < len(tree) and _noun_took_other_unit(tree[idx + 1]):
                     # "~ 10cm diameter ~ 0.8 kg": the noun's value is the length before it, not the mass
                     q = self._quantity(child, toks, base + k, reading)
@@ -74,6 +82,7 @@ class QuantityReader:
                 k += n
             else:
                 k += 1
+        read_unnumbered(segment, base, reading, self._units)
 
     def _read_chunk(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
         label = chunk.label()
