@@ -14,6 +14,7 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Mapping
 from pathlib import Path
@@ -56,6 +57,7 @@ from recall.openset import (
     synonym_rows,
     trust_of,
 )
+from recall.openset_classes import past_part_rows, with_open_mass
 from recall.openset_named import fits_by, named_first
 from recall.results import Match, RecallResult
 from recall.search import select_top_k
@@ -166,10 +168,21 @@ class Recaller:
     def recall_text(
         self, text: str, *, top: int = 5, metric: str | None = None, features_only: bool = False
     ) -> RecallResult:
-        """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result."""
+        """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result. A
+        description in another language is read in English first (:mod:`recall.translations`); one whose
+        content words are mostly read by no table is no close match (:mod:`recall.openset_words`)."""
+        from recall.openset_words import unread_words
         from recall.parser import parse
+        from recall.translations import english_reading
 
-        return self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
+        reading = english_reading(text) if isinstance(text, str) else None
+        if reading is None or reading.language is None:
+            result = self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
+        else:
+            result = self.recall_parsed(parse(reading.text), top=top, metric=metric, features_only=features_only)
+            result.text, result.read_as, result.translated = text, reading.text, reading.translated
+        unread = unread_words(reading.text, self.names.vocabulary) if reading is not None else ()
+        return _not_read(result, unread) if unread else result
 
     def recall_parsed(
         self, parsed: Any, *, top: int = 5, metric: str | None = None, features_only: bool = False
@@ -304,6 +317,11 @@ class Recaller:
         ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
         ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
         rows, dist = self.shortlist.candidates(ranked, named, top, metric, soft)
+        if self.bins and self.floors:  # past the part measured, the mass class is open above (as the verdict)
+            past = self._past_part_rows()
+            dist_of = functools.partial(self.shortlist.distances_of, metric=metric)
+            mass = self.snapshot.num_cols[NUMERIC_FEATURES.index("mass_g")]
+            rows, dist = with_open_mass(rows, dist, query, ranked, past, mass, self.bins, metric, dist_of)
         score, parts = ranking_scores(rows, dist, names, soft, metric)
         if names.rows() and not names_inside(noun, names.phrases):  # a named object that fits ranks first
             score, parts = named_first(rows, score, parts, names, lambda r, t: self._fits(r, query, soft, subject, t))
@@ -382,6 +400,14 @@ class Recaller:
         trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
         return _Verdict(not_in_catalog, unknown, modifier, trust)
 
+    def _past_part_rows(self) -> np.ndarray:
+        """The rows whose mass class is open above (:func:`recall.openset_classes.past_part_rows`), once
+        per declaration of floors and classes."""
+        key = (tuple(sorted(self.floors.items())), tuple(sorted(self.bins.items())))
+        if getattr(self, "_past", (None,))[0] != key:
+            self._past = (key, past_part_rows(self.snapshot, self.floors, self.bins))
+        return self._past[1]
+
     def _closeness(self, row: int, query: FeatureQuery, soft: SoftEvidence | None) -> tuple[dict, float | None]:
         """The relative errors of ``row`` against the stated features and its closeness (their mean)."""
         snap = self.snapshot
@@ -412,6 +438,21 @@ class Recaller:
         # a phrase of the text that names the row (a synonym: "cross head screwdriver") holds its modifier
         said = [p.split() for p in names.phrases if row in (self.names.phrases.get(tuple(p.split())) or ())]
         return foreign_modifier(subject, words | frozenset(w for p in said for w in p))
+
+def _not_read(result: RecallResult, unread: tuple[str, ...]) -> RecallResult:
+    """``result`` when most of its description's content words were read by no table (``unread``): no close
+    match, whatever was ranked (the reason names the words), its confidence at most
+    :data:`recall.openset_words.UNREAD_CONFIDENCE`."""
+    from recall.fit import Fit
+    from recall.openset_words import UNREAD_CONFIDENCE
+
+    words = ", ".join(repr(w) for w in unread)
+    score = max(result.fit.score if result.fit is not None else 0.0, 2.0)
+    result.unread, result.open_set = unread, bool(result.matches)
+    result.fit = Fit(False, score, f"most words not read: {words}")
+    result.confidence = min(result.confidence, UNREAD_CONFIDENCE)
+    return result
+
 
 def _checked(metric: str | None, features_only: bool, top: int) -> str:
     """The metric to use (:func:`resolve_metric`), refusing an unknown one and a ``top`` below 1."""
