@@ -10,7 +10,7 @@ matched, and extraction ms per page as a ratio against parsing the same pages wi
 baseline, measured in the same run).
 
 Part 2: generated spec dumps (20,000 rows of weights and sizes, ~1-4 MB) that took seconds before
-extraction was bounded (:data:`scrapers.page.MAX_LINES`, :data:`scrapers.adapters.spec_table.MAX_PAIRS`):
+extraction was bounded (:data:`scrapers.page_lines.MAX_LINES`, :data:`scrapers.adapters.spec_table.MAX_PAIRS`):
 seconds per page, again against an lxml-only parse.
 
 Run: ``python benchmarks/extract_bench.py [--repeat N] [--save]`` (``--save``: the real dev pages' figures and the

@@ -1,26 +1,31 @@
 """One fetched page, decoded and parsed once, shared by every extractor.
 
 :class:`Page` holds the decoded text, the lxml tree (built lazily), the page language and its decimal-mark
-convention, the JSON-LD blocks and JSON payloads, and the visible text as :class:`Line` s in document
-order, each with its context: inside a package section or not (``id``/``class`` names like
-``packaging``, ``verpackung``, ``shipping``) and its parent element (to group a package's fields).
-
-Containers of other products are not read at all: elements whose ``id``/``class`` names a carousel,
-slider, comparison, recommendation or "customers also viewed" block (see :data:`FOREIGN_CONTAINER`).
+convention, the JSON-LD blocks and JSON payloads, its title candidates and canonical address, and the
+visible text as :class:`~scrapers.page_lines.Line` s in document order, each with its context (a package
+block, a site-wide block, its parent element), built by :mod:`scrapers.page_lines`, which also drops the
+containers of other products (:data:`~scrapers.page_lines.FOREIGN_CONTAINER`).
 """
 
 from __future__ import annotations
 
 import json
 import re
-from bisect import bisect_right
-from dataclasses import dataclass
-from functools import cached_property, lru_cache
-from itertools import accumulate
+from functools import cached_property
 from typing import Any
 
-from kb.measures.units import units_pattern
 from scrapers.encodings import decode_body
+from scrapers.page_lines import (
+    FOREIGN_CONTAINER,
+    MAX_LINES,
+    PACKAGE_CONTAINER,
+    Line,
+    decimal_mark_of_lines,
+    lines_matching,
+    text_content,
+    visible_lines,
+    visible_text,
+)
 from scrapers.quantities import decimal_comma_for
 from scrapers.script_state import script_objects
 
@@ -35,69 +40,11 @@ __all__ = [
     "text_content",
 ]
 
-#: id/class words of blocks that show other products (their sizes must not leak into this product).
-FOREIGN_CONTAINER = re.compile(
-    r"(?:carousel|swiper|slick|slider|similar|tovsimilar|compar(?:ison|e-table|ison-table)|comparison_table|"
-    r"recommend|related|also[-_]?(?:viewed|bought|like)|upsell|up-sell|cross[-_]?sell|sponsor|recently|"
-    r"sims[-_]|_sims|fbt|bought[-_]together|reco[-_]|[-_]reco\b|advert|banner)",
-    re.IGNORECASE,
-)
-#: Layout words that often show other products (a slider, a banner) but are also used as styling names of
-#: the product's own blocks (``tab-specs accordion banner-margin-small``): such a block is foreign only when
-#: its names do not also say it holds the product's specification (:data:`SPEC_CONTAINER`).
-_WEAK_FOREIGN = re.compile(r"(?:carousel|swiper|slick|slider|sponsor|advert|banner)", re.IGNORECASE)
-#: id/class words of the product's own specification or description blocks.
-SPEC_CONTAINER = re.compile(
-    r"(?:spec|techn|detail|descri|attribute|propert|merkmal|caracter|характер|feature)", re.IGNORECASE
-)
-#: A class token naming the product's own specification block (``pdp-product-specs``, ``product-details``).
-_OWN_SPEC = re.compile(r"(?:pdp|product)[-_]?(?:spec|techn|detail|descri|attribute|propert|feature)", re.IGNORECASE)
-#: id/class words of blocks that describe the package rather than the product.
-PACKAGE_CONTAINER = re.compile(
-    r"(?:packag|verpack|shipping|versand|embala|emballa|imball|colis|упаков)", re.IGNORECASE
-)
-#: Class tokens that state a fact about the product, not a box of package values: WooCommerce marks every
-#: product's wrapper ``shipping-taxable`` and ``product_shipping_class-…``; shops flag ``free-shipping``.
-_PRODUCT_FLAG = re.compile(r"taxable|shipping[_-]class|free[_-]?shipping", re.IGNORECASE)
-_DROP_TAGS = frozenset(
-    {"script", "style", "noscript", "template", "svg", "head", "iframe", "select", "option"}
-)
-_NEVER_DROP = frozenset({"html", "body", "main"})
-#: A hidden help popup: an element hidden by its own ``style`` whose name says tooltip, popup, popover,
-#: hint or info dialog (Alza's ``infoPopup infoDialog`` under each spec label: a sentence of help text
-#: between the label and its value). Its text explains a label and is never a value; a hidden element
-#: named otherwise (a closed spec tab) is read.
-_HIDDEN = re.compile(r"display\s*:\s*none", re.IGNORECASE)
-_HELP_POPUP = re.compile(r"tool-?tip|popup|popover|hint|info-?dialog", re.IGNORECASE)
-#: Elements that hold what every page of a store shows (a header, footer, navigation, an aside): a size
-#: there is a size guide's or a banner's, not the product's. ``header`` and ``footer`` count only outside
-#: sectioning content (HTML's rule: inside an ``article`` or ``section`` they are that section's own).
-SITE_WIDE_TAGS = frozenset({"header", "footer", "nav", "aside"})
-SITE_WIDE_ROLES = frozenset({"banner", "contentinfo", "navigation", "complementary"})
-_SECTIONING = frozenset({"article", "section", "main"})
 _LD_JSON = re.compile(
     r"<script\b[^>]*\btype\s*=\s*[\"']?application/ld\+json[\"']?[^>]*>(.*?)</script\s*>",
     re.IGNORECASE | re.DOTALL,
 )
 _WS = re.compile(r"\s+")
-#: Only the first this many visible text lines are read. The real pages measured have at most ~1,500
-#: (a 1.8 MiB Amazon page); a page with tens of thousands is a catalogue or a spec dump, and walking all
-#: of it costs seconds. :attr:`Page.truncated` says when the cap was hit.
-MAX_LINES = 12_000
-
-
-@dataclass(frozen=True)
-class Line:
-    """One visible text node: its text (spaces collapsed), whether a package block holds it, and the
-    identity of its parent element (lines with the same ``group`` sit in the same element)."""
-
-    text: str
-    package: bool
-    group: int
-    index: int
-    #: Read in a site-wide block (:data:`SITE_WIDE_TAGS`, :data:`SITE_WIDE_ROLES`): the store's header,
-    #: footer, navigation or an aside, outside the product's main content.
-    site_wide: bool = False
 
 
 class Page:
@@ -227,67 +174,18 @@ class Page:
 
     @cached_property
     def lines(self) -> list[Line]:
-        """Visible text nodes in document order, outside scripts and other products' containers.
-
-        The text nodes that hold more than spaces are found by one XPath (in C); each one's context comes
-        from its element's, computed once per element from its parent's (:meth:`_context`)."""
+        """Visible text nodes in document order, outside scripts and other products' containers
+        (:func:`scrapers.page_lines.visible_lines`)."""
         tree = self.tree
         if tree is None:
             return []
-        lines: list[Line] = []
-        contexts: dict[Any, tuple[bool, bool, bool, int] | None] = {}
-        for text in tree.xpath("//text()[normalize-space()]"):
-            owner = text.getparent()
-            if owner is None:
-                continue
-            holder = owner.getparent() if text.is_tail else owner
-            if holder is None:
-                continue
-            context = contexts.get(holder, _UNSEEN)
-            if context is _UNSEEN:
-                context = self._context(holder, contexts)
-            if context is None:
-                continue
-            if len(lines) >= MAX_LINES:
-                self.truncated = True
-                break
-            _add_line(lines, str(text), context)
+        lines, self.truncated = visible_lines(tree)
         return lines
-
-    @staticmethod
-    def _context(el, contexts: dict) -> tuple[bool, bool, bool, int] | None:
-        """(package, site-wide, inside sectioning content, group) of the text ``el`` holds, None when it is
-        not read (inside a dropped tag or another product's container); memoised in ``contexts``."""
-        chain = []
-        node = el
-        while node is not None and node not in contexts:
-            chain.append(node)
-            node = node.getparent()
-        context = contexts[node] if node is not None else (False, False, False, 0)
-        for node in reversed(chain):
-            if context is not None:
-                tag = node.tag
-                if not isinstance(tag, str) or not tag or tag in _DROP_TAGS:
-                    context = None  # dropped whatever its names say
-                else:
-                    foreign, own_package = _container_kind(node.get("id"), node.get("class"))
-                    if (foreign and tag not in _NEVER_DROP) or _help_popup(node):
-                        context = None
-                    else:
-                        package, site_wide, sectioned, _ = context
-                        if not site_wide and (tag in SITE_WIDE_TAGS or node.get("role") in SITE_WIDE_ROLES):
-                            site_wide = tag in ("nav", "aside") or not sectioned or node.get("role") in SITE_WIDE_ROLES
-                        context = (package or own_package, site_wide, sectioned or tag in _SECTIONING, len(contexts) + 1)
-            contexts[node] = context
-        return context
 
     def site_wide_line(self, index: int) -> bool:
         """Whether visible line ``index`` sits in a site-wide block (False for an index out of range)."""
         lines = self.lines
         return 0 <= index < len(lines) and lines[index].site_wide
-
-
-_UNSEEN = object()
 
 
 def _attributes(tree, wanted: tuple[tuple[str, str, str, str], ...]) -> list[str]:
@@ -303,130 +201,10 @@ def _attributes(tree, wanted: tuple[tuple[str, str, str, str], ...]) -> list[str
     return found
 
 
-def _help_popup(node) -> bool:
-    style = node.get("style")
-    if not style or not _HIDDEN.search(style):
-        return False
-    names = f"{node.get('id') or ''} {node.get('class') or ''}"
-    return bool(_HELP_POPUP.search(names))
-
-
-@lru_cache(maxsize=8192)
-def _container_kind(ident: str | None, classes: str | None) -> tuple[bool, bool]:
-    """(holds other products, holds package values) for an element's id and class (cached: pages repeat
-    the same class strings thousands of times)."""
-    names = f"{ident or ''} {classes or ''}".strip()
-    if not names:
-        return False, False
-    foreign = False
-    tokens = names.split()
-    for token in tokens:
-        m = FOREIGN_CONTAINER.search(token)
-        if m and not (_WEAK_FOREIGN.fullmatch(m.group(0)) and SPEC_CONTAINER.search(names)):
-            # another token naming this product's own specification outranks it (Mouser's spec table
-            # is id="FindSimilarPnl" class="pdp-product-specs": "find similar" is a feature of the table)
-            foreign = not any(_OWN_SPEC.search(t) and not FOREIGN_CONTAINER.search(t) for t in tokens)
-            break
-    return foreign, any(PACKAGE_CONTAINER.search(t) and not _PRODUCT_FLAG.search(t) for t in names.split())
-
-
-#: A measured number with one or two decimals and a unit: ``1,5 kg`` (decimal comma), ``1.5 kg`` (point).
-_MEASURED_UNIT = units_pattern("length", "mass")  # the words of the one unit table
-_COMMA_DECIMAL = re.compile(rf"(?<![\d.,])\d{{1,4}},\d{{1,2}}\s?(?:{_MEASURED_UNIT}|€)(?![\w])", re.IGNORECASE)
-_POINT_DECIMAL = re.compile(rf"(?<![\d.,])\d{{1,4}}\.\d{{1,2}}\s?(?:{_MEASURED_UNIT}|€|\$)(?![\w])", re.IGNORECASE)
-#: Lines read for the page's number forms (the specification is near the top; a page is not read twice).
-NUMBER_FORM_LINES = 4000
-
-
-def decimal_mark_of_lines(lines: list[Line]) -> bool | None:
-    """True when the visible text writes measured decimals with commas (``1,5 kg``) more often than with
-    points (``1.5 kg``), False for the reverse, None on a tie (a number with three decimals, ``1,250``,
-    says nothing: it may group thousands)."""
-    comma = point = 0
-    for line in lines[:NUMBER_FORM_LINES]:
-        if "," in line.text:
-            comma += len(_COMMA_DECIMAL.findall(line.text))
-        if "." in line.text:
-            point += len(_POINT_DECIMAL.findall(line.text))
-    if comma == point:
-        return None
-    return comma > point
-
-
-#: Joins line texts for one scan (:func:`lines_matching`): no pattern given there matches it, so no match
-#: spans two lines and ``\b`` sees a line's edge as it sees the edge of a string.
-_LINE_JOIN = "\x00"
-
-
-def lines_matching(lines: list[Line], pattern: re.Pattern) -> set[int]:
-    r"""The positions in ``lines`` of the lines ``pattern.search`` matches, found by one scan of their joined
-    text (a loop of one search per line costs more on pages of thousands of lines). ``pattern`` must not
-    match a NUL character (literal words, ``\s``, ``[^\W\d_]``, ``\b``; no lookbehind, no ``.``, no ``\W``)."""
-    if not lines:
-        return set()
-    texts = [line.text for line in lines]
-    starts = list(accumulate((len(t) + 1 for t in texts[:-1]), initial=0))
-    return {bisect_right(starts, m.start()) - 1 for m in pattern.finditer(_LINE_JOIN.join(texts))}
-
-
 def _html_parser():
     from lxml import etree
 
     return etree.HTMLParser(remove_comments=True, remove_pis=True, no_network=True)
-
-
-def text_content(el) -> str:
-    """All text inside an element, spaces collapsed."""
-    return " ".join("".join(el.itertext()).split())
-
-
-def visible_text(el) -> str:
-    """The text inside an element a reader sees: without the text of scripts, styles and the other
-    :data:`_DROP_TAGS` inside it; spaces collapsed."""
-    parts: list[str] = []
-
-    def walk(node, top: bool) -> None:
-        tag = node.tag.lower() if isinstance(node.tag, str) else ""
-        if not top and (tag in _DROP_TAGS or not isinstance(node.tag, str)):
-            parts.append(node.tail or "")
-            return
-        parts.append(node.text or "")
-        for child in node:
-            walk(child, False)
-        if not top:
-            parts.append(node.tail or "")
-
-    walk(el, True)
-    return " ".join("".join(parts).split())
-
-
-_new = object.__new__
-
-
-#: A text node of at least this many non-empty lines is a block of lines (a marketplace's description
-#: shown with its line breaks, Trendyol's ``Ağırlık 58.0 kg\nDerinlik 49.0 cm\n...``): each line is read
-#: as its own; fewer breaks are the markup's indentation (``\n  Výška  \n``, ``4,7\nkg``).
-TEXT_BLOCK_LINES = 3
-
-
-def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
-    if text.count("\n") >= TEXT_BLOCK_LINES - 1:
-        rows = [row for row in text.split("\n") if not row.isspace() and row]
-        if len(rows) >= TEXT_BLOCK_LINES:
-            for row in rows:
-                _add_one(lines, row, context)
-            return
-    _add_one(lines, text, context)
-
-
-def _add_one(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
-    text = " ".join(text.split())
-    if text:
-        # Line(text, package, group, index, site_wide) without the frozen dataclass's slow __init__ (one
-        # object.__setattr__ per field; pages have thousands of lines): the same fields, the same object
-        line = _new(Line)
-        line.__dict__.update(text=text, package=context[0], group=context[3], index=len(lines), site_wide=context[1])
-        lines.append(line)
 
 
 def _loads_lenient(text: str) -> tuple[Any, str | None]:

@@ -136,6 +136,8 @@ class FamilyAgreement:
     n: int
     family_agreement: float
     always_power: float
+    expected_agreement: float  # mean people's share of the planner's family (honest where majorities are 1 grasp)
+    expected_always_power: float
     planner_version: str
     misses: tuple[tuple[str, str, str], ...]  # (object, people's majority, planner's family)
 
@@ -145,22 +147,33 @@ class FamilyAgreement:
             "n": self.n,
             "family_agreement": self.family_agreement,
             "always_power": self.always_power,
+            "expected_agreement": self.expected_agreement,
+            "expected_always_power": self.expected_always_power,
             "planner_version": self.planner_version,
         }
 
 
 def evaluate_families(objects: Iterable[YaleObject], part: str = "check") -> FamilyAgreement:
-    """Score the planner on ``part`` of ``objects``: ``check`` (not blind), ``blind`` or ``all``."""
+    """Score the planner on ``part`` of ``objects``: ``check`` (not blind), ``blind`` or ``all``.
+
+    ``family_agreement`` counts the objects whose majority family the planner's first choice is in;
+    ``expected_agreement`` is the mean share of the object's recorded grasps in the planner's family (the
+    agreement expected with one of its recorded grasps drawn at random): the honest measure where a majority
+    rests on one grasp or a tie.
+    """
     if part not in ("check", "blind", "all"):
         raise ValueError(f"part must be check, blind or all, not {part!r}")
     chosen: Sequence[YaleObject] = [
         o for o in objects if part == "all" or is_blind(o.object) == (part == "blind")
     ]
     hits, power, misses = 0, 0, []
+    share, power_share = 0.0, 0.0
     for o in chosen:
         family = plan_grasps(planner_features(o), top=1)[0].family
         hits += family == o.majority
         power += o.majority == "power"
+        share += o.shares[family]
+        power_share += o.shares["power"]
         if family != o.majority:
             misses.append((o.object, o.majority, family))
     n = len(chosen)
@@ -169,6 +182,8 @@ def evaluate_families(objects: Iterable[YaleObject], part: str = "check") -> Fam
         n=n,
         family_agreement=round(hits / n, 3) if n else 0.0,
         always_power=round(power / n, 3) if n else 0.0,
+        expected_agreement=round(share / n, 3) if n else 0.0,
+        expected_always_power=round(power_share / n, 3) if n else 0.0,
         planner_version=PLANNER_VERSION,
         misses=tuple(misses),
     )

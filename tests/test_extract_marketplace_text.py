@@ -7,7 +7,8 @@ from __future__ import annotations
 
 from kb.errors import ExtractionError
 from scrapers.extract import extract_page
-from scrapers.page import TEXT_BLOCK_LINES, Page
+from scrapers.page import Page
+from scrapers.page_lines import TEXT_BLOCK_LINES
 from scrapers.value_forms import PROSE_WORDS, sentence_value
 
 

@@ -8,7 +8,8 @@ import pytest
 
 from scrapers.extract import extract_page
 from scrapers.labels import classify_label, classify_other
-from scrapers.page import Page, decimal_mark_of_lines
+from scrapers.page import Page
+from scrapers.page_lines import decimal_mark_of_lines
 from scrapers.sets import MAX_SET, per_item, set_size
 from scrapers.value_forms import axis_segments, metric_figure
 
@@ -212,7 +213,7 @@ def test_a_jsonld_language_decides_when_the_html_has_none():
      (["1,250 kg"], None), (["1,5 kg", "1,5 kg", "2.5 kg"], True), ([], None)],
 )  # fmt: skip
 def test_number_forms_decide_at_the_majority(texts, comma):
-    from scrapers.page import Line
+    from scrapers.page_lines import Line
 
     lines = [Line(t, False, i, i) for i, t in enumerate(texts)]
     assert decimal_mark_of_lines(lines) is comma
@@ -278,7 +279,7 @@ def test_a_unitless_value_with_no_unit_anywhere_is_refused_with_the_reason():
 
 
 def test_a_headings_unit_reaches_only_its_own_block():
-    from scrapers.page import Line
+    from scrapers.page_lines import Line
     from scrapers.spec_pairs import HEADING_SCOPE, pairs_from_lines
 
     def unit_after(gap: int):

@@ -7,7 +7,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from scrapers import spec_pairs
-from scrapers.page import Line, _add_line
+from scrapers.page_lines import Line, _add_line
 
 _WORDS = ["Weight", "Gewicht", "Height", "Width:", "Dimensions (mm)", "Maße in cm", "Max load", "Cable length",
           "Home", "Cart", "About us", "cm", "kg", "mm", "(", ")", ":", "-", "x", "30", "4,7", "1.2", "Wert [mm]",
@@ -59,7 +59,7 @@ _PROSE = st.lists(st.sampled_from(["made of", "aus", "en", "solid", "oak", "Mate
 def test_one_scan_finds_the_lines_a_search_per_line_finds(texts):
     from scrapers.adapters.spec_table import _MATERIAL_HINT
     from scrapers.adapters.text import _MADE_OF, _SOLID
-    from scrapers.page import lines_matching
+    from scrapers.page_lines import lines_matching
 
     lines = _lines(texts)
     for pattern in (_MATERIAL_HINT, _MADE_OF, _SOLID):

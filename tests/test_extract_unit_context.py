@@ -15,7 +15,7 @@ import pytest
 
 from kb.errors import ExtractionError
 from scrapers.extract import extract_page
-from scrapers.page import _container_kind
+from scrapers.page_lines import _container_kind
 from scrapers.spec_pairs import has_unit
 
 

@@ -11,6 +11,8 @@ import hashlib
 import json
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from kb.errors import InvalidFeature
 from sim.human_families import (
@@ -109,3 +111,52 @@ def test_majority_is_a_largest_share_and_ties_keep_the_files_label():
         if sum(abs(v - top) <= 0.0015 for v in o.shares.values()) > 1:
             ties.append(o.majority)
     assert len(ties) == 9 and set(ties) == {"power", "intermediate", "precision"}
+
+
+def _shares(p: float, i: float) -> dict[str, float]:
+    return {"power": p, "intermediate": i, "precision": round(1.0 - p - i, 6)}
+
+
+def test_expected_agreement_is_the_mean_share_of_the_planners_family():
+    """A 16 x 3.5 x 2 cm, 110 g stick is planned in a precision grasp (thumb-4 finger): it scores the people's
+    precision share, whatever the majority; a single-grasp majority counts 1 or 0, a tie its share."""
+    remote = dict(a_cm=16.0, b_cm=3.5, c_cm=2.0, mass_g=110.0, roundness="non-round")
+    objs = [
+        _obj(object="one", shares=_shares(0.0, 0.0), majority="precision", n_grasps=1, **remote),
+        _obj(object="tie", shares=_shares(0.462, 0.076), majority="power", n_grasps=13, **remote),
+        _obj(object="most", shares=_shares(0.2, 0.1), majority="precision", n_grasps=10, **remote),
+    ]
+    r = evaluate_families(objs, "all")
+    assert r.family_agreement == round(2 / 3, 3)  # "one" and "most"; the tie is labelled power
+    assert r.expected_agreement == round((1.0 + 0.462 + 0.7) / 3, 3)
+    assert r.expected_always_power == round((0.0 + 0.462 + 0.2) / 3, 3)
+    assert r.summary()["expected_agreement"] == r.expected_agreement
+
+
+@given(
+    st.lists(
+        st.tuples(st.floats(0, 1), st.floats(0, 1), st.sampled_from(["power", "intermediate", "precision"])),
+        min_size=1,
+        max_size=6,
+    )
+)
+def test_expected_agreement_is_a_share_and_equals_the_majority_figure_on_pure_objects(rows):
+    objs, pure = [], []
+    for k, (x, y, majority) in enumerate(rows):
+        p, i = x * (1 - y), (1 - x) * y
+        objs.append(_obj(object=f"o{k}", shares=_shares(p, i), majority=majority))
+        one = {f: float(f == majority) for f in ("power", "intermediate", "precision")}
+        pure.append(_obj(object=f"o{k}", shares=one, majority=majority))
+    r = evaluate_families(objs, "all")
+    assert 0.0 <= r.expected_agreement <= 1.0 and 0.0 <= r.expected_always_power <= 1.0
+    q = evaluate_families(pure, "all")  # every grasp in one family: expected = majority agreement
+    assert q.expected_agreement == q.family_agreement
+
+
+@needs_data
+def test_human_eval_lists_no_blind_rows(capsys):
+    from sim.human_eval import main
+
+    assert main(["--part", "blind", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)["real_data"]
+    assert data["n"] == 46 and "misses" not in data and 0.0 <= data["expected_agreement"] <= 1.0
