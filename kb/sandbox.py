@@ -164,8 +164,9 @@ def _answer(request: dict[str, Any]) -> tuple:
             data = pickle.dumps(("ok", (answer.columns, answer.rows, answer.truncated)), protocol=pickle.HIGHEST_PROTOCOL)
         except (TypeError, AttributeError, pickle.PicklingError) as err:
             raise QueryFailed(f"a result value cannot be returned: {first_line(err)}") from None
-    except ObjrecallError as err:
-        return ("error", type(err).__name__, _mask(str(err), path))
+    except ObjrecallError as err:  # sent as the nearest class the caller rebuilds (CatalogUnreadable: DatabaseError)
+        kind = next((c.__name__ for c in type(err).__mro__ if c.__name__ in _ERRORS), "QueryFailed")
+        return ("error", kind, _mask(str(err), path))
     except (MemoryError, duckdb.OutOfMemoryException):
         return ("error", "QueryRefused", _memory_refusal())
     if len(data) > MAX_ANSWER_BYTES:
