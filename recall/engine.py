@@ -168,10 +168,21 @@ class Recaller:
     def recall_text(
         self, text: str, *, top: int = 5, metric: str | None = None, features_only: bool = False
     ) -> RecallResult:
-        """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result."""
+        """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result. A
+        description in another language is read in English first (:mod:`recall.translations`); one whose
+        content words are mostly read by no table is no close match (:mod:`recall.openset_words`)."""
+        from recall.openset_words import unread_words
         from recall.parser import parse
+        from recall.translations import english_reading
 
-        return self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
+        reading = english_reading(text) if isinstance(text, str) else None
+        if reading is None or reading.language is None:
+            result = self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
+        else:
+            result = self.recall_parsed(parse(reading.text), top=top, metric=metric, features_only=features_only)
+            result.text, result.read_as, result.translated = text, reading.text, reading.translated
+        unread = unread_words(reading.text, self.names.vocabulary) if reading is not None else ()
+        return _not_read(result, unread) if unread else result
 
     def recall_parsed(
         self, parsed: Any, *, top: int = 5, metric: str | None = None, features_only: bool = False
@@ -427,6 +438,21 @@ class Recaller:
         # a phrase of the text that names the row (a synonym: "cross head screwdriver") holds its modifier
         said = [p.split() for p in names.phrases if row in (self.names.phrases.get(tuple(p.split())) or ())]
         return foreign_modifier(subject, words | frozenset(w for p in said for w in p))
+
+def _not_read(result: RecallResult, unread: tuple[str, ...]) -> RecallResult:
+    """``result`` when most of its description's content words were read by no table (``unread``): no close
+    match, whatever was ranked (the reason names the words), its confidence at most
+    :data:`recall.openset_words.UNREAD_CONFIDENCE`."""
+    from recall.fit import Fit
+    from recall.openset_words import UNREAD_CONFIDENCE
+
+    words = ", ".join(repr(w) for w in unread)
+    score = max(result.fit.score if result.fit is not None else 0.0, 2.0)
+    result.unread, result.open_set = unread, bool(result.matches)
+    result.fit = Fit(False, score, f"most words not read: {words}")
+    result.confidence = min(result.confidence, UNREAD_CONFIDENCE)
+    return result
+
 
 def _checked(metric: str | None, features_only: bool, top: int) -> str:
     """The metric to use (:func:`resolve_metric`), refusing an unknown one and a ``top`` below 1."""
