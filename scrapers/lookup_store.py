@@ -1,7 +1,7 @@
 """One store's side of an on-demand lookup: its search, within the budgets all stores share.
 
-:func:`search_one` asks one store for the first of the search words that lists products and reads its
-product pages ``search_results`` at a time (a ``rel="next"`` results page only when its products are
+:func:`search_one` asks one store for the search words in order, until one's pages hold one that fits,
+and reads each one's product pages ``search_results`` at a time (a ``rel="next"`` results page only when its products are
 wanted, :mod:`scrapers.store_search`), while none settles the search (:data:`SETTLED_ERROR`), up to
 :data:`MAX_RESULT_BATCHES` batches; every request takes from the shared :class:`Budget` (time left and
 pages left) and has its timeouts clamped to the time left, without retries. :mod:`scrapers.lookup` runs
@@ -10,7 +10,6 @@ one per store at the same time, judges the pages and writes what fits.
 
 from __future__ import annotations
 
-import itertools
 import threading
 import time
 from collections.abc import Callable, Iterator, Sequence
@@ -25,7 +24,9 @@ from scrapers.ingest import PageOutcome, process_page
 from scrapers.sources import StoreSource
 from scrapers.store_search import parse_search_page
 
-__all__ = ["MAX_RESULT_BATCHES", "SETTLED_ERROR", "Budget", "FitFn", "StoreAnswer", "search_one", "settled"]
+__all__ = [
+    "MAX_RESULT_BATCHES", "SETTLED_ERROR", "Budget", "FitFn", "StoreAnswer", "any_fits", "search_one", "settled",
+]  # fmt: skip
 
 #: A store's results are read ``search_results`` at a time; while none of them settles the search
 #: (:data:`SETTLED_ERROR`), the next ones, up to this many batches in all (within the page and time
@@ -155,39 +156,50 @@ def search_one(
     previous: dict[str, dict[str, Any]],
     fits: FitFn | None = None,
 ) -> tuple[StoreAnswer, list[PageOutcome]]:
-    """One store: the first query that lists products, then its top product pages, a batch of
-    ``search_results`` at a time while none settles the search (:func:`settled`, up to
-    :data:`MAX_RESULT_BATCHES`; without ``fits``, one batch)."""
+    """One store: the queries in order, each one's top product pages read a batch of ``search_results`` at
+    a time while none settles the search (:func:`settled`, up to :data:`MAX_RESULT_BATCHES`), until a
+    query's pages hold one that fits (:func:`any_fits`); the next query reads only pages not read yet.
+    A store's search lists a product when one query word is in its title, brand or description text, so
+    the most specific words ("smart bird feeder") can list only other products ("smart" plugs) while
+    fewer words ("bird feeder") list the one described. Without ``fits``: the first query that lists
+    products, one batch."""
     answer = StoreAnswer(store.name)
     outcomes: list[PageOutcome] = []
     extract = _timed_extractor(budget)
     batch = store.search_results
+    read: set[str] = set()
     try:
-        urls: Iterator[str] = iter(())
         for query in queries:
             answer.queries.append(query)
-            listed = _result_urls(fetcher, budget, store, query, answer)
-            first = next(listed, None)
-            if first is not None:
-                urls = itertools.chain([first], listed)
+            listed = (u for u in _result_urls(fetcher, budget, store, query, answer) if u not in read)
+            mine: list[PageOutcome] = []
+            for i in range(batch * (MAX_RESULT_BATCHES if fits is not None else 1)):
+                if i and i % batch == 0 and settled(mine, fits):
+                    break
+                url = next(listed, None)
+                if url is None:
+                    break
+                bounded = _checked(fetcher, budget, store)
+                answer.product_pages.append(url)
+                read.add(url)
+                mine.append(process_page(fetcher, bounded, url, previous.get(url), extract))
+            outcomes += mine
+            if mine:
+                answer.status = "answered"
+            if (mine and fits is None) or any_fits(mine, fits):
                 break
-        else:
-            return answer, outcomes
-        answer.status = "answered"
-        for i in range(batch * (MAX_RESULT_BATCHES if fits is not None else 1)):
-            if i and i % batch == 0 and settled(outcomes, fits):
-                break
-            url = next(urls, None)
-            if url is None:
-                break
-            bounded = _checked(fetcher, budget, store)
-            answer.product_pages.append(url)
-            outcomes.append(process_page(fetcher, bounded, url, previous.get(url), extract))
     except _Stop as stop:
         if not outcomes:
             answer.status = "skipped"
         answer.reason = str(stop)
     return answer, outcomes
+
+
+def any_fits(outcomes: list[PageOutcome], fits: FitFn | None) -> bool:
+    """Whether one of the pages read is known from an earlier lookup or fits (no further query is asked)."""
+    if fits is None:
+        return False
+    return any(p.outcome == "not_modified" or (p.outcome == "extracted" and fits(p.clean)[0]) for p in outcomes)
 
 
 def settled(outcomes: list[PageOutcome], fits: FitFn | None) -> bool:

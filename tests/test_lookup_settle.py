@@ -56,3 +56,34 @@ def test_a_loose_fit_reads_the_next_results_and_the_closer_fit_wins(db, sibling_
         assert len(answer.search_pages) == 2 and len(answer.product_pages) == PAGE_SIZE + 1
         assert sorted(out.stores.new_objects) == ["camping lantern a", "camping lantern e"]
         assert out.result.best.name == "camping lantern e"
+
+
+# --- the next search words when no page of the first fits ----------------------------------------------
+
+FEEDER = "a smart bird feeder, about 600 g"
+
+
+def feeder(handle: str, title: str, mass_g: float):
+    return P(handle, "jsonld", "en", title, (23.0, 15.0, 15.0), "cm", mass_g, "g", "plastic", "plastic")
+
+
+@pytest.mark.parametrize("mount_g", [600, 50])
+def test_the_next_search_words_are_asked_only_when_no_page_of_the_first_fits(db, mount_g):
+    # "smart bird feeder" (every word, as this store searches) lists only the camera mount; "bird feeder"
+    # lists the feeder as well: asked when the mount (50 g) does not fit, not when it (600 g) does
+    products = (feeder("smart-bird-feeder-mount", "Smart Bird Feeder Camera Mount", mount_g),
+                feeder("bird-feeder-pro", "Bird Feeder Pro", 600))  # fmt: skip
+    with DemoStore(crawl_delay=None, search_only=products) as store:
+        text = (f'[[stores]]\nname = "demo"\nbase_url = "{store.base_url}"\n'
+                f'search = "{{base_url}}/search?q={{query}}"\nsearch_results = 3\n')  # fmt: skip
+        sources = parse_sources("[defaults]\ndelay_s = 0\nread_timeout_s = 5\n" + text, origin="t.toml")
+        out = recall_with_lookup(db, FEEDER, sources=sources)
+    (answer,) = out.stores.stores
+    assert out.looked_up and out.found, out.message
+    assert out.stores.query[:2] == ("smart bird feeder", "bird feeder")
+    if mount_g == 600:
+        assert answer.queries == ["smart bird feeder"] and len(answer.product_pages) == 1
+        assert out.result.best.name == "smart bird feeder camera mount"
+    else:  # the mount read once, not again for the second words
+        assert answer.queries == ["smart bird feeder", "bird feeder"] and len(answer.product_pages) == 2
+        assert out.result.best.name == "bird feeder pro"
