@@ -14,6 +14,7 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from collections.abc import Mapping
 from pathlib import Path
@@ -56,6 +57,8 @@ from recall.openset import (
     synonym_rows,
     trust_of,
 )
+from recall.openset_classes import past_part_rows, with_open_mass
+from recall.openset_named import fits_by, named_first
 from recall.results import Match, RecallResult
 from recall.search import select_top_k
 from recall.shortlist import Shortlist, ranking_scores
@@ -165,10 +168,21 @@ class Recaller:
     def recall_text(
         self, text: str, *, top: int = 5, metric: str | None = None, features_only: bool = False
     ) -> RecallResult:
-        """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result."""
+        """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result. A
+        description in another language is read in English first (:mod:`recall.translations`); one whose
+        content words are mostly read by no table is no close match (:mod:`recall.openset_words`)."""
+        from recall.openset_words import unread_words
         from recall.parser import parse
+        from recall.translations import english_reading
 
-        return self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
+        reading = english_reading(text) if isinstance(text, str) else None
+        if reading is None or reading.language is None:
+            result = self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
+        else:
+            result = self.recall_parsed(parse(reading.text), top=top, metric=metric, features_only=features_only)
+            result.text, result.read_as, result.translated = text, reading.text, reading.translated
+        unread = unread_words(reading.text, self.names.vocabulary) if reading is not None else ()
+        return _not_read(result, unread) if unread else result
 
     def recall_parsed(
         self, parsed: Any, *, top: int = 5, metric: str | None = None, features_only: bool = False
@@ -303,16 +317,19 @@ class Recaller:
         ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
         ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
         rows, dist = self.shortlist.candidates(ranked, named, top, metric, soft)
+        if self.bins and self.floors:  # past the part measured, the mass class is open above (as the verdict)
+            past = self._past_part_rows()
+            dist_of = functools.partial(self.shortlist.distances_of, metric=metric)
+            mass = self.snapshot.num_cols[NUMERIC_FEATURES.index("mass_g")]
+            rows, dist = with_open_mass(rows, dist, query, ranked, past, mass, self.bins, metric, dist_of)
         score, parts = ranking_scores(rows, dist, names, soft, metric)
+        if names.rows() and not names_inside(noun, names.phrases):  # a named object that fits ranks first
+            score, parts = named_first(rows, score, parts, names, lambda r, t: self._fits(r, query, soft, subject, t))
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         matches = self.shortlist.matches(rows, score, parts, ranked, metric, set(names.exact))
         best = int(rows[0])
-        errors = relative_errors(
-            self.snapshot.num_rows(best), self.snapshot.cat_rows(best), query, self.floors, self.bins
-        )
-        errors.update(soft.errors_of(best) if soft is not None else {})
-        closeness = closeness_of(errors, self._silent_categories(best))
+        errors, closeness = self._closeness(best, query, soft)
         v = self._verdict(best, matches, names, noun, subject, not_in_catalog)
         not_in_catalog, unknown, modifier, trust = v.not_in_catalog, v.unknown, v.modifier, v.trust
         fit = judge(closeness, errors, trust, unused, noun.noun if not_in_catalog else None)
@@ -383,6 +400,29 @@ class Recaller:
         trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
         return _Verdict(not_in_catalog, unknown, modifier, trust)
 
+    def _past_part_rows(self) -> np.ndarray:
+        """The rows whose mass class is open above (:func:`recall.openset_classes.past_part_rows`), once
+        per declaration of floors and classes."""
+        key = (tuple(sorted(self.floors.items())), tuple(sorted(self.bins.items())))
+        if getattr(self, "_past", (None,))[0] != key:
+            self._past = (key, past_part_rows(self.snapshot, self.floors, self.bins))
+        return self._past[1]
+
+    def _closeness(self, row: int, query: FeatureQuery, soft: SoftEvidence | None) -> tuple[dict, float | None]:
+        """The relative errors of ``row`` against the stated features and its closeness (their mean)."""
+        snap = self.snapshot
+        errors = relative_errors(snap.num_rows(row), snap.cat_rows(row), query, self.floors, self.bins)
+        errors.update(soft.errors_of(row) if soft is not None else {})
+        return errors, closeness_of(errors, self._silent_categories(row))
+
+    def _fits(self, row: int, query: FeatureQuery, soft: SoftEvidence | None, subject, trust: Trust) -> bool:
+        """Whether ``row`` is a close match by the open-set rule (:func:`recall.openset_named.fits_by`); a
+        whole name whose material the subject's words contradict is trusted as a head noun only."""
+        if trust is Trust.NAMED and not material_agrees(subject, self.snapshot.record(row).material):
+            trust = Trust.PLAIN
+        errors, closeness = self._closeness(row, query, soft)
+        return fits_by(closeness, errors, trust)
+
     def _silent_categories(self, row: int) -> tuple[str, ...]:
         """The categorical features the catalog holds no value for at ``row`` (code < 0)."""
         codes = self.snapshot.cat_rows(row)
@@ -398,6 +438,21 @@ class Recaller:
         # a phrase of the text that names the row (a synonym: "cross head screwdriver") holds its modifier
         said = [p.split() for p in names.phrases if row in (self.names.phrases.get(tuple(p.split())) or ())]
         return foreign_modifier(subject, words | frozenset(w for p in said for w in p))
+
+def _not_read(result: RecallResult, unread: tuple[str, ...]) -> RecallResult:
+    """``result`` when most of its description's content words were read by no table (``unread``): no close
+    match, whatever was ranked (the reason names the words), its confidence at most
+    :data:`recall.openset_words.UNREAD_CONFIDENCE`."""
+    from recall.fit import Fit
+    from recall.openset_words import UNREAD_CONFIDENCE
+
+    words = ", ".join(repr(w) for w in unread)
+    score = max(result.fit.score if result.fit is not None else 0.0, 2.0)
+    result.unread, result.open_set = unread, bool(result.matches)
+    result.fit = Fit(False, score, f"most words not read: {words}")
+    result.confidence = min(result.confidence, UNREAD_CONFIDENCE)
+    return result
+
 
 def _checked(metric: str | None, features_only: bool, top: int) -> str:
     """The metric to use (:func:`resolve_metric`), refusing an unknown one and a ``top`` below 1."""

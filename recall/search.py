@@ -32,33 +32,21 @@ its boundary.
 
 from __future__ import annotations
 
-import functools
-import math
 import threading
 import weakref
 from functools import cached_property
 
 import numpy as np
 
-from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
 from recall.cells import CellIndex
 from recall.columns import LIST_BELOW, SortedColumns
 from recall.combinations import CombinationIndex
 from recall.costs import PlanCosts, after_probe, before_probe
 from recall.distances import distances, kdtree_query
 from recall.metrics import FeatureQuery
-from recall.ranking import (
-    CAT_INDEX,
-    FILTER_SLACK,
-    NUM_INDEX,
-    WideColumns,
-    category_terms,
-    factors,
-    jp_scores,
-    merge_top_k,
-    select_top_k,
-    survivors,
-)
+from recall.ranking import WideColumns, jp_scores, select_top_k
+from recall.search_scan import ScanPlan
+from recall.search_windows import WindowPlans
 from recall.snapshot import CatalogSnapshot
 
 __all__ = ["JPIndex", "brute_force_top_k", "index_for", "score_rows", "select_top_k", "top_k"]
@@ -77,19 +65,11 @@ SCAN_WORK = 40_000
 COLUMN_FROM = 1024
 #: Rows taken around the description in each stated column for the first bound.
 FIRST_POOL = 64
-#: The scan's first bound: the k-th of a sample of SAMPLE_PER_ROW_K * sqrt(n k) rows (n k / sample
-#: rows then pass it, ~sqrt(n k) / SAMPLE_PER_ROW_K: a few dozen to a few hundred).
-SAMPLE_PER_ROW_K = 4.0
 #: Cells of smallest bound whose rows are scored to tighten the first bound before choosing a plan:
 #: 1 024 rows up to 4M objects (64 a cell; against 2 048: 8 % less CPU on described and 14 % on
 #: sizes-only descriptions at 1M, 6 % at 100k, in interleaved A/Bs, synthetic), more above, where the
 #: cells grow (at 10M 1 024 rows were 7 cells and a jplog description's weak bound cost 51 ms).
 PROBE_CELLS = 16
-#: Rows filtered per step of the window plan (the bound tightens between steps).
-CHUNK = 1 << 14
-MAX_CHUNK = 1 << 17
-#: Zero windows up to this size are sorted into row order; larger ones are scanned in row order.
-ZERO_SORT = 1 << 16
 
 
 def score_rows(snap: CatalogSnapshot, query: FeatureQuery, rows: np.ndarray | None = None) -> np.ndarray:
@@ -123,11 +103,6 @@ def top_k(
     return select_top_k(np.arange(len(snap)), d, k)
 
 
-#: One row of :attr:`JPIndex.records`.
-RECORD = np.dtype(
-    [(f, np.float32) for f in NUMERIC_FEATURES] + [(f, np.int8) for f in CATEGORICAL_FEATURES] + [("", "V3")]
-)
-
 _INDEXES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 _INDEX_LOCK = threading.Lock()
 
@@ -141,9 +116,11 @@ def index_for(snap: CatalogSnapshot) -> JPIndex:
         return index
 
 
-class JPIndex(SortedColumns):
+class JPIndex(ScanPlan, WindowPlans, SortedColumns):
     """Sorted numeric columns, per-category row lists, category combinations and cells of a snapshot's
-    columns, for exact JP top-k. Holds the columns, not the snapshot (:func:`index_for` caches weakly)."""
+    columns, for exact JP top-k. Holds the columns, not the snapshot (:func:`index_for` caches weakly).
+    The scan plan is :class:`recall.search_scan.ScanPlan`'s, the window and zero-ties plans (and the packed
+    rows they read) :class:`recall.search_windows.WindowPlans`'."""
 
     def __init__(self, snap: CatalogSnapshot):
         self.num_cols, self.cat_cols = snap.num_cols, snap.cat_cols
@@ -179,23 +156,6 @@ class JPIndex(SortedColumns):
         """Bytes of the index (the parts built so far; the columns themselves not included)."""
         parts = [self.__dict__.get(p) for p in ("cells", "combinations", "records", "wide")]
         return self.sorted_nbytes + sum(p.nbytes for p in parts if p is not None)
-
-    @cached_property
-    def records(self) -> np.ndarray:
-        """The columns packed row by row (24 B: 4 float32, 5 int8, padding), so that the plans reading
-        scattered rows (windows) fetch one cache line per row, not one per column (measured: a take of
-        50 000 scattered rows of 1M is ~5x faster than gathering the 9 columns)."""
-        out = np.zeros(self.n, dtype=RECORD)
-        for feat, col in zip(NUMERIC_FEATURES, self.num_cols, strict=True):
-            out[feat] = col
-        for feat, col in zip(CATEGORICAL_FEATURES, self.cat_cols, strict=True):
-            out[feat] = col
-        return out
-
-    def _block(self, rows: np.ndarray) -> tuple[list[np.ndarray], list[np.ndarray]]:
-        """Columns (strided views) of ``rows`` taken from :attr:`records`."""
-        block = self.records.take(rows)
-        return [block[f] for f in NUMERIC_FEATURES], [block[f] for f in CATEGORICAL_FEATURES]
 
     def score(self, query: FeatureQuery, rows=None) -> np.ndarray:
         """JP distances of ``rows`` (all when None), as :func:`score_rows`."""
@@ -294,144 +254,3 @@ class JPIndex(SortedColumns):
         if found is None:
             return "scan", *self._scan(query, items, k)
         return "cells", *found
-
-    def _scan(self, query: FeatureQuery, items: list, k: int):
-        """Every row's product Π (1 + d_j) in float32 (:meth:`products`); the rows within the k-th
-        (widened) scored."""
-        prod = self.products(query)
-        return select_top_k(*self._within_kth(prod, k, query), k)
-
-    def _within_kth(self, prod: np.ndarray, k: int, query: FeatureQuery):
-        """The rows whose product is within the k-th smallest (widened by FILTER_SLACK) and their exact
-        distances. The k-th of a strided sample of ~SAMPLE_PER_ROW_K * sqrt(n k) rows bounds the k-th
-        from above (a selection over the sample, not over every row); should more than 32 k rows fall
-        within it, the k-th among those (the true k-th: they hold every row below the bound) is taken."""
-        slack = np.float32(1.0 + FILTER_SLACK)
-        step = max(1, int(self.n / max(4 * k, SAMPLE_PER_ROW_K * math.sqrt(self.n * k))))
-        sample = prod[::step]
-        rows = (prod <= np.partition(sample, k - 1)[k - 1] * slack).nonzero()[0] if step > 1 else None
-        if rows is None or len(rows) > 4 * k:
-            within = prod if rows is None else prod[rows]
-            keep = (within <= np.partition(within, k - 1)[k - 1] * slack).nonzero()[0]
-            rows = keep if rows is None else rows[keep]
-        num, cat = self._block(rows)  # one gather of the packed rows, not one per column
-        return rows, jp_scores(num, cat, query)
-
-    def products(self, query: FeatureQuery) -> np.ndarray:
-        """Π (1 + d_j) of every row in float32, in as few passes as the mask allows (the scan's work;
-        the same factors as :func:`recall.ranking.factors`, multiplied in another order, so within
-        ``FILTER_SLACK`` of the exact product): a numeric feature's ``1 + d`` takes 3 passes for a
-        point, 5 for an interval (no NaN-aware fmax: 5x slower than an add), then its unknown rows
-        (the tail of its sorted order, ~3 %) are set to the unknown factor; every stated category
-        together is one gather of a table over the category combinations (:attr:`combinations`),
-        whose factors 1 / 2 / 4 are exact."""
-        prod = None
-        for cond in query.numeric:
-            j = NUM_INDEX[cond.feature]
-            d = _one_plus_distance(cond, self.num_cols[j])
-            unknown = self.num_order[j][self.num_known[j] :]
-            if len(unknown):
-                d[unknown] = np.float32(1.0 + cond.unknown_difference)
-            prod = d if prod is None else np.multiply(prod, d, out=prod)
-        if query.categorical:
-            comb = self.combinations
-            table = None
-            for feat, value in query.categorical:
-                f = _category_factors(feat, value).take(comb.codes[CAT_INDEX[feat]])
-                table = f if table is None else np.multiply(table, f, out=table)
-            f = table.take(comb.group)
-            prod = f if prod is None else np.multiply(prod, f, out=prod)
-        return np.ones(self.n, dtype=np.float32) if prod is None else prod
-
-    def _window(self, query: FeatureQuery, items: list, lead: int, k: int, best_rows, best_scores):
-        """Filter the rows of the lead feature's window in growing chunks (the bound tightens as better
-        rows are found, so fewer of the later rows survive)."""
-        s = float(best_scores[-1])
-        source = self._window_rows(items[lead], s)
-        order = [lead] + [i for i in range(len(items)) if i != lead]
-        ordered = [items[i] for i in order]
-        start, step = 0, CHUNK
-        while start < len(source):
-            chunk = source[start : start + step]
-            num, cat = self._block(chunk)
-            pos = survivors(ordered, num, cat, slice(0, len(chunk)), s)
-            if len(pos):
-                scores = jp_scores(num, cat, query, pos)
-                best_rows, best_scores = merge_top_k(best_rows, best_scores, chunk[pos], scores, k)
-                s = float(best_scores[-1])
-            start, step = start + step, min(step * 2, MAX_CHUNK)
-        return best_rows, best_scores
-
-    def _zero_reads(self, items: list, k: int) -> tuple[float, int, bool]:
-        """(rows the zero plan reads, the smallest window at 0, whether to read every row in row order):
-        in row order until k rows at 0, estimated as if the features were independent, or the rows of
-        the smallest window at 0 (sorted into row order up to ZERO_SORT numeric rows)."""
-        sizes = [self._window_size(it, 0.0) for it in items]
-        lead = min(range(len(items)), key=lambda i: sizes[i])
-        zeros = self.n * math.prod(size / self.n for size in sizes)
-        in_order = k * self.n / max(zeros, 1.0)
-        if in_order < sizes[lead] or (items[lead][0] == "num" and sizes[lead] > ZERO_SORT):
-            return in_order, lead, True
-        return sizes[lead], lead, False
-
-    def _zero_ties(self, query: FeatureQuery, items: list, k: int):
-        """The k lowest rows at distance 0, given that at least k rows are at 0."""
-        reads, lead, in_order = self._zero_reads(items, k)
-        if in_order:
-            return self._first_zeros(query, items, None, k, first=int(2 * reads))
-        source = self._window_rows(items[lead], 0.0)
-        if items[lead][0] == "num":
-            source = np.sort(source)
-        return self._first_zeros(query, items, source, k)
-
-    def _first_zeros(self, query: FeatureQuery, items: list, source, k: int, first: int = CHUNK):
-        """The first k rows of ``source`` (ascending; None: every row) at distance 0, read in chunks
-        from ``first`` rows, doubling."""
-        total = self.n if source is None else len(source)
-        found, start, step = [], 0, max(64, min(first, CHUNK))
-        while start < total and sum(len(f) for f in found) < k:
-            stop = min(start + step, total)
-            if source is None:
-                rows = survivors(items, self.num_cols, self.cat_cols, slice(start, stop), 0.0)
-                found.append(rows[self.score(query, rows) == 0.0])
-            else:
-                chunk = source[start:stop]
-                num, cat = self._block(chunk)
-                pos = survivors(items, num, cat, slice(0, len(chunk)), 0.0)
-                found.append(chunk[pos[jp_scores(num, cat, query, pos) == 0.0]])
-            start, step = stop, min(step * 2, MAX_CHUNK)
-        rows = np.concatenate(found)[:k].astype(np.int64)
-        return rows, np.zeros(len(rows))
-
-
-_ONE = np.float32(1.0)
-
-
-def _one_plus_distance(cond, x: np.ndarray) -> np.ndarray:
-    """``1 + d`` of a numeric condition for a float32 column (a new array; NaN where unknown, or 1)."""
-    low, high = np.float32(cond.low), np.float32(cond.high)
-    if float(low) != cond.low or float(high) != cond.high:  # bounds not held in float32: float64
-        d = factors(("num", cond), [x] * len(NUMERIC_FEATURES), None, optimistic=True)
-        return d.astype(np.float32) if d.dtype != np.float32 else d
-    if cond.low == cond.high:
-        d = np.subtract(x, low)
-        np.abs(d, out=d)
-        d += _ONE
-        return d
-    if math.isinf(cond.high):
-        d = np.subtract(low, x)
-    elif math.isinf(cond.low):
-        d = np.subtract(x, high)
-    else:
-        d = np.subtract(low, x)
-        np.maximum(d, np.subtract(x, high), out=d)
-    d += _ONE
-    return np.maximum(d, _ONE, out=d)  # inside the interval (1 + d < 1): 1
-
-
-@functools.cache
-def _category_factors(feature: str, value: str) -> np.ndarray:
-    """e^term of a category by code + 1 (0 = unknown): 1, 2 or 4 (float32, exact)."""
-    table = np.exp(category_terms(feature, value)).round().astype(np.float32)
-    table.flags.writeable = False
-    return table

@@ -9,7 +9,8 @@
 (``<mirror>/<owner>+<name>/repo``, a bare git directory that the search tool's ``fetch`` brings) at the
 manifest's commit, unpacks it (``container``: gzip, ``json:<key>`` for a page stored inside a JSON
 document, ``zip:<member>``, ``tar:<member>``, ``jstemplate:<n>`` for the n-th backtick template literal
-of a JavaScript file, ``pystr:<name>`` for a string a Python module assigns to ``name``), checks its sha256 and writes ``<cache>/<id>.html``.
+of a JavaScript file, ``pystr:<name>`` for a string a Python module assigns to ``name``, ``pyliteral:<key>`` for
+a page inside a file that is one Python literal, such as a dict's repr), checks its sha256 and writes ``<cache>/<id>.html``.
 Nothing fetched is committed: only the manifest and the labels are.
 
 ``add`` appends one page to a manifest shard (``manifest-<shard>.jsonl``): it reads the page from the
@@ -89,6 +90,13 @@ def py_string(source: str, name: str) -> str:
     raise SystemExit(f"no string assigned to {name!r}")
 
 
+def member_of(value, key_path: str):
+    """The value at a dotted ``key_path`` (``a.b.0``) of a parsed JSON document or Python literal."""
+    for key in key_path.split("."):
+        value = value[int(key)] if isinstance(value, (list, tuple)) else value[key]
+    return value
+
+
 def unpack(data: bytes, path: str, container: str | None) -> bytes:
     """The page's own bytes from the stored file (see the module doc for ``container``)."""
     if container is None and path.endswith(".gz"):
@@ -98,10 +106,9 @@ def unpack(data: bytes, path: str, container: str | None) -> bytes:
     kind, _, member = container.partition(":")
     if kind == "gzip":
         return gzip.decompress(data)
-    if kind == "json":
-        value = json.loads(data)
-        for key in member.split("."):
-            value = value[int(key)] if isinstance(value, list) else value[key]
+    if kind in ("json", "pyliteral"):
+        value = json.loads(data) if kind == "json" else ast.literal_eval(data.decode("utf-8"))
+        value = member_of(value, member)
         return value.encode("utf-8") if isinstance(value, str) else bytes(value)
     if kind == "zip":
         with zipfile.ZipFile(io.BytesIO(data)) as archive:
@@ -225,8 +232,8 @@ def main(argv=None) -> int:
     a.add_argument("repo")
     a.add_argument("path")
     a.add_argument("--commit")
-    a.add_argument("--container", help="gzip, json, zip, tar, jstemplate or pystr (with --member)")
-    a.add_argument("--member", help="json key path (a.b.0), zip or tar member, template literal index, Python name")
+    a.add_argument("--container", help="gzip, json, zip, tar, jstemplate, pystr or pyliteral (with --member)")
+    a.add_argument("--member", help="json or pyliteral key path (a.b.0), zip or tar member, template literal index, Python name")
     a.add_argument("--url", default="")
     a.add_argument("--store", default="")
     a.add_argument("--language", default="")

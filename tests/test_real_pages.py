@@ -1,4 +1,4 @@
-"""scripts/real_pages.py's containers: a page stored inside a JavaScript template literal or a Python string."""
+"""scripts/real_pages.py's containers: a page stored inside a JavaScript template literal, a Python string or literal."""
 
 import importlib.util
 from pathlib import Path
@@ -37,6 +37,9 @@ def test_unpack_reads_the_container_kind_and_member():
     js = "x = `<html>é</html>`;".encode()
     assert real_pages.unpack(js, "test.js", "jstemplate:0") == "<html>é</html>".encode()
     assert real_pages.unpack(b'P = "<html></html>"', "f.py", "pystr:P") == b"<html></html>"
+    assert real_pages.unpack(b"{'url': 'u', 'html': '<html>\\n\\xe9</html>'}", "t.html", "pyliteral:html") \
+        == "<html>\né</html>".encode()
+    assert real_pages.unpack(b'{"pages": [{"html": "<p>1</p>"}]}', "t.json", "json:pages.0.html") == b"<p>1</p>"
     with pytest.raises(SystemExit, match="unknown container"):
         real_pages.unpack(b"", "f", "rar:x")
 
