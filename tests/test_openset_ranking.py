@@ -12,6 +12,7 @@ from recall.fit import Trust
 from recall.name_index import NameEvidence
 from recall.openset import OPEN_SET_NAMED_THRESHOLD
 from recall.openset_named import FIRST_MARGIN, named_first
+from recall.openset_verdict import row_closeness
 
 
 def _first(text: str) -> str:
@@ -32,7 +33,7 @@ def test_the_boundary_is_the_named_threshold(width, first):
     r = seed().recall_text(f"a bowl about {width} cm wide, 600 g", top=3)
     assert r.matches[0].name == first
     bowl = seed().snapshot.names.index("ceramic bowl")
-    errors, closeness = seed()._closeness(bowl, *_query(f"a bowl about {width} cm wide, 600 g"))
+    errors, closeness = row_closeness(seed(), bowl, *_query(f"a bowl about {width} cm wide, 600 g"))
     assert (closeness <= OPEN_SET_NAMED_THRESHOLD) == (first == "ceramic bowl")
 
 
