@@ -1,7 +1,9 @@
 """Lookup on real store pages: a person's description of a product the catalog lacks, recalled with a lookup.
 
 A store on 127.0.0.1 (:class:`scrapers.corpus_store.CorpusStore`, written here) sells the real-page corpus's
-product pages (real pages, :mod:`scrapers.corpus`) behind a plain word-overlap search over their titles.
+product pages (real pages, :mod:`scrapers.corpus`) behind a word-overlap search over what a store's search
+indexes (title, brand, category trail, description text, in the page's language; rarer words and name words
+count more).
 Each description (data written here, ``tests/data/lookup_real/``) is recalled with
 ``recall_with_lookup`` (default time budget) into its own copy of the seeded catalog:
 
@@ -97,7 +99,7 @@ def save(out: dict, trials) -> None:
     load = round(os.getloadavg()[0], 1)
     result = (
         f"{d['descriptions'] + h['descriptions']} descriptions of products the seed catalog lacks (written here) "
-        f"against {out['pages']} real corpus pages behind a word-overlap title search (the store written here): "
+        f"against {out['pages']} real corpus pages behind a word-overlap search over title, brand, trail and description (the store written here): "
         f"right product {d['right']}/{d['descriptions']} development stores, "
         f"{h['right']}/{h['descriptions']} held-out (of the development ones, {n['right']}/{n['descriptions']} "
         f"written later, before any run: unseen when written); values right {d['values_right']}/{d['descriptions']} and "

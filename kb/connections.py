@@ -14,7 +14,10 @@ from typing import Any
 
 from kb.errors import CatalogUnreadable, DatabaseBusy
 
-__all__ = ["CATALOG_READ_CONFIG", "SANDBOX_CONFIG", "database_reason", "is_lock_conflict", "open_connection", "retry_while_locked"]
+__all__ = [
+    "CATALOG_READ_CONFIG", "SANDBOX_CONFIG", "database_reason", "innermost_error", "is_lock_conflict",
+    "is_unreadable_file", "open_connection", "retry_while_locked",
+]
 
 #: Settings of every read connection: read-only, no file or network access, no extensions, configuration
 #: locked so a query cannot undo any of it, and a memory cap.
@@ -49,8 +52,8 @@ def open_connection(path: Path | str, *, read_only: bool, config: dict[str, Any]
     lock = settings.pop("lock_configuration", False)
     try:
         con = duckdb.connect(str(path), read_only=read_only, config=settings)
-    except (duckdb.IOException, duckdb.SerializationException) as err:
-        if is_lock_conflict(err):
+    except duckdb.Error as err:
+        if not is_unreadable_file(err):
             raise
         raise CatalogUnreadable(path, database_reason(err)) from None  # not DuckDB, or damaged: name it
     try:
@@ -89,12 +92,37 @@ def retry_while_locked(fn: Callable[[], Any], *, path: Path, busy_timeout: float
             delay = min(delay * 2, 0.25)
 
 
+def innermost_error(err: BaseException) -> BaseException:
+    """The error at the bottom of ``err``'s chain: SQLAlchemy's ``orig`` (the driver's error) and each
+    ``__cause__`` (``raise ... from``) followed to the end, however many wrappers (Alembic's, SQLAlchemy's,
+    a MigrationError) lie between; ``err`` itself when it wraps nothing. A loop in the chain ends it."""
+    inner, seen = err, {id(err)}
+    while True:
+        nxt = getattr(inner, "orig", None) or inner.__cause__
+        if not isinstance(nxt, BaseException) or id(nxt) in seen:
+            return inner
+        seen.add(id(nxt))
+        inner = nxt
+
+
+def is_unreadable_file(err: BaseException) -> bool:
+    """True when ``err`` (or the error it wraps, :func:`innermost_error`) says the file itself cannot be read
+    as a DuckDB database: not one, or damaged (DuckDB's I/O and serialization errors, and its "Corrupt
+    database file" checksum error); not when another process holds the file (:func:`is_lock_conflict`)."""
+    import duckdb
+
+    inner = innermost_error(err)
+    if is_lock_conflict(inner):
+        return False
+    if isinstance(inner, (duckdb.IOException, duckdb.SerializationException)):
+        return True
+    return isinstance(inner, duckdb.Error) and "corrupt" in str(inner).lower()
+
+
 def database_reason(err: BaseException) -> str:
     """The reason of a database failure in one line: the innermost error's first line, without the
     driver's class prefix ("(_duckdb.IOException) ") and SQLAlchemy's "(Background on this error ...)"."""
-    inner: BaseException = err
-    while getattr(inner, "orig", None) is not None or inner.__cause__ is not None:
-        inner = getattr(inner, "orig", None) or inner.__cause__  # type: ignore[assignment]
+    inner = innermost_error(err)
     text = (str(inner).strip().splitlines() or [type(inner).__name__])[0]
     if text.startswith("(") and ") " in text:
         text = text.split(") ", 1)[1]

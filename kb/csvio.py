@@ -109,6 +109,10 @@ def read_catalog_csv(path: str | Path, *, skip_invalid: bool = False) -> CsvRead
         text = read_input_file(path, MAX_CSV_BYTES).decode("utf-8-sig")
     except UnicodeDecodeError as err:
         raise CatalogImportError(str(path), [(0, "-", f"not UTF-8 text ({err.reason})")]) from None
+    except FileNotFoundError:
+        raise CatalogImportError(str(path), [(0, "-", "no such file")]) from None
+    except IsADirectoryError:
+        raise CatalogImportError(str(path), [(0, "-", "is a folder, not a CSV file")]) from None
     except OSError as err:
         raise CatalogImportError(str(path), [(0, "-", f"cannot read the file ({err.strerror or err})")]) from None
     return parse_catalog_csv(text, label=str(path), skip_invalid=skip_invalid)

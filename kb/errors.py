@@ -103,14 +103,23 @@ class ObjectNotFound(CatalogError, LookupError):
 
 
 class CatalogImportError(CatalogError):
-    """A canonical CSV could not be imported; ``problems`` lists (row, column, reason)."""
+    """A canonical CSV could not be imported; ``problems`` lists (row, column, reason): row 0 is the file as
+    a whole (missing, unreadable, not UTF-8), column ``"-"`` a whole row."""
 
     def __init__(self, path: str, problems: list[tuple[int, str, str]]):
         self.path = path
         self.problems = problems
-        first = "; ".join(f"row {r}, column {c}: {why}" for r, c, why in problems[:3])
+        first = "; ".join(f"{_where(r, c)}{why}" for r, c, why in problems[:3])
         more = f" (and {len(problems) - 3} more)" if len(problems) > 3 else ""
         super().__init__(f"{path}: nothing imported: {first}{more}")
+
+
+def _where(row: int, column: str) -> str:
+    """"row 3, column mass_g: " of a problem; row 0 is the file as a whole and column "-" the whole row, so
+    neither is named ("nothing imported: no such file", "row 4: 3 cells, header has 10")."""
+    if row == 0:
+        return ""
+    return f"row {row}: " if column == "-" else f"row {row}, column {column}: "
 
 
 class DatabaseError(ObjrecallError):

@@ -14,7 +14,7 @@ from alembic.runtime.migration import MigrationContext
 from alembic.script import ScriptDirectory
 from sqlalchemy import create_engine, pool
 
-from kb.connections import database_reason, is_lock_conflict
+from kb.connections import database_reason, is_lock_conflict, is_unreadable_file
 from kb.errors import CatalogUnreadable, MigrationError
 
 __all__ = ["current_revision", "downgrade", "head_revision", "upgrade"]
@@ -43,20 +43,11 @@ def _run(path: Path, action, revision: str) -> None:
     except Exception as err:  # DuckDB DDL is transactional: a failed migration changed nothing
         if is_lock_conflict(err):
             raise MigrationError(f"{path}: migration to {revision} failed: {err}") from err  # retried by the caller
-        if _unreadable(err):
+        if is_unreadable_file(err):
             raise CatalogUnreadable(path, database_reason(err)) from None
         raise MigrationError(f"{path}: migration to {revision} failed: {database_reason(err)}") from err
     finally:
         engine.dispose()
-
-
-def _unreadable(err: BaseException) -> bool:
-    """True when the file itself cannot be read as a DuckDB database (not one, or damaged: DuckDB's I/O and
-    serialization errors), as opposed to a migration step that failed."""
-    import duckdb
-
-    inner = getattr(err, "orig", None) or err.__cause__ or err
-    return isinstance(inner, (duckdb.IOException, duckdb.SerializationException))
 
 
 def upgrade(path: str | Path, revision: str = "head") -> None:

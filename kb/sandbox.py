@@ -13,7 +13,9 @@ in the caller's process. A small pool of worker processes (``python -m kb.sandbo
   worker is killed, so no query outlives its caller's deadline, and a new worker starts on the next call;
 * only plain reads run: an allow-list of statement types (SELECT, and EXPLAIN of a SELECT); any other
   type, including one this DuckDB version cannot name (``UPDATE EXTENSIONS``), is refused; so are the
-  table functions that reveal the server's files (:data:`kb.sql_policy.HIDDEN_FUNCTIONS`);
+  table functions that reveal the server's files (:data:`kb.sql_policy.HIDDEN_FUNCTIONS`), while the
+  read-only catalog introspection (``DESCRIBE``, ``SHOW TABLES``, ``duckdb_tables()``, ``information_schema``,
+  ``pragma_table_info``) runs; a file or URL read is refused as "reading files is not allowed", naming it;
 * a refused statement is named by the word the user wrote (INSTALL, RESET, TRUNCATE, where DuckDB's types
   say LOAD, SET, DELETE), and a write inside a SELECT (``WITH x AS (DELETE ... RETURNING *) SELECT ...``),
   which the read-only connection stops before it runs, is refused in the sandbox's words (DuckDB's name the
@@ -49,7 +51,7 @@ from kb.errors import (
     QueryRefused,
     QueryTimeout,
 )
-from kb.sql_policy import check_query, first_line, write_refusal
+from kb.sql_policy import check_query, error_refusal, error_text, first_line, write_refusal
 
 __all__ = [
     "MAX_ROWS",
@@ -123,17 +125,20 @@ def _execute(con, request: dict[str, Any]) -> SqlAnswer:
         columns = unique_columns([d[0] for d in cur.description])
         rows = cur.fetchmany(request["max_rows"] + 1)
     except duckdb.PermissionException as err:
-        raise QueryRefused(f"refused: {first_line(err)}") from None
+        raise QueryRefused(error_refusal(err) or f"refused: {first_line(err)}") from None
     except duckdb.InterruptException:
         raise QueryTimeout(f"query interrupted after the {request['timeout_s']:g} s time limit") from None
     except (duckdb.OutOfMemoryException, MemoryError):
         raise QueryRefused(_memory_refusal()) from None
     except duckdb.Error as err:
+        refusal = error_refusal(err)  # a file or URL read, an extension's function: the sandbox's words
+        if refusal is not None:
+            raise QueryRefused(refusal) from None
         if "read-only" in str(err).lower():  # DuckDB's text names the database file: never passed on
             raise QueryRefused(write_refusal(query)) from None
         if "out of memory" in str(err).lower() or "bad allocation" in str(err).lower():
             raise QueryRefused(_memory_refusal()) from None
-        raise QueryFailed(f"SQL error: {first_line(err)}") from None
+        raise QueryFailed(f"SQL error: {error_text(err)}") from None
     finally:
         timer.cancel()
     max_rows = request["max_rows"]
@@ -159,8 +164,9 @@ def _answer(request: dict[str, Any]) -> tuple:
             data = pickle.dumps(("ok", (answer.columns, answer.rows, answer.truncated)), protocol=pickle.HIGHEST_PROTOCOL)
         except (TypeError, AttributeError, pickle.PicklingError) as err:
             raise QueryFailed(f"a result value cannot be returned: {first_line(err)}") from None
-    except ObjrecallError as err:
-        return ("error", type(err).__name__, _mask(str(err), path))
+    except ObjrecallError as err:  # sent as the nearest class the caller rebuilds (CatalogUnreadable: DatabaseError)
+        kind = next((c.__name__ for c in type(err).__mro__ if c.__name__ in _ERRORS), "QueryFailed")
+        return ("error", kind, _mask(str(err), path))
     except (MemoryError, duckdb.OutOfMemoryException):
         return ("error", "QueryRefused", _memory_refusal())
     if len(data) > MAX_ANSWER_BYTES:

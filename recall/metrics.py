@@ -38,6 +38,7 @@ __all__ = [
     "CATEGORY_CODES",
     "LN2",
     "LOG_STEP",
+    "past_the_part",
     "METRICS",
     "MISMATCH_TERM",
     "NumericCondition",
@@ -336,7 +337,7 @@ def relative_errors(
       stand for the class [x / below, x * above] (above infinite: a lower bound, the size of the part
       the data set measured), and only a stated value or interval outside it differs; where the sizes
       are a part's and the object's part reaches the open top size class, its mass class is open above too
-      (:func:`_past_the_part`);
+      (:func:`past_the_part`);
     * categorical: 0 match, 1 mismatch, 0.5 unknown.
     """
     out: dict[str, float] = {}
@@ -348,8 +349,10 @@ def relative_errors(
         low, high = _class_of(x, bins.get(cond.feature) if bins else None)
         floor = floors.get(cond.feature) if floors else None
         high = math.inf if floor is not None and x >= floor else high  # the open top bin: never too small
-        if cond.feature == "mass_g" and _past_the_part(num_row, floors, bins):
-            high = math.inf  # what the hand bore of a door on its hinges, a hose on the floor: no upper bound
+        if cond.feature == "mass_g" and cond.low > high and past_the_part(num_row, floors, bins):
+            # what the hand bore of a door on its hinges, a hose on the floor: above it the mass is unknown
+            out[cond.feature] = UNKNOWN_NUMERIC_FRACTION / (1.0 + UNKNOWN_NUMERIC_FRACTION)
+            continue
         d = max(cond.low - high, low - cond.high, 0.0)
         scale = max(abs(cond.value), abs(x))
         out[cond.feature] = min(d / scale, 1.0) if scale > 0 else 0.0
@@ -359,12 +362,13 @@ def relative_errors(
     return out
 
 
-def _past_the_part(num_row: np.ndarray, floors, bins) -> bool:
+def past_the_part(num_row: np.ndarray, floors, bins) -> bool:
     """Whether the catalog measured the part grasped (``bins``: the largest size's class open above, the
     whole at least as large) and this object's part already reaches the open top size class (``floors``:
     "15 cm or more"): the object extends past what was measured, so its recorded mass class (what the
     hand bore: the Yale data set codes its wardrobe door at 750 g, its hose at 240 g, its cord at 65 g)
-    is no upper bound of the whole object's mass. False without both declarations."""
+    is no upper bound of the whole object's mass. False without both declarations. The ranking reads the
+    same class (:mod:`recall.openset_classes`)."""
     if not floors or not bins:
         return False
     floor, factors = floors.get("a_cm"), bins.get("a_cm")

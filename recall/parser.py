@@ -171,7 +171,7 @@ class DescriptionParser:
         children: list[Any] = []
         pos = 0
         for segment in self.chunker.segments(tokens):
-            tree = self.chunker.chunk(segment)
+            tree = self.reader.join(self.chunker.chunk(segment))
             tree, requalified = _negate(tree, segment, pos, reading)
             children.extend(tree)
             self.reader.read(tree, segment, pos, reading)

@@ -19,6 +19,8 @@ from kb.measures.units import Unit, combine, description_units
 from kb.measures.words import number_value
 from recall import lexicon as lx
 from recall.chunks import size
+from recall.quantities_joins import fraction_of, join_chunks, tail_unit
+from recall.quantities_unnumbered import VAGUE_REASON, read_unnumbered, vague_before
 from recall.reading import DimStatement, Quantity, Reading
 from recall.tags import UNIT_TAGS
 from recall.tokens import Token
@@ -43,6 +45,11 @@ class QuantityReader:
     def __init__(self) -> None:
         self._units = description_units()
 
+    def join(self, tree: Tree) -> Tree:
+        """One sentence's chunk tree with adjacent chunks that state one quantity joined
+        (:func:`recall.quantities_joins.join_chunks`: "2 m 30", "half a million grams")."""
+        return join_chunks(tree, self._units)
+
     def read(self, tree: Tree, segment: list[Token], base: int, reading: Reading) -> None:
         """Read one sentence's chunks (``segment`` its tokens, ``base`` the index of its first token)."""
         sent = _Sentence(segment, _fill_context(segment), reading)
@@ -51,6 +58,13 @@ class QuantityReader:
             if isinstance(child, Tree):
                 n = size(child)
                 toks = segment[k : k + n]
+                vague = vague_before(segment, k, [t.low for t in toks])
+                if vague is not None and child.label() in ("QUANT", "DIM"):
+                    quant = size(child[0]) if child.label() == "DIM" else n
+                    reading.refuse(vague, toks[quant - 1].end, VAGUE_REASON)  # "a few hundred grams"
+                    reading.in_dim_chunk.update(range(base + k, base + k + n))
+                    k += n
+                    continue
                 if child.label() == "QUANT" and idx + 1 < len(tree) and _noun_took_other_unit(tree[idx + 1]):
                     # "~ 10cm diameter ~ 0.8 kg": the noun's value is the length before it, not the mass
                     q = self._quantity(child, toks, base + k, reading)
@@ -68,6 +82,7 @@ class QuantityReader:
                 k += n
             else:
                 k += 1
+        read_unnumbered(segment, base, reading, self._units)
 
     def _read_chunk(self, chunk: Tree, toks: list[Token], pos: int, sent: _Sentence, k: int) -> None:
         label = chunk.label()
@@ -290,6 +305,10 @@ class QuantityReader:
                     unit = range_unit or unit
                 elif label == "UNIT":
                     unit = self._units.get(part[0].low)
+                elif label == "TAIL":  # "2 m 30", "5 ft 3": the tail in the smaller unit (joined chunks)
+                    sub_unit, value = tail_unit(unit, self._units), _num(part)
+                    one = combine(numbers[0], unit, value, sub_unit) if unit and sub_unit and value else None
+                    numbers = [one] if isinstance(one, float) else numbers
                 elif label == "SUB":  # "1 lb 2 oz", "5 ft 3 in": one quantity in two units
                     sub_unit = self._units.get(part[0].low)
                     if unit is not None and sub_unit is not None and len(numbers) == 2:
@@ -393,6 +412,8 @@ def _num(toks: Sequence[Token]) -> float | None:
     if len(words) == 1 and words[0] in ("a", "an"):
         return 1.0
     value = number_value(words)
+    if value is None:
+        value = fraction_of(words)  # "half a million" (joined chunks)
     if value is not None and any(t.negative for t in toks):
         return -value
     return value

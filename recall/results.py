@@ -85,6 +85,13 @@ class RecallResult:
     #: flagged; the same rule judges a store's product in a lookup).
     errors: dict[str, float] = field(default_factory=dict)
     fit: Fit | None = None
+    #: A description in another language (:mod:`recall.translations`): the English reading the parser and
+    #: the names read, and the words translated ((word, English) pairs); None and () for English text.
+    read_as: str | None = None
+    translated: tuple[tuple[str, str], ...] = ()
+    #: The content words no table read, when they are most of them (:mod:`recall.openset_words`): the
+    #: result is then no close match and its confidence low.
+    unread: tuple[str, ...] = ()
 
     @property
     def best(self) -> Match | None:
@@ -110,6 +117,9 @@ class RecallResult:
             "foreign_modifier": self.foreign_modifier,
             "disagrees": list(self.disagrees),
             "unused": list(self.unused),
+            "read_as": self.read_as,
+            "translated": [list(p) for p in self.translated],
+            "unread": list(self.unread),
             "errors": dict(self.errors),
             "fit": self.fit.to_dict() if self.fit is not None else None,
             "verdict": verdict(self).to_dict(),

@@ -5,12 +5,17 @@ each served at its original address's path on 127.0.0.1 (``/ViewSonic-VX3276-4K-
 so that an extractor reading the URL sees what it would see at the store (a page saved without its
 address is at ``/page/<id>``).
 
-``/search?q=<words>`` is a plain word-overlap search over the pages' titles, like a small store's: a page
-is found when one query word (lower case, plural ``s`` dropped: :func:`scrapers.demo_store.search.query_words`)
-is a word of its title; results are ordered by how many query words the title holds, then the shorter
-title first (more of it is what was asked for), then by title, :data:`RESULTS_SHOWN` to a results page
-(``&page=<n>``, with a ``rel="next"`` link while more follow). Only product pages whose labels state a size
-or a mass are sold (a description can state nothing of the others).
+``/search?q=<words>`` is a word-overlap search over what a store's own search indexes of a product
+(:func:`index_texts`): its title, its brand, its category trail (breadcrumbs, JSON-LD ``category``) and its
+description text (JSON-LD and microdata ``description``, the page's meta description and keywords), each
+in the page's own language, as the page states them. A page is found when one query word (lower case,
+plural ``s`` dropped: :func:`scrapers.demo_store.search.query_words`) is one of its indexed words; results
+are ordered by relevance (:func:`relevance`: each query word the page holds counts its rarity among the
+store's products, ``log(1 + N / n)``, times :data:`FIELD_WEIGHTS` of the best field holding it: a word of
+the name or brand counts double), then the shorter title first (more of it is what was asked for), then by
+title, :data:`RESULTS_SHOWN` to a results page (``&page=<n>``, with a ``rel="next"`` link while more
+follow). Only product pages whose labels state a size or a mass are sold (a description can state nothing
+of the others).
 
 >>> with CorpusStore(load_corpus()) as store:                              # doctest: +SKIP
 ...     requests.get(store.base_url + "/search?q=walkie+talkie").text
@@ -19,28 +24,38 @@ or a mass are sold (a description can state nothing of the others).
 from __future__ import annotations
 
 import html
+import math
+import re
 import threading
+from collections import Counter
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from urllib.parse import parse_qs, quote, urlsplit
 
 from scrapers.corpus import CorpusPage, load_corpus
 from scrapers.demo_store.search import query_words
 
-__all__ = ["CorpusStore", "StoreItem", "items_of", "search", "sold"]
+__all__ = ["FIELD_WEIGHTS", "CorpusStore", "StoreItem", "index_texts", "items_of", "relevance", "search", "sold"]
 
 #: Results listed on the search page (a lookup reads its store's ``search_results`` first ones).
 RESULTS_SHOWN = 10
+#: What a query word found in each indexed field of a product weighs (times its rarity): a store ranks a
+#: product whose name or brand holds the word above one whose trail or description text mentions it.
+FIELD_WEIGHTS = {"title": 2.0, "brand": 2.0, "trail": 1.0, "text": 1.0}
+#: Characters of one description text indexed (a long description's first part).
+TEXT_CHARS = 3000
 
 
 @dataclass(frozen=True)
 class StoreItem:
-    """One corpus page on sale: the page, the path it is served at, and its title's words."""
+    """One corpus page on sale: the page, the path it is served at, its title's words and every indexed
+    word with the weight of the best field holding it (:data:`FIELD_WEIGHTS`)."""
 
     page: CorpusPage
     path: str
     words: frozenset[str]
+    indexed: dict[str, float] = field(default_factory=dict, compare=False)
 
     @property
     def title(self) -> str:
@@ -71,16 +86,81 @@ def items_of(pages: Iterable[CorpusPage]) -> list[StoreItem]:
         if path in taken:
             path = f"/page/{page.id}"
         taken.add(path)
-        items.append(StoreItem(page, path, frozenset(query_words(page.truth["title"]))))
+        title = frozenset(query_words(page.truth["title"]))
+        indexed: dict[str, float] = {}
+        for name, texts in index_texts(page).items():
+            for word in query_words(" ".join(texts)):
+                indexed[word] = max(indexed.get(word, 0.0), FIELD_WEIGHTS[name])
+        indexed.update({w: FIELD_WEIGHTS["title"] for w in title})
+        items.append(StoreItem(page, path, title, indexed))
     return items
+
+
+def index_texts(page: CorpusPage) -> dict[str, list[str]]:
+    """What a store's search indexes of ``page``, by field (:data:`FIELD_WEIGHTS`), as the page states it:
+    ``title`` (the labelled title), ``brand`` (JSON-LD and microdata ``brand``, ``product:brand``),
+    ``trail`` (:func:`scrapers.trail.category_trail`) and ``text`` (JSON-LD and microdata
+    ``description``, meta description, ``og:description`` and keywords; tags dropped, each cut to
+    :data:`TEXT_CHARS`)."""
+    from scrapers.page import Page, text_content
+    from scrapers.trail import category_trail
+
+    doc = Page(page.path.read_bytes(), page.url or "http://127.0.0.1/")
+    brand: list[str] = []
+    text: list[str] = []
+    for node in _product_nodes([data for data, _ in doc.jsonld_blocks if data is not None]):
+        value = node.get("brand")
+        value = value.get("name") if isinstance(value, dict) else value
+        brand += [value] if isinstance(value, str) else []
+        text += [node["description"]] if isinstance(node.get("description"), str) else []
+    tree = doc.tree
+    if tree is not None:
+        brand += tree.xpath('//meta[@property="product:brand"]/@content')
+        brand += [el.get("content") or text_content(el) for el in tree.xpath('//*[@itemprop="brand"]')]
+        text += tree.xpath('//meta[@name="description" or @property="og:description" or @name="keywords"]/@content')
+        text += [el.get("content") or text_content(el) for el in tree.xpath('//*[@itemprop="description"]')]
+    trail = category_trail(doc)
+    return {"title": [page.truth["title"]], "brand": [b for b in brand if b],
+            "trail": [*trail.breadcrumbs, *trail.categories],
+            "text": [re.sub(r"<[^>]+>", " ", t)[:TEXT_CHARS] for t in text if t]}  # fmt: skip
+
+
+def _product_nodes(data, depth: int = 0) -> Iterable[dict]:
+    """The JSON-LD nodes typed Product (or ProductGroup) anywhere in ``data``."""
+    if depth > 12:
+        return
+    if isinstance(data, list):
+        for node in data:
+            yield from _product_nodes(node, depth + 1)
+    elif isinstance(data, dict):
+        types = data.get("@type")
+        types = types if isinstance(types, list) else [types]
+        if any(t in ("Product", "ProductGroup", "IndividualProduct") for t in types):
+            yield data
+        for value in data.values():
+            if isinstance(value, (dict, list)):
+                yield from _product_nodes(value, depth + 1)
+
+
+def relevance(items: Sequence[StoreItem], words: set[str]) -> dict[int, float]:
+    """Each found item's relevance to the query ``words`` (by its index in ``items``): the sum over the
+    query words it holds of the word's rarity among the items, ``log(1 + N / n)``, times the weight of
+    the best field holding it."""
+    df = Counter(w for it in items for w in words if w in it.indexed)
+    idf = {w: math.log(1.0 + len(items) / n) for w, n in df.items()}
+    scores: dict[int, float] = {}
+    for i, it in enumerate(items):
+        held = [w for w in words if w in it.indexed]
+        if held:
+            scores[i] = round(sum(idf[w] * it.indexed[w] for w in held), 9)
+    return scores
 
 
 def search(items: Sequence[StoreItem], query: str) -> list[StoreItem]:
     """The items ``query`` finds, best first (module docstring); no words find nothing."""
-    words = set(query_words(query))
-    hits = [(len(words & it.words), it) for it in items if words & it.words]
-    hits.sort(key=lambda h: (-h[0], len(h[1].words), h[1].title))
-    return [it for _, it in hits]
+    scores = relevance(items, set(query_words(query)))
+    order = sorted(scores, key=lambda i: (-scores[i], len(items[i].words), items[i].title))
+    return [items[i] for i in order]
 
 
 def _results_page(query: str, hits: Sequence[StoreItem], page: int = 1) -> bytes:

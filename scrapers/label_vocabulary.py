@@ -47,12 +47,14 @@ KIND_WORDS: dict[str, str] = {
     **_words(
         "diameter",
         "diameter dia קוטר القطر durchmesser diamètre diámetro diametro średnica priemer průměr диаметр діаметр "
-        "çap çapı",
+        "çap çapı doorsnede halkaisija átmérő diametru διάμετρος promjer premer prečnik диаметър diametrs skersmuo "
+        "läbimõõt",
     ),
     **_words(
         "thickness",
         "thickness thick dicke stärke épaisseur grosor espesor spessore espessura grubość hrúbka tloušťka "
-        "толщина товщина dikte kalınlık kalınlığı",
+        "толщина товщина dikte kalınlık kalınlığı tjocklek tykkelse paksuus vastagság grosime πάχος debljina "
+        "debelina дебелина biezums storis paksus ketebalan",
     ),
     **_words(
         "dimensions",
@@ -60,13 +62,13 @@ KIND_WORDS: dict[str, str] = {
         "dimensiones medidas dimensioni misure dimensões wymiary rozmery rozměry размеры габариты габарит "
         "afmetingen afmeting mått mål габаритные габаритный габарити розміри boyutlar boyutları boyut dimensiuni mitat méretek "
         "méret διαστάσεις dimensi ukuran izmēri izmeri matmenys mõõtmed dimenzije размери מידות الأبعاد الابعاد أبعاد ابعاد المقاسات "
-        "ölçü ölçüler ölçüleri ölçüsü ebat ebatlar ebatları ebadı",
+        "ölçü ölçüler ölçüleri ölçüsü ebat ebatlar ebatları ebadı dimensioner dimensjoner encombrement ingombro",
     ),
     **_words("size", "size sizes größe groesse grosse taille tamaño tamanho taglia formato format размер velikost"),
     **_words(
         "weight",
         "weight weighs wt mass gewicht poids peso waga masa hmotnosť hmotnost váha вес масса вага vikt vægt vekt "
-        "ağırlık ağırlığı greutate paino súly tömeg βάρος berat svars svoris kaal teža težina тегло משקל الوزن وزن",
+        "ağırlık ağırlığı greutate paino súly tömeg βάρος berat svars svoris kaal teža težina тегло משקל الوزن وزن ciężar",
     ),
 }
 PACKAGE_WORDS = {
@@ -78,7 +80,8 @@ PACKAGE_WORDS = {
         "balení obal упаковка упаковки упаковке упаковкой коробки коробка брутто verpakking bruto lordo brut "
         "opakowaniem opakowania упаковці упаковки ambalaj ambalaj ambalajlı emballasje förpackning förpackningens "
         "collo colli kargo kargolu gönderi paketli koli kutu przesyłki wysyłki zásilky balíku balenia "
-        "csomagolás csomagolással doboz упаковкою посылки отправления"
+        "csomagolás csomagolással doboz упаковкою посылки отправления obalem obalu hrubá hrubý pakke pakken "
+        "pakkens pakning pakningen pakkaus pakkauksen pakkauksineen emballagen emballasjen"
     ).split()
 }
 NEGATIONS = {
@@ -87,7 +90,7 @@ NEGATIONS = {
 #: Words that say a value includes what follows: in a label's brackets they keep it the whole product's
 #: ("Height (with stand)", "Weight (incl. battery)"); after a value, with a package word, they make it the
 #: package's (``scrapers.value_forms.packed_value``).
-INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus".split()}
+INCLUDING = {fold(w) for w in "with incl inkl including included inc mit con com avec plus med".split()}
 QUALIFIERS = {
     fold(w)
     for w in (
@@ -103,6 +106,7 @@ QUALIFIERS = {
         "about around roughly nearly almost etwa rund aproximadamente circa ongeveer omkring cirka noin "  # "measures about: 7 cm"
         "all alle tous toutes todas todos tutte tutti wszystkie "  # a unit note: "All measurements in cm"
         "i på "  # Nordic prepositions: "Lengde i fot"
+        "čistá čistý tuotteen tuote "  # cs net ("Čistá hmotnost"), fi the product's
         "starting at from per piece each pro stück je unit pièce unidad adet ca cca około okolo približne přibližně asi около примерно yaklaşık yaklasik ungefaehr env "
         "chest bust poitrine pecho petto case gehäuse gehause boîtier boitier caja cassa fabric stoff tissu tela "
         "rim brim waist "  # a vessel's own outline: "rim diameter 9 cm" (a mug), "Waist width 65mm" (a cup)
@@ -115,11 +119,11 @@ OVERALL = {"overall", "assembled", "gesamt", "total", "outer", "exterior", "auss
 # so Schlauchlänge (hose length) or Sitzhöhe (seat height) are not the product's measurements.
 _PRODUCT_PREFIXES = (
     "artikel artikels produkt produkts product netto nett gesamt totaal total korpus aussen außen geräte gerät "
-    "eigen leer"
+    "eigen leer kokonais tuote"
 )
 _PACKAGE_PREFIXES = (
     "verpackungs verpackung versand paket pakket brutto karton verpakkings verpakking verzend förpacknings "
-    "forpaknings emballage frakt"
+    "forpaknings emballage frakt bruto pakke pakkaus"
 )
 COMPOUND_PREFIXES: dict[str, bool] = {
     **{fold(w): False for w in _PRODUCT_PREFIXES.split()},
@@ -130,7 +134,7 @@ COMPOUND_SUFFIXES = sorted(
         fold(w)
         for w in "gewicht abmessungen abmessung maße masse höhe breite länge tiefe durchmesser stärke dicke größe "
         "afmetingen afmeting hoogte breedte diepte lengte vikt mått höjd bredd djup längd vægt mål højde bredde "
-        "dybde længde vekt".split()
+        "dybde længde vekt paino mitat pituus leveys korkeus syvyys".split()
     ),
     key=len,
     reverse=True,
@@ -197,6 +201,10 @@ CJK_LABELS: dict[str, tuple[str, bool]] = {
     "商品净重": ("weight", False),
     "사이즈": ("dimensions", False),
     "제품크기": ("dimensions", False),
+    "正味重量": ("weight", False),  # net
+    "総重量": ("weight", False),  # total, like "Gesamtgewicht"
+    "순중량": ("weight", False),
+    "총중량": ("weight", False),
 }
 # Folded like the labels they are compared with (NFKD splits the dakuten off katakana: サイズ -> サイス).
 CJK_LABELS = {re.sub(r"[\W_]+", "", fold(k)): v for k, v in CJK_LABELS.items()}
@@ -205,19 +213,19 @@ CJK_LABELS = {re.sub(r"[\W_]+", "", fold(k)): v for k, v in CJK_LABELS.items()}
 # whitelist rule as the word labels: every part must be a measurement, package or qualifier token
 # (商品の寸法 幅×奥行×高さ, 商品パッケージの寸法, 本体質量, 产品尺寸 长*宽*高).
 _CJK_KIND_TOKENS = {
-    "dimensions": "寸法 サイズ 尺寸 外形寸法 外寸 크기 사이즈 치수",
+    "dimensions": "寸法 サイズ 尺寸 外形寸法 外寸 크기 사이즈 치수 규격",
     "weight": "重量 重さ 質量 质量 净重 淨重 무게 중량",
-    "length": "長さ 长度 長度 長 长 길이 着丈 丈 全長 縦 たて",
-    "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭 全幅 横 よこ",
+    "length": "長さ 长度 長度 長 长 길이 着丈 丈 全長 縦 たて 세로",
+    "width": "幅 宽度 寬度 宽 寬 横幅 너비 폭 全幅 横 よこ 가로",
     "height": "高さ 高度 高 높이 全高",
     "depth": "奥行き 奥行 深さ 深度 深 깊이",
-    "diameter": "直径 直徑 지름",
+    "diameter": "直径 直徑 지름 직경 外径",
     "thickness": "厚さ 厚度 厚 두께 厚み",
 }
 _CJK_PACKAGE_TOKENS = "梱包 包装 包裝 パッケージ 外箱 発送 配送 出荷 毛重 포장 박스"
 _CJK_QUALIFIER_TOKENS = (
     "商品 本体 本體 製品 产品 產品 の 的 外形 外観 外觀 規格 规格 约 約 总 總 整体 整體 实际 實際 单品 單品 "
-    "제품 상품 약 全体 完成"
+    "제품 상품 약 全体 完成 正味"
 )
 
 
@@ -254,9 +262,9 @@ CJK_CAPACITY = ("容量", "耐荷重", "最大", "容积", "承重", "용량")
 SHIPPING_WORDS = {
     fold(w)
     for w in "shipping shipment ship gross brutto bruto lordo brut kargo kargolu gönderi parcel envío envio "
-    "spedizione expédition expedition versand frakt przesyłki wysyłki zásilky доставки посылки отправления".split()
+    "spedizione expédition expedition versand frakt przesyłki wysyłki zásilky доставки посылки отправления hrubá hrubý".split()
 }
-SHIPPING_STEMS = tuple(fold(w) for w in "versand verzend frakt brutto 発送 配送 出荷 毛重 shipping".split())
+SHIPPING_STEMS = tuple(fold(w) for w in "versand verzend frakt brutto bruto 発送 配送 出荷 毛重 shipping".split())
 #: Whole labels of one short word that is a qualifier elsewhere: Turkish ``En`` (width), ``Eni``.
 SHORT_LABELS = {"en": "width", "eni": "width"}
 #: Words naming the product's own main body: an unknown word beside them names the object whose body it is

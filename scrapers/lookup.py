@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import functools
 import json
+import re
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor, wait
@@ -49,8 +50,8 @@ from scrapers.lookup_store import (
 from scrapers.sources import Sources
 
 __all__ = [
-    "DEFAULT_MAX_PAGES", "MAX_RESULT_BATCHES", "SETTLED_ERROR", "Candidate", "StoreAnswer", "StoresLookup",
-    "search_stores",
+    "DEFAULT_MAX_PAGES", "MAX_RESULT_BATCHES", "MIN_MODEL_DIGITS", "SETTLED_ERROR", "Candidate", "StoreAnswer",
+    "StoresLookup", "model_numbers", "search_stores",
 ]  # fmt: skip
 
 #: Requests (search pages + product pages, all stores together) one lookup may make: a store's first
@@ -59,6 +60,25 @@ __all__ = [
 DEFAULT_MAX_PAGES = 20
 #: Stores searched at the same time.
 MAX_PARALLEL_STORES = 4
+#: Digits a model number holds at least ("E274F", "GB2470HSU-W5", "MP273APDE"; not a series letter and
+#: number, "S9", "K2", "X27", that several products of a brand share).
+MIN_MODEL_DIGITS = 3
+_TOKEN = re.compile(r"[^\W_]+(?:[-/][^\W_]+)*")
+#: A number and its unit ("128GB", "1080p", "20000mAh", "165Hz"): a quantity many products share.
+_QUANTITY = re.compile(r"\d+(?:[.,]\d+)?[^\W\d_]{1,4}")
+
+
+def model_numbers(name: str | None) -> set[str]:
+    """The model numbers a product's name holds, lower case: words of letters and at least
+    :data:`MIN_MODEL_DIGITS` digits that are no number with its unit ("NEC MultiSync E274F - LED-Monitor
+    - 69 cm (27\") - 1920 x 1080" -> {"e274f"}; "Apple iPhone 13 (128GB)" -> none). Two stores' pages
+    that fit and name one model number are one product (:func:`_judge`)."""
+    found = set()
+    for token in _TOKEN.findall(name or ""):
+        letters = any(ch.isalpha() for ch in token)
+        if letters and sum(ch.isdigit() for ch in token) >= MIN_MODEL_DIGITS and not _QUANTITY.fullmatch(token):
+            found.add(token.lower())
+    return found
 
 
 @dataclass
@@ -106,7 +126,10 @@ def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = (), 
     fits is written as ``fits`` judged it (``as_judged``, when given: the record without what the fit read
     as no evidence, so that the recall after the lookup compares what the fit compared), named as a person
     reads it (:func:`scrapers.product_names.person_name`) and ``names`` (what the search asked for) become
-    the aliases of the one that fits best (an alias names one object)."""
+    the aliases of the one that fits best (an alias names one object). Pages that fit and hold a model
+    number of a better fit (:func:`model_numbers`) are that product sold by another store: they take its
+    name (their own as an alias), so the write makes them one object whose values both pages observe,
+    not two that compete for the recall (two stores' "iiyama G-Master GB2470HSU-W5" monitors)."""
     from scrapers.product_names import person_name
 
     out = []
@@ -127,8 +150,16 @@ def _judge(outcomes: list[PageOutcome], fits: FitFn, names: Sequence[str] = (), 
             else:
                 page.outcome, page.stage, page.reason, page.detail = "rejected", "lookup", "does_not_fit", why
         out.append(cand)
+    models: dict[str, str] = {}  # model number -> the name of the best fit that holds it
     for rank, (_, _, page, cand) in enumerate(sorted(scored, key=lambda s: s[:2])):
-        page.clean = _named(page.clean, person_name(page.clean.name), names if rank == 0 else ())
+        own = person_name(page.clean.name)
+        held = model_numbers(page.clean.name)
+        twin = next((models[m] for m in sorted(held) if m in models), None)
+        if twin is not None:  # another store's page of the same product: one object, its title an alias
+            page.clean = _named(page.clean, twin, (own,))
+        else:
+            page.clean = _named(page.clean, own, names if rank == 0 else ())
+            models.update({m: page.clean.name for m in held if m not in models})
         cand.name = page.clean.name
     return out
 

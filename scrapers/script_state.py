@@ -61,14 +61,35 @@ def script_objects(text: str) -> list[Any]:
         if "ld+json" in attrs.lower() or len(body) < 20:
             continue
         payloads.extend(_parsed_strings(body, decoder))
-        start = body.find("{")
+        obj = _first_object(body, decoder)
+        if obj is not None:
+            payloads.append(obj)
+    return payloads
+
+
+#: Empty literals skipped before a script's state object: ``var DBK = window.DBK || {};`` (a namespace's
+#: initialiser) comes before ``Data.product = {...}`` in the common JavaScript namespace idiom.
+MAX_EMPTY_LITERALS = 4
+
+
+def _first_object(body: str, decoder: json.JSONDecoder) -> Any:
+    """The first non-empty object literal of a script (JSON, else a JavaScript literal), or None. After an
+    empty literal (``window.DBK || {}``) the next braces are tried, at most :data:`MAX_EMPTY_LITERALS` more."""
+    start = body.find("{")
+    after_empty = False
+    for _ in range(MAX_EMPTY_LITERALS + 1):
         if start < 0:
-            continue
+            return None
         try:
-            obj, _ = decoder.raw_decode(body, start)
+            obj, end = decoder.raw_decode(body, start)
         except (ValueError, RecursionError):
             obj = _js_object(body[start : start + MAX_SCRIPT_CHARS])
-            if obj is None:
-                continue
-        payloads.append(obj)
-    return payloads
+            if obj is not None or not after_empty:
+                return obj
+            start = body.find("{", start + 1)  # "(function (Data) {": a function body, its first statement next
+            continue
+        if obj != {}:
+            return obj
+        after_empty = True
+        start = body.find("{", end)
+    return None

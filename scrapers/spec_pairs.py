@@ -140,8 +140,12 @@ _LIST_MARK = re.compile(r"\s*[-–•*·]\s")
 
 def _listed(line: Line, following: Line) -> bool:
     """Whether two value lines are entries of one list, one under the other: lines of one element
-    (``<br>``-separated) or both marked as list entries (``- 13,3 x 21,2 cm``). A table row's cells are
-    neither: a row of values per model (``Width | 30.41 cm | 34.04 cm``) keeps its first cell the product's."""
+    (``<br>``-separated), options of one variant picker (``Line.picker``; an option the page marks
+    selected is the product's, never listed), or both marked as list entries (``- 13,3 x 21,2 cm``). A
+    table row's cells are none of these: a row of values per model (``Width | 30.41 cm | 34.04 cm``) keeps
+    its first cell the product's."""
+    if line.picker and (line.selected or line.picker == following.picker):
+        return not line.selected
     if line.group == following.group:
         return True
     return bool(_LIST_MARK.match(line.text) and _LIST_MARK.match(following.text))
@@ -268,12 +272,15 @@ def _header_row(lines: list[Line], i: int) -> list[Pair]:
     """A header row of labels and the row under it (``Width | Height | Depth`` over ``30 cm | 20 cm |
     10 cm``, or ``dt dt dt dd dd dd``): label k pairs with value k of the **first** row only (later rows are
     variants or other products). Pairs carry the value line's index as their order. [] when the lines after
-    the labels are not as many values."""
+    the labels are not as many values, or when a label repeats (a header row names each column once: a review
+    form's ``Height`` legend over its ``Height`` title and the brackets ``<5ft``, ``5ft-5ft3``... is a list)."""
     labels = []
     j = i
     while j < len(lines) and _label_line(lines[j]) and len(labels) < 12:
         labels.append(lines[j])
         j += 1
+    if len({fold(lab.text).strip(" :：") for lab in labels}) < len(labels):
+        return []  # "Height" over "Height": a label written twice (a filter's legend and its title), no columns
     values = lines[j : j + len(labels)]
     if len(values) < len(labels) or not all(DIGIT.search(v.text) and classify_label(v.text) is None for v in values):
         return []

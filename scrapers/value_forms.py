@@ -31,12 +31,20 @@ NARROW_RANGE = 1.5
 
 _SEGMENT_SPLIT = re.compile(r"\s+|[、，,;/／|]+")
 
+#: The name of the one size an article comes in (``One Size``, ``Taille unique``, ``Talla única``, ``Taglia
+#: unica``, ``Tamanho único``, ``Einheitsgröße``, ``Uniwersalny``, ``Univerzální``, ``Onesize``, ``Free size``,
+#: ``Beden: Tek Ebat``), named after the size word: a value "for" that size is the product's.
+_ONE_SIZE = (
+    r"(?:one[\s-]*size|onesize|os|unique|[uú]nic[ao]|uni|universal\w*|uniwersaln\w*|univerz[aá]ln\w*|"
+    r"free(?:[\s-]*size)?|einheitsgr\w*|tek|unisize)\b"
+)
 #: A value stated for one size of the garment or article (``Gesamtlänge: 72 cm bei Größe S``, ``Length:
-#: 70 cm in size M``, ``Longueur : 68 cm en taille 38``, ``71 cm (talla M)``): a variant's, not the product's.
+#: 70 cm in size M``, ``Longueur : 68 cm en taille 38``, ``71 cm (talla M)``): a variant's, not the product's;
+#: not when that size is the only one (``27 cm (talla One Size)``, :data:`_ONE_SIZE`).
 _FOR_ONE_SIZE = re.compile(
     r"\d.*?(?:\b(?:bei|in|für|fuer|for|at|en|pour|na|em|w|i|på|ve|v|voor|bij|op)\s+(?:der\s+|la\s+|a\s+|de\s+)?"
     r"|[(（]\s*)(?:gr(?:ö|oe)(?:ß|ss)e|size|taille|talla|taglia|maat|rozmiarze|rozmiar|tamanho|storlek|"
-    r"størrelse|velikosti|koko|méret|beden)\b",
+    rf"størrelse|velikosti|koko|méret|beden)\b(?!\s*[:：]?\s*{_ONE_SIZE})",
     re.IGNORECASE,
 )
 
@@ -148,13 +156,47 @@ def sentence_value(value: str) -> bool:
 
 
 _BOUND = re.compile(r"\s*(?:[<>≤≥＜＞≦≧]|&lt;|&gt;)\s*=?\s*\d")
+#: Words written before a figure that make it a bound: "at most", "under", "over" in the store languages
+#: (``Up to 9.9 cm``, ``bis 58,5 cm``, ``jusqu'à 30 cm``, ``hasta 5 kg``, ``fino a 30 cm``, ``até 2 kg``,
+#: ``do 30 cm``, ``nad 50 cm``, ``tot 30 cm``, ``upp till 2 kg``, ``max. 5 kg``, ``unter 32 Zoll``, ``最大30cm``).
+#: Not a lower bound's "from" (``Starting at 2.8 lb``: the lightest configuration, the product's own).
+_BOUND_BEFORE = (
+    "up to|upto|no more than|not more than|at most|less than|more than|under|below|over|above|"  # en
+    "bis zu|bis|höchstens|hoechstens|maximal|minimal|unter|über|ueber|mehr als|weniger als|"  # de
+    "jusqu'à|jusqu'a|jusqu’à|jusqu’a|jusque|au plus|moins de|plus de|"  # fr
+    "hasta|como máximo|menos de|más de|mas de|"  # es
+    "fino a|fino al|al massimo|meno di|più di|piu di|oltre|"  # it
+    "até|no máximo|mais de|"  # pt
+    "tot|maximaal|minder dan|meer dan|boven|onder|"  # nl
+    "do|maksymalnie|poniżej|ponizej|powyżej|powyzej|ponad|nad|pod|"  # pl, cs
+    "až do|až|nejvýše|méně než|více než|"  # cs
+    "upp till|högst|opptil|inntil|op til|højst|enintään|yli|alle|"  # sv, no, da, fi
+    "at least|mindestens|au moins|al menos|como mínimo|almeno|pelo menos|minstens|minimalnie|nejméně|minst|"
+    "vähintään|maximum|minimum|max|maks|máx|mín|min|"  # and every language's abbreviations
+    "最大|最小|최대|최소"  # ja, zh, ko
+)
+_BOUND_WORD = re.compile(
+    rf"\s*(?:ca\.?\s*|approx\.?\s*)?(?:{_BOUND_BEFORE})(?<=\w)\.?\s*[:：]?\s*(?:ca\.?\s*)?\d", re.IGNORECASE
+)
+#: An open end after the figure (``30 cm & above``, ``6ft4+ (193cm)``, ``30 cm oder mehr``, ``et plus``,
+#: ``o más``, ``e oltre``, ``ou mais``, ``i więcej``, ``en meer``, ``och mer``, ``30cm以上``, ``30cm 이하``).
+_FIGURE = r"\d+(?:[.,]\d+)?\s*[^\W\d_\s]{0,6}\.?"
+_BOUND_AFTER = re.compile(
+    rf"\s*(?:ca\.?|approx\.?|約|约)?\s*{_FIGURE}(?:\s*{_FIGURE})?\s*(?:"
+    r"(?:&|and|or|und|oder|et|ou|o|y|e|i|en|of|och|og|eller|a|lub|nebo)\s+(?:above|over|more|higher|larger|"
+    r"mehr|größer|groesser|höher|plus|más|mas|oltre|più|piu|mais|więcej|wiecej|meer|mer|více|vice)\b"
+    r"|\+\s*(?:[(（]|$)|(?:以上|以下|未満|未满|이상|이하|미만))",
+    re.IGNORECASE,
+)
 
 
 def bound_value(value: str) -> bool:
-    """Whether a measured value is a bound, written with a comparison sign before its figure (``<5ft
-    (152cm)``, ``> 30 cm``, ``≤ 2 kg``): a limit or a range's end (a review form's height brackets), not a
-    measurement of the product."""
-    return _BOUND.match(value) is not None
+    """Whether a measured value is a bound, not a measurement of the product: a comparison sign before its
+    figure (``<5ft (152cm)``, ``> 30 cm``, ``≤ 2 kg``: a review form's height brackets), a bound word before it
+    (:data:`_BOUND_BEFORE`: ``Up to 9.9 cm``, a store's search filter; ``bis 58,5 cm``; ``max. 5 kg``), or an
+    open end right after it (``30 cm & above``, ``30cm以上``: :data:`_BOUND_AFTER`)."""
+    head = value[:200]
+    return any(pattern.match(head) is not None for pattern in (_BOUND, _BOUND_WORD, _BOUND_AFTER))
 
 
 _OUNCES = re.compile(r"\d\s*(?:oz|ounces?)\b\.?", re.IGNORECASE)

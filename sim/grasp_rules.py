@@ -8,7 +8,7 @@ from __future__ import annotations
 from sim.grasps import edge_depth_cm
 from sim.planned_object import PlannedObject
 
-__all__ = ["Candidates", "HEAVY_MASS_G", "LIGHT_MASS_G", "candidates", "is_tiny_flat"]
+__all__ = ["Candidates", "HEAVY_MASS_G", "LIGHT_MASS_G", "ROD_MAX_THICK_CM", "candidates", "is_tiny_flat"]
 
 #: Feix et al. 2014: 92 % of grasped objects weigh 500 g or less; heavier objects get power grasps.
 HEAVY_MASS_G = 500.0
@@ -36,6 +36,9 @@ TIP_PINCH_MAX_LENGTH_CM = 3.5
 #: tripod [Feix 2016], the grasp they are picked up for.
 PEN_MAX_THICK_CM = 2.0
 PEN_MAX_MASS_G = 50.0
+
+#: A thin rod (long, its section no thicker than this), PEN_MAX_MASS_G to LIGHT_MASS_G: a lateral pinch.
+ROD_MAX_THICK_CM = 1.0
 
 #: A light long object at least this long is a utensil or tool held by its handle (spatula, ladle, knife):
 #: its bounding box is wider than the handle people actually hold.
@@ -306,6 +309,22 @@ def _pen(o: PlannedObject) -> Candidates | None:
     ]
 
 
+def _thin_rod(o: PlannedObject) -> Candidates | None:
+    """A thin rod too heavy for a pen (a wire, a tube, a small key): the side of the index, Feix 2016's side
+    opposition for thin objects; the key pinch is stronger than the tip pinch (sim/PLANNER.md, version 17)."""
+    a, b, m = o.a_cm, o.b_cm, o.mass_g
+    if not (o.shape == "long" and b <= ROD_MAX_THICK_CM and o.c_cm >= 0.8 * b and PEN_MAX_MASS_G <= m < LIGHT_MASS_G):
+        return None
+    return [
+        (
+            "lateral_pinch",
+            f"a thin rod ({b:g} cm thick, {m:.0f} g): thumb pad against the side of the index (Feix 2016: side opposition)",
+        ),
+        (_fingers_for_length(a, m), "picked up: finger pads along its length"),
+        ("light_tool", "long and thin: held like a tool handle"),
+    ]
+
+
 def _long_handle(o: PlannedObject) -> Candidates | None:
     """A long object with a thin handle and some weight (kitchen knife, pliers): held like a tool."""
     a, w, m = o.a_cm, o.c_cm, o.mass_g
@@ -366,8 +385,8 @@ def _precision_prismatic(o: PlannedObject) -> Candidates:
 
 #: The rules in the order PLANNER.md's table lists them; the first that applies chooses.
 _RULES = (
-    _floppy, _sphere, _disk, _small_flat, _flat, _utensil, _power_prismatic, _pen, _long_handle, _long_wrap,
-    _small_block,
+    _floppy, _sphere, _disk, _small_flat, _flat, _utensil, _power_prismatic, _pen, _thin_rod, _long_handle,
+    _long_wrap, _small_block,
 )  # fmt: skip
 
 

@@ -17,6 +17,7 @@ import numpy as np
 
 from sim.bodies import GEOMETRY_VERSION
 from sim.grasps import FINGER_LEAD_PARAM, FINGER_MAX_FORCE_N, GRASP_TYPES, THUMB_MAX_FORCE_N, GraspPlan
+from sim.hand_kinematics import finger_tip, finger_tip_y_of, thumb_tip
 from sim.hand_model import (
     ACTUATOR_NAMES,
     APPROACH_QUAT,
@@ -42,15 +43,13 @@ from sim.hand_model import (
     add_hand,
     configure_options,
     digit_length_cm,
-    finger_tip,
-    finger_tip_y_of,
     hand_spec,
     max_torques,
-    thumb_tip,
 )
 from sim.programs import PROGRAMS_VERSION, program_for
 
-# The model's names (sim/hand_model.py) are re-exported: ``from sim import hand as H`` reaches both.
+# The model's names (sim/hand_model.py, its kinematics sim/hand_kinematics.py) are re-exported: ``from sim
+# import hand as H`` reaches them all.
 __all__ = [
     "ACTUATOR_NAMES",
     "APPROACH_QUAT",

@@ -75,7 +75,7 @@ __all__ = [
 ]
 
 #: Stored with every validation result; bump when the rules change what they choose.
-PLANNER_VERSION = "16"  # 16: a light paper sheet pinched flat by thumb and two fingers; 15: a flat object laid by its length across the edge gets fingers by its width; 14: a squeezable deep object's side wrap squeezed for half the friction lever; 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
+PLANNER_VERSION = "17"  # 17: a thin rod of 50-250 g in the lateral pinch; 16: a light paper sheet pinched flat by thumb and two fingers; 15: a flat object laid by its length across the edge gets fingers by its width; 14: a squeezable deep object's side wrap squeezed for half the friction lever; 13: a ball up to 15 cm held over its top from above; 12: an edge lever hold for heavy flat objects; 11: a peaked cap by its brim; 10: no power sphere for a heavy box; 9: a pan held by its handle first; 8: unfit ranked down
 
 #: Fingertip grasps open at least this much wider than the object (cm): people's maximum grip aperture
 #: during the reach exceeds the object by a few centimetres (Jeannerod 1984, "The timing of natural

@@ -299,8 +299,8 @@ def test_a_csv_that_cannot_be_read_is_one_clear_error(tmp_path):
     from kb.csvio import read_catalog_csv
     from kb.errors import CatalogImportError
 
-    for path in (tmp_path / "no-such.csv", tmp_path):
-        with pytest.raises(CatalogImportError, match="cannot read"):
+    for path, why in ((tmp_path / "no-such.csv", "no such file"), (tmp_path, "is a folder")):
+        with pytest.raises(CatalogImportError, match=why):
             read_catalog_csv(path)
     (tmp_path / "latin1.csv").write_bytes(b"name\n\xe9\n")
     with pytest.raises(CatalogImportError, match="not UTF-8"):

@@ -174,3 +174,32 @@ def test_no_connection_draws_a_progress_bar_and_the_lock_still_holds(tmp_path):
         con.close()
     assert settings == {"enable_progress_bar": "false", "lock_configuration": "true",
                         "enable_external_access": "false", "threads": "1"}
+
+
+def test_a_missing_or_folder_file_is_named_as_such_never_row_0(tmp_path, db_path):
+    """A file that cannot be read at all is the file's problem, not a row's: its message says what is wrong
+    with the file (and the CLI's one line says the same), never "row 0, column -"."""
+    from typer.testing import CliRunner
+
+    from kb.service.cli import app
+
+    kb = KnowledgeBase.open(db_path)
+    missing = tmp_path / "nothere.csv"
+    for path, why in [(missing, "no such file"), (tmp_path, "is a folder, not a CSV file")]:
+        with pytest.raises(CatalogImportError) as info:
+            kb.import_csv(path)
+        assert str(info.value) == f"{path}: nothing imported: {why}"
+        assert info.value.problems == [(0, "-", why)]
+    res = CliRunner().invoke(app, ["catalog", "import", str(missing), "--db", str(db_path)])
+    assert res.exit_code == 1 and res.stderr == f"Error: {missing}: nothing imported: no such file\n", res.stderr
+    assert kb.count_objects() == 0
+
+
+def test_a_whole_row_problem_names_the_row_and_a_cell_problem_its_column(tmp_path, db_path):
+    f = write(tmp_path / "bad.csv", ["mug,9.5", "pen,14,1,1,-6,long,smooth,sturdy,plastic,rigid"])
+    with pytest.raises(CatalogImportError) as info:
+        KnowledgeBase.open(db_path).import_csv(f)
+    assert str(info.value) == (f"{f}: nothing imported: row 2: 2 cells, header has 10; "
+                               "row 3, column mass_g: must be greater than zero")
+    with pytest.raises(CatalogImportError, match=r"nothing imported: row 1: empty file: no header$"):
+        KnowledgeBase.open(db_path).import_csv(write(tmp_path / "empty.csv", [], header=""))

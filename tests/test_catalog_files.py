@@ -29,16 +29,25 @@ def _damaged(tmp_path, kind: str):
         path.write_text("name,a_cm\nmug,10\n")
     elif kind == "random":
         path.write_bytes(bytes(range(256)) * 80)
-    else:  # a real catalog cut short
+    else:  # a real catalog cut short, or with a header block zeroed (its checksum fails)
         good = tmp_path / "good.duckdb"
         assert runner.invoke(app, ["init", "--seed", "--db", str(good)]).exit_code == 0
         shutil.copy(good, path)
         with open(path, "r+b") as f:
-            f.truncate(100_000)  # past the header, short of the blocks it lists
+            if kind == "truncated":
+                f.truncate(100_000)  # past the header, short of the blocks it lists
+            else:
+                f.seek(4096)
+                f.write(bytes(8192))  # DuckDB: "Corrupt database file: computed checksum ... does not match"
     return path
 
 
-@pytest.mark.parametrize("kind", ["text", "random", "truncated"])
+#: Each kind of damage and the reason its message gives (DuckDB's words), for every command.
+REASONS = {"text": "not a valid DuckDB database", "random": "not a valid DuckDB database",
+           "truncated": "", "checksum": "Corrupt database file: computed checksum"}  # fmt: skip
+
+
+@pytest.mark.parametrize("kind", list(REASONS))
 def test_every_command_names_a_damaged_file_and_why(tmp_path, kind) -> None:
     path = _damaged(tmp_path, kind)
     before = path.read_bytes()
@@ -48,9 +57,49 @@ def test_every_command_names_a_damaged_file_and_why(tmp_path, kind) -> None:
         line = res.stderr.strip()
         assert line.count("\n") == 0 and path.name in line, (args, line)
         assert "sqlalche" not in line and "(_duckdb" not in line and "Background on this error" not in line
-        if args[0] != "sql":  # the SQL worker masks the folder
-            assert f"{path}: not a usable objrecall catalog" in line, (args, line)
+        named = f"{path}: not a usable objrecall catalog: " if args[0] != "sql" else f"{path.name}: not a usable"
+        assert named in line and REASONS[kind] in line.split("catalog: ", 1)[-1], (args, line)  # the SQL worker
+        assert line.split("catalog: ", 1)[-1].strip(), (args, line)  # masks the folder; a reason, not only the file
     assert path.read_bytes() == before  # nothing written
+
+
+def test_a_duckdb_file_without_the_catalogs_tables_is_named_with_the_reason(tmp_path) -> None:
+    import duckdb
+
+    other = tmp_path / "other.duckdb"
+    duckdb.connect(str(other)).execute("CREATE TABLE t (x INT)").close()
+    for args in (["recall", "a mug"], ["catalog", "list"], ["catalog", "show", "mug"]):
+        res = runner.invoke(app, [*args, "--db", str(other)])
+        assert res.exit_code == 1, res.output
+        assert res.stderr.strip().startswith(f"Error: {other}: not a usable objrecall catalog: Catalog Error: Table"), (
+            args, res.stderr)
+
+
+def test_one_unwrapping_serves_migrations_and_reasons(tmp_path) -> None:
+    """kb.connections.innermost_error follows every wrapper (SQLAlchemy's ``orig``, ``raise ... from``) to the
+    driver's error; the migration (init) and the reason both use it, so a damaged file under Alembic's and
+    SQLAlchemy's wrappers is CatalogUnreadable with DuckDB's reason, never a failed migration."""
+    import duckdb
+
+    from kb.connections import database_reason, innermost_error, is_unreadable_file
+    from kb.errors import MigrationError
+    from kb.migrate import upgrade
+
+    driver = duckdb.IOException("IO Error: damaged")
+    wrapped = RuntimeError("(sqlalchemy) wrapper")
+    wrapped.orig = driver
+    try:
+        try:
+            raise wrapped
+        except RuntimeError as inner:
+            raise MigrationError("migration failed") from inner
+    except MigrationError as outer:
+        assert innermost_error(outer) is driver and is_unreadable_file(outer)  # two levels down
+        assert database_reason(outer) == "IO Error: damaged"
+    assert not is_unreadable_file(duckdb.IOException('Could not set lock on file "x": Conflicting lock'))
+    for kind in ("text", "checksum"):
+        with pytest.raises(CatalogUnreadable, match=REASONS[kind]):
+            upgrade(_damaged(tmp_path, kind))
 
 
 def test_a_missing_catalog_is_one_message_for_every_command(tmp_path) -> None:

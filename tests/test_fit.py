@@ -156,10 +156,14 @@ def _mass_error(stated_g: float, catalog_a_cm: float, floors, bins) -> float:
 
 def test_a_part_measured_past_the_top_size_class_bounds_no_mass_above():
     """A catalog of the part grasped (sizes open above) whose object's part reaches the open top size class
-    (15 cm or more: the Yale wardrobe door, its mass class 750 g): a stated 12 kg is no misfit; the class's
-    lower end still is, and an object under the floor, or a catalog without those declarations, keeps it."""
+    (15 cm or more: the Yale wardrobe door, its mass class 750 g): a stated 12 kg is no misfit, above the
+    class the mass is unknown (1/3, as an unknown value; the ranking reads the same, recall/openset_classes.py);
+    the class's lower end still is, and an object under the floor, or a catalog without those declarations,
+    keeps it."""
     floors, bins = {"a_cm": 15.0}, {"a_cm": (1.25, math.inf), "mass_g": (1.5, 1.5)}
-    assert _mass_error(12000.0, 15.0, floors, bins) == 0.0
+    assert _mass_error(12000.0, 15.0, floors, bins) == pytest.approx(1 / 3)
+    assert _mass_error(1125.0, 15.0, floors, bins) == 0.0  # the class's top, 750 x 1.5
+    assert _mass_error(1126.0, 15.0, floors, bins) == pytest.approx(1 / 3)
     assert _mass_error(400.0, 15.0, floors, bins) == pytest.approx(100 / 750)  # below [500, inf)
     assert _mass_error(12000.0, 14.9, floors, bins) == pytest.approx((12000 - 1125) / 12000)  # under the floor
     assert _mass_error(12000.0, 15.0, floors, {"a_cm": (1.25, 2.0), "mass_g": (1.5, 1.5)}) > 0.9  # sizes closed

@@ -106,7 +106,7 @@ def test_pinch_kinematics_are_consistent():
 def test_the_solvers_tip_y_is_finger_tips_y_to_the_last_bit():
     # finger_tip_y_of writes out finger_tip's chain for the posture solvers: the same floats, with the PIP
     # both below and at its cap (ratio x MCP past pip_max), so a stored posture does not move
-    from sim.hand_model import finger_tip_y_of
+    from sim.hand_kinematics import finger_tip_y_of
 
     pip_max = math.radians(H.RANGE_DEG["pip"][1])
     for finger in (f.name for f in H.FINGERS):

@@ -12,6 +12,7 @@ from recall.fit import Trust
 from recall.name_index import NameEvidence
 from recall.openset import OPEN_SET_NAMED_THRESHOLD
 from recall.openset_named import FIRST_MARGIN, named_first
+from recall.openset_verdict import row_closeness
 
 
 def _first(text: str) -> str:
@@ -32,7 +33,7 @@ def test_the_boundary_is_the_named_threshold(width, first):
     r = seed().recall_text(f"a bowl about {width} cm wide, 600 g", top=3)
     assert r.matches[0].name == first
     bowl = seed().snapshot.names.index("ceramic bowl")
-    errors, closeness = seed()._closeness(bowl, *_query(f"a bowl about {width} cm wide, 600 g"))
+    errors, closeness = row_closeness(seed(), bowl, *_query(f"a bowl about {width} cm wide, 600 g"))
     assert (closeness <= OPEN_SET_NAMED_THRESHOLD) == (first == "ceramic bowl")
 
 
@@ -76,3 +77,48 @@ def test_named_first_leaves_the_ranking(evidence, fits):
     parts = {0: (1.0, 0.0, 0.0), 1: (4.0, 1.0, 0.0)}
     out, _ = named_first(rows, score, parts, evidence, lambda r, t: fits)
     assert out.tolist() == [1.0, 3.0]
+
+
+# -- the ranking reads a binned catalog's classes as the verdict does (recall/openset_classes.py)
+
+
+def _yale():
+    import tempfile
+    from pathlib import Path
+
+    from recall.evaluation import _recaller_from_catalog
+
+    with tempfile.TemporaryDirectory() as tmp:
+        return _recaller_from_catalog(Path(__file__).parent / "data" / "catalog_yale" / "catalog.csv", Path(tmp))
+
+
+def test_the_garden_hose_ranks_the_hose_whose_mass_class_is_open_above():
+    # Yale's hose (15 cm part, the top size class; mass class 240 g): 8 pounds is above the class, where the
+    # mass is unknown, so the ranking no longer puts the cleaning supplies basket first (catalog real)
+    r = _yale().recall_text("a garden hose, 5/8 inch diameter, 50 feet long, rubber, about 8 pounds", top=3)
+    assert r.matches[0].name == "hose" and not r.open_set
+
+
+def test_with_open_mass_scores_a_row_above_its_class_as_an_unknown_mass():
+    import math
+
+    from recall.metrics import FeatureQuery
+    from recall.openset_classes import with_open_mass
+
+    query = FeatureQuery.from_values({"a_cm": 20.0, "mass_g": 1000.0})
+    bins = {"a_cm": (1.25, math.inf), "mass_g": (1.5, 1.5)}
+    mass = np.array([600.0, 700.0, 5000.0])  # 1000 g is above 600 x 1.5 = 900, inside 700 x 1.5 = 1050
+    rest = {}
+
+    def distances_of(q, rows):
+        rest["numeric"] = [c.feature for c in q.numeric]
+        return np.full(len(rows), 1.0)
+
+    rows, dist = with_open_mass(
+        np.array([2]), np.array([5.0]), query, query, np.array([0, 1]), mass, bins, "jp", distances_of
+    )
+    got = dict(zip(rows.tolist(), dist.tolist(), strict=True))
+    assert set(got) == {0, 2} and got[2] == 5.0  # row 1 fits its class: not rescored
+    assert got[0] == pytest.approx(1.0 + math.log1p(0.5 * 1000.0)) and rest["numeric"] == ["a_cm"]
+    same = with_open_mass(np.array([2]), np.array([5.0]), query, query, np.array([0]), mass, bins, "euclidean", distances_of)
+    assert same[0].tolist() == [2]  # no JP metric: unchanged

@@ -19,7 +19,7 @@ import typer
 from typer.core import TyperGroup
 
 from kb.connections import database_reason
-from kb.errors import DatabaseError, ObjrecallError
+from kb.errors import CatalogUnreadable, DatabaseError, ObjrecallError
 from kb.jsonable import to_jsonable
 
 __all__ = ["USAGE_EXIT", "DbOption", "JsonOption", "ObjrecallGroup", "default_db_path", "emit", "emit_lines", "resolve_db"]
@@ -54,7 +54,13 @@ def resolve_db(db: Path | None) -> Path:
         path.parent.mkdir(parents=True, exist_ok=True)  # the default data folder, made on first use
     if path.is_dir():
         raise DatabaseError(f"{path}: is a folder, not a catalog file (give a file path, e.g. {path / 'catalog.duckdb'})")
+    _RESOLVED.append(path)
     return path
+
+
+#: The catalog files this process's commands resolved (the last one is named by a database error that
+#: reaches :class:`ObjrecallGroup` without a file name of its own).
+_RESOLVED: list[Path] = []
 
 
 def emit(data: Any) -> None:
@@ -96,6 +102,7 @@ class ObjrecallGroup(TyperGroup):
         sys.exit(rv if isinstance(rv, int) else 0)
 
     def invoke(self, ctx: Any) -> Any:
+        _RESOLVED.clear()  # only this command's catalog file is named
         try:
             return super().invoke(ctx)
         except ObjrecallError as err:
@@ -105,7 +112,9 @@ class ObjrecallGroup(TyperGroup):
         except Exception as err:
             if "duckdb" not in type(err).__module__:
                 raise
-            # a DuckDB file that is not an objrecall catalog, or one damaged: say so in one line
+            # a DuckDB file that is not an objrecall catalog, or one damaged: name it and the reason
+            if _RESOLVED:
+                _fail(str(CatalogUnreadable(_RESOLVED[-1], database_reason(err))))
             _fail(f"database error (is this an objrecall catalog?): {database_reason(err)}")
 
 
