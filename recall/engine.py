@@ -14,7 +14,6 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 from collections.abc import Mapping
 from pathlib import Path
@@ -53,7 +52,7 @@ from recall.openset import (
     names_inside,
     nothing_compared,
 )
-from recall.openset_classes import past_part_rows, with_open_mass
+from recall.openset_classes import past_part_rows
 from recall.openset_named import named_first
 from recall.openset_verdict import row_closeness, row_fits, verdict
 from recall.results import Match, RecallResult
@@ -304,11 +303,6 @@ class Recaller:
         ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
         ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
         rows, dist = self.shortlist.candidates(ranked, named, top, metric, soft)
-        if self.bins and self.floors:  # past the part measured, the mass class is open above (as the verdict)
-            past = self._past_part_rows()
-            dist_of = functools.partial(self.shortlist.distances_of, metric=metric)
-            mass = self.snapshot.num_cols[NUMERIC_FEATURES.index("mass_g")]
-            rows, dist = with_open_mass(rows, dist, query, ranked, past, mass, self.bins, metric, dist_of)
         score, parts = ranking_scores(rows, dist, names, soft, metric)
         if names.rows() and not names_inside(noun, names.phrases):  # a named object that fits ranks first
             score, parts = named_first(rows, score, parts, names, lambda r, t: row_fits(self, r, query, soft, subject, t))

@@ -92,6 +92,8 @@ def _yale():
         return _recaller_from_catalog(Path(__file__).parent / "data" / "catalog_yale" / "catalog.csv", Path(tmp))
 
 
+@pytest.mark.xfail(strict=True, reason="the ranking half of this rule is withdrawn: it ranked in NumPy only, so NumPy and "
+                   "SQL ranked a binned catalog differently (tests/test_bins.py); it needs the same rule in the SQL ranking")
 def test_the_garden_hose_ranks_the_hose_whose_mass_class_is_open_above():
     # Yale's hose (15 cm part, the top size class; mass class 240 g): 8 pounds is above the class, where the
     # mass is unknown, so the ranking no longer puts the cleaning supplies basket first (catalog real)
