@@ -14,7 +14,6 @@ numbers in ``recall/RECALL.md``.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import math
 from collections.abc import Mapping
 from pathlib import Path
@@ -26,7 +25,7 @@ from kb.errors import RecallError
 from kb.features import CATEGORICAL_FEATURES, NUMERIC_FEATURES
 from kb.kinds import ROOT, words_of
 from recall.alternatives import alternatives, with_alternatives
-from recall.catalog_kinds import KindIndex, plain_name
+from recall.catalog_kinds import KindIndex
 from recall.confidence import (
     CONFIDENCE_COEF,
     JP_METRICS,
@@ -38,9 +37,9 @@ from recall.confidence import (
     confidence_from_margin,
     confidence_of,
 )
-from recall.fit import Trust, closeness_of, disagree_factor, disagreeing_features, judge
+from recall.fit import Trust, disagree_factor, disagreeing_features, judge
 from recall.geometry import ShapeGeometry, overrides
-from recall.metrics import METRICS, FeatureQuery, relative_errors
+from recall.metrics import METRICS, FeatureQuery
 from recall.name_index import HEAD_WEIGHT, NAME_WEIGHT, NameEvidence, NameIndex
 from recall.names import GENERIC_NOUNS, name_core
 from recall.openset import (
@@ -49,16 +48,13 @@ from recall.openset import (
     OPEN_SET_UNKNOWN_NOUN_THRESHOLD,
     DescribedNoun,
     describe,
-    foreign_modifier,
     is_open_set,
-    material_agrees,
     names_inside,
     nothing_compared,
-    synonym_rows,
-    trust_of,
 )
-from recall.openset_classes import past_part_rows, with_open_mass
-from recall.openset_named import fits_by, named_first
+from recall.openset_classes import past_part_rows
+from recall.openset_named import named_first
+from recall.openset_verdict import row_closeness, row_fits, verdict
 from recall.results import Match, RecallResult
 from recall.search import select_top_k
 from recall.shortlist import Shortlist, ranking_scores
@@ -105,16 +101,6 @@ def resolve_metric(metric: str | None, features_only: bool) -> str:
     return DEFAULT_METRIC[bool(features_only)] if metric is None else metric
 
 
-@dataclasses.dataclass(frozen=True)
-class _Verdict:
-    """What :meth:`Recaller._verdict` decides of the best match."""
-
-    not_in_catalog: bool
-    unknown: str | None
-    modifier: str | None
-    trust: Trust
-
-
 class Recaller:
     """Recall objects from one catalog snapshot. Build with :meth:`from_db`, :meth:`from_csv`,
     :meth:`from_records` or from a snapshot. Thread-safe for reading."""
@@ -138,7 +124,7 @@ class Recaller:
         #: Classes of a binned catalog (:mod:`recall.catalog_folder`, ``bins.csv``): feature -> (below, above),
         #: a stored value x stands for [x / below, x * above]; read like the floors, by the verdict only.
         self.bins: dict[str, tuple[float, float]] = {}
-        from kb.features import CATEGORICAL_FEATURES, CATEGORIES
+        from kb.features import CATEGORIES
 
         material = snapshot.cat_cols[CATEGORICAL_FEATURES.index("material")]
         other = CATEGORIES["material"].index("other")
@@ -171,7 +157,7 @@ class Recaller:
         """Parse ``text`` (recall.parser) and recall. Nonsense gives an empty, zero-confidence result. A
         description in another language is read in English first (:mod:`recall.translations`); one whose
         content words are mostly read by no table is no close match (:mod:`recall.openset_words`)."""
-        from recall.openset_words import unread_words
+        from recall.openset_words import not_read, unread_words
         from recall.parser import parse
         from recall.translations import english_reading
 
@@ -182,7 +168,7 @@ class Recaller:
             result = self.recall_parsed(parse(reading.text), top=top, metric=metric, features_only=features_only)
             result.text, result.read_as, result.translated = text, reading.text, reading.translated
         unread = unread_words(reading.text, self.names.vocabulary) if reading is not None else ()
-        return _not_read(result, unread) if unread else result
+        return not_read(result, unread) if unread else result
 
     def recall_parsed(
         self, parsed: Any, *, top: int = 5, metric: str | None = None, features_only: bool = False
@@ -317,20 +303,15 @@ class Recaller:
         ranked = query.within_classes(self.bins) if self.bins else query  # a binned catalog's classes
         ranked = ranked.within_floors(self.floors) if self.floors else ranked  # open top bins: the floor
         rows, dist = self.shortlist.candidates(ranked, named, top, metric, soft)
-        if self.bins and self.floors:  # past the part measured, the mass class is open above (as the verdict)
-            past = self._past_part_rows()
-            dist_of = functools.partial(self.shortlist.distances_of, metric=metric)
-            mass = self.snapshot.num_cols[NUMERIC_FEATURES.index("mass_g")]
-            rows, dist = with_open_mass(rows, dist, query, ranked, past, mass, self.bins, metric, dist_of)
         score, parts = ranking_scores(rows, dist, names, soft, metric)
         if names.rows() and not names_inside(noun, names.phrases):  # a named object that fits ranks first
-            score, parts = named_first(rows, score, parts, names, lambda r, t: self._fits(r, query, soft, subject, t))
+            score, parts = named_first(rows, score, parts, names, lambda r, t: row_fits(self, r, query, soft, subject, t))
         competitors = competitors_of(score) if metric in JP_METRICS else 1.0
         rows, score = select_top_k(rows, score, min(len(rows), max(top, 2)))
         matches = self.shortlist.matches(rows, score, parts, ranked, metric, set(names.exact))
         best = int(rows[0])
-        errors, closeness = self._closeness(best, query, soft)
-        v = self._verdict(best, matches, names, noun, subject, not_in_catalog)
+        errors, closeness = row_closeness(self, best, query, soft)
+        v = verdict(self, best, matches, names, noun, subject, not_in_catalog)
         not_in_catalog, unknown, modifier, trust = v.not_in_catalog, v.unknown, v.modifier, v.trust
         fit = judge(closeness, errors, trust, unused, noun.noun if not_in_catalog else None)
         open_set = not fit.close
@@ -363,43 +344,6 @@ class Recaller:
             **base,
         )
 
-    def _verdict(
-        self,
-        best: int,
-        matches: list,
-        names: NameEvidence,
-        noun: DescribedNoun | None,
-        subject: tuple[str, ...],
-        not_in_catalog: bool,
-    ) -> _Verdict:
-        """Whether the described thing is in the catalog at all, and how far the best match's name is
-        trusted: its unknown noun or foreign modifier, if any (``not_in_catalog``: the noun's own verdict)."""
-        # a whole catalog name in the text beats the subject's noun, unless it is only a modifier of it ("an
-        # *egg* cup", "a *pencil* sharpener": the egg and the pencil are not what is described)
-        named_whole = matches[0].matched_by_name and not names_inside(noun, names.phrases)
-        not_in_catalog = not_in_catalog and not named_whole
-        if noun is not None and noun.sort_of is not None and not named_whole:
-            # a sort of a catalog object ("a spring clamp"): in the catalog only as an object of that head
-            not_in_catalog = words_of(self.snapshot.names[best])[-1:] != [noun.sort_of]
-        # a lexicon synonym of a catalog object ("cellphone", "pen drive": smartphone, usb stick) is no
-        # unknown noun, and names it with all its words
-        unknown = None if noun is not None and noun.in_catalog else names.unknown_noun
-        synonym = best in synonym_rows(noun, self.names.phrases)
-        modifier = self._foreign_modifier(subject, best, names)
-        modifier = None if synonym and modifier in noun.noun.split() else modifier
-        # a noun before the head of an object named by its head alone says which sort ("a *table* knife" of
-        # the catalog's "knife"): neither doubt nor a name's evidence
-        narrows = modifier is not None and plain_name(words_of(self.snapshot.names[best]))
-        modifier = None if narrows else modifier
-        trusted = (
-            (matches[0].matched_by_name or synonym)
-            and modifier is None
-            and not narrows
-            and material_agrees(subject, matches[0].features.get("material"))
-        )
-        trust = Trust.FOREIGN if not_in_catalog else trust_of(trusted, unknown or modifier)
-        return _Verdict(not_in_catalog, unknown, modifier, trust)
-
     def _past_part_rows(self) -> np.ndarray:
         """The rows whose mass class is open above (:func:`recall.openset_classes.past_part_rows`), once
         per declaration of floors and classes."""
@@ -407,51 +351,6 @@ class Recaller:
         if getattr(self, "_past", (None,))[0] != key:
             self._past = (key, past_part_rows(self.snapshot, self.floors, self.bins))
         return self._past[1]
-
-    def _closeness(self, row: int, query: FeatureQuery, soft: SoftEvidence | None) -> tuple[dict, float | None]:
-        """The relative errors of ``row`` against the stated features and its closeness (their mean)."""
-        snap = self.snapshot
-        errors = relative_errors(snap.num_rows(row), snap.cat_rows(row), query, self.floors, self.bins)
-        errors.update(soft.errors_of(row) if soft is not None else {})
-        return errors, closeness_of(errors, self._silent_categories(row))
-
-    def _fits(self, row: int, query: FeatureQuery, soft: SoftEvidence | None, subject, trust: Trust) -> bool:
-        """Whether ``row`` is a close match by the open-set rule (:func:`recall.openset_named.fits_by`); a
-        whole name whose material the subject's words contradict is trusted as a head noun only."""
-        if trust is Trust.NAMED and not material_agrees(subject, self.snapshot.record(row).material):
-            trust = Trust.PLAIN
-        errors, closeness = self._closeness(row, query, soft)
-        return fits_by(closeness, errors, trust)
-
-    def _silent_categories(self, row: int) -> tuple[str, ...]:
-        """The categorical features the catalog holds no value for at ``row`` (code < 0)."""
-        codes = self.snapshot.cat_rows(row)
-        return tuple(f for f, code in zip(CATEGORICAL_FEATURES, codes, strict=True) if code < 0)
-
-    def _foreign_modifier(self, subject: tuple[str, ...], row: int, names: NameEvidence) -> str | None:
-        """The noun before the subject's head that none of the named best match's names has
-        (:func:`recall.openset.foreign_modifier`); None when the text does not name that row."""
-        if not subject or (row not in names.exact and row not in names.head):
-            return None
-        snap = self.snapshot
-        words = frozenset(w for name in (snap.names[row], *snap.aliases[row]) for w in words_of(name))
-        # a phrase of the text that names the row (a synonym: "cross head screwdriver") holds its modifier
-        said = [p.split() for p in names.phrases if row in (self.names.phrases.get(tuple(p.split())) or ())]
-        return foreign_modifier(subject, words | frozenset(w for p in said for w in p))
-
-def _not_read(result: RecallResult, unread: tuple[str, ...]) -> RecallResult:
-    """``result`` when most of its description's content words were read by no table (``unread``): no close
-    match, whatever was ranked (the reason names the words), its confidence at most
-    :data:`recall.openset_words.UNREAD_CONFIDENCE`."""
-    from recall.fit import Fit
-    from recall.openset_words import UNREAD_CONFIDENCE
-
-    words = ", ".join(repr(w) for w in unread)
-    score = max(result.fit.score if result.fit is not None else 0.0, 2.0)
-    result.unread, result.open_set = unread, bool(result.matches)
-    result.fit = Fit(False, score, f"most words not read: {words}")
-    result.confidence = min(result.confidence, UNREAD_CONFIDENCE)
-    return result
 
 
 def _checked(metric: str | None, features_only: bool, top: int) -> str:

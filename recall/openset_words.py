@@ -19,7 +19,7 @@ import re
 from kb.kinds import nouns, singular
 from recall.translations import english_words, fold, table
 
-__all__ = ["MIN_UNREAD", "UNREAD_CONFIDENCE", "content_words", "unread_words"]
+__all__ = ["MIN_UNREAD", "UNREAD_CONFIDENCE", "content_words", "not_read", "unread_words"]
 
 #: Fewest words not read for the rule to apply: two are an English sparse description's adjectives the
 #: tables do not hold ("upright, noisy, about 7 kg"; "spring-loaded jaws"), not another language.
@@ -62,3 +62,17 @@ def unread_words(text: str, vocabulary: frozenset[str] = frozenset()) -> tuple[s
     if len(unread) < MIN_UNREAD or 2 * len(unread) <= len(words):
         return ()
     return tuple(dict.fromkeys(unread))
+
+
+def not_read(result, unread: tuple[str, ...]):
+    """``result`` (a :class:`recall.results.RecallResult`) when most of its description's content words
+    were read by no table (``unread``): no close match, whatever was ranked (the reason names the words),
+    its confidence at most :data:`UNREAD_CONFIDENCE`."""
+    from recall.fit import Fit
+
+    words = ", ".join(repr(w) for w in unread)
+    score = max(result.fit.score if result.fit is not None else 0.0, 2.0)
+    result.unread, result.open_set = unread, bool(result.matches)
+    result.fit = Fit(False, score, f"most words not read: {words}")
+    result.confidence = min(result.confidence, UNREAD_CONFIDENCE)
+    return result

@@ -68,7 +68,7 @@ SETTLED_S = 3.0
 _SEP = "\x00"
 #: The modules whose code decides what the stored index holds.
 _SOURCES = ("recall/names.py", "recall/name_tables.py", "recall/stored_index.py", "recall/snapshot.py",
-            "recall/lexicon.py", "recall/string_table.py", "kb/kinds.py", "kb/features.py")  # fmt: skip
+            "recall/lexicon.py", "recall/lexicon_categories.py", "recall/string_table.py", "kb/kinds.py", "kb/features.py")  # fmt: skip
 _ROOT = Path(__file__).resolve().parent.parent
 MATERIALS = tuple(CATEGORIES["material"])
 

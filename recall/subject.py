@@ -14,6 +14,8 @@ import re
 from collections.abc import Sequence
 
 from kb.kinds import singular, words_of
+from recall.negated_nouns import _negations, _phrase_negation, negated_spans, negated_words
+from recall.word_classes import adjective_feature_words, feature_words, is_adjective, is_participle
 
 __all__ = [
     "adjective_feature_words",
@@ -150,87 +152,20 @@ def counted_head(text: str) -> str | None:
     return phrase[-1] if re.search(counted, low) else None
 
 
-def negated_words(words: list[str]) -> set[int]:
-    """The indices of the words of a negated noun phrase in ``words`` (lower case, apostrophes dropped,
-    punctuation as its own words): the parser's negation scope for values (``recall/PARSER.md``,
-    "Negated values") applied to nouns. After a value negation (``lexicon.VALUE_NEGATIONS``; not "non",
-    "hardly") and at most two gap words ("is", "really", ...), an article starts the phrase ("not *a mug*",
-    "isn't really *the cup*"; not "not heavy"), and ``lexicon.NOUN_NEGATIONS`` start it right after them
-    ("no *handle*", "without *a lid*", "neither *a mug* nor *a cup*"); it runs to a comma or other
-    punctuation, "and", "but", a number or the next negation."""
-    negated: set[int] = set()
-    i = 0
-    while i < len(words):
-        start = _negated_start(words, i)
-        i += 1
-        if start is None:
-            continue
-        i = start
-        while i < len(words) and words[i] not in _NEGATED_PHRASE_ENDS and words[i] not in _negations():
-            if not words[i].isalpha():
-                break
-            negated.add(i)
-            i += 1
-    return negated
 
 
-def negated_spans(text: str) -> list[tuple[int, int]]:
-    """The character spans of the words of ``text`` in a negated noun phrase (:func:`negated_words`):
-    they name no object ("not a mug, a glass")."""
-    tokens = list(_TOKEN.finditer(text))
-    words = [m.group().lower().replace("'", "").replace("\u2019", "") for m in tokens]
-    return [tokens[i].span() for i in sorted(negated_words(words))]
 
 
-_TOKEN = re.compile(r"[^\W_]+(?:['\u2019][^\W_]+)*|[^\w\s]")
-#: What ends a negated noun phrase (besides punctuation, numbers and another negation).
-_NEGATED_PHRASE_ENDS = frozenset({"and", "but", "&", "instead", "rather"})
 
 
-def _negated_start(words: list[str], i: int) -> int | None:
-    """The index where the noun phrase negated by ``words[i]`` starts, or None (see :func:`negated_words`)."""
-    from recall import lexicon as lx
-
-    word = words[i]
-    if word not in _phrase_negations():
-        return None
-    if word in lx.NOUN_NEGATIONS:
-        j = i + 1
-        return j + 1 if j < len(words) and words[j] in lx.ARTICLES else j
-    for j in range(i + 1, min(len(words), i + 4)):
-        if words[j] in lx.ARTICLES:
-            return j + 1
-        if not (words[j] in lx.NEGATION_GAP_WORDS or words[j] in _GAP_WORDS):
-            return None
-    return None
 
 
-#: Linking words that may stand between a negation and its article ("is not really a mug": the parser's
-#: BE words and gap words).
-_GAP_WORDS = frozenset({"is", "are", "was", "be", "really", "actually", "quite", "even", "exactly", "just"})
 
 
-@functools.cache
-def _negations() -> frozenset[str]:
-    """The negation words, apostrophes dropped ("isnt", "doesnt")."""
-    from recall import lexicon as lx
-
-    return frozenset(w.replace("'", "") for w in lx.NEGATIONS)
 
 
-@functools.cache
-def _phrase_negations() -> frozenset[str]:
-    """The negations that can negate a noun phrase (:func:`negated_words`), apostrophes dropped: the
-    value negations (``lexicon.VALUE_NEGATIONS``) but "non" ("non-stick")."""
-    from recall import lexicon as lx
-
-    return frozenset(w.replace("'", "") for w in lx.VALUE_NEGATIONS - {"non"})
 
 
-@functools.cache
-def _phrase_negation() -> re.Pattern[str]:
-    """A word of :func:`_phrase_negations` in a sentence (lower case, apostrophes dropped)."""
-    return re.compile(rf"\b(?:{'|'.join(sorted(_phrase_negations()))})\b")
 
 
 def noun_phrase(text: str) -> tuple[str, ...]:
@@ -332,62 +267,16 @@ def _hedge_start_only(word: str) -> bool:
     return word in sequences and word not in single and not any(word in t for t in numbers)
 
 
-@functools.cache
-def feature_words() -> frozenset[str]:
-    """Single words of the parser's lexicon that state a feature, a unit, a number or a hedge. Colour
-    words and the object nouns among the shape words ("orange", "candle", "vase") are left out: as the
-    head of the subject they name the object; of the shape words only adjectives ("round", "cylindrical",
-    "ball-shaped") are kept."""
-    from recall import lexicon as lx
-
-    words: set[str] = set()
-    tables = (
-        lx.MATERIAL_WORDS, lx.RIGIDITY_WORDS, lx.TEXTURE_WORDS, lx.FRAGILITY_WORDS, lx.MASS_HINT_WORDS,
-        lx.DIMENSION_WORDS, lx.NUMBER_WORDS, lx.MAGNITUDE_WORDS, lx.FRACTION_WORDS, lx.HEDGES,
-        lx.LENGTH_UNITS, lx.MASS_UNITS, lx.VOLUME_UNITS, lx.MEDIUM_WORDS, lx.DIMENSION_NOUNS, lx.FILL_WORDS,
-        lx.CAPACITY_WORDS, lx.NEGATIONS,
-    )  # fmt: skip
-    for table in tables:
-        for phrase in table:
-            words.update(words_of(phrase))
-    shape_words = set(lx.SHAPE_WORDS) | lx.SPHERE_WORDS | lx.CUBE_WORDS | lx.FLAT_WORDS | lx.ROUND_WORDS
-    for word in shape_words | lx.CYLINDER_WORDS | lx.DISC_WORDS:
-        if _ADJECTIVE.search(word) or word in _SHAPE_ADJECTIVES:
-            words.update(words_of(word))
-    return frozenset(words)
 
 
-@functools.cache
-def adjective_feature_words() -> frozenset[str]:
-    """Single words that state a mass hint, texture, rigidity or fragility ("light", "soft"): adjectives,
-    never a head noun, although a catalog name may end in one ("tea light")."""
-    from recall import lexicon as lx
-
-    tables = (lx.MASS_HINT_WORDS, lx.TEXTURE_WORDS, lx.RIGIDITY_WORDS, lx.FRAGILITY_WORDS)
-    return frozenset(w for table in tables for w in table if " " not in w)
 
 
-#: Adjective endings; "-y" only after a consonant ("squishy", "fuzzy"), not in "key", "tray", "trolley".
-_ADJECTIVE = re.compile(r"(al|ic|ed|[^aeiou]y|ish|ar|shaped|like)$")
-_SHAPE_ADJECTIVES = frozenset(
-    {"flat", "round", "long", "thin", "slim", "slender", "compact", "oval", "squat", "floppy"}
-)
 
 
-#: Participles and adjectives that end a phrase ("full", "filled", "folded", "useful"): never a head.
-_PARTICIPLE = re.compile(r"^(full|play|fake|toy)$|..(ed|ful|ous|able|ible)$")
 
 
-def is_participle(word: str) -> bool:
-    """Whether ``word`` is a participle or adjective that never heads a subject ("full", "filled")."""
-    return _PARTICIPLE.search(word) is not None
 
 
-def is_adjective(word: str) -> bool:
-    """Whether ``word`` looks like an adjective or participle by its ending or is a shape adjective
-    ("metallic", "round", "folded"); a heuristic without a tagger (nouns such as "garlic" match too:
-    callers check the noun lexicon first)."""
-    return bool(_ADJECTIVE.search(word)) or word in _SHAPE_ADJECTIVES or is_participle(word)
 
 
 def said_in_plural(word: str, text: str) -> bool:

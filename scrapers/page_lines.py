@@ -92,6 +92,12 @@ class Line:
     #: Read in a site-wide block (:data:`SITE_WIDE_TAGS`, :data:`SITE_WIDE_ROLES`): the store's header,
     #: footer, navigation or an aside, outside the product's main content.
     site_wide: bool = False
+    #: Read inside one option of a variant picker (:func:`_picker_option`): the ``group`` of the element
+    #: holding the picker's options (lines of one picker share it), 0 outside any picker.
+    picker: int = 0
+    #: Inside a picker option the page marks as chosen (:func:`_marked_selected`), other than its first
+    #: (a first option checked is the picker's default state: :func:`_first_option`).
+    selected: bool = False
 
 
 def visible_lines(tree) -> tuple[list[Line], bool]:
@@ -101,7 +107,7 @@ def visible_lines(tree) -> tuple[list[Line], bool]:
     The text nodes that hold more than spaces are found by one XPath (in C); each one's context comes
     from its element's, computed once per element from its parent's (:func:`_context`)."""
     lines: list[Line] = []
-    contexts: dict[Any, tuple[bool, bool, bool, int] | None] = {}
+    contexts: dict[Any, Context | None] = {}
     for text in tree.xpath("//text()[normalize-space()]"):
         owner = text.getparent()
         if owner is None:
@@ -120,15 +126,21 @@ def visible_lines(tree) -> tuple[list[Line], bool]:
     return lines, False
 
 
-def _context(el, contexts: dict) -> tuple[bool, bool, bool, int] | None:
-    """(package, site-wide, inside sectioning content, group) of the text ``el`` holds, None when it is
-    not read (inside a dropped tag or another product's container); memoised in ``contexts``."""
+#: (package, site-wide, inside sectioning content, group, picker, selected): a line's context.
+Context = tuple[bool, bool, bool, int, int, bool]
+_ROOT: Context = (False, False, False, 0, 0, False)
+
+
+def _context(el, contexts: dict) -> Context | None:
+    """The :data:`Context` of the text ``el`` holds, None when it is not read (inside a dropped tag or
+    another product's container); memoised in ``contexts``. An element inside a picker option inherits
+    the option's picker (the ``group`` of the option's parent: every option of one picker shares it)."""
     chain = []
     node = el
     while node is not None and node not in contexts:
         chain.append(node)
         node = node.getparent()
-    context = contexts[node] if node is not None else (False, False, False, 0)
+    context = contexts[node] if node is not None else _ROOT
     for node in reversed(chain):
         if context is not None:
             tag = node.tag
@@ -139,15 +151,60 @@ def _context(el, contexts: dict) -> tuple[bool, bool, bool, int] | None:
                 if (foreign and tag not in _NEVER_DROP) or _help_popup(node):
                     context = None
                 else:
-                    package, site_wide, sectioned, _ = context
-                    if not site_wide and (tag in SITE_WIDE_TAGS or node.get("role") in SITE_WIDE_ROLES):
-                        site_wide = tag in ("nav", "aside") or not sectioned or node.get("role") in SITE_WIDE_ROLES
-                    context = (package or own_package, site_wide, sectioned or tag in _SECTIONING, len(contexts) + 1)
+                    package, site_wide, sectioned, parent, picker, selected = context
+                    role = node.get("role")
+                    if not site_wide and (tag in SITE_WIDE_TAGS or role in SITE_WIDE_ROLES):
+                        site_wide = tag in ("nav", "aside") or not sectioned or role in SITE_WIDE_ROLES
+                    if not picker and parent and _picker_option(node, tag, role):
+                        picker, selected = parent, _marked_selected(node) and not _first_option(node)
+                    context = (package or own_package, site_wide, sectioned or tag in _SECTIONING, len(contexts) + 1,
+                               picker, selected)  # fmt: skip
         contexts[node] = context
     return context
 
 
 _UNSEEN = object()
+#: Roles of one choice among several (WAI-ARIA): a listbox's ``option``, a radio group's ``radio``.
+_OPTION_ROLES = frozenset({"option", "radio", "menuitemradio"})
+#: A class token naming one swatch or option of a variant picker (``swatch``, ``size-item``,
+#: ``variant-option``, ``product-option__value``).
+_OPTION_CLASS = re.compile(r"swatch|(?:size|variant|option)[-_]+(?:item|option|value|button|btn)\b|"
+                           r"(?:variant|option)[-_]+(?:value|item)s?$", re.IGNORECASE)  # fmt: skip
+#: Attributes and class tokens a page marks its chosen option with.
+_SELECTED_ARIA = ("aria-selected", "aria-checked", "aria-pressed", "aria-current")
+_SELECTED_CLASS = re.compile(r"(?:^|[-_])(?:selected|active|checked|current|chosen)$", re.IGNORECASE)
+
+
+def _picker_option(node, tag: str, role: str | None) -> bool:
+    """Whether ``node`` is one option of a variant picker: a ``button``, an element of an option role
+    (:data:`_OPTION_ROLES`), or one a class token names a swatch or a picker's option (:data:`_OPTION_CLASS`).
+    ``select``'s ``option`` elements are not read as lines at all (:data:`_DROP_TAGS`)."""
+    if tag == "button" or role in _OPTION_ROLES:
+        return True
+    classes = node.get("class")
+    return bool(classes) and any(_OPTION_CLASS.search(t) for t in classes.split())
+
+
+def _first_option(node) -> bool:
+    """Whether no option of the same picker comes before ``node``: a first option marked chosen is the
+    picker's default state, not a choice (two development stores' configurators check their first size,
+    labelled no size of the product's)."""
+    return not any(
+        isinstance(sib.tag, str) and _picker_option(sib, sib.tag, sib.get("role"))
+        for sib in node.itersiblings(preceding=True)
+    )
+
+
+def _marked_selected(node) -> bool:
+    """Whether a picker option says it is the chosen one: ``aria-selected`` (``-checked``, ``-pressed``,
+    ``-current``) ``true``, a ``selected`` or ``checked`` attribute, or a class token ``selected``,
+    ``active``, ``is-checked``, ``swatch--current``..."""
+    if any((node.get(a) or "").strip().lower() == "true" for a in _SELECTED_ARIA):
+        return True
+    if node.get("selected") is not None or node.get("checked") is not None:
+        return True
+    classes = node.get("class")
+    return bool(classes) and any(_SELECTED_CLASS.search(t) for t in classes.split())
 
 
 def _help_popup(node) -> bool:
@@ -250,7 +307,7 @@ _new = object.__new__
 TEXT_BLOCK_LINES = 3
 
 
-def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
+def _add_line(lines: list[Line], text: str, context: Context) -> None:
     if text.count("\n") >= TEXT_BLOCK_LINES - 1:
         rows = [row for row in text.split("\n") if not row.isspace() and row]
         if len(rows) >= TEXT_BLOCK_LINES:
@@ -260,11 +317,12 @@ def _add_line(lines: list[Line], text: str, context: tuple[bool, bool, bool, int
     _add_one(lines, text, context)
 
 
-def _add_one(lines: list[Line], text: str, context: tuple[bool, bool, bool, int]) -> None:
+def _add_one(lines: list[Line], text: str, context: Context) -> None:
     text = " ".join(text.split())
     if text:
-        # Line(text, package, group, index, site_wide) without the frozen dataclass's slow __init__ (one
-        # object.__setattr__ per field; pages have thousands of lines): the same fields, the same object
+        # Line(text, package, group, index, site_wide, picker, selected) without the frozen dataclass's slow
+        # __init__ (one object.__setattr__ per field; pages have thousands of lines): the same fields
         line = _new(Line)
-        line.__dict__.update(text=text, package=context[0], group=context[3], index=len(lines), site_wide=context[1])
+        line.__dict__.update(text=text, package=context[0], group=context[3], index=len(lines), site_wide=context[1],
+                             picker=context[4], selected=context[5])  # fmt: skip
         lines.append(line)

@@ -140,8 +140,12 @@ _LIST_MARK = re.compile(r"\s*[-–•*·]\s")
 
 def _listed(line: Line, following: Line) -> bool:
     """Whether two value lines are entries of one list, one under the other: lines of one element
-    (``<br>``-separated) or both marked as list entries (``- 13,3 x 21,2 cm``). A table row's cells are
-    neither: a row of values per model (``Width | 30.41 cm | 34.04 cm``) keeps its first cell the product's."""
+    (``<br>``-separated), options of one variant picker (``Line.picker``; an option the page marks
+    selected is the product's, never listed), or both marked as list entries (``- 13,3 x 21,2 cm``). A
+    table row's cells are none of these: a row of values per model (``Width | 30.41 cm | 34.04 cm``) keeps
+    its first cell the product's."""
+    if line.picker and (line.selected or line.picker == following.picker):
+        return not line.selected
     if line.group == following.group:
         return True
     return bool(_LIST_MARK.match(line.text) and _LIST_MARK.match(following.text))

@@ -45,9 +45,9 @@ def test_a_line_with_a_label_or_a_unit_heading_is_read():
 
 def test_the_fast_line_is_the_dataclass_line():
     lines: list[Line] = []
-    _add_line(lines, "  Gewicht \n 4,7 kg ", (True, False, False, 7))
-    assert lines == [Line("Gewicht 4,7 kg", True, 7, 0, False)]
-    assert hash(lines[0]) == hash(Line("Gewicht 4,7 kg", True, 7, 0, False))
+    _add_line(lines, "  Gewicht \n 4,7 kg ", (True, False, False, 7, 3, True))
+    assert lines == [Line("Gewicht 4,7 kg", True, 7, 0, False, 3, True)]
+    assert hash(lines[0]) == hash(Line("Gewicht 4,7 kg", True, 7, 0, False, 3, True))
 
 
 _PROSE = st.lists(st.sampled_from(["made of", "aus", "en", "solid", "oak", "Material", "Materiál", "素材", "2",

@@ -12,6 +12,7 @@ from recall.fit import Trust
 from recall.name_index import NameEvidence
 from recall.openset import OPEN_SET_NAMED_THRESHOLD
 from recall.openset_named import FIRST_MARGIN, named_first
+from recall.openset_verdict import row_closeness
 
 
 def _first(text: str) -> str:
@@ -32,7 +33,7 @@ def test_the_boundary_is_the_named_threshold(width, first):
     r = seed().recall_text(f"a bowl about {width} cm wide, 600 g", top=3)
     assert r.matches[0].name == first
     bowl = seed().snapshot.names.index("ceramic bowl")
-    errors, closeness = seed()._closeness(bowl, *_query(f"a bowl about {width} cm wide, 600 g"))
+    errors, closeness = row_closeness(seed(), bowl, *_query(f"a bowl about {width} cm wide, 600 g"))
     assert (closeness <= OPEN_SET_NAMED_THRESHOLD) == (first == "ceramic bowl")
 
 
@@ -91,6 +92,8 @@ def _yale():
         return _recaller_from_catalog(Path(__file__).parent / "data" / "catalog_yale" / "catalog.csv", Path(tmp))
 
 
+@pytest.mark.xfail(strict=True, reason="the ranking half of this rule is withdrawn: it ranked in NumPy only, so NumPy and "
+                   "SQL ranked a binned catalog differently (tests/test_bins.py); it needs the same rule in the SQL ranking")
 def test_the_garden_hose_ranks_the_hose_whose_mass_class_is_open_above():
     # Yale's hose (15 cm part, the top size class; mass class 240 g): 8 pounds is above the class, where the
     # mass is unknown, so the ranking no longer puts the cleaning supplies basket first (catalog real)

@@ -92,10 +92,11 @@ def test_a_synonym_holds_its_own_modifier(tmp_path):
     # the same words without the synonym phrase found: "head" is foreign to the object's own names
     import dataclasses
 
+    from recall.openset_verdict import foreign_modifier_of
     from recall.subject import noun_phrase
 
     text = "a cross-head screwdriver, 30 cm long, 100 g"
     found = r.names.find(text)
     assert found.phrases == ("cross head screwdriver",)
-    assert r._foreign_modifier(noun_phrase(text), 0, found) is None
-    assert r._foreign_modifier(noun_phrase(text), 0, dataclasses.replace(found, phrases=())) == "head"
+    assert foreign_modifier_of(r, noun_phrase(text), 0, found) is None
+    assert foreign_modifier_of(r, noun_phrase(text), 0, dataclasses.replace(found, phrases=())) == "head"

@@ -325,25 +325,26 @@ def material_observations(lines: list[Line]) -> list[Observation]:
 
 def selected_variant(page: Page) -> list[Observation]:
     """The size of the variant a page has selected (``<option selected>Mattress 2'6" x 6'6" (75 x 200 x 22
-    cm)</option>``): a page that sells several sizes shows the product's in its picker, while its size
-    table lists every variant. The most complete size in the option's text, rank 0 (it beats the table's
-    rows); nothing when the option names no size."""
+    cm)</option>``, or a picker's button, swatch or ``role=option`` the page marks chosen: ``aria-checked``,
+    ``class="selected"``, :attr:`scrapers.page_lines.Line.selected`): a page that sells several sizes shows
+    the product's in its picker, while its size table lists every variant. The most complete size in the
+    option's text, rank 0 (it beats the table's rows); nothing when the option names no size with a unit."""
     tree = page.tree
     if tree is None:
         return []
-    obs = []
-    for option in tree.xpath("//select//option[@selected]")[:20]:
-        text = " ".join(option.itertext()).strip()[:300]
+    texts = [" ".join(option.itertext()).strip()[:300] for option in tree.xpath("//select//option[@selected]")[:20]]
+    texts += [line.text[:300] for line in page.lines if line.selected and not line.site_wide][:20]
+    for text in texts:
         found = parse_dims(text, None, page.decimal_comma) if DIGIT.search(text) else []
         if found:
             best = max(found, key=lambda d: len(d.values_cm))
-            obs.append(
+            return [
                 Observation(
                     "dims", best.values_cm, rank=0, raw=f"selected option: {text}"[:200], roles=best.roles,
                     note=f"the size of the selected variant ({text[:80]!r})",
                 )
-            )  # fmt: skip
-    return obs[:1]
+            ]  # fmt: skip
+    return []
 
 
 #: Regions whose stores write lengths in inches when they write no unit (Barnes & Noble's
