@@ -161,7 +161,8 @@ class Recaller:
         from recall.parser import parse
         from recall.translations import english_reading
 
-        reading = english_reading(text) if isinstance(text, str) else None
+        keep = frozenset(w.lower() for w in self.names.vocabulary)
+        reading = english_reading(text, keep) if isinstance(text, str) else None
         if reading is None or reading.language is None:
             result = self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
         else:

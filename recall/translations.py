@@ -108,7 +108,7 @@ def _matches(spans, lang: str, english: frozenset[str]) -> list[tuple[int, int, 
     return out
 
 
-def english_reading(text: str) -> EnglishReading:
+def english_reading(text: str, keep: frozenset[str] = frozenset()) -> EnglishReading:
     """The English reading of ``text`` (module docstring): the language with the most words of its table
     that are no English words (at least one; ties: :data:`LANGUAGES` order); its words that are no English
     word translated, and with :data:`MIN_EVIDENCE` of them its words that are English too; a dimension
@@ -128,6 +128,8 @@ def english_reading(text: str) -> EnglishReading:
         if not (foreign or whole):
             continue
         start, end = spans[i][0], spans[j - 1][1]
+        if text[start:end].lower() in keep:  # a word of the catalog's own names is the catalog's word
+            continue
         pieces += [text[pos:start], eng]
         done.append((text[start:end], eng))
         pos = end

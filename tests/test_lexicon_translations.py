@@ -88,3 +88,10 @@ def test_a_language_no_table_holds_is_no_close_match():
 def test_unread_boundaries(text, fires):
     assert MIN_UNREAD == 3
     assert bool(unread_words(text)) == fires
+
+
+def test_a_word_the_catalog_names_hold_is_kept_not_translated():
+    from recall.translations import english_reading
+
+    assert english_reading("una sartén").text != "una sartén"  # translated without the catalog's word
+    assert "sartén" in english_reading("una sartén", frozenset({"sartén"})).text
