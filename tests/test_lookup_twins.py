@@ -7,7 +7,6 @@ here; the catalog a real DuckDB file; the fit the real one."""
 from __future__ import annotations
 
 import pytest
-from conftest import SEED_CSV
 
 from kb.catalog import KnowledgeBase
 from recall.lookup import recall_with_lookup
@@ -21,13 +20,6 @@ TEXT = "an Acme computer monitor, about 61 x 42 x 19 cm, 5.4 kg"
 
 def monitor(handle: str, title: str):
     return P(handle, "jsonld", "en", title, (61.2, 42.0, 19.0), "cm", 5400, "g", "plastic", "plastic")
-
-
-@pytest.fixture
-def db(tmp_path):
-    path = tmp_path / "catalog.duckdb"
-    KnowledgeBase.open(path).import_csv(SEED_CSV)
-    return path
 
 
 def _lookup(db, products):
@@ -62,12 +54,12 @@ def test_a_model_number_is_letters_and_enough_digits_and_no_quantity():
     (("Acme MultiSync E27F LED Monitor", "Monitor Acme E27F 69 cm"), False),  # 2 digits: a series word
     (("Acme Vista 128GB LED Monitor", "Monitor Acme Nova 128GB"), False),  # a quantity with its unit
 ])  # fmt: skip
-def test_two_stores_pages_of_one_model_are_one_object(db, titles, one):
-    out = _lookup(db, tuple(monitor(f"monitor-{i}", t) for i, t in enumerate(titles)))
+def test_two_stores_pages_of_one_model_are_one_object(seeded_db, titles, one):
+    out = _lookup(seeded_db, tuple(monitor(f"monitor-{i}", t) for i, t in enumerate(titles)))
     assert out.looked_up and out.found, out.message
     added = [c for c in out.stores.candidates if c.outcome == "added"]
     assert len(added) == 2
-    assert len(_objects_of(db, [c.url for c in added])) == (1 if one else 2)
+    assert len(_objects_of(seeded_db, [c.url for c in added])) == (1 if one else 2)
     assert len(out.stores.new_objects) == (1 if one else 2)
     if one:  # the page read second is named as the first, its own title an alias
         assert added[0].name == added[1].name and out.result.best.name == added[0].name
