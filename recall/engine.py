@@ -52,7 +52,6 @@ from recall.openset import (
     names_inside,
     nothing_compared,
 )
-from recall.openset_classes import past_part_rows
 from recall.openset_named import named_first
 from recall.openset_verdict import row_closeness, row_fits, verdict
 from recall.results import Match, RecallResult
@@ -161,8 +160,7 @@ class Recaller:
         from recall.parser import parse
         from recall.translations import english_reading
 
-        keep = frozenset(w.lower() for w in self.names.vocabulary)
-        reading = english_reading(text, keep) if isinstance(text, str) else None
+        reading = english_reading(text, self.names.vocabulary) if isinstance(text, str) else None
         if reading is None or reading.language is None:
             result = self.recall_parsed(parse(text), top=top, metric=metric, features_only=features_only)
         else:
@@ -344,14 +342,6 @@ class Recaller:
             fit=fit,
             **base,
         )
-
-    def _past_part_rows(self) -> np.ndarray:
-        """The rows whose mass class is open above (:func:`recall.openset_classes.past_part_rows`), once
-        per declaration of floors and classes."""
-        key = (tuple(sorted(self.floors.items())), tuple(sorted(self.bins.items())))
-        if getattr(self, "_past", (None,))[0] != key:
-            self._past = (key, past_part_rows(self.snapshot, self.floors, self.bins))
-        return self._past[1]
 
 
 def _checked(metric: str | None, features_only: bool, top: int) -> str:

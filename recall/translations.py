@@ -18,6 +18,7 @@ import csv
 import functools
 import re
 import unicodedata
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -108,11 +109,12 @@ def _matches(spans, lang: str, english: frozenset[str]) -> list[tuple[int, int, 
     return out
 
 
-def english_reading(text: str, keep: frozenset[str] = frozenset()) -> EnglishReading:
+def english_reading(text: str, keep: AbstractSet[str] = frozenset()) -> EnglishReading:
     """The English reading of ``text`` (module docstring): the language with the most words of its table
     that are no English words (at least one; ties: :data:`LANGUAGES` order); its words that are no English
     word translated, and with :data:`MIN_EVIDENCE` of them its words that are English too; a dimension
-    word after "of" ("9 cm de haut" -> "9 cm tall") loses the "of". English text comes back unchanged."""
+    word after "of" ("9 cm de haut" -> "9 cm tall") loses the "of"; a phrase ``keep`` holds (the catalog's own,
+    lowercase name words) stays as written. English text comes back unchanged."""
     spans = _spans(text)
     if not spans:
         return EnglishReading(text)
