@@ -170,8 +170,12 @@ def test_ctrl_c_leaves_before_or_after_and_exits_130(setup, store, tmp_path, mom
     db = tmp_path / "interrupted.duckdb"
     shutil.copy(before_db, db)
     if moment == "crawling":
+        seen = len(store.log)
         proc = _ingest(db, sources, store)
-        time.sleep(duration * 0.5)
+        deadline = time.monotonic() + 60  # crawling: the store has served this run's robots.txt and a page
+        while len(store.log) < seen + 2 and time.monotonic() < deadline and proc.poll() is None:
+            time.sleep(0.01)
+        time.sleep(duration * 0.1)
     else:
         proc = _ingest(db, sources, store, env={PAUSE_ENV: "60"})
         while "write transaction open" not in (line := proc.stderr.readline()) and line:
