@@ -187,3 +187,22 @@ def test_ctrl_c_leaves_before_or_after_and_exits_130(setup, store, tmp_path, mom
     assert state == before or state == after
     if moment != "crawling":
         assert state == before  # the COMMIT never ran
+
+
+def test_a_ctrl_c_python_drops_is_still_seen_and_the_handler_is_restored():
+    """A KeyboardInterrupt swallowed on its way (as Python does inside a garbage-collector callback) still
+    leaves its record, so `ingest` exits as interrupted; the previous SIGINT handler is back afterwards."""
+    import os
+
+    from kb.service.cli.ingest import interrupts_seen
+
+    before = signal.getsignal(signal.SIGINT)
+    with interrupts_seen() as seen:
+        assert seen == []
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(1)
+        except KeyboardInterrupt:
+            pass  # dropped, as in a GC callback
+    assert seen == [signal.SIGINT]
+    assert signal.getsignal(signal.SIGINT) is before

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import contextlib
 import re
+import signal
+import threading
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -129,7 +132,8 @@ def ingest_command(
     Exit codes: 0 the run is ok or ok_with_errors (some pages or a sitemap failed, the rest was read: see
     errors and rejected); 1 an error before or while writing (a malformed sources file, a database that
     cannot be written: nothing changed); 2 a usage error; 3 the run failed: nothing was fetched because of
-    failures (every store unreachable), recorded in ingestion_runs with status failed."""
+    failures (every store unreachable), recorded in ingestion_runs with status failed; 130 interrupted
+    (Ctrl-C): the catalog is as before the run, or as after it when the run had already reached its end."""
     import sys
 
     import requests
@@ -142,8 +146,13 @@ def ingest_command(
         sources, base_url=base_url, delay_s=delay, max_page_s=page_deadline, budget_s=store_budget
     )
     kb = KnowledgeBase.open(resolve_db(db))
-    with requests.Session() as session, IngestProgress(enabled=not json_out and sys.stderr.isatty()) as progress:
+    bar = IngestProgress(enabled=not json_out and sys.stderr.isatty())
+    with interrupts_seen() as seen, requests.Session() as session, bar as progress:
         report = run_ingestion(kb, plan, session=session, progress=progress)
+    if seen:  # Ctrl-C whose KeyboardInterrupt Python dropped: the run went on to its end
+        typer.echo(f"interrupted: ingestion run {report.run_id} had already run to its end; its result is kept",
+                   err=True)  # fmt: skip
+        raise typer.Exit(INTERRUPTED_EXIT)
     if json_out:
         emit(report)
     else:
@@ -153,6 +162,35 @@ def ingest_command(
             typer.echo(f"ingestion run {report.run_id} failed: nothing was fetched ({len(report.errors)} errors, "
                        f"{report.rejected} pages rejected)", err=True)  # fmt: skip
         raise typer.Exit(EXIT_CODES[report.status])
+
+
+#: The exit code of an interrupted command (128 + SIGINT, typer's for Ctrl-C).
+INTERRUPTED_EXIT = 130
+
+
+@contextlib.contextmanager
+def interrupts_seen():
+    """Record each SIGINT as well as raising it (the list yielded is non-empty once one came). Python drops a
+    KeyboardInterrupt raised while a garbage-collector callback runs ("Exception ignored in ..."), and the
+    run then goes on to its end: the record lets the command still exit as interrupted. Nothing is
+    installed off the main thread or where SIGINT is ignored (a background job)."""
+    seen: list[int] = []
+    previous = signal.getsignal(signal.SIGINT)
+    if threading.current_thread() is not threading.main_thread() or previous == signal.SIG_IGN:
+        yield seen
+        return
+
+    def record(signum, frame):
+        seen.append(signum)
+        if callable(previous):
+            previous(signum, frame)
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGINT, record)
+    try:
+        yield seen
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 class IngestProgress:
